@@ -1,0 +1,89 @@
+//! The equations of motion as a first-order system: y = (q, u), ẏ = (u, ü) with ü from
+//! a_lp ü_p = f_l (Eq. 27) and q̇ = u (Eqs. 28, 29 integrate to this for the angles).
+
+use nalgebra::{DMatrix, DVector};
+
+use crate::forces::Forces;
+use crate::integrate::{OdeSystem, RhsError};
+use crate::kernel::{AnchorDof, Assembly, Kernel};
+
+/// Kernel + loads + the anchor's state: the right-hand side the integrators see.
+pub struct Dynamics {
+    kernel: Box<dyn Kernel>,
+    forces: Forces,
+    anchor: AnchorDof,
+    assembly: Assembly,
+    evaluations: u64,
+}
+
+impl Dynamics {
+    pub fn new(kernel: Box<dyn Kernel>, forces: Forces, anchor: AnchorDof) -> Self {
+        let n = kernel.body_count();
+        Dynamics { kernel, forces, anchor, assembly: Assembly::new(n), evaluations: 0 }
+    }
+
+    /// N.
+    pub fn body_count(&self) -> usize {
+        self.kernel.body_count()
+    }
+
+    pub fn kernel_mut(&mut self) -> &mut dyn Kernel {
+        self.kernel.as_mut()
+    }
+
+    pub fn anchor(&self) -> AnchorDof {
+        self.anchor
+    }
+
+    /// Right-hand-side evaluations so far.
+    pub fn evaluations(&self) -> u64 {
+        self.evaluations
+    }
+
+    /// The last assembly (M, f and body states of the last evaluation).
+    pub fn assembly(&self) -> &Assembly {
+        &self.assembly
+    }
+
+    /// Number of active speeds: N (anchor free) or N − 1 (stuck).
+    pub fn active_speeds(&self) -> usize {
+        match self.anchor {
+            AnchorDof::Free => self.body_count(),
+            AnchorDof::Stuck => self.body_count() - 1,
+        }
+    }
+
+    /// Generalised accelerations at (q, u): solves the active block of a_lp ü = f by
+    /// Cholesky (a_lp is symmetric positive definite); a stuck anchor's entry is zero.
+    pub fn accelerations(&mut self, q: &[f64], u: &[f64], qdd: &mut [f64]) -> Result<(), RhsError> {
+        self.evaluations += 1;
+        self.kernel.assemble(q, u, &mut self.forces, &mut self.assembly);
+        let m = self.active_speeds();
+        let a: DMatrix<f64> = self.assembly.mass.view((0, 0), (m, m)).into_owned();
+        let f: DVector<f64> = self.assembly.rhs.rows(0, m).into_owned();
+        let chol = a.cholesky().ok_or_else(|| {
+            RhsError("the mass matrix a_lp is not positive definite (non-finite state or degenerate chain)".into())
+        })?;
+        let x = chol.solve(&f);
+        qdd[..m].copy_from_slice(x.as_slice());
+        qdd[m..].iter_mut().for_each(|v| *v = 0.0);
+        Ok(())
+    }
+}
+
+impl OdeSystem for Dynamics {
+    fn dim(&self) -> usize {
+        2 * self.body_count()
+    }
+
+    fn rhs(&mut self, _t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), RhsError> {
+        let n = self.body_count();
+        let (q, u) = y.split_at(n);
+        let (dq, du) = dy.split_at_mut(n);
+        dq.copy_from_slice(u);
+        if self.anchor == AnchorDof::Stuck {
+            dq[n - 1] = 0.0;
+        }
+        self.accelerations(q, u, du)
+    }
+}

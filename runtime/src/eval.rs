@@ -1,0 +1,178 @@
+//! `eval`: one evaluation of the equations of motion, as JSON for outside checks.
+//!
+//! The output is a contract; its fields are documented in `docs/eval.md` and checked by
+//! the schema test. Coordinates follow [`crate::kernel`]: q = (β_2 … β_N, s_11).
+
+use nalgebra::{DMatrix, DVector, SymmetricEigen};
+use serde::{Deserialize, Serialize};
+
+use crate::dynamics::Dynamics;
+use crate::forces::Forces;
+use crate::kernel::{AnchorDof, BodyAcceleration, Kernel};
+use crate::model::Model;
+
+/// A state to evaluate: `q` and `u` with N entries each; `anchor` defaults to the scene's
+/// initial anchor state.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StateFile {
+    pub q: Vec<f64>,
+    pub u: Vec<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub anchor: Option<AnchorDof>,
+}
+
+/// One body in the eval output: centroid position, velocity and acceleration (m, m/s,
+/// m/s²; x toward the ship, z up) and rotation about y (rad, rad/s, rad/s²; positive
+/// turns the body's x axis downward).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct EvalBody {
+    /// k of B_k (1 = anchor, N = ship).
+    pub index: usize,
+    pub kind: String,
+    pub x: f64,
+    pub z: f64,
+    pub vx: f64,
+    pub vz: f64,
+    pub ax: f64,
+    pub az: f64,
+    pub angle: f64,
+    pub omega: f64,
+    pub alpha: f64,
+}
+
+/// The eval output.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct EvalOutput {
+    pub scene: String,
+    pub kernel: String,
+    /// Physics included in f.
+    pub physics: String,
+    /// N.
+    pub bodies_count: usize,
+    pub anchor: AnchorDof,
+    /// Names of q's entries: "beta_2" … "beta_N", "s_1".
+    pub coordinates: Vec<String>,
+    /// Generalised coordinates, N entries (rad, last m).
+    pub q: Vec<f64>,
+    /// Generalised speeds, N entries (rad/s, last m/s).
+    pub u: Vec<f64>,
+    /// Number of active speeds n: N (anchor free) or N − 1 (stuck); M, f and qdd are over
+    /// the first n coordinates.
+    pub active: usize,
+    /// a_lp (Eq. 26), n × n, row-major.
+    #[serde(rename = "M")]
+    pub mass_matrix: Vec<Vec<f64>>,
+    /// f_l (Eq. 25), n entries.
+    pub f: Vec<f64>,
+    /// Generalised accelerations solving M qdd = f, n entries.
+    pub qdd: Vec<f64>,
+    /// ‖M qdd − f‖ / ‖f‖.
+    pub residual: f64,
+    /// 2-norm condition number of M (λ_max / λ_min).
+    pub cond: f64,
+    pub bodies: Vec<EvalBody>,
+}
+
+/// Why a state cannot be evaluated.
+#[derive(Clone, Debug, PartialEq)]
+pub struct EvalError(pub String);
+
+impl std::fmt::Display for EvalError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for EvalError {}
+
+impl StateFile {
+    /// Checks the state against the model: lengths N, finite values.
+    pub fn check(&self, n: usize) -> Result<(), EvalError> {
+        for (name, v) in [("q", &self.q), ("u", &self.u)] {
+            if v.len() != n {
+                return Err(EvalError(format!(
+                    "state.{name} has {} entries: the scene has N = {n} bodies, so it needs {n} (β_2 … β_{n}, s_1)",
+                    v.len()
+                )));
+            }
+            if let Some(i) = v.iter().position(|x| !x.is_finite()) {
+                return Err(EvalError(format!("state.{name}[{i}] = {}: must be finite", v[i])));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Names of the generalised coordinates.
+pub fn coordinate_names(n: usize) -> Vec<String> {
+    (2..=n).map(|k| format!("beta_{k}")).chain(std::iter::once("s_1".to_string())).collect()
+}
+
+/// Evaluates the model at `state` (or its initial state) with `kernel`.
+pub fn evaluate(model: &Model, kernel: Box<dyn Kernel>, state: Option<&StateFile>) -> Result<EvalOutput, EvalError> {
+    let n = model.body_count();
+    let (q, mut u, anchor) = match state {
+        Some(s) => {
+            s.check(n)?;
+            (s.q.clone(), s.u.clone(), s.anchor.unwrap_or(model.anchor))
+        }
+        None => (model.q0.clone(), model.u0.clone(), model.anchor),
+    };
+    if anchor == AnchorDof::Stuck {
+        u[n - 1] = 0.0;
+    }
+    let kernel_name = kernel.name().to_string();
+    let mut dynamics = Dynamics::new(kernel, Forces::new(model), anchor);
+    let mut qdd = vec![0.0; n];
+    dynamics.accelerations(&q, &u, &mut qdd).map_err(|e| EvalError(e.0))?;
+    let active = dynamics.active_speeds();
+    let asm = dynamics.assembly().clone();
+    let m: DMatrix<f64> = asm.mass.view((0, 0), (active, active)).into_owned();
+    let f: DVector<f64> = asm.rhs.rows(0, active).into_owned();
+    let x = DVector::from_column_slice(&qdd[..active]);
+    let residual = (&m * &x - &f).norm() / f.norm().max(f64::MIN_POSITIVE);
+    let eig = SymmetricEigen::new(m.clone()).eigenvalues;
+    let cond = eig.max() / eig.min();
+    let mut acc = vec![BodyAcceleration::default(); n];
+    dynamics.kernel_mut().accelerations(&q, &u, &qdd, &mut acc);
+    let bodies = asm
+        .bodies
+        .iter()
+        .zip(&acc)
+        .zip(&model.chain.bodies)
+        .enumerate()
+        .map(|(i, ((s, a), b))| EvalBody {
+            index: i + 1,
+            kind: b.kind.to_string(),
+            x: s.x,
+            z: s.z,
+            vx: s.vx,
+            vz: s.vz,
+            ax: a.ax,
+            az: a.az,
+            angle: s.theta,
+            omega: s.omega,
+            alpha: a.alpha,
+        })
+        .collect();
+    Ok(EvalOutput {
+        scene: model.scene.meta.name.clone(),
+        kernel: kernel_name,
+        physics: crate::forces::PHYSICS.to_string(),
+        bodies_count: n,
+        anchor,
+        coordinates: coordinate_names(n),
+        q,
+        u,
+        active,
+        mass_matrix: (0..active).map(|i| m.row(i).iter().copied().collect()).collect(),
+        f: f.iter().copied().collect(),
+        qdd: qdd[..active].to_vec(),
+        residual,
+        cond,
+        bodies,
+    })
+}

@@ -1,0 +1,108 @@
+//! The one interface every Kane kernel implements, generated or reference.
+//!
+//! A kernel takes the generalised coordinates and speeds of the planar chain and returns
+//! the reduced Kane equations a_lp ẍ_p = f_l (Eq. 27) plus the state of every body. The
+//! applied loads are not the kernel's business: it calls back into the force models with
+//! the body states it computed and projects what they return (Eq. 23).
+//!
+//! # Coordinates (used by every kernel, `eval` and the state files)
+//!
+//! For N bodies, `q` and `u` have N entries each:
+//! - `q[i] = β_{i+2}` for i = 0 … N−2: the rotation of B_{i+2} relative to B_{i+1} about y,
+//!   rad (Eq. 1); `u[i] = β̇_{i+2}` = ω_{k2} = ẋ_{3k−1} with k = i+2 (Eq. 8).
+//! - `q[N−1] = s_11`: the anchor's surge from its initial position along x, m;
+//!   `u[N−1] = ṡ_11 = ẋ_{3N+1}` (Eq. 29).
+//!
+//! Angles are positive by the right-hand rule about y = z × x (x toward the ship, z up,
+//! y into the page), so a positive angle turns a body's x axis downward. A body's absolute
+//! angle is θ_k = β_2 + … + β_k (θ_1 = 0): a rod rising toward the ship has θ < 0.
+
+use nalgebra::{DMatrix, DVector};
+
+/// Whether the anchor's surge is a degree of freedom.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum AnchorDof {
+    /// The anchor slides: N generalised speeds.
+    Free,
+    /// The anchor is held by static friction: ṡ_11 = 0, N−1 speeds (Eq. 27 without 3N+1).
+    Stuck,
+}
+
+/// A body's centroid and rotation in the inertial frame.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct BodyState {
+    /// Centroid C_k, m (x toward the ship from the ship's initial water-plane centre).
+    pub x: f64,
+    /// Centroid height above the still-water plane, m.
+    pub z: f64,
+    /// Absolute angle θ_k about y, rad.
+    pub theta: f64,
+    /// Centroid velocity, m/s.
+    pub vx: f64,
+    pub vz: f64,
+    /// Angular velocity ω_2^(0k) about y, rad/s.
+    pub omega: f64,
+}
+
+/// The resultant applied load on a body, at its centroid, inertial components.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Load {
+    /// Force, N.
+    pub fx: f64,
+    pub fz: f64,
+    /// Moment about y, N·m.
+    pub my: f64,
+}
+
+/// What one kernel evaluation produces.
+#[derive(Clone, Debug)]
+pub struct Assembly {
+    /// a_lp over all N speeds (Eq. 26). With the anchor stuck the solver uses the leading
+    /// (N−1)×(N−1) block; the last row gives the anchor's constraint force (Eq. 50).
+    pub mass: DMatrix<f64>,
+    /// f_l (Eq. 25), N entries.
+    pub rhs: DVector<f64>,
+    /// Every body's state, B_1 first.
+    pub bodies: Vec<BodyState>,
+}
+
+impl Assembly {
+    /// Storage for a chain of `n` bodies.
+    pub fn new(n: usize) -> Self {
+        Assembly { mass: DMatrix::zeros(n, n), rhs: DVector::zeros(n), bodies: vec![BodyState::default(); n] }
+    }
+}
+
+/// Accelerations of one body (Eq. 17), inertial components.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct BodyAcceleration {
+    /// Centroid acceleration, m/s².
+    pub ax: f64,
+    pub az: f64,
+    /// Angular acceleration about y, rad/s².
+    pub alpha: f64,
+}
+
+/// The force models, seen from a kernel: given every body's state, fill every body's load.
+pub trait LoadModel {
+    fn loads(&mut self, bodies: &[BodyState], loads: &mut [Load]);
+}
+
+/// A Kane kernel for one chain.
+pub trait Kernel {
+    /// A short name for reports ("reference", "generated").
+    fn name(&self) -> &'static str;
+
+    /// N, the number of bodies.
+    fn body_count(&self) -> usize;
+
+    /// Body states only (Eqs. 9, 13, 14): for energy, output and diagnostics.
+    fn kinematics(&mut self, q: &[f64], u: &[f64], bodies: &mut [BodyState]);
+
+    /// The Kane equations at (q, u) with the loads of `model` (Eqs. 22–27).
+    fn assemble(&mut self, q: &[f64], u: &[f64], model: &mut dyn LoadModel, out: &mut Assembly);
+
+    /// Body accelerations (Eq. 17) for generalised accelerations `qdd`.
+    fn accelerations(&mut self, q: &[f64], u: &[f64], qdd: &[f64], out: &mut [BodyAcceleration]);
+}

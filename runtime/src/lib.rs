@@ -1,0 +1,26 @@
+//! # kanestop-runtime
+//!
+//! Everything between a scene file and a report, in the order data flows:
+//!
+//! scene ([`scene`], [`paper`]) → topology and model ([`model`], [`chain`], [`catenary`])
+//! → kernel ([`kernel`]: the [`reference`] formulation, or generated code) with the
+//! applied loads ([`forces`]) → right-hand side ([`dynamics`]) → integrator
+//! ([`integrate`]) → results ([`simulate`], [`energy`]) → reports ([`report`], [`eval`]).
+//!
+//! Equation numbers refer to Liu, Hearn, Chen, Jiang & Wu, "Analysis of Dynamic Response of
+//! a Restraining System for a Powerless Advancing Ship Based on the Kane Method".
+
+pub mod catenary;
+pub mod chain;
+pub mod dynamics;
+pub mod energy;
+pub mod eval;
+pub mod forces;
+pub mod integrate;
+pub mod kernel;
+pub mod model;
+pub mod paper;
+pub mod reference;
+pub mod report;
+pub mod scene;
+pub mod simulate;

@@ -1,0 +1,166 @@
+//! From a checked scene to what the solver needs: the topology, the numeric chain, the
+//! initial state and the environment (Section 3.1).
+//!
+//! Layout choices the paper leaves open are made here, once, for every scene; they are
+//! listed in `docs/model-choices.md`.
+
+use std::f64::consts::FRAC_PI_2;
+
+use kanestop_codegen::{BodyKind, Topology};
+
+use crate::catenary::{lay_elements, Catenary, CatenaryError};
+use crate::chain::{box_inertia, Body, Chain, Shape};
+use crate::kernel::AnchorDof;
+use crate::scene::Scene;
+
+/// Everything a run starts from.
+#[derive(Clone, Debug)]
+pub struct Model {
+    pub scene: Scene,
+    pub topology: Topology,
+    pub chain: Chain,
+    /// Generalised coordinates at t = 0 (see [`crate::kernel`] for the convention).
+    pub q0: Vec<f64>,
+    /// Generalised speeds at t = 0.
+    pub u0: Vec<f64>,
+    /// The anchor's degree of freedom at t = 0.
+    pub anchor: AnchorDof,
+    /// Height of the seabed in the inertial frame (−d), m.
+    pub seabed_z: f64,
+    /// The catenary the cable was laid on.
+    pub catenary: Catenary,
+}
+
+/// A scene whose geometry admits no initial configuration.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ModelError(pub String);
+
+impl std::fmt::Display for ModelError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for ModelError {}
+
+impl From<CatenaryError> for ModelError {
+    fn from(e: CatenaryError) -> Self {
+        ModelError(format!("initial configuration: {e}"))
+    }
+}
+
+impl Model {
+    /// Builds the model of a checked scene.
+    pub fn new(scene: &Scene) -> Result<Model, ModelError> {
+        let topology = Topology::new(scene.chain.elements, scene.cable.stages.iter().map(|s| s.elements).collect())
+            .map_err(|e| ModelError(format!("cable.stages: {e}")))?;
+        let n = topology.body_count();
+
+        // Element lengths along the line.
+        let cable_lengths: Vec<f64> =
+            scene.cable.stages.iter().flat_map(|s| std::iter::repeat(s.element_length).take(s.elements)).collect();
+        let (catenary, cable_points) =
+            lay_elements(&cable_lengths, scene.initial.horizontal_projection, scene.initial.vertical_projection)?;
+
+        // Local frame: seabed at z = 0, the cable's lower end o at (0, z_line). The line
+        // (chain and grounded cable) lies on the seabed with its centreline one chain radius
+        // up, and leaves the anchor's forward face at that height.
+        let line_height = if scene.chain.elements > 0 { scene.chain.radius } else { scene.cable.radius };
+        let chain_length = scene.chain.elements as f64 * scene.chain.element_length;
+        let anchor_origin = [-chain_length - scene.anchor.length, 0.0];
+
+        // Absolute angles θ_k (Eq. 35 with atan2) of every body; the anchor and chain are level.
+        let mut theta = vec![0.0; n];
+        let first_cable = 1 + scene.chain.elements;
+        for (j, w) in cable_points.windows(2).enumerate() {
+            theta[first_cable + j] = -(w[1][1] - w[0][1]).atan2(w[1][0] - w[0][0]);
+        }
+        let rod = n - 2;
+        theta[rod] = -FRAC_PI_2; // the rod stands vertical on the cable top
+        theta[n - 1] = 0.0; // the ship is level
+
+        // The ship's water-plane centre is the inertial origin o_0 (Section 2.3.1).
+        let top = cable_points.last().unwrap();
+        let hinge = [top[0], line_height + top[1] + scene.rod.length];
+        let ship_centre = [hinge[0] - scene.ship.hinge_x, hinge[1] - scene.ship.hinge_z];
+        let seabed_z = -ship_centre[1];
+
+        // Bodies.
+        let mut bodies = Vec::with_capacity(n);
+        let a = &scene.anchor;
+        bodies.push(Body {
+            kind: BodyKind::Anchor,
+            mass: a.mass,
+            inertia: box_inertia(a.mass, a.length, a.width, a.height, 0.0),
+            centroid: [a.length / 2.0, a.height / 2.0],
+            joint: [anchor_origin[0] - ship_centre[0], anchor_origin[1] - ship_centre[1]],
+            shape: Shape::Box { length: a.length, width: a.width, height: a.height },
+        });
+        let mut inner_joint = [a.length, line_height];
+        let mut push_rod = |bodies: &mut Vec<Body>, kind, length: f64, radius, mpl| {
+            bodies.push(Body::rod(kind, length, radius, mpl, inner_joint));
+            inner_joint = [length, 0.0];
+        };
+        let ch = &scene.chain;
+        for _ in 0..ch.elements {
+            push_rod(&mut bodies, BodyKind::ChainLink, ch.element_length, ch.radius, ch.mass_per_length);
+        }
+        for (stage, s) in scene.cable.stages.iter().enumerate() {
+            for _ in 0..s.elements {
+                push_rod(
+                    &mut bodies,
+                    BodyKind::Cable { stage },
+                    s.element_length,
+                    scene.cable.radius,
+                    scene.cable.mass_per_length,
+                );
+            }
+        }
+        push_rod(&mut bodies, BodyKind::Rod, scene.rod.length, scene.rod.radius, scene.rod.mass_per_length);
+        let s = &scene.ship;
+        // Eq. 18, k = N: d_s is the height of the box's centre above the water plane.
+        let d_s = s.depth / 2.0 - scene.ship_draught();
+        bodies.push(Body {
+            kind: BodyKind::Ship,
+            mass: s.mass,
+            inertia: box_inertia(s.mass, s.length, s.beam, s.depth, d_s),
+            centroid: [-s.hinge_x, -s.hinge_z],
+            joint: inner_joint,
+            shape: Shape::Box { length: s.length, width: s.beam, height: s.depth },
+        });
+        let chain = Chain { bodies };
+
+        // q = (β_2 … β_N, s_11); u: the cable and chain at rest, the rod turning so that its
+        // top moves with the ship, the ship not rotating (assumption 2).
+        let mut q0 = vec![0.0; n];
+        for k in 1..n {
+            q0[k - 1] = theta[k] - theta[k - 1];
+        }
+        let mut u0 = vec![0.0; n];
+        let speed = scene.initial.ship_speed;
+        // Rod top velocity x-component = −L θ̇ sin θ = V.
+        let rod_rate = -speed / (scene.rod.length * theta[rod].sin());
+        u0[rod - 1] = rod_rate;
+        u0[n - 2] = -rod_rate;
+
+        // Until the anchor–seabed friction law exists, an anchor on a seabed with friction
+        // is held; on a frictionless or absent seabed it slides freely.
+        let anchor = if scene.environment.seabed && scene.environment.seabed_friction > 0.0 {
+            AnchorDof::Stuck
+        } else {
+            AnchorDof::Free
+        };
+
+        Ok(Model { scene: scene.clone(), topology, chain, q0, u0, anchor, seabed_z, catenary })
+    }
+
+    /// N.
+    pub fn body_count(&self) -> usize {
+        self.chain.len()
+    }
+
+    /// Water depth d, m.
+    pub fn water_depth(&self) -> f64 {
+        -self.seabed_z
+    }
+}

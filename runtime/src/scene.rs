@@ -1,0 +1,431 @@
+//! Scenes: the TOML description of one simulation, parsed with serde and checked.
+//!
+//! Every field is required (no silent defaults) and unknown keys are rejected. Units are
+//! SI and stated on each field. [`Scene::from_toml`] returns either a scene whose every
+//! value is finite and in range, or a [`SceneError`] that names the file, the field, the
+//! value and the valid range.
+
+use std::fmt;
+use std::path::Path;
+
+use serde::{Deserialize, Serialize};
+
+/// One simulation: the bodies, their initial layout, the environment and the solver.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Scene {
+    pub meta: Meta,
+    pub environment: Environment,
+    pub hydrodynamics: Hydrodynamics,
+    pub anchor: Anchor,
+    pub chain: ChainSpec,
+    pub cable: Cable,
+    pub rod: Rod,
+    pub ship: Ship,
+    pub initial: Initial,
+    pub solver: Solver,
+}
+
+/// What the scene is.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Meta {
+    /// Short name used in reports and file names.
+    pub name: String,
+    /// One line for humans.
+    pub description: String,
+    /// The stopping time the paper reports for this scene (Table 3), s. Absent for scenes
+    /// that are not paper cases.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub paper_stopping_time: Option<f64>,
+}
+
+/// Gravity, water, seabed and current (Section 3.2, Eqs. 38, 41).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Environment {
+    /// g, m/s².
+    pub gravity: f64,
+    /// Water on: buoyancy, drag and added mass act (off: the chain hangs in vacuum).
+    pub water: bool,
+    /// ρ, sea-water density, kg/m³.
+    pub water_density: f64,
+    /// ϑ, kinematic viscosity of sea water, m²/s.
+    pub kinematic_viscosity: f64,
+    /// Seabed on: foundation reaction (Eq. 41) and anchor friction act.
+    pub seabed: bool,
+    /// k_z, normal counter-force coefficient of the seabed foundation, N/m³ (Eq. 41).
+    pub seabed_stiffness: f64,
+    /// μ, anchor–seabed sliding friction coefficient, dimensionless (Eq. 37).
+    pub seabed_friction: f64,
+    /// U_ST, current speed at the free surface along +x, m/s (Eq. 38).
+    pub current_surface_speed: f64,
+    /// Exponent of the current profile U = U_ST (h/d)^exponent, dimensionless (Eq. 38: 1/7).
+    pub current_exponent: f64,
+}
+
+/// Hydrodynamic coefficients (Eqs. 39, 44–47).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Hydrodynamics {
+    /// C_M, added-mass coefficient of the rods, dimensionless.
+    pub added_mass_coefficient: f64,
+    /// C_D, normal drag coefficient of the rods, dimensionless.
+    pub normal_drag_coefficient: f64,
+    /// C_F, tangential drag coefficient of the rods, dimensionless.
+    pub tangential_drag_coefficient: f64,
+    /// C_1^D, drag coefficient of the anchor, dimensionless (Eq. 39).
+    pub anchor_drag_coefficient: f64,
+}
+
+/// The gravity anchor B_1, a cuboid on the seabed.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Anchor {
+    /// m_1, kg.
+    pub mass: f64,
+    /// L_1, along x, m.
+    pub length: f64,
+    /// w_1, across the line, m.
+    pub width: f64,
+    /// h_1, m.
+    pub height: f64,
+}
+
+/// The anchor chain: identical links from the anchor toward the cable.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ChainSpec {
+    /// Number of links (may be 0).
+    pub elements: usize,
+    /// Length of one link element, m.
+    pub element_length: f64,
+    /// R_CE, equivalent radius of the 2D element, m (Table 1).
+    pub radius: f64,
+    /// Mass per metre of the 2D element, kg/m.
+    pub mass_per_length: f64,
+    /// Proof load, N (Table 1).
+    pub proof_load: f64,
+    /// Break load, N (Table 1).
+    pub break_load: f64,
+}
+
+/// The restraining cable, in stages of equal elements.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Cable {
+    /// R_RE, equivalent radius, m.
+    pub radius: f64,
+    /// m_RU-based mass per metre of the 2D element, kg/m.
+    pub mass_per_length: f64,
+    /// Break load, N.
+    pub break_load: f64,
+    /// The stages from the chain toward the ship (`[[cable.stages]]` tables; at least one:
+    /// an absent list is reported by the range check, not the parser).
+    #[serde(default)]
+    pub stages: Vec<CableStage>,
+}
+
+/// One cable stage.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CableStage {
+    /// Number of elements (≥ 1).
+    pub elements: usize,
+    /// Length of one element, m.
+    pub element_length: f64,
+}
+
+/// The auxiliary rod B_{N-1} between cable and ship, above the water (weight only).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Rod {
+    /// L_{N-1}, m.
+    pub length: f64,
+    /// Radius, m.
+    pub radius: f64,
+    /// Mass per metre, kg/m.
+    pub mass_per_length: f64,
+}
+
+/// The ship B_N, a cuboid whose centroid is the centre of its water plane (assumption 8).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Ship {
+    /// m_N, kg.
+    pub mass: f64,
+    /// L_N, m.
+    pub length: f64,
+    /// w_N (beam), m.
+    pub beam: f64,
+    /// h_N (depth, keel to deck), m.
+    pub depth: f64,
+    /// k_s, hull roughness height, m (Eq. 61).
+    pub hull_roughness: f64,
+    /// d_x: the rod hinge's position forward of the water-plane centre, m (negative: aft).
+    pub hinge_x: f64,
+    /// d_z: the rod hinge's height above the water plane, m.
+    pub hinge_z: f64,
+}
+
+/// The initial configuration (Section 3.1, Eqs. 30–35).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Initial {
+    /// x_L, horizontal projection of the whole cable, m.
+    pub horizontal_projection: f64,
+    /// h_L, vertical projection of the cable (seabed line to cable top), m.
+    pub vertical_projection: f64,
+    /// The ship's initial surge speed, m/s.
+    pub ship_speed: f64,
+}
+
+/// Time integration.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Solver {
+    /// The method.
+    pub integrator: IntegratorKind,
+    /// Time step, s.
+    pub dt: f64,
+    /// Simulated time after which the run ends in any case, s.
+    pub end_time: f64,
+    /// Interval between recorded samples, s (rounded to a whole number of steps).
+    pub output_interval: f64,
+    /// End the run when the ship's surge speed first reaches zero.
+    pub stop_when_ship_stops: bool,
+    /// Relative energy-balance drift |E − E_0|/E_0 at which a run is stopped as unstable.
+    pub max_energy_drift: f64,
+}
+
+/// Integration methods a scene can name.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum IntegratorKind {
+    /// Classic fourth-order Runge–Kutta with fixed step (the paper's method).
+    Rk4,
+}
+
+/// A scene that could not be read or is not valid.
+#[derive(Debug)]
+pub enum SceneError {
+    /// The file could not be read.
+    Io { file: String, source: std::io::Error },
+    /// Not TOML, a missing or unknown key, or a value of the wrong type.
+    Parse { file: String, message: String },
+    /// Values out of range: every problem found, each naming its field.
+    Invalid { file: String, problems: Vec<Problem> },
+}
+
+/// One out-of-range value.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Problem {
+    /// Dotted path of the field, e.g. `anchor.mass`.
+    pub field: String,
+    /// The value as written.
+    pub value: String,
+    /// The valid range, with units.
+    pub expected: String,
+}
+
+impl fmt::Display for Problem {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{} = {}: must be {}", self.field, self.value, self.expected)
+    }
+}
+
+impl fmt::Display for SceneError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            SceneError::Io { file, source } => write!(f, "cannot read scene {file}: {source}"),
+            SceneError::Parse { file, message } => write!(f, "scene {file} is not valid: {}", message.trim_end()),
+            SceneError::Invalid { file, problems } => {
+                write!(f, "scene {file} has {} invalid value(s):", problems.len())?;
+                for p in problems {
+                    write!(f, "\n  {p}")?;
+                }
+                Ok(())
+            }
+        }
+    }
+}
+
+impl std::error::Error for SceneError {}
+
+impl Scene {
+    /// Reads and checks a scene file.
+    pub fn load(path: &Path) -> Result<Scene, SceneError> {
+        let file = path.display().to_string();
+        let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io { file: file.clone(), source })?;
+        Scene::from_toml(&text, &file)
+    }
+
+    /// Parses and checks scene text; `file` names it in errors.
+    pub fn from_toml(text: &str, file: &str) -> Result<Scene, SceneError> {
+        let scene: Scene =
+            toml::from_str(text).map_err(|e| SceneError::Parse { file: file.to_string(), message: e.to_string() })?;
+        let problems = scene.problems();
+        if problems.is_empty() {
+            Ok(scene)
+        } else {
+            Err(SceneError::Invalid { file: file.to_string(), problems })
+        }
+    }
+
+    /// The scene as TOML text.
+    pub fn to_toml(&self) -> String {
+        toml::to_string_pretty(self).expect("a scene always serialises")
+    }
+
+    /// Total cable length L_c, m.
+    pub fn cable_length(&self) -> f64 {
+        self.cable.stages.iter().map(|s| s.elements as f64 * s.element_length).sum()
+    }
+
+    /// The ship's draught T = m_N / (ρ L_N w_N), m: the box floats level in still water.
+    pub fn ship_draught(&self) -> f64 {
+        self.ship.mass / (self.environment.water_density * self.ship.length * self.ship.beam)
+    }
+
+    /// Every out-of-range value, in file order.
+    pub fn problems(&self) -> Vec<Problem> {
+        let mut c = Checker::default();
+        let e = &self.environment;
+        c.range("environment.gravity", e.gravity, 0.0, 100.0, false, "m/s²");
+        c.positive("environment.water_density", e.water_density, "kg/m³");
+        c.positive("environment.kinematic_viscosity", e.kinematic_viscosity, "m²/s");
+        c.positive("environment.seabed_stiffness", e.seabed_stiffness, "N/m³");
+        c.range("environment.seabed_friction", e.seabed_friction, 0.0, 2.0, true, "(dimensionless)");
+        c.range("environment.current_surface_speed", e.current_surface_speed, -10.0, 10.0, true, "m/s");
+        c.range("environment.current_exponent", e.current_exponent, 0.0, 1.0, false, "(dimensionless)");
+        let h = &self.hydrodynamics;
+        c.non_negative("hydrodynamics.added_mass_coefficient", h.added_mass_coefficient, "(dimensionless)");
+        c.non_negative("hydrodynamics.normal_drag_coefficient", h.normal_drag_coefficient, "(dimensionless)");
+        c.non_negative("hydrodynamics.tangential_drag_coefficient", h.tangential_drag_coefficient, "(dimensionless)");
+        c.non_negative("hydrodynamics.anchor_drag_coefficient", h.anchor_drag_coefficient, "(dimensionless)");
+        let a = &self.anchor;
+        c.positive("anchor.mass", a.mass, "kg");
+        c.positive("anchor.length", a.length, "m");
+        c.positive("anchor.width", a.width, "m");
+        c.positive("anchor.height", a.height, "m");
+        let ch = &self.chain;
+        c.positive("chain.element_length", ch.element_length, "m");
+        c.positive("chain.radius", ch.radius, "m");
+        c.positive("chain.mass_per_length", ch.mass_per_length, "kg/m");
+        c.positive("chain.proof_load", ch.proof_load, "N");
+        c.positive("chain.break_load", ch.break_load, "N");
+        let cb = &self.cable;
+        c.positive("cable.radius", cb.radius, "m");
+        c.positive("cable.mass_per_length", cb.mass_per_length, "kg/m");
+        c.positive("cable.break_load", cb.break_load, "N");
+        if cb.stages.is_empty() {
+            c.push("cable.stages", "[]", "at least one [[cable.stages]] table (N ≥ 4 bodies)");
+        }
+        for (i, s) in cb.stages.iter().enumerate() {
+            if s.elements == 0 {
+                c.push(&format!("cable.stages[{i}].elements"), "0", "≥ 1 element");
+            }
+            c.positive(&format!("cable.stages[{i}].element_length"), s.element_length, "m");
+        }
+        let r = &self.rod;
+        c.positive("rod.length", r.length, "m");
+        c.positive("rod.radius", r.radius, "m");
+        c.positive("rod.mass_per_length", r.mass_per_length, "kg/m");
+        let s = &self.ship;
+        c.positive("ship.mass", s.mass, "kg");
+        c.positive("ship.length", s.length, "m");
+        c.positive("ship.beam", s.beam, "m");
+        c.positive("ship.depth", s.depth, "m");
+        c.non_negative("ship.hull_roughness", s.hull_roughness, "m");
+        if s.length.is_finite() && s.length > 0.0 {
+            c.range("ship.hinge_x", s.hinge_x, -s.length / 2.0, s.length / 2.0, true, "m (on the hull)");
+        }
+        c.range("ship.hinge_z", s.hinge_z, -1e3, 1e3, true, "m");
+        if c.problems.is_empty() && self.ship_draught() >= s.depth {
+            c.push(
+                "ship.mass",
+                &fmt_value(s.mass),
+                &format!(
+                    "< ρ·L·w·depth = {} kg (the ship would float with a draught of {:.3} m > depth {} m)",
+                    fmt_value(e.water_density * s.length * s.beam * s.depth),
+                    self.ship_draught(),
+                    s.depth
+                ),
+            );
+        }
+        let ini = &self.initial;
+        c.positive("initial.vertical_projection", ini.vertical_projection, "m");
+        c.range("initial.ship_speed", ini.ship_speed, 0.0, 20.0, true, "m/s");
+        let lc = self.cable_length();
+        if lc.is_finite() && lc > 0.0 && ini.vertical_projection.is_finite() && ini.vertical_projection > 0.0 {
+            // Eq. 30 has a root with a grounded part iff 0 < L_c − x_L < h_L.
+            let (lo, hi) = (lc - ini.vertical_projection, lc);
+            c.range_open(
+                "initial.horizontal_projection",
+                ini.horizontal_projection,
+                lo.max(0.0),
+                hi,
+                &format!("m: between L_c − h_L and L_c (cable length L_c = {} m), so that the cable lies partly on the seabed and Eq. 30 has a root", fmt_value(lc)),
+            );
+        }
+        let so = &self.solver;
+        c.range("solver.dt", so.dt, 0.0, 1.0, false, "s");
+        c.positive("solver.end_time", so.end_time, "s");
+        if so.dt.is_finite() && so.dt > 0.0 {
+            c.range("solver.output_interval", so.output_interval, so.dt, f64::MAX, true, "s (at least solver.dt)");
+            if so.end_time.is_finite() && so.end_time < so.dt {
+                c.push("solver.end_time", &fmt_value(so.end_time), &format!("≥ solver.dt = {} s", fmt_value(so.dt)));
+            }
+        }
+        c.range("solver.max_energy_drift", so.max_energy_drift, 0.0, 10.0, false, "(relative)");
+        c.problems
+    }
+}
+
+/// Formats a value the way a user would write it in the TOML file.
+fn fmt_value(v: f64) -> String {
+    if v.is_nan() {
+        "nan".into()
+    } else {
+        format!("{v}")
+    }
+}
+
+#[derive(Default)]
+struct Checker {
+    problems: Vec<Problem>,
+}
+
+impl Checker {
+    fn push(&mut self, field: &str, value: &str, expected: &str) {
+        self.problems.push(Problem { field: field.into(), value: value.into(), expected: expected.into() });
+    }
+
+    fn positive(&mut self, field: &str, v: f64, unit: &str) {
+        if !(v.is_finite() && v > 0.0) {
+            self.push(field, &fmt_value(v), &format!("finite and > 0 {unit}"));
+        }
+    }
+
+    fn non_negative(&mut self, field: &str, v: f64, unit: &str) {
+        if !(v.is_finite() && v >= 0.0) {
+            self.push(field, &fmt_value(v), &format!("finite and ≥ 0 {unit}"));
+        }
+    }
+
+    /// `lo < v ≤ hi` (or `lo ≤ v` when `closed_low`).
+    fn range(&mut self, field: &str, v: f64, lo: f64, hi: f64, closed_low: bool, unit: &str) {
+        let ok = v.is_finite() && (if closed_low { v >= lo } else { v > lo }) && v <= hi;
+        if !ok {
+            let open = if closed_low { "[" } else { "(" };
+            let hi_text = if hi == f64::MAX { "∞)".to_string() } else { format!("{}]", fmt_value(hi)) };
+            self.push(field, &fmt_value(v), &format!("in {open}{}, {hi_text} {unit}", fmt_value(lo)));
+        }
+    }
+
+    fn range_open(&mut self, field: &str, v: f64, lo: f64, hi: f64, why: &str) {
+        if !(v.is_finite() && v > lo && v < hi) {
+            self.push(field, &fmt_value(v), &format!("in ({}, {}) {why}", fmt_value(lo), fmt_value(hi)));
+        }
+    }
+}

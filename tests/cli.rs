@@ -1,0 +1,140 @@
+//! The command-line contract: `run`, `eval` and their JSON and CSV outputs.
+
+use std::process::Command;
+
+use kanestop_runtime::eval::EvalOutput;
+
+fn kanestop() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_kanestop"))
+}
+
+fn temp_dir(name: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("kanestop-test-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// A short, stable scene: case 1 with a smaller step, ended at 0.05 s.
+fn short_scene(dir: &std::path::Path) -> std::path::PathBuf {
+    let text = kanestop_runtime::paper::DEFAULT_SCENE
+        .replace("dt = 0.002", "dt = 0.0005")
+        .replace("end_time = 60.0", "end_time = 0.05")
+        .replace("output_interval = 0.02", "output_interval = 0.01");
+    let path = dir.join("short.toml");
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+#[test]
+fn eval_json_round_trips_and_is_consistent() {
+    let out = kanestop().args(["eval"]).output().unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let text = String::from_utf8(out.stdout).unwrap();
+    let parsed: EvalOutput = serde_json::from_str(&text).expect("eval output matches the documented schema");
+    let again: EvalOutput = serde_json::from_str(&serde_json::to_string(&parsed).unwrap()).unwrap();
+    assert_eq!(parsed, again);
+    // Documented keys, by name, as outside checks read them.
+    let value: serde_json::Value = serde_json::from_str(&text).unwrap();
+    for key in ["q", "u", "M", "f", "qdd", "cond", "residual", "bodies", "coordinates", "anchor", "active"] {
+        assert!(value.get(key).is_some(), "missing key {key}");
+    }
+    for key in ["x", "z", "vx", "vz", "ax", "az", "angle", "omega", "alpha"] {
+        assert!(value["bodies"][0].get(key).is_some(), "missing body key {key}");
+    }
+    let n = parsed.bodies_count;
+    assert_eq!(n, 46);
+    assert_eq!(parsed.q.len(), n);
+    assert_eq!(parsed.active, n - 1, "case 1 starts with the anchor held");
+    assert_eq!(parsed.mass_matrix.len(), parsed.active);
+    assert_eq!(parsed.qdd.len(), parsed.active);
+    assert!(parsed.residual < 1e-6, "residual {}", parsed.residual);
+    assert!(parsed.cond > 1.0 && parsed.cond.is_finite());
+    // The ship's centroid is the inertial origin at t = 0 and moves at 3 m/s.
+    let ship = &parsed.bodies[n - 1];
+    assert!(ship.x.abs() < 1e-9 && ship.z.abs() < 1e-9);
+    assert!((ship.vx - 3.0).abs() < 1e-12 && ship.vz.abs() < 1e-12);
+    assert!(ship.omega.abs() < 1e-12);
+}
+
+#[test]
+fn eval_accepts_a_state_file_and_rejects_a_bad_one() {
+    let dir = temp_dir("eval");
+    let first: EvalOutput = serde_json::from_slice(&kanestop().arg("eval").output().unwrap().stdout).unwrap();
+    let mut q = first.q.clone();
+    q[10] += 0.1;
+    let state = dir.join("state.json");
+    std::fs::write(&state, serde_json::json!({"q": q, "u": first.u, "anchor": "free"}).to_string()).unwrap();
+    let out = kanestop().args(["eval", "--state"]).arg(&state).output().unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let parsed: EvalOutput = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(parsed.q, q);
+    assert_eq!(parsed.active, 46);
+
+    std::fs::write(&state, r#"{"q": [0.0, 1.0], "u": [0.0, 0.0]}"#).unwrap();
+    let out = kanestop().args(["eval", "--state"]).arg(&state).output().unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("state.q has 2 entries") && err.contains("N = 46"), "{err}");
+}
+
+#[test]
+fn run_prints_a_summary_and_writes_the_csv_whole() {
+    let dir = temp_dir("run");
+    let scene = short_scene(&dir);
+    let csv = dir.join("history.csv");
+    let out = kanestop().arg("run").arg(&scene).arg("--out").arg(&csv).output().unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{stdout}\n{}", String::from_utf8_lossy(&out.stderr));
+    for label in ["scene", "physics", "bodies", "N = 46", "solver", "run", "stopped", "final", "energy"] {
+        assert!(stdout.contains(label), "summary lacks {label}: {stdout}");
+    }
+    let text = std::fs::read_to_string(&csv).unwrap();
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    assert_eq!(header.len(), 4 + 6 * 46);
+    assert_eq!(&header[..5], ["t", "E_kinetic", "E_potential", "E_total", "x_1"]);
+    let rows: Vec<Vec<f64>> = lines.map(|l| l.split(',').map(|v| v.parse().unwrap()).collect()).collect();
+    assert_eq!(rows.len(), 6, "samples at 0, 0.01, …, 0.05 s");
+    assert!(rows.iter().all(|r| r.len() == header.len()));
+    assert!((rows.last().unwrap()[0] - 0.05).abs() < 1e-12);
+    // No temporary file is left behind.
+    let leftovers: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .filter_map(|e| e.ok())
+        .filter(|e| e.file_name().to_string_lossy().contains(".tmp"))
+        .collect();
+    assert!(leftovers.is_empty());
+}
+
+#[test]
+fn unwritable_output_is_an_error_and_leaves_nothing() {
+    let dir = temp_dir("unwritable");
+    let scene = short_scene(&dir);
+    let out = kanestop().arg("run").arg(&scene).arg("--out").arg(dir.join("missing-dir/history.csv")).output().unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("cannot write"));
+    assert!(!dir.join("missing-dir").exists());
+}
+
+#[test]
+fn bad_scene_is_a_clear_error_not_a_panic() {
+    let dir = temp_dir("bad");
+    let path = dir.join("bad.toml");
+    std::fs::write(&path, kanestop_runtime::paper::DEFAULT_SCENE.replace("dt = 0.002", "dt = -0.002")).unwrap();
+    let out = kanestop().arg("run").arg(&path).output().unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("bad.toml") && err.contains("solver.dt = -0.002") && !err.contains("panicked"), "{err}");
+}
+
+#[test]
+fn gravity_only_case_1_diverges_with_a_diagnostic() {
+    // Documented behaviour until the full physics lands: the unbuoyed ship drops onto a
+    // chain of 14–143 kg elements and the explicit step becomes unstable.
+    let out = kanestop().output().unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(out.status.code(), Some(3), "{stdout}");
+    for part in ["gravity only", "numerical failure at t =", "body:", "likely cause:", "suggestion: reduce solver.dt"] {
+        assert!(stdout.contains(part), "missing {part:?} in {stdout}");
+    }
+}

@@ -1,0 +1,96 @@
+//! Shared helpers for the integration tests: small chains built directly, without scenes.
+#![allow(dead_code)]
+
+use kanestop_codegen::BodyKind;
+use kanestop_runtime::chain::{box_inertia, Body, Chain, Shape};
+use kanestop_runtime::dynamics::Dynamics;
+use kanestop_runtime::forces::Forces;
+use kanestop_runtime::integrate::{Integrator, Rk4};
+use kanestop_runtime::kernel::{AnchorDof, BodyState, Kernel};
+use kanestop_runtime::reference::ReferenceKernel;
+use rand::rngs::StdRng;
+use rand::{Rng, SeedableRng};
+
+pub const G: f64 = 9.81;
+
+/// An anchor box of mass `mass` with its origin at `origin` (inertial).
+pub fn anchor(mass: f64, origin: [f64; 2]) -> Body {
+    Body {
+        kind: BodyKind::Anchor,
+        mass,
+        inertia: box_inertia(mass, 2.0, 4.0, 2.1, 0.0),
+        centroid: [1.0, 1.05],
+        joint: origin,
+        shape: Shape::Box { length: 2.0, width: 4.0, height: 2.1 },
+    }
+}
+
+/// Anchor + `rods` (length, mass per metre), the first hinged on the anchor's face.
+pub fn rod_chain(anchor_mass: f64, rods: &[(f64, f64)]) -> Chain {
+    let mut bodies = vec![anchor(anchor_mass, [0.0, 0.0])];
+    let mut joint = [2.0, 0.5];
+    for &(len, mpl) in rods {
+        bodies.push(Body::rod(BodyKind::ChainLink, len, 0.05, mpl, joint));
+        joint = [len, 0.0];
+    }
+    Chain { bodies }
+}
+
+/// A random chain of `n` bodies: anchor, rods with random lengths and masses and a last
+/// box body whose centroid is off its hinge axis (like the ship).
+pub fn random_chain(n: usize, rng: &mut StdRng) -> Chain {
+    assert!(n >= 3);
+    let rods: Vec<(f64, f64)> = (0..n - 2).map(|_| (rng.gen_range(0.5..10.0), rng.gen_range(5.0..150.0))).collect();
+    let mut chain = rod_chain(rng.gen_range(1e3..5e4), &rods);
+    let last_len = rods.last().unwrap().0;
+    let mass = rng.gen_range(1e3..5e5);
+    chain.bodies.push(Body {
+        kind: BodyKind::Ship,
+        mass,
+        inertia: box_inertia(mass, 50.0, 10.0, 5.0, 1.5),
+        centroid: [rng.gen_range(-25.0..25.0), rng.gen_range(-2.0..2.0)],
+        joint: [last_len, 0.0],
+        shape: Shape::Box { length: 50.0, width: 10.0, height: 5.0 },
+    });
+    chain
+}
+
+/// A random state: angles anywhere, speeds of order one.
+pub fn random_state(n: usize, rng: &mut StdRng) -> (Vec<f64>, Vec<f64>) {
+    let q = (0..n).map(|_| rng.gen_range(-3.0..3.0)).collect();
+    let u = (0..n).map(|_| rng.gen_range(-2.0..2.0)).collect();
+    (q, u)
+}
+
+pub fn rng(seed: u64) -> StdRng {
+    StdRng::seed_from_u64(seed)
+}
+
+/// Integrates with RK4 from (q, u) for `steps` steps of `dt`, calling `observe` after each.
+pub fn integrate(
+    chain: &Chain,
+    anchor: AnchorDof,
+    q: &[f64],
+    u: &[f64],
+    dt: f64,
+    steps: usize,
+    mut observe: impl FnMut(f64, &[f64], &[BodyState]),
+) -> Vec<f64> {
+    let n = chain.len();
+    let mut dynamics = Dynamics::new(Box::new(ReferenceKernel::new(chain)), Forces::gravity_only(chain, G), anchor);
+    let mut rk = Rk4::new(2 * n);
+    let mut y: Vec<f64> = q.iter().chain(u).copied().collect();
+    let mut bodies = vec![BodyState::default(); n];
+    let mut kin = ReferenceKernel::new(chain);
+    for i in 0..steps {
+        rk.step(&mut dynamics, i as f64 * dt, &mut y, dt).unwrap();
+        kin.kinematics(&y[..n], &y[n..], &mut bodies);
+        observe((i + 1) as f64 * dt, &y, &bodies);
+    }
+    y
+}
+
+/// Kinetic plus gravitational energy, J.
+pub fn energy(chain: &Chain, bodies: &[BodyState]) -> f64 {
+    kanestop_runtime::energy::Energy::of(chain, bodies, G, 0.0).total()
+}

@@ -1,0 +1,118 @@
+//! Bad scenes get a clear error naming the file, the field, the value and the valid range.
+
+use kanestop_runtime::model::Model;
+use kanestop_runtime::paper::DEFAULT_SCENE;
+use kanestop_runtime::scene::{Scene, SceneError};
+
+/// Case 1 with `from` replaced by `to` (which must occur exactly once).
+fn edited(from: &str, to: &str) -> String {
+    assert_eq!(DEFAULT_SCENE.matches(from).count(), 1, "{from:?} must occur once");
+    DEFAULT_SCENE.replace(from, to)
+}
+
+fn error(text: &str) -> String {
+    match Scene::from_toml(text, "bad.toml") {
+        Ok(_) => panic!("scene was accepted"),
+        Err(e) => e.to_string(),
+    }
+}
+
+fn assert_mentions(message: &str, parts: &[&str]) {
+    for p in parts {
+        assert!(message.contains(p), "{message:?} does not mention {p:?}");
+    }
+}
+
+#[test]
+fn default_scene_is_valid() {
+    let scene = Scene::from_toml(DEFAULT_SCENE, "case01.toml").unwrap();
+    assert!(Model::new(&scene).is_ok());
+}
+
+#[test]
+fn negative_mass() {
+    let e = error(&edited("[anchor]\nmass = 40000.0", "[anchor]\nmass = -40000.0"));
+    assert_mentions(&e, &["bad.toml", "anchor.mass = -40000", "> 0 kg"]);
+}
+
+#[test]
+fn zero_length() {
+    let e = error(&edited("[rod]\nlength = 1.0", "[rod]\nlength = 0.0"));
+    assert_mentions(&e, &["bad.toml", "rod.length = 0", "> 0 m"]);
+}
+
+#[test]
+fn nan_and_infinity() {
+    let e = error(&edited("seabed_friction = 0.3", "seabed_friction = nan"));
+    assert_mentions(&e, &["environment.seabed_friction = nan", "[0, 2]"]);
+    let e = error(&edited("[ship]\nmass = 500000.0", "[ship]\nmass = inf"));
+    assert_mentions(&e, &["ship.mass = inf", "finite"]);
+}
+
+#[test]
+fn unknown_key() {
+    let e = error(&edited("[anchor]\n", "[anchor]\ncolour = \"red\"\n"));
+    assert_mentions(&e, &["bad.toml", "unknown field `colour`", "mass"]);
+}
+
+#[test]
+fn missing_key() {
+    let e = error(&edited("width = 4.0\n", ""));
+    assert_mentions(&e, &["bad.toml", "missing field `width`"]);
+}
+
+#[test]
+fn wrong_type() {
+    let e = error(&edited("[chain]\nelements = 15", "[chain]\nelements = -1"));
+    assert_mentions(&e, &["bad.toml", "elements"]);
+}
+
+#[test]
+fn non_positive_dt() {
+    let e = error(&edited("dt = 0.002", "dt = 0.0"));
+    assert_mentions(&e, &["solver.dt = 0", "(0, 1] s"]);
+    let e = error(&edited("dt = 0.002", "dt = -0.1"));
+    assert_mentions(&e, &["solver.dt = -0.1"]);
+}
+
+#[test]
+fn too_few_bodies() {
+    // No cable stage: the chain would be anchor, links, rod and ship only.
+    let start = DEFAULT_SCENE.find("[[cable.stages]]").unwrap();
+    let end = DEFAULT_SCENE.find("[rod]").unwrap();
+    let text = format!("{}{}", &DEFAULT_SCENE[..start], &DEFAULT_SCENE[end..]);
+    let e = error(&text);
+    assert_mentions(&e, &["cable.stages", "at least one"]);
+    let e = error(&edited("elements = 3\n", "elements = 0\n"));
+    assert_mentions(&e, &["cable.stages[0].elements = 0", "≥ 1"]);
+}
+
+#[test]
+fn impossible_catenary() {
+    let e = error(&edited("horizontal_projection = 148.0", "horizontal_projection = 160.0"));
+    assert_mentions(&e, &["initial.horizontal_projection = 160", "(146, 152)", "Eq. 30"]);
+}
+
+#[test]
+fn sinking_ship() {
+    let e = error(&edited("[ship]\nmass = 500000.0", "[ship]\nmass = 5000000.0"));
+    assert_mentions(&e, &["ship.mass = 5000000", "draught"]);
+}
+
+#[test]
+fn every_problem_is_reported_at_once() {
+    let text = edited("[anchor]\nmass = 40000.0", "[anchor]\nmass = 0.0").replace("dt = 0.002", "dt = -1.0");
+    match Scene::from_toml(&text, "bad.toml") {
+        Err(SceneError::Invalid { problems, .. }) => {
+            let fields: Vec<&str> = problems.iter().map(|p| p.field.as_str()).collect();
+            assert_eq!(fields, ["anchor.mass", "solver.dt"]);
+        }
+        other => panic!("expected two problems, got {other:?}"),
+    }
+}
+
+#[test]
+fn missing_file_names_the_path() {
+    let e = Scene::load(std::path::Path::new("no/such/scene.toml")).unwrap_err().to_string();
+    assert_mentions(&e, &["no/such/scene.toml"]);
+}
