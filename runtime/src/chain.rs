@@ -32,6 +32,12 @@ pub struct Body {
     pub joint: [f64; 2],
     /// Geometry for the force models.
     pub shape: Shape,
+    /// Added mass for accelerations normal to the body's x axis, kg (Eq. 46:
+    /// m_a = C_M ρ π D² L / 4 for a submerged rod; 0 in air or vacuum). It enters a_lp as the
+    /// translational inertia m_a n nᵀ, n the body's normal, so it is never lagged.
+    pub added_mass: f64,
+    /// Added moment of inertia about the centroid's y axis, kg·m² (Eq. 46: m_a L² / 12).
+    pub added_inertia: f64,
 }
 
 impl Body {
@@ -48,6 +54,8 @@ impl Body {
             centroid: [length / 2.0, 0.0],
             joint,
             shape: Shape::Rod { length, radius },
+            added_mass: 0.0,
+            added_inertia: 0.0,
         }
     }
 

@@ -95,6 +95,8 @@ impl Model {
             centroid: [a.length / 2.0, a.height / 2.0],
             joint: [anchor_origin[0] - ship_centre[0], anchor_origin[1] - ship_centre[1]],
             shape: Shape::Box { length: a.length, width: a.width, height: a.height },
+            added_mass: 0.0,
+            added_inertia: 0.0,
         });
         let mut inner_joint = [a.length, line_height];
         let mut push_rod = |bodies: &mut Vec<Body>, kind, length: f64, radius, mpl| {
@@ -127,6 +129,8 @@ impl Model {
             centroid: [-s.hinge_x, -s.hinge_z],
             joint: inner_joint,
             shape: Shape::Box { length: s.length, width: s.beam, height: s.depth },
+            added_mass: 0.0,
+            added_inertia: 0.0,
         });
         let chain = Chain { bodies };
 

@@ -22,6 +22,8 @@ pub fn anchor(mass: f64, origin: [f64; 2]) -> Body {
         centroid: [1.0, 1.05],
         joint: origin,
         shape: Shape::Box { length: 2.0, width: 4.0, height: 2.1 },
+        added_mass: 0.0,
+        added_inertia: 0.0,
     }
 }
 
@@ -34,6 +36,16 @@ pub fn rod_chain(anchor_mass: f64, rods: &[(f64, f64)]) -> Chain {
         joint = [len, 0.0];
     }
     Chain { bodies }
+}
+
+/// As [`random_chain`], with random added mass and added inertia on the rods (submerged).
+pub fn random_wet_chain(n: usize, rng: &mut StdRng) -> Chain {
+    let mut chain = random_chain(n, rng);
+    for b in chain.bodies.iter_mut().filter(|b| b.kind.is_rod_like()) {
+        b.added_mass = rng.gen_range(0.0..2.0) * b.mass;
+        b.added_inertia = b.added_mass * b.length() * b.length() / 12.0;
+    }
+    chain
 }
 
 /// A random chain of `n` bodies: anchor, rods with random lengths and masses and a last
@@ -51,6 +63,8 @@ pub fn random_chain(n: usize, rng: &mut StdRng) -> Chain {
         centroid: [rng.gen_range(-25.0..25.0), rng.gen_range(-2.0..2.0)],
         joint: [last_len, 0.0],
         shape: Shape::Box { length: 50.0, width: 10.0, height: 5.0 },
+        added_mass: 0.0,
+        added_inertia: 0.0,
     });
     chain
 }

@@ -59,6 +59,11 @@ pub struct ChainData {
     pub r: Vec<Vector3<f64>>,
     /// q_k: joint Q_k in B_{k-1} axes (q_1 in the inertial frame), m.
     pub q: Vec<Vector3<f64>>,
+    /// Added translational inertia of B_k in B_k axes (Eq. 46), kg: the water's reaction
+    /// −A a_k to the body's acceleration. Zero for bodies in air.
+    pub added_mass: Vec<Matrix3<f64>>,
+    /// Added rotational inertia about C_k in B_k axes (Eq. 46), kg·m².
+    pub added_inertia: Vec<Matrix3<f64>>,
 }
 
 /// The configuration and speeds at one instant.
@@ -256,8 +261,21 @@ impl Partials {
         self.s0[k] * chain.inertia[k - 1] * self.s0[k].transpose()
     }
 
+    /// Translational inertia m_k 1 + A_k and rotational inertia I_k + J_k in inertial
+    /// components, with the added inertias of Eq. 46 rotated like Eq. 19.
+    fn effective_inertia(&self, chain: &ChainData, k: usize) -> (Matrix3<f64>, Matrix3<f64>) {
+        let s = &self.s0[k];
+        let translational = Matrix3::identity() * chain.mass[k - 1] + s * chain.added_mass[k - 1] * s.transpose();
+        let rotational = s * (chain.inertia[k - 1] + chain.added_inertia[k - 1]) * s.transpose();
+        (translational, rotational)
+    }
+
     /// The reduced Kane equations a_lp ẍ_p = f_l (Eqs. 22–27) over the listed speeds, with
     /// the per-body applied wrenches projected by Eq. 23.
+    ///
+    /// The added-mass force and moment of Eq. 46 are −A_k a_k and −J_k α_k with a_k, α_k
+    /// from Eq. 17; they are linear in ẍ, so they join the inertia terms: m_k becomes
+    /// m_k 1 + A_k and I_k becomes I_k + J_k in Eqs. 22, 25 and 26.
     pub fn kane_equations(
         &self,
         chain: &ChainData,
@@ -268,8 +286,7 @@ impl Partials {
         let mut a = DMatrix::zeros(ns, ns);
         let mut f = DVector::zeros(ns);
         for k in 1..=self.n {
-            let m = chain.mass[k - 1];
-            let inertia = self.inertia(chain, k);
+            let (m, inertia) = self.effective_inertia(chain, k);
             // The velocity-product parts of F*_k and T*_k (Eq. 22): v̇_kpm ẋ_p, ω̇_kpm ẋ_p
             // and e_rsm ω_kpr ω_kqn I_ksn ẋ_p ẋ_q.
             let mut a_vel = Vector3::zeros();
@@ -284,11 +301,11 @@ impl Partials {
                 let (vl, wl) = (&self.v[k][i], &self.w[k][i]);
                 // Eq. 26: a_lp = m_k v_klm v_kpm + I_kmn ω_klm ω_kpn.
                 for j in 0..ns {
-                    a[(i, j)] += m * vl.dot(&self.v[k][j]) + wl.dot(&(inertia * self.w[k][j]));
+                    a[(i, j)] += vl.dot(&(m * self.v[k][j])) + wl.dot(&(inertia * self.w[k][j]));
                 }
                 // Eq. 23 (F_l) and Eq. 25 (f_l).
                 f[i] += vl.dot(&wrench.force) + wl.dot(&wrench.moment)
-                    - (m * vl.dot(&a_vel) + wl.dot(&(inertia * alpha_vel)) + wl.dot(&gyro));
+                    - (vl.dot(&(m * a_vel)) + wl.dot(&(inertia * alpha_vel)) + wl.dot(&gyro));
             }
         }
         (a, f)

@@ -25,6 +25,17 @@ impl ReferenceKernel {
             inertia: chain.bodies.iter().map(|b| Matrix3::from_diagonal(&Vector3::from(b.inertia))).collect(),
             r: chain.bodies.iter().map(|b| planar(b.centroid)).collect(),
             q: chain.bodies.iter().map(|b| planar(b.joint)).collect(),
+            // A cylinder's added mass acts across its axis (body y and z), Eq. 46.
+            added_mass: chain
+                .bodies
+                .iter()
+                .map(|b| Matrix3::from_diagonal(&Vector3::new(0.0, b.added_mass, b.added_mass)))
+                .collect(),
+            added_inertia: chain
+                .bodies
+                .iter()
+                .map(|b| Matrix3::from_diagonal(&Vector3::new(0.0, b.added_inertia, b.added_inertia)))
+                .collect(),
         };
         let mut speeds: Vec<usize> = (2..=n).map(|k| 3 * (k - 1) + 2).collect();
         speeds.push(3 * n + 1);
