@@ -1,8 +1,6 @@
 //! The equations of motion as a first-order system: y = (q, u), ẏ = (u, ü) with ü from
 //! a_lp ü_p = f_l (Eq. 27) and q̇ = u (Eqs. 28, 29 integrate to this for the angles).
 
-use nalgebra::{DMatrix, DVector};
-
 use crate::forces::Forces;
 use crate::integrate::{OdeSystem, RhsError};
 use crate::kernel::{AnchorDof, Assembly, Kernel};
@@ -53,21 +51,11 @@ impl Dynamics {
         }
     }
 
-    /// Generalised accelerations at (q, u): solves the active block of a_lp ü = f by
-    /// Cholesky (a_lp is symmetric positive definite); a stuck anchor's entry is zero.
-    pub fn accelerations(&mut self, q: &[f64], u: &[f64], qdd: &mut [f64]) -> Result<(), RhsError> {
+    /// Generalised accelerations at (q, u) by the kernel's solve; a stuck anchor's entry is
+    /// zero. Returns the anchor's holding force (see [`Kernel::solve`]).
+    pub fn accelerations(&mut self, q: &[f64], u: &[f64], qdd: &mut [f64]) -> Result<f64, RhsError> {
         self.evaluations += 1;
-        self.kernel.assemble(q, u, &mut self.forces, &mut self.assembly);
-        let m = self.active_speeds();
-        let a: DMatrix<f64> = self.assembly.mass.view((0, 0), (m, m)).into_owned();
-        let f: DVector<f64> = self.assembly.rhs.rows(0, m).into_owned();
-        let chol = a.cholesky().ok_or_else(|| {
-            RhsError("the mass matrix a_lp is not positive definite (non-finite state or degenerate chain)".into())
-        })?;
-        let x = chol.solve(&f);
-        qdd[..m].copy_from_slice(x.as_slice());
-        qdd[m..].iter_mut().for_each(|v| *v = 0.0);
-        Ok(())
+        self.kernel.solve(q, u, self.anchor, &mut self.forces, &mut self.assembly, qdd)
     }
 }
 
@@ -84,6 +72,6 @@ impl OdeSystem for Dynamics {
         if self.anchor == AnchorDof::Stuck {
             dq[n - 1] = 0.0;
         }
-        self.accelerations(q, u, du)
+        self.accelerations(q, u, du).map(|_| ())
     }
 }

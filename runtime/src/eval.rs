@@ -8,7 +8,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::dynamics::Dynamics;
 use crate::forces::Forces;
-use crate::kernel::{AnchorDof, BodyAcceleration, Kernel};
+use crate::kernel::{AnchorDof, Assembly, BodyAcceleration, Kernel};
 use crate::model::Model;
 
 /// A state to evaluate: `q` and `u` with N entries each; `anchor` defaults to the scene's
@@ -129,7 +129,9 @@ pub fn evaluate(model: &Model, kernel: Box<dyn Kernel>, state: Option<&StateFile
     let mut qdd = vec![0.0; n];
     dynamics.accelerations(&q, &u, &mut qdd).map_err(|e| EvalError(e.0))?;
     let active = dynamics.active_speeds();
-    let asm = dynamics.assembly().clone();
+    // M and f for the report come from an assembly, whatever the kernel's solve path.
+    let mut asm = Assembly::new(n);
+    dynamics.kernel_mut().assemble(&q, &u, &mut Forces::new(model), &mut asm);
     let m: DMatrix<f64> = asm.mass.view((0, 0), (active, active)).into_owned();
     let f: DVector<f64> = asm.rhs.rows(0, active).into_owned();
     let x = DVector::from_column_slice(&qdd[..active]);

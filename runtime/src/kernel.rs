@@ -19,6 +19,8 @@
 
 use nalgebra::{DMatrix, DVector};
 
+use crate::integrate::RhsError;
+
 /// Whether the anchor's surge is a degree of freedom.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "lowercase")]
@@ -105,4 +107,45 @@ pub trait Kernel {
 
     /// Body accelerations (Eq. 17) for generalised accelerations `qdd`.
     fn accelerations(&mut self, q: &[f64], u: &[f64], qdd: &[f64], out: &mut [BodyAcceleration]);
+
+    /// Generalised accelerations at (q, u) over the speeds `anchor` leaves active; a stuck
+    /// anchor's entry of `qdd` is 0. Returns the anchor's holding force: with the anchor
+    /// stuck, the horizontal force (N, along +x) the seabed must supply to keep it in place,
+    /// F^C_{3N+1} = a_{3N+1,p} ẍ_p − f_{3N+1} (Eq. 50); 0 with the anchor free.
+    ///
+    /// `scratch.bodies` holds the body states of (q, u) afterwards. The default assembles
+    /// a_lp and f_l and solves the active block by Cholesky; kernels with a recursive
+    /// O(N) solve override it.
+    fn solve(
+        &mut self,
+        q: &[f64],
+        u: &[f64],
+        anchor: AnchorDof,
+        model: &mut dyn LoadModel,
+        scratch: &mut Assembly,
+        qdd: &mut [f64],
+    ) -> Result<f64, RhsError> {
+        self.assemble(q, u, model, scratch);
+        solve_assembled(scratch, anchor, qdd)
+    }
+}
+
+/// Solves an assembled system over the active speeds (see [`Kernel::solve`]).
+pub fn solve_assembled(asm: &Assembly, anchor: AnchorDof, qdd: &mut [f64]) -> Result<f64, RhsError> {
+    let n = asm.rhs.len();
+    let m = match anchor {
+        AnchorDof::Free => n,
+        AnchorDof::Stuck => n - 1,
+    };
+    let a: DMatrix<f64> = asm.mass.view((0, 0), (m, m)).into_owned();
+    let chol = a.cholesky().ok_or_else(|| {
+        RhsError("the mass matrix a_lp is not positive definite (non-finite state or degenerate chain)".into())
+    })?;
+    let x = chol.solve(&asm.rhs.rows(0, m).into_owned());
+    qdd[..m].copy_from_slice(x.as_slice());
+    qdd[m..].iter_mut().for_each(|v| *v = 0.0);
+    Ok(match anchor {
+        AnchorDof::Free => 0.0,
+        AnchorDof::Stuck => asm.mass.row(n - 1).columns(0, m).dot(&x.transpose()) - asm.rhs[n - 1],
+    })
 }
