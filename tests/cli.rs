@@ -91,8 +91,10 @@ fn run_prints_a_summary_and_writes_the_csv_whole() {
     let text = std::fs::read_to_string(&csv).unwrap();
     let mut lines = text.lines();
     let header: Vec<&str> = lines.next().unwrap().split(',').collect();
-    assert_eq!(header.len(), 4 + 6 * 46);
-    assert_eq!(&header[..5], ["t", "E_kinetic", "E_potential", "E_total", "x_1"]);
+    assert_eq!(header.len(), 12 + 6 * 46 + 45, "t, anchor, 3 energies, 6 works, balance; 6 per body; 45 tensions");
+    assert_eq!(&header[..5], ["t", "anchor_sliding", "E_kinetic", "E_added_kinetic", "E_potential"]);
+    assert_eq!(header[12], "x_1");
+    assert_eq!(header[header.len() - 1], "T_46");
     let rows: Vec<Vec<f64>> = lines.map(|l| l.split(',').map(|v| v.parse().unwrap()).collect()).collect();
     assert_eq!(rows.len(), 6, "samples at 0, 0.01, …, 0.05 s");
     assert!(rows.iter().all(|r| r.len() == header.len()));
@@ -128,13 +130,39 @@ fn bad_scene_is_a_clear_error_not_a_panic() {
 }
 
 #[test]
-fn gravity_only_case_1_diverges_with_a_diagnostic() {
-    // Documented behaviour until the full physics lands: the unbuoyed ship drops onto a
-    // chain of 14–143 kg elements and the explicit step becomes unstable.
-    let out = kanestop().output().unwrap();
+fn stiff_gravity_only_chain_diverges_with_a_diagnostic() {
+    // Case 1 without water and seabed: the unbuoyed 500 t ship drops onto a chain of
+    // 14–143 kg elements and the explicit step of 0.002 s becomes unstable. The run must stop
+    // with the diagnostic, not print garbage.
+    let dir = temp_dir("stiff");
+    let path = dir.join("gravity-only.toml");
+    let text = kanestop_runtime::paper::DEFAULT_SCENE
+        .replace("water = true", "water = false")
+        .replace("seabed = true", "seabed = false")
+        .replace("end_time = 60.0", "end_time = 10.0")
+        .replace("stop_when_ship_stops = true", "stop_when_ship_stops = false");
+    std::fs::write(&path, text).unwrap();
+    let out = kanestop().arg("run").arg(&path).output().unwrap();
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert_eq!(out.status.code(), Some(3), "{stdout}");
-    for part in ["gravity only", "numerical failure at t =", "body:", "likely cause:", "suggestion: reduce solver.dt"] {
+    for part in
+        ["physics   gravity\n", "numerical failure at t =", "body:", "likely cause:", "suggestion: reduce solver.dt"]
+    {
+        assert!(stdout.contains(part), "missing {part:?} in {stdout}");
+    }
+}
+
+#[test]
+fn default_run_reports_the_stopping_time_against_the_paper() {
+    let out = kanestop().output().unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{stdout}");
+    for part in [
+        "scene     case01",
+        "ship surge speed reached zero at t =",
+        "paper (Table 3): 20.010 s",
+        "anchor    started to slide",
+    ] {
         assert!(stdout.contains(part), "missing {part:?} in {stdout}");
     }
 }

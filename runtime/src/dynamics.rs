@@ -1,23 +1,29 @@
-//! The equations of motion as a first-order system: y = (q, u), ẏ = (u, ü) with ü from
-//! a_lp ü_p = f_l (Eq. 27) and q̇ = u (Eqs. 28, 29 integrate to this for the angles).
+//! The equations of motion as a first-order system: y = (q, u, W), ẏ = (u, ü, P) with ü
+//! from a_lp ü_p = f_l (Eq. 27), q̇ = u (Eqs. 28, 29 integrate to this for the angles) and
+//! P the power of each work term of the energy balance (Eqs. 66–69).
 
-use crate::forces::Forces;
+use crate::forces::{Forces, WORK_TERMS};
 use crate::integrate::{OdeSystem, RhsError};
 use crate::kernel::{AnchorDof, Assembly, Kernel};
+
+/// Number of work accumulators at the end of the state.
+pub const WORK_COUNT: usize = WORK_TERMS.len();
 
 /// Kernel + loads + the anchor's state: the right-hand side the integrators see.
 pub struct Dynamics {
     kernel: Box<dyn Kernel>,
-    forces: Forces,
+    /// The loads; the run sets the anchor's sliding friction here.
+    pub forces: Forces,
     anchor: AnchorDof,
     assembly: Assembly,
     evaluations: u64,
+    holding_force: f64,
 }
 
 impl Dynamics {
     pub fn new(kernel: Box<dyn Kernel>, forces: Forces, anchor: AnchorDof) -> Self {
         let n = kernel.body_count();
-        Dynamics { kernel, forces, anchor, assembly: Assembly::new(n), evaluations: 0 }
+        Dynamics { kernel, forces, anchor, assembly: Assembly::new(n), evaluations: 0, holding_force: 0.0 }
     }
 
     /// N.
@@ -33,14 +39,24 @@ impl Dynamics {
         self.anchor
     }
 
+    /// Switches the anchor between held and sliding.
+    pub fn set_anchor(&mut self, anchor: AnchorDof) {
+        self.anchor = anchor;
+    }
+
     /// Right-hand-side evaluations so far.
     pub fn evaluations(&self) -> u64 {
         self.evaluations
     }
 
-    /// The last assembly (M, f and body states of the last evaluation).
+    /// The last evaluation's body states (and M, f when the kernel assembled them).
     pub fn assembly(&self) -> &Assembly {
         &self.assembly
+    }
+
+    /// The anchor's holding force of the last evaluation (Eq. 50), N; 0 when free.
+    pub fn holding_force(&self) -> f64 {
+        self.holding_force
     }
 
     /// Number of active speeds: N (anchor free) or N − 1 (stuck).
@@ -55,23 +71,29 @@ impl Dynamics {
     /// zero. Returns the anchor's holding force (see [`Kernel::solve`]).
     pub fn accelerations(&mut self, q: &[f64], u: &[f64], qdd: &mut [f64]) -> Result<f64, RhsError> {
         self.evaluations += 1;
-        self.kernel.solve(q, u, self.anchor, &mut self.forces, &mut self.assembly, qdd)
+        let h = self.kernel.solve(q, u, self.anchor, &mut self.forces, &mut self.assembly, qdd)?;
+        self.holding_force = h;
+        Ok(h)
     }
 }
 
 impl OdeSystem for Dynamics {
     fn dim(&self) -> usize {
-        2 * self.body_count()
+        2 * self.body_count() + WORK_COUNT
     }
 
     fn rhs(&mut self, _t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), RhsError> {
         let n = self.body_count();
-        let (q, u) = y.split_at(n);
-        let (dq, du) = dy.split_at_mut(n);
+        let (q, rest) = y.split_at(n);
+        let u = &rest[..n];
+        let (dq, rest) = dy.split_at_mut(n);
+        let (du, dw) = rest.split_at_mut(n);
         dq.copy_from_slice(u);
         if self.anchor == AnchorDof::Stuck {
             dq[n - 1] = 0.0;
         }
-        self.accelerations(q, u, du).map(|_| ())
+        self.accelerations(q, u, du)?;
+        dw.copy_from_slice(&self.forces.power());
+        Ok(())
     }
 }

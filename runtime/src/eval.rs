@@ -163,7 +163,7 @@ pub fn evaluate(model: &Model, kernel: Box<dyn Kernel>, state: Option<&StateFile
     Ok(EvalOutput {
         scene: model.scene.meta.name.clone(),
         kernel: kernel_name,
-        physics: crate::forces::PHYSICS.to_string(),
+        physics: Forces::new(model).description(),
         bodies_count: n,
         anchor,
         coordinates: coordinate_names(n),

@@ -10,7 +10,10 @@ use kanestop_codegen::{BodyKind, Topology};
 
 use crate::catenary::{lay_elements, Catenary, CatenaryError};
 use crate::chain::{box_inertia, Body, Chain, Shape};
+use crate::forces::morison::added_mass;
+use crate::forces::seabed::segment_area;
 use crate::kernel::AnchorDof;
+use crate::scene::Environment;
 use crate::scene::Scene;
 
 /// Everything a run starts from.
@@ -62,15 +65,28 @@ impl Model {
         let (catenary, cable_points) =
             lay_elements(&cable_lengths, scene.initial.horizontal_projection, scene.initial.vertical_projection)?;
 
-        // Local frame: seabed at z = 0, the cable's lower end o at (0, z_line). The line
-        // (chain and grounded cable) lies on the seabed with its centreline one chain radius
-        // up, and leaves the anchor's forward face at that height.
-        let line_height = if scene.chain.elements > 0 { scene.chain.radius } else { scene.cable.radius };
-        let chain_length = scene.chain.elements as f64 * scene.chain.element_length;
-        let anchor_origin = [-chain_length - scene.anchor.length, 0.0];
+        // Local frame: seabed at z = 0, the cable's lower end o at (0, z_cable). Chain links
+        // and grounded cable lie level with their centrelines at their static embedment
+        // height (weight less buoyancy = foundation reaction, Eqs. 41, 42); the chain leaves
+        // the anchor's forward face at its height and its last link bridges down (or up) to
+        // the cable's height at o.
+        let env = &scene.environment;
+        let rest = |radius: f64, mpl: f64| resting_height(radius, mpl, env);
+        let cable_height = rest(scene.cable.radius, scene.cable.mass_per_length);
+        let chain_height =
+            if scene.chain.elements > 0 { rest(scene.chain.radius, scene.chain.mass_per_length) } else { cable_height };
+        let line_height = cable_height;
+        let links = scene.chain.elements;
+        let step = chain_height - cable_height;
+        let last_link_run = (scene.chain.element_length.powi(2) - step * step).sqrt();
+        let chain_run = if links > 0 { (links - 1) as f64 * scene.chain.element_length + last_link_run } else { 0.0 };
+        let anchor_origin = [-chain_run - scene.anchor.length, 0.0];
 
         // Absolute angles θ_k (Eq. 35 with atan2) of every body; the anchor and chain are level.
         let mut theta = vec![0.0; n];
+        if links > 0 {
+            theta[links] = (step / scene.chain.element_length).asin(); // descends toward o
+        }
         let first_cable = 1 + scene.chain.elements;
         for (j, w) in cable_points.windows(2).enumerate() {
             theta[first_cable + j] = -(w[1][1] - w[0][1]).atan2(w[1][0] - w[0][0]);
@@ -98,7 +114,7 @@ impl Model {
             added_mass: 0.0,
             added_inertia: 0.0,
         });
-        let mut inner_joint = [a.length, line_height];
+        let mut inner_joint = [a.length, chain_height];
         let mut push_rod = |bodies: &mut Vec<Body>, kind, length: f64, radius, mpl| {
             bodies.push(Body::rod(kind, length, radius, mpl, inner_joint));
             inner_joint = [length, 0.0];
@@ -132,6 +148,17 @@ impl Model {
             added_mass: 0.0,
             added_inertia: 0.0,
         });
+        // Added mass of the submerged chain links and cable elements (Eq. 46); the rod is in
+        // air and the ship has none (docs/model-choices.md).
+        if env.water {
+            for b in bodies.iter_mut().filter(|b| matches!(b.kind, BodyKind::ChainLink | BodyKind::Cable { .. })) {
+                if let Shape::Rod { length, radius } = b.shape {
+                    b.added_mass =
+                        added_mass(env.water_density, scene.hydrodynamics.added_mass_coefficient, 2.0 * radius, length);
+                    b.added_inertia = b.added_mass * length * length / 12.0;
+                }
+            }
+        }
         let chain = Chain { bodies };
 
         // q = (β_2 … β_N, s_11); u: the cable and chain at rest, the rod turning so that its
@@ -147,13 +174,9 @@ impl Model {
         u0[rod - 1] = rod_rate;
         u0[n - 2] = -rod_rate;
 
-        // Until the anchor–seabed friction law exists, an anchor on a seabed with friction
-        // is held; on a frictionless or absent seabed it slides freely.
-        let anchor = if scene.environment.seabed && scene.environment.seabed_friction > 0.0 {
-            AnchorDof::Stuck
-        } else {
-            AnchorDof::Free
-        };
+        // The anchor starts at rest, held by static friction (released by the run when the
+        // pull exceeds μN); on a frictionless or absent seabed it slides freely.
+        let anchor = if env.seabed && env.seabed_friction > 0.0 { AnchorDof::Stuck } else { AnchorDof::Free };
 
         Ok(Model { scene: scene.clone(), topology, chain, q0, u0, anchor, seabed_z, catenary })
     }
@@ -167,4 +190,30 @@ impl Model {
     pub fn water_depth(&self) -> f64 {
         -self.seabed_z
     }
+}
+
+/// Height of a level rod's centreline above the seabed at rest, m: the depth δ at which the
+/// foundation carries the submerged weight, (k_z − ρ g) A(δ) = (m' − ρ π R²) g (Eqs. 41, 42).
+/// Without a seabed (or lighter than water) the rod is placed touching the seabed plane.
+pub fn resting_height(radius: f64, mass_per_length: f64, env: &Environment) -> f64 {
+    let rho = if env.water { env.water_density } else { 0.0 };
+    let area = std::f64::consts::PI * radius * radius;
+    let load = (mass_per_length - rho * area) * env.gravity;
+    if !env.seabed || load <= 0.0 {
+        return radius;
+    }
+    let target = load / (env.seabed_stiffness - rho * env.gravity);
+    if target >= area {
+        return -radius; // the foundation is too soft to carry it: fully buried
+    }
+    let (mut lo, mut hi) = (0.0, 2.0 * radius);
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if segment_area(radius, mid) < target {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    radius - 0.5 * (lo + hi)
 }

@@ -1,18 +1,29 @@
 //! One run: integrate a model from t = 0 until the ship stops, the end time, or a
 //! numerical failure, checking every step.
 //!
-//! Every step is checked for non-finite values and for energy runaway (relative drift of
-//! the energy balance beyond `solver.max_energy_drift`). A failure stops the run with a
-//! [`Failure`] that names the time, the body, the likely cause and a suggestion; the
+//! After every accepted step the state is *observed*: body states and accelerations, the
+//! joint forces (Eq. 52), the seabed's normal and holding forces on the anchor (Eqs. 37, 50)
+//! and the energy balance (Eq. 63). Two kinds of event are located to round-off by bisection
+//! on re-integrated partial steps, not merely detected at the next step:
+//!
+//! - the anchor's stick–slip switch (discussion after Eq. 26 and Eq. 37): held until the
+//!   holding force exceeds μN, then sliding with friction −μN (N from the last accepted step,
+//!   as the paper does) until its velocity returns to zero, where it is held again if the
+//!   pull is below μN;
+//! - the ship stopping: the first zero of its surge velocity.
+//!
+//! Every step is checked for non-finite values and energy runaway (relative drift of the
+//! energy balance beyond `solver.max_energy_drift`); a failure stops the run with a
+//! [`Failure`] naming the time, the body, the likely cause and a suggestion, and the
 //! samples up to the last good step are kept.
 
 use std::time::{Duration, Instant};
 
-use crate::dynamics::Dynamics;
+use crate::dynamics::{Dynamics, WORK_COUNT};
 use crate::energy::Energy;
 use crate::forces::Forces;
-use crate::integrate::{Integrator, Rk4};
-use crate::kernel::{BodyState, Kernel};
+use crate::integrate::{Integrator, RhsError, Rk4};
+use crate::kernel::{AnchorDof, BodyAcceleration, BodyState, Kernel, Load, LoadModel};
 use crate::model::Model;
 use crate::scene::IntegratorKind;
 
@@ -23,6 +34,9 @@ pub struct Sample {
     pub t: f64,
     pub bodies: Vec<BodyState>,
     pub energy: Energy,
+    /// |F^H_k| for the joints k = 2 … N (index k − 2), N.
+    pub tensions: Vec<f64>,
+    pub anchor: AnchorDof,
 }
 
 /// Why a run ended.
@@ -63,120 +77,387 @@ impl std::fmt::Display for Failure {
     }
 }
 
+/// A located switch of the anchor.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AnchorEvent {
+    /// s.
+    pub t: f64,
+    /// The anchor's state from then on.
+    pub now: AnchorDof,
+}
+
+/// The largest tension seen at one joint.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct PeakTension {
+    /// N.
+    pub tension: f64,
+    /// s.
+    pub t: f64,
+}
+
 /// Everything a run produced.
 #[derive(Clone, Debug)]
 pub struct RunResult {
     pub samples: Vec<Sample>,
     pub stop: Stop,
-    /// Simulated time reached (last good step), s.
+    /// Simulated time reached (last good state), s.
     pub t_end: f64,
-    /// First zero of the ship's surge speed, located by linear interpolation, s.
+    /// First zero of the ship's surge speed, located to round-off, s.
     pub stopping_time: Option<f64>,
+    /// The anchor's switches, in order.
+    pub anchor_events: Vec<AnchorEvent>,
+    /// Peak tension at every joint k = 2 … N (index k − 2), over every step.
+    pub peak_tensions: Vec<PeakTension>,
     pub steps: u64,
     pub rhs_evaluations: u64,
     pub wall_time: Duration,
-    /// Total energy at t = 0, J.
+    /// Energy balance at t = 0, J.
     pub energy0: f64,
-    /// Largest relative drift |E − E_0|/E_0 seen over the run.
+    /// Largest relative drift |E − E_0|/E_0 of the balance over the run.
     pub max_energy_drift: f64,
     /// Kernel used.
     pub kernel: &'static str,
+    /// What the loads included.
+    pub physics: String,
+}
+
+impl RunResult {
+    /// When the anchor first started to slide, s.
+    pub fn anchor_start(&self) -> Option<f64> {
+        self.anchor_events.iter().find(|e| e.now == AnchorDof::Free).map(|e| e.t)
+    }
+}
+
+/// The observed state after an accepted step.
+struct Observation {
+    bodies: Vec<BodyState>,
+    /// F^H_k (x, z) on B_k from B_{k−1}, k = 2 … N (index k − 2), N.
+    joints: Vec<[f64; 2]>,
+    /// The seabed's normal force on the anchor, N (Eq. 37).
+    normal: f64,
+    /// The horizontal force holding a stuck anchor, N (Eq. 50).
+    holding: f64,
+    energy: Energy,
+}
+
+/// The machinery of one run.
+struct Runner<'a> {
+    model: &'a Model,
+    dynamics: Dynamics,
+    integrator: Box<dyn Integrator>,
+    /// Direction of sliding (+1 toward the ship) while the anchor slides.
+    direction: f64,
+    qdd: Vec<f64>,
+    acc: Vec<BodyAcceleration>,
+    loads: Vec<Load>,
+}
+
+impl Runner<'_> {
+    fn n(&self) -> usize {
+        self.model.body_count()
+    }
+
+    fn observe(&mut self, y: &[f64]) -> Result<Observation, RhsError> {
+        let n = self.n();
+        let (q, rest) = y.split_at(n);
+        let (u, w) = rest.split_at(n);
+        let holding = self.dynamics.accelerations(q, u, &mut self.qdd)?;
+        let bodies = self.dynamics.assembly().bodies.clone();
+        self.dynamics.kernel_mut().accelerations(q, u, &self.qdd, &mut self.acc);
+        let mut forces = self.dynamics.forces.clone();
+        forces.loads(&bodies, &mut self.loads);
+        // Eq. 52 in Newton's form: the joint force on B_k balances the outboard bodies'
+        // inertia (with added mass) less their applied loads.
+        let mut joints = vec![[0.0; 2]; n - 1];
+        let mut sum = [0.0, 0.0];
+        for k in (0..n).rev() {
+            let (b, a, l, s) = (&self.model.chain.bodies[k], &self.acc[k], &self.loads[k], &bodies[k]);
+            let (sin, cos) = s.theta.sin_cos();
+            let a_n = a.ax * sin + a.az * cos;
+            sum[0] += b.mass * a.ax + b.added_mass * a_n * sin - l.fx;
+            sum[1] += b.mass * a.az + b.added_mass * a_n * cos - l.fz;
+            if k >= 1 {
+                joints[k - 1] = sum;
+            }
+        }
+        let work: [f64; WORK_COUNT] = w.try_into().expect("work accumulators");
+        let env = &self.model.scene.environment;
+        let energy = Energy::of(&self.model.chain, &bodies, env.gravity, self.model.seabed_z, work);
+        Ok(Observation { bodies, joints, normal: sum[1], holding, energy })
+    }
+
+    /// One RK4 (or other) step of size h from (t, y0).
+    fn advance(&mut self, t: f64, y0: &[f64], h: f64) -> Result<Vec<f64>, RhsError> {
+        let mut y = y0.to_vec();
+        self.integrator.step(&mut self.dynamics, t, &mut y, h)?;
+        Ok(y)
+    }
+
+    /// Bisects (0, h] for the first sub-step at which `g` changes sign from its value at 0.
+    fn locate(
+        &mut self,
+        t: f64,
+        y0: &[f64],
+        h: f64,
+        g: impl Fn(&Observation) -> bool,
+    ) -> Result<(f64, Vec<f64>, Observation), RhsError> {
+        let (mut lo, mut hi) = (0.0, h);
+        let mut best = None;
+        for _ in 0..60 {
+            let mid = 0.5 * (lo + hi);
+            let y = self.advance(t, y0, mid)?;
+            let obs = self.observe(&y)?;
+            if g(&obs) {
+                hi = mid;
+                best = Some((mid, y, obs));
+            } else {
+                lo = mid;
+            }
+            if hi - lo <= 1e-12 * h.max(1e-300) {
+                break;
+            }
+        }
+        match best {
+            Some(b) => Ok(b),
+            None => {
+                let y = self.advance(t, y0, h)?;
+                let obs = self.observe(&y)?;
+                Ok((h, y, obs))
+            }
+        }
+    }
+
+    fn mu(&self) -> f64 {
+        self.dynamics.forces.anchor.friction_coefficient
+    }
+
+    fn release(&self, obs: &Observation) -> bool {
+        releases(obs, self.mu())
+    }
+
+    fn set_sliding(&mut self, direction: f64, normal: f64) {
+        self.direction = direction;
+        self.dynamics.set_anchor(AnchorDof::Free);
+        self.dynamics.forces.anchor.set_sliding_friction(normal, direction);
+    }
+
+    fn set_held(&mut self, y: &mut [f64]) {
+        let n = self.n();
+        y[2 * n - 1] = 0.0;
+        self.dynamics.set_anchor(AnchorDof::Stuck);
+        self.dynamics.forces.anchor.sliding_friction = 0.0;
+    }
 }
 
 /// Integrates `model` with `kernel`.
 pub fn run(model: &Model, kernel: Box<dyn Kernel>) -> RunResult {
     let solver = &model.scene.solver;
-    let g = model.scene.environment.gravity;
     let n = model.body_count();
     let kernel_name = kernel.name();
-    let mut dynamics = Dynamics::new(kernel, Forces::new(model), model.anchor);
-    let mut integrator: Box<dyn Integrator> = match solver.integrator {
-        IntegratorKind::Rk4 => Box::new(Rk4::new(2 * n)),
+    let forces = Forces::new(model);
+    let physics = forces.description();
+    let dim = 2 * n + WORK_COUNT;
+    let mut r = Runner {
+        model,
+        dynamics: Dynamics::new(kernel, forces, model.anchor),
+        integrator: match solver.integrator {
+            IntegratorKind::Rk4 => Box::new(Rk4::new(dim)),
+        },
+        direction: 0.0,
+        qdd: vec![0.0; n],
+        acc: vec![BodyAcceleration::default(); n],
+        loads: vec![Load::default(); n],
     };
     let dt = solver.dt;
     let stride = ((solver.output_interval / dt).round() as u64).max(1);
     let max_steps = (solver.end_time / dt).round() as u64;
-
     let start = Instant::now();
-    let mut y: Vec<f64> = model.q0.iter().chain(&model.u0).copied().collect();
-    let mut bodies = vec![BodyState::default(); n];
-    let observe = |dynamics: &mut Dynamics, y: &[f64], bodies: &mut [BodyState]| {
-        let (q, u) = y.split_at(n);
-        dynamics.kernel_mut().kinematics(q, u, bodies);
-        Energy::of(&model.chain, bodies, g, model.seabed_z)
-    };
-    let e0 = observe(&mut dynamics, &y, &mut bodies);
-    let energy0 = e0.total();
-    let mut samples = vec![Sample { t: 0.0, bodies: bodies.clone(), energy: e0 }];
-    let mut prev_ship_vx = bodies[n - 1].vx;
-    let mut stop = Stop::EndTime;
-    let mut stopping_time = None;
-    let mut max_drift: f64 = 0.0;
-    let mut t = 0.0;
-    let mut step = 0;
-    let mut last_good = y.clone();
 
-    while step < max_steps {
-        let result = integrator.step(&mut dynamics, t, &mut y, dt);
-        let t_new = (step + 1) as f64 * dt;
-        if let Err(e) = result {
-            stop = Stop::Failed(failure(model, t_new, &last_good, &e.0));
-            break;
+    let mut y: Vec<f64> = model.q0.iter().chain(&model.u0).copied().chain([0.0; WORK_COUNT]).collect();
+    let mut result = RunResult {
+        samples: Vec::new(),
+        stop: Stop::EndTime,
+        t_end: 0.0,
+        stopping_time: None,
+        anchor_events: Vec::new(),
+        peak_tensions: vec![PeakTension::default(); n - 1],
+        steps: 0,
+        rhs_evaluations: 0,
+        wall_time: Duration::ZERO,
+        energy0: 0.0,
+        max_energy_drift: 0.0,
+        kernel: kernel_name,
+        physics,
+    };
+    let mut obs = match r.observe(&y) {
+        Ok(o) => o,
+        Err(e) => {
+            result.stop = Stop::Failed(failure(model, 0.0, &y, &e.0));
+            return result;
         }
-        if let Some(i) = y.iter().position(|v| !v.is_finite()) {
-            let what = format!("non-finite state (entry {i} of y = (q, u))");
-            stop = Stop::Failed(failure(model, t_new, &last_good, &what));
-            break;
-        }
-        let energy = observe(&mut dynamics, &y, &mut bodies);
-        let drift = (energy.total() - energy0).abs() / energy0.abs().max(f64::MIN_POSITIVE);
+    };
+    result.energy0 = obs.energy.balance();
+    record(&mut result, 0.0, &obs, r.dynamics.anchor());
+    let mut t = 0.0;
+    let mut step = 0u64;
+
+    'steps: while step < max_steps {
+        let t_next = (step + 1) as f64 * dt;
+        let prev_ship_vx = obs.bodies[n - 1].vx;
+        // Integrate [t, t_next] in segments split at located anchor events.
+        let (mut t_seg, mut y_seg) = (t, y.clone());
+        let mut events = 0;
+        let outcome: Result<(Vec<f64>, Observation), RhsError> = loop {
+            let h = t_next - t_seg;
+            let y_end = match r.advance(t_seg, &y_seg, h) {
+                Ok(v) => v,
+                Err(e) => break Err(e),
+            };
+            if y_end.iter().any(|v| !v.is_finite()) {
+                break Err(RhsError("non-finite state".into()));
+            }
+            let end = match r.observe(&y_end) {
+                Ok(o) => o,
+                Err(e) => break Err(e),
+            };
+            events += 1;
+            let anchor = r.dynamics.anchor();
+            let switched = match anchor {
+                AnchorDof::Stuck if r.mu() > 0.0 && r.release(&end) && events < 8 => {
+                    let mu = r.mu();
+                    let (hs, ys, os) = match r.locate(t_seg, &y_seg, h, |o| releases(o, mu)) {
+                        Ok(v) => v,
+                        Err(e) => break Err(e),
+                    };
+                    let direction = -os.holding.signum();
+                    r.set_sliding(direction, os.normal);
+                    Some((hs, ys, AnchorDof::Free))
+                }
+                AnchorDof::Free if r.direction != 0.0 && end.bodies[0].vx * r.direction <= 0.0 && events < 8 => {
+                    let dir = r.direction;
+                    let (hs, mut ys, _) = match r.locate(t_seg, &y_seg, h, |o| o.bodies[0].vx * dir <= 0.0) {
+                        Ok(v) => v,
+                        Err(e) => break Err(e),
+                    };
+                    // The anchor has come to rest: held if the pull is within μN.
+                    r.set_held(&mut ys);
+                    let held = match r.observe(&ys) {
+                        Ok(o) => o,
+                        Err(e) => break Err(e),
+                    };
+                    if r.release(&held) {
+                        let direction = -held.holding.signum();
+                        r.set_sliding(direction, held.normal);
+                        Some((hs, ys, AnchorDof::Free))
+                    } else {
+                        Some((hs, ys, AnchorDof::Stuck))
+                    }
+                }
+                _ => None,
+            };
+            match switched {
+                Some((hs, ys, now)) => {
+                    result.anchor_events.push(AnchorEvent { t: t_seg + hs, now });
+                    t_seg += hs;
+                    y_seg = ys;
+                    if t_next - t_seg <= 1e-12 * dt {
+                        let o = match r.observe(&y_seg) {
+                            Ok(o) => o,
+                            Err(e) => break Err(e),
+                        };
+                        break Ok((y_seg, o));
+                    }
+                }
+                None => break Ok((y_end, end)),
+            }
+        };
+        let (y_new, obs_new) = match outcome {
+            Ok(v) => v,
+            Err(e) => {
+                result.stop = Stop::Failed(failure(model, t_next, &y, &e.0));
+                break 'steps;
+            }
+        };
+        let drift = (obs_new.energy.balance() - result.energy0).abs() / result.energy0.abs().max(f64::MIN_POSITIVE);
         if !drift.is_finite() || drift > solver.max_energy_drift {
             let what = format!(
                 "energy runaway: |E − E_0|/E_0 = {drift:.3e} exceeds solver.max_energy_drift = {}",
                 solver.max_energy_drift
             );
-            stop = Stop::Failed(failure(model, t_new, &last_good, &what));
+            result.stop = Stop::Failed(failure(model, t_next, &y, &what));
             break;
         }
-        max_drift = max_drift.max(drift);
+        result.max_energy_drift = result.max_energy_drift.max(drift);
+        // Sliding friction follows the normal force of the last accepted step (Eq. 37).
+        if r.dynamics.anchor() == AnchorDof::Free && r.direction != 0.0 {
+            r.dynamics.forces.anchor.set_sliding_friction(obs_new.normal, r.direction);
+        }
+
+        let ship_vx = obs_new.bodies[n - 1].vx;
+        if prev_ship_vx > 0.0 && ship_vx <= 0.0 && result.stopping_time.is_none() {
+            match r.locate(t, &y, dt, |o| o.bodies[n - 1].vx <= 0.0) {
+                Ok((hs, ys, os)) => {
+                    result.stopping_time = Some(t + hs);
+                    if solver.stop_when_ship_stops {
+                        step += 1;
+                        t += hs;
+                        drop(ys);
+                        track_peaks(&mut result, t, &os);
+                        record(&mut result, t, &os, r.dynamics.anchor());
+                        result.stop = Stop::ShipStopped;
+                        break;
+                    }
+                }
+                Err(e) => {
+                    result.stop = Stop::Failed(failure(model, t_next, &y, &e.0));
+                    break;
+                }
+            }
+        }
         step += 1;
-        t = t_new;
-        last_good.copy_from_slice(&y);
-
-        let ship_vx = bodies[n - 1].vx;
-        let stopped = prev_ship_vx > 0.0 && ship_vx <= 0.0;
-        if stopped && stopping_time.is_none() {
-            stopping_time = Some(t - dt + dt * prev_ship_vx / (prev_ship_vx - ship_vx));
-        }
-        prev_ship_vx = ship_vx;
-        let last = step == max_steps || (stopped && solver.stop_when_ship_stops);
-        if step % stride == 0 || last {
-            samples.push(Sample { t, bodies: bodies.clone(), energy });
-        }
-        if stopped && solver.stop_when_ship_stops {
-            stop = Stop::ShipStopped;
-            break;
+        t = t_next;
+        y = y_new;
+        obs = obs_new;
+        track_peaks(&mut result, t, &obs);
+        if step % stride == 0 || step == max_steps {
+            record(&mut result, t, &obs, r.dynamics.anchor());
         }
     }
+    result.t_end = t;
+    result.steps = step;
+    result.rhs_evaluations = r.dynamics.evaluations();
+    result.wall_time = start.elapsed();
+    result
+}
 
-    RunResult {
-        samples,
-        stop,
-        t_end: t,
-        stopping_time,
-        steps: step,
-        rhs_evaluations: dynamics.evaluations(),
-        wall_time: start.elapsed(),
-        energy0,
-        max_energy_drift: max_drift,
-        kernel: kernel_name,
+/// Static friction is exceeded: |H| > μN (Eq. 37 and the discussion after Eq. 26).
+fn releases(obs: &Observation, mu: f64) -> bool {
+    obs.holding.abs() > mu * obs.normal.max(0.0)
+}
+
+fn track_peaks(result: &mut RunResult, t: f64, obs: &Observation) {
+    for (peak, j) in result.peak_tensions.iter_mut().zip(&obs.joints) {
+        let tension = j[0].hypot(j[1]);
+        if tension > peak.tension {
+            *peak = PeakTension { tension, t };
+        }
     }
+}
+
+fn record(result: &mut RunResult, t: f64, obs: &Observation, anchor: AnchorDof) {
+    result.samples.push(Sample {
+        t,
+        bodies: obs.bodies.clone(),
+        energy: obs.energy,
+        tensions: obs.joints.iter().map(|j| j[0].hypot(j[1])).collect(),
+        anchor,
+    });
 }
 
 /// Builds the diagnostic for a failure detected at `t`, from the last good state.
 fn failure(model: &Model, t: f64, last_good: &[f64], what: &str) -> Failure {
     let n = model.body_count();
-    let u = &last_good[n..];
+    let u = &last_good[n..2 * n];
     // The body turning fastest relative to its neighbour is where the unstable mode lives.
     let (i, _) = u[..n - 1]
         .iter()
@@ -198,7 +479,7 @@ fn failure(model: &Model, t: f64, last_good: &[f64], what: &str) -> Failure {
         suggestion: format!(
             "reduce solver.dt (try {:.1e} s) and rerun; the first {:.3} s up to the failure are kept",
             dt / 16.0,
-            t - dt
+            (t - dt).max(0.0)
         ),
     }
 }

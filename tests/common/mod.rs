@@ -3,7 +3,7 @@
 
 use kanestop_codegen::BodyKind;
 use kanestop_runtime::chain::{box_inertia, Body, Chain, Shape};
-use kanestop_runtime::dynamics::Dynamics;
+use kanestop_runtime::dynamics::{Dynamics, WORK_COUNT};
 use kanestop_runtime::forces::Forces;
 use kanestop_runtime::integrate::{Integrator, Rk4};
 use kanestop_runtime::kernel::{AnchorDof, BodyState, Kernel};
@@ -92,19 +92,20 @@ pub fn integrate(
 ) -> Vec<f64> {
     let n = chain.len();
     let mut dynamics = Dynamics::new(Box::new(ReferenceKernel::new(chain)), Forces::gravity_only(chain, G), anchor);
-    let mut rk = Rk4::new(2 * n);
-    let mut y: Vec<f64> = q.iter().chain(u).copied().collect();
+    let mut rk = Rk4::new(2 * n + WORK_COUNT);
+    let mut y: Vec<f64> = q.iter().chain(u).copied().chain([0.0; WORK_COUNT]).collect();
     let mut bodies = vec![BodyState::default(); n];
     let mut kin = ReferenceKernel::new(chain);
     for i in 0..steps {
         rk.step(&mut dynamics, i as f64 * dt, &mut y, dt).unwrap();
-        kin.kinematics(&y[..n], &y[n..], &mut bodies);
+        kin.kinematics(&y[..n], &y[n..2 * n], &mut bodies);
         observe((i + 1) as f64 * dt, &y, &bodies);
     }
+    y.truncate(2 * n);
     y
 }
 
 /// Kinetic plus gravitational energy, J.
 pub fn energy(chain: &Chain, bodies: &[BodyState]) -> f64 {
-    kanestop_runtime::energy::Energy::of(chain, bodies, G, 0.0).total()
+    kanestop_runtime::energy::Energy::of(chain, bodies, G, 0.0, [0.0; WORK_COUNT]).balance()
 }

@@ -1,40 +1,284 @@
 //! Applied loads on each body (Section 3.2), one small module per force.
 //!
 //! The kernel calls [`Forces::loads`] with the body states it computed and projects the
-//! result with the partial velocities (Eq. 23). Implemented so far: gravity (Eqs. 40, 53).
-//! Buoyancy, seabed reaction, anchor friction and drag, Morison drag and added mass, and
-//! the ship's hydrostatics and resistance come with the full physics.
+//! result with the partial velocities (Eq. 23). Each load is the resultant at the body's
+//! centroid (force in N, moment about y in N·m). Added mass (Eq. 46) is not a load: it is
+//! part of each body's inertia ([`crate::chain::Body::added_mass`]) and so of a_lp.
+//!
+//! Alongside the loads, [`Forces::power`] records the power of each category of force, so
+//! the run can integrate their work with the state and check the energy balance of
+//! Eqs. 63–69 to integration accuracy.
 
+pub mod anchor;
+pub mod current;
 pub mod gravity;
+pub mod morison;
+pub mod seabed;
+pub mod ship;
 
-use crate::chain::Chain;
+use kanestop_codegen::BodyKind;
+
+use crate::chain::{Chain, Shape};
 use crate::kernel::{BodyState, Load, LoadModel};
 use crate::model::Model;
+use anchor::AnchorForces;
+use current::Current;
+use ship::ShipHydro;
 
-/// Which physics the loads include, for reports.
-pub const PHYSICS: &str = "gravity only: buoyancy, seabed, friction, drag and ship hydrodynamics are not modelled yet";
+/// The categories of non-gravitational work in the energy balance (Eq. 63).
+pub const WORK_TERMS: [&str; 6] = ["buoyancy", "seabed", "friction", "drag", "hydrostatic", "added_mass"];
+
+/// Power of each category of [`WORK_TERMS`], W.
+pub type Power = [f64; 6];
+
+/// Per-body data the force models need.
+#[derive(Clone, Copy, Debug)]
+struct Element {
+    kind: BodyKind,
+    length: f64,
+    radius: f64,
+    mass: f64,
+    added_mass: f64,
+}
 
 /// All loads of a model.
 #[derive(Clone, Debug)]
 pub struct Forces {
-    gravity: gravity::Gravity,
+    g: f64,
+    rho: f64,
+    water: bool,
+    seabed: bool,
+    k_z: f64,
+    c_d: f64,
+    c_f: f64,
+    seabed_z: f64,
+    elements: Vec<Element>,
+    current: Current,
+    /// The anchor's drag and friction.
+    pub anchor: AnchorForces,
+    ship: ShipHydro,
+    power: Power,
 }
 
 impl Forces {
     /// The loads of a model, as its scene's switches select.
     pub fn new(model: &Model) -> Self {
-        Forces::gravity_only(&model.chain, model.scene.environment.gravity)
+        let s = &model.scene;
+        let e = &s.environment;
+        let mut f = Forces::gravity_only(&model.chain, e.gravity);
+        f.rho = e.water_density;
+        f.water = e.water;
+        f.seabed = e.seabed;
+        f.k_z = e.seabed_stiffness;
+        f.c_d = s.hydrodynamics.normal_drag_coefficient;
+        f.c_f = s.hydrodynamics.tangential_drag_coefficient;
+        f.seabed_z = model.seabed_z;
+        f.current = Current {
+            surface_speed: if e.water { e.current_surface_speed } else { 0.0 },
+            exponent: e.current_exponent,
+            depth: model.water_depth(),
+            seabed_z: model.seabed_z,
+        };
+        f.anchor = AnchorForces {
+            volume: s.anchor.length * s.anchor.width * s.anchor.height,
+            frontal_area: s.anchor.width * s.anchor.height,
+            drag_coefficient: s.hydrodynamics.anchor_drag_coefficient,
+            friction_coefficient: if e.seabed { e.seabed_friction } else { 0.0 },
+            sliding_friction: 0.0,
+        };
+        f.ship = ShipHydro::new(
+            s.ship.mass,
+            s.ship.length,
+            s.ship.beam,
+            s.ship.hull_roughness,
+            e.water_density,
+            e.gravity,
+            e.kinematic_viscosity,
+        );
+        f
     }
 
     /// Weight alone, gravity `g` in m/s²: a chain hanging in vacuum.
     pub fn gravity_only(chain: &Chain, g: f64) -> Self {
-        Forces { gravity: gravity::Gravity::new(chain, g) }
+        let elements = chain
+            .bodies
+            .iter()
+            .map(|b| Element {
+                kind: b.kind,
+                length: b.length(),
+                radius: match b.shape {
+                    Shape::Rod { radius, .. } => radius,
+                    Shape::Box { .. } => 0.0,
+                },
+                mass: b.mass,
+                added_mass: b.added_mass,
+            })
+            .collect();
+        Forces {
+            g,
+            rho: 0.0,
+            water: false,
+            seabed: false,
+            k_z: 0.0,
+            c_d: 0.0,
+            c_f: 0.0,
+            seabed_z: 0.0,
+            elements,
+            current: Current { surface_speed: 0.0, exponent: 1.0 / 7.0, depth: 1.0, seabed_z: 0.0 },
+            anchor: AnchorForces {
+                volume: 0.0,
+                frontal_area: 0.0,
+                drag_coefficient: 0.0,
+                friction_coefficient: 0.0,
+                sliding_friction: 0.0,
+            },
+            ship: ShipHydro::new(1.0, 1.0, 1.0, 0.0, 1.0, g, 1.0),
+            power: [0.0; 6],
+        }
     }
+
+    /// Power of each work term at the last [`LoadModel::loads`] call, W.
+    pub fn power(&self) -> Power {
+        self.power
+    }
+
+    /// What the loads include, for reports.
+    pub fn description(&self) -> String {
+        let mut parts = vec!["gravity"];
+        if self.water {
+            parts.extend([
+                "buoyancy",
+                "Morison drag and added mass",
+                "anchor drag",
+                "ship hydrostatics and resistance",
+            ]);
+        }
+        if self.current.surface_speed != 0.0 {
+            parts.push("current");
+        }
+        if self.seabed {
+            parts.extend(["seabed foundation", "anchor stick–slip friction"]);
+        }
+        parts.join(", ")
+    }
+
+    /// The seabed's normal force on the anchor would need the chain pull; see `simulate`.
+    /// Weight less buoyancy of the anchor, N.
+    pub fn anchor_submerged_weight(&self) -> f64 {
+        let buoyancy = if self.water { self.rho * self.anchor.volume * self.g } else { 0.0 };
+        self.elements[0].mass * self.g - buoyancy
+    }
+}
+
+/// Adds force `(fx, fz)` applied at `arm` from the centroid to `load`, and returns its power
+/// for the body's state.
+fn apply(load: &mut Load, s: &BodyState, arm: [f64; 2], fx: f64, fz: f64) -> f64 {
+    // Moment about y of r × F: r_z F_x − r_x F_z.
+    let my = arm[1] * fx - arm[0] * fz;
+    load.fx += fx;
+    load.fz += fz;
+    load.my += my;
+    fx * s.vx + fz * s.vz + my * s.omega
 }
 
 impl LoadModel for Forces {
     fn loads(&mut self, bodies: &[BodyState], loads: &mut [Load]) {
-        loads.iter_mut().for_each(|l| *l = Load::default());
-        self.gravity.add(bodies, loads);
+        let mut power = [0.0; 6];
+        let n = bodies.len();
+        for (k, ((load, s), e)) in loads.iter_mut().zip(bodies).zip(&self.elements).enumerate() {
+            *load = Load { fx: 0.0, fz: -e.mass * self.g, my: 0.0 };
+            match e.kind {
+                BodyKind::Anchor => {
+                    let current = self.current.at(s.z);
+                    if self.water {
+                        power[0] += apply(load, s, [0.0, 0.0], 0.0, self.rho * self.anchor.volume * self.g);
+                        power[3] += apply(load, s, [0.0, 0.0], self.anchor.drag(self.rho, current, s.vx), 0.0);
+                    }
+                    power[2] += apply(load, s, [0.0, 0.0], self.anchor.sliding_friction, 0.0);
+                }
+                BodyKind::ChainLink | BodyKind::Cable { .. } => {
+                    self.element_loads(s, e, load, &mut power);
+                }
+                BodyKind::Rod => {} // above the water: weight only (Section 3.2.2)
+                BodyKind::Ship => {
+                    if self.water && k == n - 1 {
+                        power[4] += apply(load, s, [0.0, 0.0], 0.0, self.ship.vertical_force(s.z));
+                        let my = self.ship.pitch_moment(s.theta);
+                        load.my += my;
+                        power[4] += my * s.omega;
+                        let v_rel = s.vx - self.current.at(0.0);
+                        power[3] += apply(load, s, [0.0, 0.0], self.ship.resistance(v_rel), 0.0);
+                    }
+                }
+            }
+        }
+        self.power = power;
+    }
+}
+
+impl Forces {
+    /// Buoyancy (Eq. 42), seabed reaction (Eq. 41) and Morison drag (Eqs. 43–47) on a chain
+    /// link or cable element.
+    fn element_loads(&self, s: &BodyState, e: &Element, load: &mut Load, power: &mut Power) {
+        let (sin, cos) = s.theta.sin_cos();
+        let ex = [cos, -sin]; // body x axis
+        let ez = [sin, cos]; // body z axis (normal)
+        let half = 0.5 * e.length;
+        let (za, zb) = (s.z - half * ex[1], s.z + half * ex[1]);
+        let at = |xi: f64| [xi * ex[0], xi * ex[1]];
+
+        // Seabed foundation, Eq. 41, at the centroid of the embedded volume.
+        let mut embedded = 0.0;
+        if self.seabed {
+            let (v, s_bar) = seabed::embedded_volume(e.radius, e.length, za - self.seabed_z, zb - self.seabed_z);
+            if v > 0.0 {
+                embedded = v;
+                power[1] += apply(load, s, at(s_bar - half), 0.0, self.k_z * v);
+            }
+        }
+        if !self.water {
+            return;
+        }
+        // Submerged length: the part of the axis below the still-water plane.
+        let (lo, hi) = (za.min(zb), za.max(zb));
+        let fraction = if hi <= 0.0 {
+            1.0
+        } else if lo >= 0.0 {
+            0.0
+        } else {
+            -lo / (hi - lo)
+        };
+        if fraction == 0.0 {
+            return;
+        }
+        // Centre of the submerged part, as an axial offset from the centroid.
+        let wet_centre = if fraction == 1.0 {
+            0.0
+        } else {
+            let low_end = if za < zb { -half } else { half };
+            low_end - low_end.signum() * fraction * half
+        };
+        // Buoyancy, Eq. 42: ρ (V − V^S) g on the submerged volume.
+        let volume = std::f64::consts::PI * e.radius * e.radius * e.length * fraction;
+        let buoyancy = self.rho * self.g * (volume - embedded).max(0.0);
+        power[0] += apply(load, s, at(wet_centre), 0.0, buoyancy);
+
+        // Morison drag, Eqs. 43–47, on the submerged fraction.
+        let rel = [self.current.at(s.z) - s.vx, -s.vz]; // water relative to the body
+        let v_t = rel[0] * ex[0] + rel[1] * ex[1];
+        let u_n = rel[0] * ez[0] + rel[1] * ez[1];
+        let d = 2.0 * e.radius;
+        let (f_n, m_n) = morison::normal_drag(self.rho, self.c_d, d, e.length, u_n, s.omega);
+        let f_t = morison::tangential_drag(self.rho, self.c_f, d, e.length, v_t);
+        let (f_n, m_n, f_t) = (f_n * fraction, m_n * fraction, f_t * fraction);
+        load.fx += f_n * ez[0] + f_t * ex[0];
+        load.fz += f_n * ez[1] + f_t * ex[1];
+        load.my += m_n;
+        power[3] += (f_n * ez[0] + f_t * ex[0]) * s.vx + (f_n * ez[1] + f_t * ex[1]) * s.vz + m_n * s.omega;
+
+        // The added-mass force −m_a (a·n) n does work −d(½ m_a v_n²)/dt + m_a ω v_t v_n: the
+        // first part is kinetic energy of the entrained water, the second is tracked here.
+        let (bt, bn) = (s.vx * ex[0] + s.vz * ex[1], s.vx * ez[0] + s.vz * ez[1]);
+        power[5] += e.added_mass * s.omega * bt * bn;
     }
 }
