@@ -2,6 +2,8 @@
 //!
 //! `cargo run --release` runs the paper's case 1 (embedded); see `--help` for the rest.
 
+mod commands;
+
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -36,6 +38,9 @@ enum Command {
         /// Write the time history as CSV to this file (written whole or not at all).
         #[arg(long)]
         out: Option<PathBuf>,
+        /// Write plots (SVG) of the run into this folder.
+        #[arg(long)]
+        plot: Option<PathBuf>,
         /// Which Kane kernel evaluates the equations of motion.
         #[arg(long, value_enum, default_value_t = KernelChoice::Reference)]
         kernel: KernelChoice,
@@ -49,6 +54,35 @@ enum Command {
         /// scene's initial state.
         #[arg(long)]
         state: Option<PathBuf>,
+        #[arg(long, value_enum, default_value_t = KernelChoice::Reference)]
+        kernel: KernelChoice,
+    },
+    /// Run every scene of a folder in parallel: a table of stopping times (against Table 3
+    /// where the scene names one), peak tensions, anchor start and energy drift, also
+    /// written as batch.csv and batch.json.
+    Batch {
+        /// Folder of scene TOML files, e.g. scenes/paper.
+        dir: PathBuf,
+        /// Folder for batch.csv and batch.json.
+        #[arg(long, default_value = "out")]
+        out: PathBuf,
+        /// Validate against Table 3: every paper case's stopping time within this relative
+        /// tolerance (e.g. 0.05), same order, energy drift < 0.5 %, no break load exceeded;
+        /// exit code 1 otherwise.
+        #[arg(long)]
+        tolerance: Option<f64>,
+        #[arg(long, value_enum, default_value_t = KernelChoice::Reference)]
+        kernel: KernelChoice,
+    },
+    /// Run one or more scenes and plot them overlaid (SVG): ship surge speed, ship and
+    /// anchor displacement, peak joint tension along the line, energy terms.
+    Plot {
+        /// Scene TOML files.
+        #[arg(required = true)]
+        scenes: Vec<PathBuf>,
+        /// Folder for the SVG files.
+        #[arg(long, default_value = "out/plots")]
+        out: PathBuf,
         #[arg(long, value_enum, default_value_t = KernelChoice::Reference)]
         kernel: KernelChoice,
     },
@@ -89,15 +123,20 @@ fn main() -> ExitCode {
 
 fn try_main() -> Result<ExitCode> {
     let cli = Cli::parse();
-    let command = cli.command.unwrap_or(Command::Run { scene: None, out: None, kernel: KernelChoice::Reference });
+    let command =
+        cli.command.unwrap_or(Command::Run { scene: None, out: None, plot: None, kernel: KernelChoice::Reference });
     match command {
-        Command::Run { scene, out, kernel: choice } => {
+        Command::Run { scene, out, plot, kernel: choice } => {
             let model = load_model(scene.as_ref())?;
-            let result = simulate::run(&model, kernel(choice, &model));
+            let result =
+                simulate::run_checked(&model, kernel(choice, &model), Box::new(ReferenceKernel::new(&model.chain)));
             print!("{}", report::summary(&model, &result));
             if let Some(path) = out {
                 report::write_csv(&result, &path).with_context(|| format!("cannot write {}", path.display()))?;
                 println!("{:<10}{} ({} samples)", "written", path.display(), result.samples.len());
+            }
+            if let Some(dir) = plot {
+                commands::write_plots(std::slice::from_ref(&model), std::slice::from_ref(&result), &dir)?;
             }
             Ok(if matches!(result.stop, Stop::Failed(_)) {
                 ExitCode::from(EXIT_NUMERICAL_FAILURE)
@@ -120,6 +159,17 @@ fn try_main() -> Result<ExitCode> {
             let out = evaluate(&model, kernel(choice, &model), state.as_ref())?;
             println!("{}", serde_json::to_string_pretty(&out)?);
             Ok(ExitCode::SUCCESS)
+        }
+        Command::Plot { scenes, out, kernel: choice } => {
+            commands::plot(&scenes, &out, &|model: &Model| kernel(choice, model))?;
+            Ok(ExitCode::SUCCESS)
+        }
+        Command::Batch { dir, out, tolerance, kernel: choice } => {
+            if let Some(t) = tolerance {
+                anyhow::ensure!(t.is_finite() && t > 0.0, "--tolerance {t}: must be a number > 0 (e.g. 0.05 for 5 %)");
+            }
+            let ok = commands::batch(&dir, &out, &|model: &Model| kernel(choice, model), tolerance)?;
+            Ok(if ok { ExitCode::SUCCESS } else { ExitCode::from(1) })
         }
     }
 }

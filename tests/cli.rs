@@ -166,3 +166,55 @@ fn default_run_reports_the_stopping_time_against_the_paper() {
         assert!(stdout.contains(part), "missing {part:?} in {stdout}");
     }
 }
+
+#[test]
+fn batch_tabulates_a_folder_and_writes_csv_and_json() {
+    let dir = temp_dir("batch");
+    let scenes = dir.join("scenes");
+    std::fs::create_dir_all(&scenes).unwrap();
+    let short = short_scene(&dir);
+    std::fs::copy(&short, scenes.join("a.toml")).unwrap();
+    std::fs::write(scenes.join("b.toml"), "not a scene").unwrap();
+    let out_dir = dir.join("out");
+    let out = kanestop().arg("batch").arg(&scenes).arg("--out").arg(&out_dir).output().unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    // One invalid scene: the batch reports it and exits non-zero, the valid one still runs.
+    assert_eq!(out.status.code(), Some(1), "{stdout}");
+    assert!(stdout.contains("case01") && stdout.contains("end time") && stdout.contains("invalid"), "{stdout}");
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out_dir.join("batch.json")).unwrap()).unwrap();
+    let rows = json.as_array().unwrap();
+    assert_eq!(rows.len(), 2);
+    for key in [
+        "case",
+        "stopping_time",
+        "paper_stopping_time",
+        "relative_difference",
+        "peak_tension",
+        "peak_joint",
+        "anchor_start",
+        "energy_drift",
+        "wall_time",
+    ] {
+        assert!(rows[0].get(key).is_some(), "batch.json lacks {key}");
+    }
+    let csv = std::fs::read_to_string(out_dir.join("batch.csv")).unwrap();
+    assert_eq!(csv.lines().count(), 3);
+    assert!(
+        csv.starts_with("case,file,status,bodies,stopping_time,paper_stopping_time,relative_difference,peak_tension")
+    );
+}
+
+#[test]
+fn plot_writes_the_four_svg_charts() {
+    let dir = temp_dir("plot");
+    let scene = short_scene(&dir);
+    let out_dir = dir.join("plots");
+    let out = kanestop().arg("plot").arg(&scene).arg(&scene).arg("--out").arg(&out_dir).output().unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    for name in ["ship-speed.svg", "displacement.svg", "peak-tension.svg", "energy.svg"] {
+        let svg = std::fs::read_to_string(out_dir.join(name)).unwrap();
+        assert!(svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>"), "{name} is not a whole SVG");
+        assert!(svg.contains("<polyline") || svg.contains("<path"), "{name} has no curve");
+    }
+}

@@ -32,6 +32,8 @@ pub struct Model {
     pub seabed_z: f64,
     /// The catenary the cable was laid on.
     pub catenary: Catenary,
+    /// Its lower end o in the inertial frame, m.
+    pub catenary_origin: [f64; 2],
 }
 
 /// A scene whose geometry admits no initial configuration.
@@ -65,28 +67,26 @@ impl Model {
         let (catenary, cable_points) =
             lay_elements(&cable_lengths, scene.initial.horizontal_projection, scene.initial.vertical_projection)?;
 
-        // Local frame: seabed at z = 0, the cable's lower end o at (0, z_cable). Chain links
-        // and grounded cable lie level with their centrelines at their static embedment
-        // height (weight less buoyancy = foundation reaction, Eqs. 41, 42); the chain leaves
-        // the anchor's forward face at its height and its last link bridges down (or up) to
-        // the cable's height at o.
+        // Local frame: seabed at z = 0, the catenary's lower end o at (0, z_cable). Chain links
+        // and grounded cable lie level at their static embedment height (weight less
+        // buoyancy = foundation reaction, Eqs. 41, 42). The chain leaves the anchor's forward
+        // face at its height; the first cable element, thin and light, bridges the few
+        // centimetres from the chain's height down to its own (its raised end just rests).
         let env = &scene.environment;
         let rest = |radius: f64, mpl: f64| resting_height(radius, mpl, env);
         let cable_height = rest(scene.cable.radius, scene.cable.mass_per_length);
         let chain_height =
             if scene.chain.elements > 0 { rest(scene.chain.radius, scene.chain.mass_per_length) } else { cable_height };
         let line_height = cable_height;
-        let links = scene.chain.elements;
         let step = chain_height - cable_height;
-        let last_link_run = (scene.chain.element_length.powi(2) - step * step).sqrt();
-        let chain_run = if links > 0 { (links - 1) as f64 * scene.chain.element_length + last_link_run } else { 0.0 };
-        let anchor_origin = [-chain_run - scene.anchor.length, 0.0];
+        let mut cable_points = cable_points;
+        let first_len = cable_lengths[0];
+        cable_points[0] = [cable_points[1][0] - (first_len * first_len - step * step).sqrt(), step];
+        let chain_length = scene.chain.elements as f64 * scene.chain.element_length;
+        let anchor_origin = [cable_points[0][0] - chain_length - scene.anchor.length, 0.0];
 
         // Absolute angles θ_k (Eq. 35 with atan2) of every body; the anchor and chain are level.
         let mut theta = vec![0.0; n];
-        if links > 0 {
-            theta[links] = (step / scene.chain.element_length).asin(); // descends toward o
-        }
         let first_cable = 1 + scene.chain.elements;
         for (j, w) in cable_points.windows(2).enumerate() {
             theta[first_cable + j] = -(w[1][1] - w[0][1]).atan2(w[1][0] - w[0][0]);
@@ -178,12 +178,39 @@ impl Model {
         // pull exceeds μN); on a frictionless or absent seabed it slides freely.
         let anchor = if env.seabed && env.seabed_friction > 0.0 { AnchorDof::Stuck } else { AnchorDof::Free };
 
-        Ok(Model { scene: scene.clone(), topology, chain, q0, u0, anchor, seabed_z, catenary })
+        let catenary_origin = [-ship_centre[0], line_height - ship_centre[1]];
+        Ok(Model { scene: scene.clone(), topology, chain, q0, u0, anchor, seabed_z, catenary, catenary_origin })
     }
 
     /// N.
     pub fn body_count(&self) -> usize {
         self.chain.len()
+    }
+
+    /// Distance between the laid cable's top joint and (x_L, h_L) above the catenary's lower
+    /// end o, m, by forward kinematics of q_0 (Eq. 13): how exactly the rigid elements end
+    /// where Eqs. 30–34 say (zero to round-off).
+    pub fn cable_end_error(&self) -> f64 {
+        let joints = self.initial_joints();
+        let top = joints[self.body_count() - 2]; // o_{N−1}: the rod stands on the cable top
+        let o = self.catenary_origin;
+        let target = [o[0] + self.scene.initial.horizontal_projection, o[1] + self.scene.initial.vertical_projection];
+        (top[0] - target[0]).hypot(top[1] - target[1])
+    }
+
+    /// Body origins o_k at t = 0 in the inertial frame (Eq. 13 with r_k = 0), B_1 first.
+    pub fn initial_joints(&self) -> Vec<[f64; 2]> {
+        let mut theta: f64 = 0.0;
+        let mut o = self.chain.bodies[0].joint;
+        let mut out = vec![o];
+        for k in 1..self.body_count() {
+            let q = self.chain.bodies[k].joint;
+            let (s, c) = theta.sin_cos();
+            o = [o[0] + q[0] * c + q[1] * s, o[1] - q[0] * s + q[1] * c];
+            theta += self.q0[k - 1];
+            out.push(o);
+        }
+        out
     }
 
     /// Water depth d, m.

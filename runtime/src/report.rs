@@ -83,6 +83,15 @@ pub fn summary(model: &Model, result: &RunResult) -> String {
             s.initial.ship_speed
         ),
     );
+    let end = model.cable_end_error();
+    let residual = match result.initial_residual {
+        Some(r) => format!(
+            "; at rest, max |a| {:.2e} m/s² on the line (B_{}), {:.2e} m/s² beside the rod (B_{})",
+            r.line.0, r.line.1, r.top.0, r.top.1
+        ),
+        None => String::new(),
+    };
+    w(&mut out, "catenary", format!("cable ends {end:.1e} m from (x_L, h_L){residual}"));
     w(
         &mut out,
         "solver",

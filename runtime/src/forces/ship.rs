@@ -1,5 +1,9 @@
 //! The ship's hydrostatics (Eqs. 53–58) and frictional resistance (Eqs. 59–62).
 //!
+//! Eq. 62 is printed as R = (C_f + C_sf) ρ S_W v|v|; the ITTC-1957 line of Eq. 60 and the
+//! allowance of Eq. 61 (from Molland et al. 2011, the paper's source) are coefficients of
+//! ½ ρ S V², so the resistance here carries the ½.
+//!
 //! The ship is a box floating level with draught T = m/(ρ L w); its weight and buoyancy
 //! balance at rest, and heave ζ and pitch θ are restored linearly (Eq. 58 with the C_33 and
 //! C_55 of Eq. 56 and the G_y^M of Eq. 57).
@@ -59,11 +63,12 @@ impl ShipHydro {
         -self.rho * self.g * self.volume * self.metacentric_height * pitch
     }
 
-    /// Frictional resistance along x, N (Eq. 62 as printed): −(C_f + C_sf) ρ S_W v|v| for the
-    /// ship's velocity `v_rel` relative to the water.
+    /// Frictional resistance along x, N (Eq. 62 with the ½ of the coefficients' definition,
+    /// C = R / (½ ρ S V²)): −½ (C_f + C_sf) ρ S_W v|v| for the ship's velocity `v_rel`
+    /// relative to the water. See docs/model-choices.md for why the printed form is not used.
     pub fn resistance(&self, v_rel: f64) -> f64 {
         let re = v_rel.abs() * self.length / self.viscosity;
-        -(ittc_friction(re) + self.roughness_allowance) * self.rho * self.wetted_surface * v_rel * v_rel.abs()
+        -0.5 * (ittc_friction(re) + self.roughness_allowance) * self.rho * self.wetted_surface * v_rel * v_rel.abs()
     }
 }
 
@@ -91,8 +96,8 @@ mod tests {
         // Re = 1e7: 0.075 / 5² = 0.003; Re = 1e9: 0.075 / 7².
         assert!((ittc_friction(1e7) - 0.003).abs() < 1e-15);
         assert!((ittc_friction(1e9) - 0.075 / 49.0).abs() < 1e-15);
-        // The paper's ship at 3 m/s: Re = 3 · 50 / 1.05e-6 = 1.4286e8 → 0.0019787.
-        assert!((ittc_friction(3.0 * 50.0 / 1.05e-6) - 0.001_978_7).abs() < 1e-7);
+        // The paper's ship at 3 m/s: Re = 3 · 50 / 1.05e-6 = 1.4286e8 → 0.075 / 6.15490² = 0.00197979.
+        assert!((ittc_friction(3.0 * 50.0 / 1.05e-6) - 0.001_979_79).abs() < 1e-8);
     }
 
     #[test]
@@ -104,9 +109,12 @@ mod tests {
         assert!((s.metacentric_height - (2500.0 / (12.0 * t) - t / 2.0)).abs() < 1e-9);
         // Buoyancy at rest balances the weight.
         assert!((s.vertical_force(0.0) - 500e3 * 9.81).abs() < 1e-6);
-        // C_sf for k_s = 150 µm, L = 50 m: (105 · 0.014422 − 0.64)e-3 = 0.87433e-3.
-        assert!((s.roughness_allowance - 0.874_33e-3).abs() < 1e-8);
-        // Resistance opposes motion and scales with v|v|.
-        assert!(s.resistance(3.0) < 0.0 && s.resistance(-3.0) > 0.0);
+        // C_sf for k_s = 150 µm, L = 50 m: (105 · 0.0144225 − 0.64)e-3 = 0.874362e-3.
+        assert!((s.roughness_allowance - 0.874_362e-3).abs() < 1e-9);
+        // Resistance opposes motion and scales with v|v|: at 3 m/s,
+        // ½ (0.00197979 + 0.000874362) · 1025 · S_W · 9 with S_W = 500 + 120 T.
+        let expected = 0.5 * (0.001_979_79 + 0.000_874_362) * 1025.0 * (500.0 + 120.0 * t) * 9.0;
+        assert!((s.resistance(3.0) + expected).abs() < 1e-3 * expected, "{}", s.resistance(3.0));
+        assert!(s.resistance(-3.0) > 0.0);
     }
 }
