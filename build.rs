@@ -1,9 +1,10 @@
 //! Build script of the `kanestop` binary.
 //!
-//! Its job is to have `kanestop-codegen` emit a kernel for every element count the scenes
-//! need that is not checked in under `generated/`. The generator lands with its own
-//! issue; until then the runtime evaluates every scene with the reference kernel and this
-//! script only declares what it depends on.
+//! The kernels are generated where they are compiled: `generated/build.rs` has
+//! `kanestop-codegen` emit, into OUT_DIR, a kernel for every element count of the scenes
+//! under `scenes/` that is not checked in under `generated/src/` (and for the counts in
+//! `KANESTOP_EXTRA_BODY_COUNTS`); see docs/codegen.md. This script only declares what the
+//! binary depends on.
 
 fn main() {
     println!("cargo:rerun-if-changed=build.rs");

@@ -10,6 +10,7 @@ use std::process::ExitCode;
 use anyhow::{Context, Result};
 use clap::{Parser, Subcommand, ValueEnum};
 use kanestop_runtime::eval::{evaluate, StateFile};
+use kanestop_runtime::generated::GeneratedKernel;
 use kanestop_runtime::kernel::Kernel;
 use kanestop_runtime::model::Model;
 use kanestop_runtime::paper::DEFAULT_SCENE;
@@ -42,7 +43,7 @@ enum Command {
         #[arg(long)]
         plot: Option<PathBuf>,
         /// Which Kane kernel evaluates the equations of motion.
-        #[arg(long, value_enum, default_value_t = KernelChoice::Reference)]
+        #[arg(long, value_enum, default_value_t = KernelChoice::Generated)]
         kernel: KernelChoice,
     },
     /// Evaluate the equations of motion once and print JSON (M, f, qdd, body states).
@@ -54,7 +55,7 @@ enum Command {
         /// scene's initial state.
         #[arg(long)]
         state: Option<PathBuf>,
-        #[arg(long, value_enum, default_value_t = KernelChoice::Reference)]
+        #[arg(long, value_enum, default_value_t = KernelChoice::Generated)]
         kernel: KernelChoice,
     },
     /// Run every scene of a folder in parallel: a table of stopping times (against Table 3
@@ -71,7 +72,7 @@ enum Command {
         /// exit code 1 otherwise.
         #[arg(long)]
         tolerance: Option<f64>,
-        #[arg(long, value_enum, default_value_t = KernelChoice::Reference)]
+        #[arg(long, value_enum, default_value_t = KernelChoice::Generated)]
         kernel: KernelChoice,
     },
     /// Run one or more scenes and plot them overlaid (SVG): ship surge speed, ship and
@@ -83,8 +84,20 @@ enum Command {
         /// Folder for the SVG files.
         #[arg(long, default_value = "out/plots")]
         out: PathBuf,
-        #[arg(long, value_enum, default_value_t = KernelChoice::Reference)]
+        #[arg(long, value_enum, default_value_t = KernelChoice::Generated)]
         kernel: KernelChoice,
+    },
+    /// Show the generated kernels a scene needs (variants, N, operation counts, lines);
+    /// `--write` regenerates the checked-in kernels under generated/src/.
+    Codegen {
+        /// Scene TOML file; omitted: the embedded case 1.
+        scene: Option<PathBuf>,
+        /// Rewrite every checked-in kernel (the test sizes and the counts of scenes/**).
+        #[arg(long)]
+        write: bool,
+        /// Repository root holding scenes/ and generated/ (for --write).
+        #[arg(long, default_value = ".")]
+        root: PathBuf,
     },
 }
 
@@ -92,12 +105,78 @@ enum Command {
 enum KernelChoice {
     /// The generic formulation of the paper's Eqs. 1–27 (slow, the oracle).
     Reference,
+    /// Flat code emitted by kanestop-codegen for the chain's N and water switch, with the
+    /// O(N) recursive solve (default; the reference when no kernel fits the chain).
+    Generated,
 }
 
 fn kernel(choice: KernelChoice, model: &Model) -> Box<dyn Kernel> {
     match choice {
         KernelChoice::Reference => Box::new(ReferenceKernel::new(&model.chain)),
+        KernelChoice::Generated => match GeneratedKernel::new(&model.chain) {
+            Ok(k) => Box::new(k),
+            Err(e) => {
+                eprintln!("note: {e}; using the reference kernel");
+                Box::new(ReferenceKernel::new(&model.chain))
+            }
+        },
     }
+}
+
+/// `codegen`: what would be generated for a scene, and optionally write the checked-in files.
+fn codegen(scene: Option<&PathBuf>, write: bool, root: &std::path::Path) -> Result<()> {
+    use kanestop_codegen::{generate, Variant, Water};
+    let model = load_model(scene)?;
+    let n = model.body_count();
+    let wet = model.chain.bodies.iter().any(|b| b.added_mass != 0.0);
+    println!("scene     {} (N = {n}, water {})", model.scene.meta.name, if wet { "on" } else { "off" });
+    for water in [Water::Off, Water::On] {
+        let start = std::time::Instant::now();
+        let file = generate(Variant::new(n, water));
+        let elapsed = start.elapsed();
+        let used = if (water == Water::On) == wet { "  <- this scene" } else { "" };
+        println!(
+            "{}: {} lines, generated in {:.0} ms{used}",
+            file.file_name,
+            file.lines(),
+            elapsed.as_secs_f64() * 1e3
+        );
+        for f in &file.functions {
+            println!(
+                "  {:<14} {:>6} ops ({} add, {} mul, {} div, {} neg, {} sin/cos), {} statements",
+                f.name,
+                f.ops.total(),
+                f.ops.add,
+                f.ops.mul,
+                f.ops.div,
+                f.ops.neg,
+                f.ops.trig,
+                f.statements
+            );
+        }
+    }
+    let available = kanestop_runtime::generated::available();
+    println!(
+        "built in  {}",
+        available
+            .iter()
+            .map(|(n, w)| format!("{n}{}", if *w { " wet" } else { " dry" }))
+            .collect::<Vec<_>>()
+            .join(", ")
+    );
+    if write {
+        let dir = root.join("generated/src");
+        anyhow::ensure!(dir.is_dir(), "{} is not a directory: pass --root <repository>", dir.display());
+        for (name, text) in kanestop_codegen::checked_in_files(&root.join("scenes")) {
+            let path = dir.join(&name);
+            let old = std::fs::read_to_string(&path).unwrap_or_default();
+            if old != text {
+                std::fs::write(&path, text).with_context(|| format!("cannot write {}", path.display()))?;
+                println!("written   {}", path.display());
+            }
+        }
+    }
+    Ok(())
 }
 
 fn load_model(scene: Option<&PathBuf>) -> Result<Model> {
@@ -124,7 +203,7 @@ fn main() -> ExitCode {
 fn try_main() -> Result<ExitCode> {
     let cli = Cli::parse();
     let command =
-        cli.command.unwrap_or(Command::Run { scene: None, out: None, plot: None, kernel: KernelChoice::Reference });
+        cli.command.unwrap_or(Command::Run { scene: None, out: None, plot: None, kernel: KernelChoice::Generated });
     match command {
         Command::Run { scene, out, plot, kernel: choice } => {
             let model = load_model(scene.as_ref())?;
@@ -170,6 +249,10 @@ fn try_main() -> Result<ExitCode> {
             }
             let ok = commands::batch(&dir, &out, &|model: &Model| kernel(choice, model), tolerance)?;
             Ok(if ok { ExitCode::SUCCESS } else { ExitCode::from(1) })
+        }
+        Command::Codegen { scene, write, root } => {
+            codegen(scene.as_ref(), write, &root)?;
+            Ok(ExitCode::SUCCESS)
         }
     }
 }

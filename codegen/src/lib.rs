@@ -8,7 +8,54 @@
 //! [`topology::Topology`]: the body kinds in chain order and the counts per stage. The same
 //! type describes the chain to the runtime, so the generator and the runtime can never
 //! disagree about which body is which.
+//!
+//! - [`expr`]: the hash-consed expression DAG (sharing, folding, exact zeros);
+//! - [`planar`]: the expansion of the chain's kinematics, a_lp, f_l and the O(N) solve;
+//! - [`emit`]: Rust emission (quote → syn → prettyplease), one file per variant;
+//! - [`scenes`]: the element counts the scene files need, for `build.rs` and the CLI.
 
+pub mod emit;
+pub mod expr;
+pub mod planar;
+pub mod scenes;
 pub mod topology;
 
+pub use emit::{generate, GeneratedFile};
+pub use planar::{Variant, Water};
 pub use topology::{BodyKind, Topology, TopologyError};
+
+/// Body counts generated for the tests (snapshots and generated-vs-reference checks) on top
+/// of the counts the scenes need.
+pub const TEST_BODY_COUNTS: [usize; 2] = [3, 5];
+
+/// Both water variants of every count in `counts`, sorted and deduplicated.
+pub fn variants_for(counts: &[usize]) -> Vec<Variant> {
+    let mut out: Vec<Variant> =
+        counts.iter().flat_map(|&n| [Variant::new(n, Water::Off), Variant::new(n, Water::On)]).collect();
+    out.sort();
+    out.dedup();
+    out
+}
+
+/// The variants checked in under `generated/src/`: [`TEST_BODY_COUNTS`] and every count the
+/// scenes below `scenes_dir` need, each dry and wet.
+pub fn checked_in_variants(scenes_dir: &std::path::Path) -> Vec<Variant> {
+    let mut counts = scenes::body_counts(scenes_dir);
+    counts.extend(TEST_BODY_COUNTS);
+    variants_for(&counts)
+}
+
+/// Every checked-in file as (name under `generated/src/`, text): the kernels and the
+/// registry `kernels.rs`, which lists them.
+pub fn checked_in_files(scenes_dir: &std::path::Path) -> Vec<(String, String)> {
+    let variants = checked_in_variants(scenes_dir);
+    let mut out: Vec<(String, String)> = variants
+        .iter()
+        .map(|&v| {
+            let g = generate(v);
+            (g.file_name, g.source)
+        })
+        .collect();
+    out.push(("kernels.rs".to_string(), emit::registry(&variants)));
+    out
+}

@@ -282,3 +282,40 @@ impl Forces {
         power[5] += e.added_mass * s.omega * bt * bn;
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::chain::Body;
+    use std::f64::consts::{FRAC_PI_2, PI};
+
+    /// Forces on one vertical cable element of length 2 m and radius 0.05 m in water, with
+    /// its centroid at height `z` (the still-water plane is z = 0), at rest.
+    fn vertical_element_loads(z: f64) -> (Load, Power) {
+        let body = Body::rod(BodyKind::Cable { stage: 0 }, 2.0, 0.05, 10.0, [0.0, 0.0]);
+        let mut f = Forces::gravity_only(&Chain { bodies: vec![body] }, 9.81);
+        f.water = true;
+        f.rho = 1025.0;
+        f.seabed_z = -100.0;
+        let state = BodyState { x: 0.0, z, theta: -FRAC_PI_2, vx: 0.0, vz: 0.0, omega: 0.0 };
+        let mut loads = [Load::default()];
+        f.loads(&[state], &mut loads);
+        (loads[0], f.power())
+    }
+
+    #[test]
+    fn buoyancy_of_a_half_submerged_element() {
+        let weight = 20.0 * 9.81;
+        let volume = PI * 0.05 * 0.05 * 2.0;
+        // Fully submerged: ρ V g; half submerged (centroid on the surface): ρ V g / 2;
+        // in air: none (Eq. 42 on the submerged volume).
+        let (full, _) = vertical_element_loads(-5.0);
+        let (half, _) = vertical_element_loads(0.0);
+        let (dry, _) = vertical_element_loads(5.0);
+        assert!((full.fz - (1025.0 * volume * 9.81 - weight)).abs() < 1e-9);
+        assert!((half.fz - (1025.0 * volume * 9.81 / 2.0 - weight)).abs() < 1e-9, "{}", half.fz);
+        assert!((dry.fz + weight).abs() < 1e-12);
+        // A vertical element's buoyancy acts along its axis: no moment, no horizontal force.
+        assert!(half.fx.abs() < 1e-12 && half.my.abs() < 1e-9);
+    }
+}

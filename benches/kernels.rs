@@ -1,0 +1,159 @@
+//! µs per evaluation of the generalised accelerations ẍ (Eq. 27), gravity only, for the
+//! generated O(N) fast path, the generated a_lp/f_l + Cholesky path and the reference, at
+//! N = 12, 24, 46, 100, 200 (the sizes that are built), plus the water-on variant at N = 46.
+//!
+//! ```sh
+//! KANESTOP_EXTRA_BODY_COUNTS=12,24,100,200 cargo bench --bench kernels
+//! ```
+//!
+//! Without the variable only the checked-in sizes (3, 5, 46, 48, 50) have generated kernels
+//! and the others are skipped. Medians of 15 batches of at least 20 ms each; the ratios are
+//! measured side by side in one run. Results are recorded in docs/codegen.md.
+
+use std::hint::black_box;
+use std::time::Instant;
+
+use kanestop_codegen::BodyKind;
+use kanestop_runtime::chain::{box_inertia, Body, Chain, Shape};
+use kanestop_runtime::forces::Forces;
+use kanestop_runtime::generated::{available, GeneratedKernel, SolvePath};
+use kanestop_runtime::kernel::{AnchorDof, Assembly, Kernel};
+use kanestop_runtime::reference::ReferenceKernel;
+
+/// A paper-like chain of `n` bodies: a 5 t anchor, 1–10 m rods of 14–140 kg, a 500 t ship.
+fn chain(n: usize, wet: bool) -> Chain {
+    let mut bodies = vec![Body {
+        kind: BodyKind::Anchor,
+        mass: 5000.0,
+        inertia: box_inertia(5000.0, 2.0, 4.0, 2.1, 0.0),
+        centroid: [1.0, 1.05],
+        joint: [-300.0, -30.0],
+        shape: Shape::Box { length: 2.0, width: 4.0, height: 2.1 },
+        added_mass: 0.0,
+        added_inertia: 0.0,
+    }];
+    let mut joint = [2.0, 0.08];
+    for i in 0..n - 2 {
+        let length = [1.0, 2.0, 10.0][i % 3];
+        let mut rod = Body::rod(BodyKind::ChainLink, length, 0.07, 14.0 + 10.0 * (i % 5) as f64, joint);
+        if wet {
+            rod.added_mass = 1025.0 * std::f64::consts::PI * 0.14 * 0.14 / 4.0 * length;
+            rod.added_inertia = rod.added_mass * length * length / 12.0;
+        }
+        bodies.push(rod);
+        joint = [length, 0.0];
+    }
+    let mass = 5.0e5;
+    bodies.push(Body {
+        kind: BodyKind::Ship,
+        mass,
+        inertia: box_inertia(mass, 50.0, 10.0, 5.0, 1.5),
+        centroid: [-25.0, -1.0],
+        joint,
+        shape: Shape::Box { length: 50.0, width: 10.0, height: 5.0 },
+        added_mass: 0.0,
+        added_inertia: 0.0,
+    });
+    Chain { bodies }
+}
+
+/// A smooth, non-trivial state: small alternating angles, slow rates.
+fn state(n: usize) -> (Vec<f64>, Vec<f64>) {
+    let q = (0..n).map(|i| 0.05 * ((i as f64) * 0.7).sin()).collect();
+    let u = (0..n).map(|i| 0.1 * ((i as f64) * 1.3).cos()).collect();
+    (q, u)
+}
+
+/// Median µs per call of `f` over 15 batches of at least 20 ms.
+fn time(mut f: impl FnMut()) -> f64 {
+    let mut reps = 1usize;
+    loop {
+        let t = Instant::now();
+        for _ in 0..reps {
+            f();
+        }
+        if t.elapsed().as_secs_f64() >= 0.02 {
+            break;
+        }
+        reps *= 2;
+    }
+    let mut samples: Vec<f64> = (0..15)
+        .map(|_| {
+            let t = Instant::now();
+            for _ in 0..reps {
+                f();
+            }
+            t.elapsed().as_secs_f64() * 1e6 / reps as f64
+        })
+        .collect();
+    samples.sort_by(f64::total_cmp);
+    samples[samples.len() / 2]
+}
+
+fn per_solve(kernel: &mut dyn Kernel, chain: &Chain, anchor: AnchorDof) -> f64 {
+    let n = chain.len();
+    let (q, u) = state(n);
+    let mut forces = Forces::gravity_only(chain, 9.81);
+    let mut scratch = Assembly::new(n);
+    let mut qdd = vec![0.0; n];
+    time(|| {
+        let f = kernel.solve(black_box(&q), black_box(&u), anchor, &mut forces, &mut scratch, &mut qdd).unwrap();
+        black_box((f, &qdd));
+    })
+}
+
+fn main() {
+    let built = available();
+    println!("µs per evaluation of qdd (gravity only, anchor free; median of 15 batches)");
+    println!(
+        "{:>5} {:>12} {:>14} {:>12} {:>10} {:>10}",
+        "N", "generated", "gen a_lp/f_l", "reference", "ref/gen", "ref/a_lp"
+    );
+    let mut fast: Vec<(usize, f64)> = Vec::new();
+    for n in [12, 24, 46, 100, 200] {
+        if !built.contains(&(n, false)) {
+            println!("{n:>5} (no generated kernel in this build: set KANESTOP_EXTRA_BODY_COUNTS)");
+            continue;
+        }
+        let c = chain(n, false);
+        let mut gen = GeneratedKernel::new(&c).unwrap();
+        let mut asm = GeneratedKernel::new(&c).unwrap().with_solve_path(SolvePath::Assembled);
+        let mut reference = ReferenceKernel::new(&c);
+        let t_gen = per_solve(&mut gen, &c, AnchorDof::Free);
+        let t_asm = per_solve(&mut asm, &c, AnchorDof::Free);
+        let t_ref = per_solve(&mut reference, &c, AnchorDof::Free);
+        fast.push((n, t_gen));
+        println!("{n:>5} {t_gen:>12.2} {t_asm:>14.2} {t_ref:>12.1} {:>9.0}× {:>9.0}×", t_ref / t_gen, t_ref / t_asm);
+    }
+    if let (Some(&(n0, t0)), Some(&(n1, t1))) = (fast.iter().find(|x| x.0 == 46), fast.iter().find(|x| x.0 == 200)) {
+        println!(
+            "growth exponent of the fast path, N = {n0} → {n1}: {:.2}",
+            (t1 / t0).ln() / (n1 as f64 / n0 as f64).ln()
+        );
+    }
+
+    println!("\nvariants at N = 46 (µs per call)");
+    println!("{:>22} {:>10} {:>10}", "", "water off", "water on");
+    let (dry, wet) = (chain(46, false), chain(46, true));
+    let mut rows: Vec<(&str, [f64; 2])> = Vec::new();
+    let mut row = |name, f: &mut dyn FnMut(&Chain) -> f64| rows.push((name, [f(&dry), f(&wet)]));
+    row("solve, anchor free", &mut |c| per_solve(&mut GeneratedKernel::new(c).unwrap(), c, AnchorDof::Free));
+    row("solve, anchor stuck", &mut |c| per_solve(&mut GeneratedKernel::new(c).unwrap(), c, AnchorDof::Stuck));
+    row("a_lp/f_l + Cholesky", &mut |c| {
+        per_solve(&mut GeneratedKernel::new(c).unwrap().with_solve_path(SolvePath::Assembled), c, AnchorDof::Free)
+    });
+    row("assemble only", &mut |c| {
+        let mut k = GeneratedKernel::new(c).unwrap();
+        let (q, u) = state(c.len());
+        let mut forces = Forces::gravity_only(c, 9.81);
+        let mut out = Assembly::new(c.len());
+        time(|| {
+            k.assemble(black_box(&q), black_box(&u), &mut forces, &mut out);
+            black_box(&out.mass);
+        })
+    });
+    row("reference solve", &mut |c| per_solve(&mut ReferenceKernel::new(c), c, AnchorDof::Free));
+    for (name, [a, b]) in rows {
+        println!("{name:>22} {a:>10.2} {b:>10.2}");
+    }
+}

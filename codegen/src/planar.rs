@@ -1,0 +1,713 @@
+//! The expansion of the planar Kane quantities of a restraining chain into the DAG.
+//!
+//! For the chain every generalised speed is a rotation about y (β̇_k, k = 2 … N) or the
+//! anchor's surge ṡ_1, so the general arrays of Eqs. 9–16 collapse to planar vectors:
+//!
+//! - the partial angular velocity of B_k for β̇_j is ω_kj = 1 for j ≤ k (Eq. 10: the y
+//!   column of S^(0,j−1)), 0 otherwise, and its time derivative is zero (Eq. 12);
+//! - the partial velocity of C_k for β̇_j is v_kj = J(p_k − o_j), j ≤ k, where J(x, z) =
+//!   (z, −x) is the rotation through +90° about y (Eq. 15); for ṡ_1 it is (1, 0);
+//! - the velocity products of Eq. 16 are the centripetal terms −θ̇_w² (S^(0w) q_v) and
+//!   −θ̇_k² S^(0k) r_k, and the gyroscopic term of Eq. 22 vanishes (ω ∥ I ω).
+//!
+//! Hence, with the translational inertia A_k = m_k 1 + m_a,k n_k n_kᵀ (n_k the body's z
+//! axis, Eq. 46) and B_k = J ᵀ A_k J = m_k 1 + m_a,k t_k t_kᵀ (t_k its x axis):
+//!
+//! - a_{β_j β_l} = J_l + (o_l − o_j) · S_l for j ≤ l (Eq. 26), with the outboard sums
+//!   S_l = Σ_{k≥l} B_k (p_k − o_l) and J_l = Σ_{k≥l} (p_k − o_l)ᵀ B_k (p_k − o_l) + I_k
+//!   built once, from the ship inward;
+//! - a_{β_j s} = (S_j)_z and a_{s s} = Σ_k (A_k)_xx;
+//! - f_{β_j} = Σ_{k≥j} (p_k − o_j) × F̃_k + T_k and f_s = Σ_k F̃_kx (Eqs. 23, 25), with
+//!   F̃_k = F_k − A_k ȧ_k, ȧ_k the velocity-product acceleration of C_k (Eq. 16).
+//!
+//! Everything but the a_lp entries is O(N); the entries are O(N²), four flops each, and
+//! the dense block of them is filled by a fixed loop nest over O(N) arrays.
+//!
+//! The O(N) solve is an articulated-body recursion on the same quantities, written at each
+//! body's origin o_k with (angular, x, z) components: articulated inertias and bias forces
+//! from the ship inward, then accelerations outward (see [`solve`]).
+//!
+//! Indices: bodies are 0-based here (`k` = B_{k+1}) and 1-based in emitted names; the
+//! a_lp names use the 0-based coordinate indices of `q` (a_i_j is M[i][j]).
+
+use crate::expr::{Dag, Id};
+
+/// Whether the water's added mass (Eq. 46) enters a_lp.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Water {
+    /// No added-mass terms: A_k = m_k 1.
+    Off,
+    /// Added mass m_a,k n_k n_kᵀ on every rod-like body (B_2 … B_{N−1}).
+    On,
+}
+
+impl Water {
+    pub fn suffix(self) -> &'static str {
+        match self {
+            Water::Off => "dry",
+            Water::On => "wet",
+        }
+    }
+}
+
+/// One kernel shape: N bodies (anchor, N − 3 links or cable elements, rod, ship) and the
+/// water switch. Masses, lengths and inertias are runtime parameters.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct Variant {
+    pub bodies: usize,
+    pub water: Water,
+}
+
+impl Variant {
+    pub fn new(bodies: usize, water: Water) -> Self {
+        assert!(bodies >= 3, "a chain has at least an anchor, one rod and a ship");
+        Variant { bodies, water }
+    }
+
+    /// Module name, e.g. `chain46_dry`.
+    pub fn module(&self) -> String {
+        format!("chain{}_{}", self.bodies, self.water.suffix())
+    }
+}
+
+type V2 = [Id; 2];
+
+/// The numeric parameters of every body, as DAG inputs with the structural zeros folded.
+struct Params {
+    mass: Vec<Id>,
+    inertia: Vec<Id>,
+    /// r_k in body axes.
+    centroid: Vec<V2>,
+    /// q_k in the inner body's axes (k = 0: the anchor origin, inertial).
+    joint: Vec<V2>,
+    added_mass: Vec<Id>,
+}
+
+/// Which parameters a kernel of `variant` reads; the rest are structurally zero and the
+/// runtime checks that the chain agrees ([`structural_zeros`]).
+fn params(dag: &mut Dag, variant: Variant) -> Params {
+    let n = variant.bodies;
+    let zero = dag.zero();
+    let mut p = Params { mass: vec![], inertia: vec![], centroid: vec![], joint: vec![], added_mass: vec![] };
+    for k in 0..n {
+        let rod_like = k > 0 && k < n - 1;
+        p.mass.push(dag.input(format!("p[{k}].mass")));
+        p.inertia.push(if k == 0 { zero } else { dag.input(format!("p[{k}].inertia")) });
+        let cx = dag.input(format!("p[{k}].centroid[0]"));
+        let cz = if rod_like { zero } else { dag.input(format!("p[{k}].centroid[1]")) };
+        p.centroid.push([cx, cz]);
+        let jx = dag.input(format!("p[{k}].joint[0]"));
+        let jz = if k <= 1 { dag.input(format!("p[{k}].joint[1]")) } else { zero };
+        p.joint.push([jx, jz]);
+        let wet = rod_like && variant.water == Water::On;
+        p.added_mass.push(if wet { dag.input(format!("p[{k}].added_mass")) } else { zero });
+    }
+    p
+}
+
+/// What a chain must satisfy for a kernel of `variant` (0-based body index, field):
+/// these parameters are folded to zero in the generated code.
+pub fn structural_zeros(variant: Variant) -> Vec<(usize, &'static str)> {
+    let n = variant.bodies;
+    let mut out = Vec::new();
+    for k in 0..n {
+        let rod_like = k > 0 && k < n - 1;
+        if rod_like {
+            out.push((k, "centroid[1]"));
+        }
+        if k >= 2 {
+            out.push((k, "joint[1]"));
+        }
+        if !(rod_like && variant.water == Water::On) {
+            out.push((k, "added_mass"));
+        }
+    }
+    out
+}
+
+/// R(θ) v: body (x, z) components to inertial ones for a rotation θ about y.
+fn rot(dag: &mut Dag, cs: V2, v: V2) -> V2 {
+    let [c, s] = cs;
+    let a = dag.mul(v[0], c);
+    let b = dag.mul(v[1], s);
+    let x = dag.add(a, b);
+    let a = dag.mul(v[0], s);
+    let b = dag.mul(v[1], c);
+    let z = dag.sub(b, a);
+    [x, z]
+}
+
+/// J(v) = (v_z, −v_x): d(R(θ)v)/dθ.
+fn perp(dag: &mut Dag, v: V2) -> V2 {
+    [v[1], dag.neg(v[0])]
+}
+
+fn add2(dag: &mut Dag, a: V2, b: V2) -> V2 {
+    [dag.add(a[0], b[0]), dag.add(a[1], b[1])]
+}
+
+fn sub2(dag: &mut Dag, a: V2, b: V2) -> V2 {
+    [dag.sub(a[0], b[0]), dag.sub(a[1], b[1])]
+}
+
+fn scale2(dag: &mut Dag, s: Id, v: V2) -> V2 {
+    [dag.mul(s, v[0]), dag.mul(s, v[1])]
+}
+
+/// The y component of x × F for planar x, F: x_z F_x − x_x F_z.
+fn cross(dag: &mut Dag, x: V2, f: V2) -> Id {
+    let a = dag.mul(x[1], f[0]);
+    let b = dag.mul(x[0], f[1]);
+    dag.sub(a, b)
+}
+
+fn name2(dag: &mut Dag, v: V2, base: &str) -> V2 {
+    [dag.name(v[0], format!("{base}_x")), dag.name(v[1], format!("{base}_z"))]
+}
+
+/// The kinematic quantities every phase needs, from (cos θ_k, sin θ_k) and u.
+struct Kin {
+    n: usize,
+    p: Params,
+    /// (cos θ_k, sin θ_k).
+    cs: Vec<V2>,
+    /// θ̇_k.
+    omega: Vec<Id>,
+    /// d_k = S^(0,k−1) q_k: o_{k−1} → o_k, inertial (k ≥ 1; d_0 unused).
+    d: Vec<V2>,
+    /// e_k = S^(0k) r_k: o_k → C_k, inertial.
+    e: Vec<V2>,
+}
+
+impl Kin {
+    fn new(dag: &mut Dag, variant: Variant, cs: Vec<V2>) -> Kin {
+        let n = variant.bodies;
+        let p = params(dag, variant);
+        let zero = dag.zero();
+        let mut omega = vec![zero; n];
+        for k in 1..n {
+            let u = dag.input(format!("u[{}]", k - 1));
+            omega[k] = dag.add(omega[k - 1], u);
+            dag.name(omega[k], format!("w_{}", k + 1));
+        }
+        let mut d = vec![[zero, zero]; n];
+        let mut e = vec![[zero, zero]; n];
+        for k in 0..n {
+            if k > 0 {
+                let v = rot(dag, cs[k - 1], p.joint[k]);
+                d[k] = name2(dag, v, &format!("d_{}", k + 1));
+            }
+            let v = rot(dag, cs[k], p.centroid[k]);
+            e[k] = name2(dag, v, &format!("e_{}", k + 1));
+        }
+        Kin { n, p, cs, omega, d, e }
+    }
+
+    /// Trigonometric values read from the `trig` argument (B_1 does not rotate).
+    fn trig_inputs(dag: &mut Dag, n: usize) -> Vec<V2> {
+        let mut cs = vec![[dag.one(), dag.zero()]];
+        for k in 1..n {
+            cs.push([dag.input(format!("trig[{k}][0]")), dag.input(format!("trig[{k}][1]"))]);
+        }
+        cs
+    }
+
+    /// t_k = R(θ_k)(1, 0), the body's x axis.
+    fn t(&self, dag: &mut Dag, k: usize) -> V2 {
+        let [c, s] = self.cs[k];
+        [c, dag.neg(s)]
+    }
+
+    /// n_k = R(θ_k)(0, 1), the body's z axis.
+    fn normal(&self, k: usize) -> V2 {
+        let [c, s] = self.cs[k];
+        [s, c]
+    }
+
+    /// A_k v = m v + m_a n (n · v).
+    fn a_times(&self, dag: &mut Dag, k: usize, v: V2) -> V2 {
+        let mv = scale2(dag, self.p.mass[k], v);
+        let n = self.normal(k);
+        let nv = dag.dot2(n, v);
+        let coef = dag.mul(self.p.added_mass[k], nv);
+        let an = scale2(dag, coef, n);
+        add2(dag, mv, an)
+    }
+
+    /// B_k as (xx, xz, zz).
+    fn b_matrix(&self, dag: &mut Dag, k: usize) -> [Id; 3] {
+        let t = self.t(dag, k);
+        let a = self.p.added_mass[k];
+        let m = self.p.mass[k];
+        let txx = dag.mul(t[0], t[0]);
+        let txz = dag.mul(t[0], t[1]);
+        let tzz = dag.mul(t[1], t[1]);
+        let axx = dag.mul(a, txx);
+        let xz = dag.mul(a, txz);
+        let azz = dag.mul(a, tzz);
+        [dag.add(m, axx), xz, dag.add(m, azz)]
+    }
+
+    /// B_k e_k = m e + m_a r_x t (t · e_k = r_x in body axes).
+    fn b_e(&self, dag: &mut Dag, k: usize) -> V2 {
+        let me = scale2(dag, self.p.mass[k], self.e[k]);
+        let t = self.t(dag, k);
+        let coef = dag.mul(self.p.added_mass[k], self.p.centroid[k][0]);
+        let at = scale2(dag, coef, t);
+        add2(dag, me, at)
+    }
+
+    /// e_kᵀ B_k e_k + I_k = m |r|² + m_a r_x² + I, from body-axis components.
+    fn e_b_e_plus_i(&self, dag: &mut Dag, k: usize) -> Id {
+        let r = self.p.centroid[k];
+        let r2 = dag.dot2(r, r);
+        let mr2 = dag.mul(self.p.mass[k], r2);
+        let rx2 = dag.mul(r[0], r[0]);
+        let arx2 = dag.mul(self.p.added_mass[k], rx2);
+        let s = dag.add(mr2, arx2);
+        dag.add(s, self.p.inertia[k])
+    }
+
+    /// dᵀ B d for the link vector d_k and a symmetric (xx, xz, zz); for B = m 1 this is
+    /// m |q_k|² (rotations keep lengths: cos² + sin² = 1 where it arises).
+    fn quad(&self, dag: &mut Dag, k: usize, b: [Id; 3]) -> Id {
+        if dag.is_zero(b[1]) && b[0] == b[2] {
+            let q = self.p.joint[k];
+            let q2 = dag.dot2(q, q);
+            return dag.mul(b[0], q2);
+        }
+        let d = self.d[k];
+        let bd = [dag.dot2([b[0], b[1]], d), dag.dot2([b[1], b[2]], d)];
+        dag.dot2(d, bd)
+    }
+
+    /// The velocity-product (centripetal) accelerations of every C_k (Eq. 16 times ẋ):
+    /// ȧ_k = −Σ_{w<k} θ̇_w² d_{w+1} − θ̇_k² e_k.
+    fn centripetal(&self, dag: &mut Dag) -> Vec<V2> {
+        let zero = dag.zero();
+        let mut origin = [zero, zero];
+        let mut out = Vec::with_capacity(self.n);
+        for k in 0..self.n {
+            if k > 0 {
+                let w2 = dag.mul(self.omega[k - 1], self.omega[k - 1]);
+                let t = scale2(dag, w2, self.d[k]);
+                origin = sub2(dag, origin, t);
+            }
+            let w2 = dag.mul(self.omega[k], self.omega[k]);
+            let t = scale2(dag, w2, self.e[k]);
+            let a = sub2(dag, origin, t);
+            out.push(name2(dag, a, &format!("ac_{}", k + 1)));
+        }
+        out
+    }
+
+    /// F̃_k = F_k − A_k ȧ_k and T_k, from the `loads` argument.
+    fn effective_loads(&self, dag: &mut Dag) -> Vec<(V2, Id)> {
+        let acc = self.centripetal(dag);
+        (0..self.n)
+            .map(|k| {
+                let f = [dag.input(format!("loads[{k}][0]")), dag.input(format!("loads[{k}][1]"))];
+                let t = dag.input(format!("loads[{k}][2]"));
+                let inertial = self.a_times(dag, k, acc[k]);
+                let fe = sub2(dag, f, inertial);
+                (name2(dag, fe, &format!("fe_{}", k + 1)), t)
+            })
+            .collect()
+    }
+}
+
+/// A function body: where each output goes.
+pub struct Function {
+    pub dag: Dag,
+    /// (place, value): `place = value;` in order.
+    pub stores: Vec<(String, Id)>,
+    /// The returned value, if any.
+    pub ret: Option<Id>,
+    /// With N ≥ 4, the dense block of a_lp over the coordinates 1 ≤ j < l ≤ N − 2 is
+    /// filled after the stores by a fixed loop nest, a_jl = K_l − ō_j · S_l, from the local
+    /// arrays `k_col`, `s_col` and `o_rel` that the stores fill (see [`assemble`]).
+    pub dense_fill: bool,
+}
+
+impl Function {
+    fn new(dag: Dag) -> Self {
+        Function { dag, stores: Vec::new(), ret: None, dense_fill: false }
+    }
+
+    /// Every value the function computes.
+    pub fn roots(&self) -> Vec<Id> {
+        self.stores.iter().map(|s| s.1).chain(self.ret).collect()
+    }
+}
+
+/// Body states and the rotation table: θ_k, (cos θ_k, sin θ_k), centroid positions
+/// (Eq. 13) and velocities (Eq. 14), ω_k (Eq. 9).
+pub fn kinematics(variant: Variant) -> Function {
+    let n = variant.bodies;
+    let mut dag = Dag::new();
+    let zero = dag.zero();
+    let mut theta = vec![zero; n];
+    let mut cs = vec![[dag.one(), zero]];
+    for k in 1..n {
+        let q = dag.input(format!("q[{}]", k - 1));
+        theta[k] = dag.add(theta[k - 1], q);
+        dag.name(theta[k], format!("theta_{}", k + 1));
+        let c = dag.cos(theta[k]);
+        let s = dag.sin(theta[k]);
+        cs.push([dag.name(c, format!("c_{}", k + 1)), dag.name(s, format!("s_{}", k + 1))]);
+    }
+    let kin = Kin::new(&mut dag, variant, cs);
+    let mut f = Function::new(Dag::new());
+    // o_1 = q_1 + (s_1, 0); o_k = o_{k−1} + d_k; velocities by the same recursion.
+    let s1 = dag.input(format!("q[{}]", n - 1));
+    let s1_dot = dag.input(format!("u[{}]", n - 1));
+    let mut origin = [dag.add(kin.p.joint[0][0], s1), kin.p.joint[0][1]];
+    let mut origin_v = [s1_dot, zero];
+    for k in 0..n {
+        if k > 0 {
+            origin = add2(&mut dag, origin, kin.d[k]);
+            origin = name2(&mut dag, origin, &format!("o_{}", k + 1));
+            let jd = perp(&mut dag, kin.d[k]);
+            let t = scale2(&mut dag, kin.omega[k - 1], jd);
+            origin_v = add2(&mut dag, origin_v, t);
+            origin_v = name2(&mut dag, origin_v, &format!("vo_{}", k + 1));
+        }
+        let pos = add2(&mut dag, origin, kin.e[k]);
+        let pos = name2(&mut dag, pos, &format!("p_{}", k + 1));
+        let je = perp(&mut dag, kin.e[k]);
+        let t = scale2(&mut dag, kin.omega[k], je);
+        let vel = add2(&mut dag, origin_v, t);
+        let vel = name2(&mut dag, vel, &format!("v_{}", k + 1));
+        for (j, v) in [pos[0], pos[1], theta[k], vel[0], vel[1], kin.omega[k]].into_iter().enumerate() {
+            f.stores.push((format!("bodies[{k}][{j}]"), v));
+        }
+    }
+    for k in 0..n {
+        f.stores.push((format!("trig[{k}][0]"), kin.cs[k][0]));
+        f.stores.push((format!("trig[{k}][1]"), kin.cs[k][1]));
+    }
+    f.dag = dag;
+    f
+}
+
+/// a_lp (Eq. 26) over all N speeds, both triangles, and f_l (Eq. 25) with the loads
+/// projected by Eq. 23.
+pub fn assemble(variant: Variant) -> Function {
+    let n = variant.bodies;
+    let mut dag = Dag::new();
+    let cs = Kin::trig_inputs(&mut dag, n);
+    let kin = Kin::new(&mut dag, variant, cs);
+    let zero = dag.zero();
+    let mut f = Function::new(Dag::new());
+
+    // Outboard sums from the ship inward: Btot_l = Σ B_k, S_l, J_l (about o_l).
+    let mut s_l = vec![[zero, zero]; n];
+    let mut j_l = vec![zero; n];
+    let mut next: Option<([Id; 3], V2, Id)> = None;
+    for l in (1..n).rev() {
+        let b = kin.b_matrix(&mut dag, l);
+        let be = kin.b_e(&mut dag, l);
+        let ebe = kin.e_b_e_plus_i(&mut dag, l);
+        let (bt, s, j) = match next {
+            None => (b, be, ebe),
+            Some((bt1, s1, j1)) => {
+                let d = kin.d[l + 1];
+                let bd = [dag.dot2([bt1[0], bt1[1]], d), dag.dot2([bt1[1], bt1[2]], d)];
+                let s = add2(&mut dag, be, s1);
+                let s = add2(&mut dag, s, bd);
+                let ds = dag.dot2(d, s1);
+                let two_ds = dag.add(ds, ds);
+                let dbd = kin.quad(&mut dag, l + 1, bt1);
+                let j = dag.sum(&[ebe, j1, two_ds, dbd]);
+                let bt = [dag.add(b[0], bt1[0]), dag.add(b[1], bt1[1]), dag.add(b[2], bt1[2])];
+                (bt, s, j)
+            }
+        };
+        let bt = [
+            dag.name(bt[0], format!("bt_{}_xx", l + 1)),
+            dag.name(bt[1], format!("bt_{}_xz", l + 1)),
+            dag.name(bt[2], format!("bt_{}_zz", l + 1)),
+        ];
+        s_l[l] = name2(&mut dag, s, &format!("sm_{}", l + 1));
+        j_l[l] = dag.name(j, format!("j_{}", l + 1));
+        next = Some((bt, s_l[l], j_l[l]));
+    }
+
+    // a_{β_j β_l} = J_l + (o_l − o_j) · S_l = K_l − ō_j · S_l for j < l, with the hinge
+    // positions ō_j = o_j − o_2 relative to the first hinge and K_l = J_l + ō_l · S_l: four
+    // flops per entry. (Relative to o_2 the cancellation is bounded by the chain's length.)
+    let mut rel = vec![[zero, zero]; n];
+    for j in 2..n {
+        let o = add2(&mut dag, rel[j - 1], kin.d[j]);
+        rel[j] = name2(&mut dag, o, &format!("o_{}", j + 1));
+    }
+    //
+    // Row 0 (j = B_2, ō = 0) is K_l. The rest of the dense block, 1 ≤ j < l ≤ N − 2 in
+    // coordinates, is O(N²) with the same four flops everywhere: it is left to a fixed loop
+    // nest over the arrays stored here (`k_col`, `s_col` by l, `o_rel` by j), which keeps the
+    // build time of large kernels linear in N (see docs/codegen.md).
+    let mut entries: Vec<(usize, usize, Id)> = Vec::new();
+    for l in 1..n {
+        let os = dag.dot2(rel[l], s_l[l]);
+        let k_l = dag.add(j_l[l], os);
+        let k_l = dag.name(k_l, format!("k_{}", l + 1));
+        if l >= 2 {
+            entries.push((0, l - 1, k_l));
+        }
+        let c = l - 1; // coordinate of β_{l+1}
+        if (2..=n - 2).contains(&c) {
+            f.stores.push((format!("k_col[{c}]"), k_l));
+            f.stores.push((format!("s_col[{c}][0]"), s_l[l][0]));
+            f.stores.push((format!("s_col[{c}][1]"), s_l[l][1]));
+        }
+        if (1..=n - 3).contains(&c) {
+            f.stores.push((format!("o_rel[{c}][0]"), rel[l][0]));
+            f.stores.push((format!("o_rel[{c}][1]"), rel[l][1]));
+        }
+        entries.push((l - 1, l - 1, j_l[l]));
+        // a_{β_l s} = (S_l)_z.
+        entries.push((l - 1, n - 1, s_l[l][1]));
+    }
+    f.dense_fill = n >= 4;
+    // a_{ss} = Σ m_k + m_a,k sin²θ_k.
+    let mut ass = zero;
+    for k in 0..n {
+        let s = kin.cs[k][1];
+        let s2 = dag.mul(s, s);
+        let a = dag.mul(kin.p.added_mass[k], s2);
+        let t = dag.add(kin.p.mass[k], a);
+        ass = dag.add(ass, t);
+    }
+    entries.push((n - 1, n - 1, ass));
+    entries.sort_by_key(|&(i, j, _)| (i, j));
+    for &(i, j, a) in &entries {
+        dag.name(a, format!("a_{i}_{j}"));
+        f.stores.push((format!("m[{}]", i * n + j), a));
+        if i != j {
+            f.stores.push((format!("m[{}]", j * n + i), a));
+        }
+    }
+
+    // f: G_l = Σ_{k≥l} F̃_k, H_l = Σ_{k≥l} (p_k − o_l) × F̃_k + T_k.
+    let loads = kin.effective_loads(&mut dag);
+    let mut g = [zero, zero];
+    let mut h = zero;
+    let mut rhs = vec![zero; n];
+    for k in (0..n).rev() {
+        let (fe, t) = loads[k];
+        if k > 0 {
+            let arm = cross(&mut dag, kin.e[k], fe);
+            let carry = if k + 1 < n { cross(&mut dag, kin.d[k + 1], g) } else { zero };
+            h = dag.sum(&[h, carry, arm, t]);
+            rhs[k - 1] = dag.name(h, format!("f_{}", k - 1));
+        }
+        g = add2(&mut dag, g, fe);
+        g = name2(&mut dag, g, &format!("g_{}", k + 1));
+    }
+    rhs[n - 1] = dag.name(g[0], format!("f_{}", n - 1));
+    for (i, &v) in rhs.iter().enumerate() {
+        f.stores.push((format!("f[{i}]"), v));
+    }
+    f.dag = dag;
+    f
+}
+
+/// Body accelerations for generalised accelerations `qdd` (Eq. 17): a_k = v_kl ẍ_l +
+/// v̇_kl ẋ_l, α_k = ω_kl ẍ_l.
+pub fn accelerations(variant: Variant) -> Function {
+    let n = variant.bodies;
+    let mut dag = Dag::new();
+    let cs = Kin::trig_inputs(&mut dag, n);
+    let kin = Kin::new(&mut dag, variant, cs);
+    let zero = dag.zero();
+    let mut f = Function::new(Dag::new());
+    let s_dd = dag.input(format!("qdd[{}]", n - 1));
+    let mut alpha = zero;
+    let mut origin_a = [s_dd, zero];
+    for k in 0..n {
+        if k > 0 {
+            let jd = perp(&mut dag, kin.d[k]);
+            let t = scale2(&mut dag, alpha, jd);
+            let w2 = dag.mul(kin.omega[k - 1], kin.omega[k - 1]);
+            let c = scale2(&mut dag, w2, kin.d[k]);
+            origin_a = add2(&mut dag, origin_a, t);
+            origin_a = sub2(&mut dag, origin_a, c);
+            origin_a = name2(&mut dag, origin_a, &format!("ao_{}", k + 1));
+            let b = dag.input(format!("qdd[{}]", k - 1));
+            alpha = dag.add(alpha, b);
+            alpha = dag.name(alpha, format!("alpha_{}", k + 1));
+        }
+        let je = perp(&mut dag, kin.e[k]);
+        let t = scale2(&mut dag, alpha, je);
+        let w2 = dag.mul(kin.omega[k], kin.omega[k]);
+        let c = scale2(&mut dag, w2, kin.e[k]);
+        let a = add2(&mut dag, origin_a, t);
+        let a = sub2(&mut dag, a, c);
+        let a = name2(&mut dag, a, &format!("a_{}", k + 1));
+        f.stores.push((format!("acc[{k}][0]"), a[0]));
+        f.stores.push((format!("acc[{k}][1]"), a[1]));
+        f.stores.push((format!("acc[{k}][2]"), alpha));
+    }
+    f.dag = dag;
+    f
+}
+
+/// The O(N) solve of a_lp ẍ_p = f_l by articulated-body recursion.
+///
+/// At each body origin o_k, with (angular, x, z) components and point accelerations
+/// (α_k, a_{o_k}): the rigid inertia of B_k is [[I + eᵀBe, (J(Be))ᵀ], [J(Be), A]] (the
+/// partial velocities of Eq. 15 at o_k), its bias the centripetal force −θ̇_k² A e (and
+/// its moment), minus the applied load. Inward, the articulated inertia IA_k and bias pA_k
+/// of the outboard subchain absorb each hinge (smooth: no joint moment): the hinge's row is
+/// eliminated and the rest is carried across d_k to o_{k−1}. Outward, each hinge's
+/// acceleration follows from its row. With the anchor free ẍ_s = −pA_1x / IA_1xx; with it
+/// stuck ẍ_s = 0 and pA_1x is the holding force of Eq. 50.
+pub fn solve(variant: Variant, stuck: bool) -> Function {
+    let n = variant.bodies;
+    let mut dag = Dag::new();
+    let cs = Kin::trig_inputs(&mut dag, n);
+    let kin = Kin::new(&mut dag, variant, cs);
+    let zero = dag.zero();
+    let one = dag.one();
+    let loads = raw_loads(&mut dag, n);
+    let mut f = Function::new(Dag::new());
+
+    // Inward pass. ia[k] = IA_k as [00, 01, 02, 11, 12, 22]; pa[k] = pA_k.
+    let mut ia: Vec<[Id; 6]> = vec![[zero; 6]; n];
+    let mut pa: Vec<[Id; 3]> = vec![[zero; 3]; n];
+    let mut inv_d = vec![zero; n];
+    // Carried from the child: (Xᵀ Ia X) as [00, 01, 02, 11, 12, 22] and Xᵀ(Ia c + pa).
+    let mut carry: Option<([Id; 6], [Id; 3])> = None;
+    for k in (0..n).rev() {
+        let m = kin.p.mass[k];
+        let am = kin.p.added_mass[k];
+        let r = kin.p.centroid[k];
+        let e = kin.e[k];
+        // Rigid inertia at o_k.
+        let i00 = kin.e_b_e_plus_i(&mut dag, k);
+        let be = kin.b_e(&mut dag, k);
+        let g = perp(&mut dag, be);
+        let [s, c] = kin.normal(k);
+        let ss = dag.mul(s, s);
+        let sc = dag.mul(s, c);
+        let cc = dag.mul(c, c);
+        let a_ss = dag.mul(am, ss);
+        let a11 = dag.add(m, a_ss);
+        let a12 = dag.mul(am, sc);
+        let a_cc = dag.mul(am, cc);
+        let a22 = dag.add(m, a_cc);
+        let mut i = [i00, g[0], g[1], a11, a12, a22];
+        // Bias minus load: centripetal −θ̇² A e at C (moment about o: θ̇² m_a r_x r_z).
+        let w2 = dag.mul(kin.omega[k], kin.omega[k]);
+        let ae = kin.a_times(&mut dag, k, e);
+        let bias_f = scale2(&mut dag, w2, ae);
+        let bias_f = [dag.neg(bias_f[0]), dag.neg(bias_f[1])];
+        let rxz = dag.mul(r[0], r[1]);
+        let arxz = dag.mul(am, rxz);
+        let bias_m = dag.mul(w2, arxz);
+        let (fl, tl) = loads[k];
+        let moment = cross(&mut dag, e, fl);
+        let ext_m = dag.add(tl, moment);
+        let mut p = [dag.sub(bias_m, ext_m), dag.sub(bias_f[0], fl[0]), dag.sub(bias_f[1], fl[1])];
+        if let Some((ci, cp)) = carry {
+            for (x, y) in i.iter_mut().zip(ci) {
+                *x = dag.add(*x, y);
+            }
+            for (x, y) in p.iter_mut().zip(cp) {
+                *x = dag.add(*x, y);
+            }
+        }
+        let names = ["00", "01", "02", "11", "12", "22"];
+        for (x, nm) in i.iter_mut().zip(names) {
+            *x = dag.name(*x, format!("ia_{}_{nm}", k + 1));
+        }
+        for (x, nm) in p.iter_mut().zip(["m", "x", "z"]) {
+            *x = dag.name(*x, format!("pa_{}_{nm}", k + 1));
+        }
+        ia[k] = i;
+        pa[k] = p;
+        if k == 0 {
+            break;
+        }
+        // Eliminate hinge k: Ia = IA − U Uᵀ / D, pa = pA − U pA_0 / D (U = IA e_0); the
+        // angular row and column vanish exactly.
+        let inv = dag.div(one, i[0]);
+        inv_d[k] = dag.name(inv, format!("inv_{}", k + 1));
+        let u1 = dag.mul(i[1], inv_d[k]);
+        let u2 = dag.mul(i[2], inv_d[k]);
+        let t11 = dag.mul(u1, i[1]);
+        let t12 = dag.mul(u1, i[2]);
+        let t22 = dag.mul(u2, i[2]);
+        let r11 = dag.sub(i[3], t11);
+        let r12 = dag.sub(i[4], t12);
+        let r22 = dag.sub(i[5], t22);
+        let q1 = dag.mul(u1, p[0]);
+        let q2 = dag.mul(u2, p[0]);
+        let pa1 = dag.sub(p[1], q1);
+        let pa2 = dag.sub(p[2], q2);
+        // Across d_k: X = [[1, 0, 0], [j_x, 1, 0], [j_z, 0, 1]], (j_x, j_z) = J(d_k); the
+        // joint's velocity product c = (0, −θ̇_{k−1}² d_k).
+        let jd = perp(&mut dag, kin.d[k]);
+        let w2p = dag.mul(kin.omega[k - 1], kin.omega[k - 1]);
+        let cv = scale2(&mut dag, w2p, kin.d[k]);
+        let cv = [dag.neg(cv[0]), dag.neg(cv[1])];
+        let z1 = dag.dot2([r11, r12], cv);
+        let z1 = dag.add(z1, pa1);
+        let z2 = dag.dot2([r12, r22], cv);
+        let z2 = dag.add(z2, pa2);
+        let y1 = dag.dot2([r11, r12], jd);
+        let y2 = dag.dot2([r12, r22], jd);
+        let x00 = dag.dot2(jd, [y1, y2]);
+        let xp0 = dag.dot2(jd, [z1, z2]);
+        carry = Some(([x00, y1, y2, r11, r12, r22], [xp0, z1, z2]));
+    }
+
+    // The anchor.
+    let s_dd = if stuck {
+        f.ret = Some(dag.name(pa[0][1], "holding_force"));
+        zero
+    } else {
+        let v = dag.div(pa[0][1], ia[0][3]);
+        let v = dag.neg(v);
+        dag.name(v, "s_dd")
+    };
+    f.stores.push((format!("qdd[{}]", n - 1), s_dd));
+
+    // Outward pass: (α, a_o) of each body; α_k = −(IA_01 â_x + IA_02 â_z + pA_0) / D.
+    let mut alpha = zero;
+    let mut acc = [s_dd, zero];
+    for k in 1..n {
+        let jd = perp(&mut dag, kin.d[k]);
+        let w2p = dag.mul(kin.omega[k - 1], kin.omega[k - 1]);
+        let cv = scale2(&mut dag, w2p, kin.d[k]);
+        let t = scale2(&mut dag, alpha, jd);
+        let a = add2(&mut dag, acc, t);
+        let a = sub2(&mut dag, a, cv);
+        let a = name2(&mut dag, a, &format!("ao_{}", k + 1));
+        let num = dag.dot2([ia[k][1], ia[k][2]], a);
+        let num = dag.add(num, pa[k][0]);
+        let q = dag.mul(num, inv_d[k]);
+        let new_alpha = dag.neg(q);
+        let new_alpha = dag.name(new_alpha, format!("alpha_{}", k + 1));
+        let beta_dd = dag.sub(new_alpha, alpha);
+        let beta_dd = dag.name(beta_dd, format!("qdd_{}", k - 1));
+        f.stores.push((format!("qdd[{}]", k - 1), beta_dd));
+        alpha = new_alpha;
+        acc = a;
+    }
+    f.stores.sort_by_key(|s| {
+        let idx: usize = s.0.trim_start_matches("qdd[").trim_end_matches(']').parse().unwrap();
+        idx
+    });
+    f.dag = dag;
+    f
+}
+
+fn raw_loads(dag: &mut Dag, n: usize) -> Vec<(V2, Id)> {
+    (0..n)
+        .map(|k| {
+            let f = [dag.input(format!("loads[{k}][0]")), dag.input(format!("loads[{k}][1]"))];
+            (f, dag.input(format!("loads[{k}][2]")))
+        })
+        .collect()
+}

@@ -1,0 +1,72 @@
+//! The body counts N the scene files need: N = 1 + chain.elements + Σ cable stage
+//! elements + 2 (anchor, links, cable elements, rod, ship).
+//!
+//! Deliberately minimal: it reads only the counts, so the build script does not depend on
+//! the runtime's scene model (which itself depends on the generated kernels).
+
+use std::path::{Path, PathBuf};
+
+/// N of one scene file's text, or why it has none.
+pub fn body_count(text: &str) -> Result<usize, String> {
+    let value: toml::Value = text.parse().map_err(|e| format!("not TOML: {e}"))?;
+    let count = |v: Option<&toml::Value>, what: &str| -> Result<usize, String> {
+        let v = v.and_then(toml::Value::as_integer).ok_or_else(|| format!("{what} is missing"))?;
+        usize::try_from(v).map_err(|_| format!("{what} = {v} is negative"))
+    };
+    let links = count(value.get("chain").and_then(|c| c.get("elements")), "chain.elements")?;
+    let stages = value
+        .get("cable")
+        .and_then(|c| c.get("stages"))
+        .and_then(toml::Value::as_array)
+        .ok_or("cable.stages is missing")?;
+    let mut cable = 0;
+    for s in stages {
+        cable += count(s.get("elements"), "cable.stages.elements")?;
+    }
+    Ok(1 + links + cable + 2)
+}
+
+/// Every `*.toml` below `dir`, sorted.
+pub fn scene_files(dir: &Path) -> Vec<PathBuf> {
+    let mut out = Vec::new();
+    let mut stack = vec![dir.to_path_buf()];
+    while let Some(d) = stack.pop() {
+        let Ok(entries) = std::fs::read_dir(&d) else { continue };
+        for e in entries.flatten() {
+            let path = e.path();
+            if path.is_dir() {
+                stack.push(path);
+            } else if path.extension().is_some_and(|x| x == "toml") {
+                out.push(path);
+            }
+        }
+    }
+    out.sort();
+    out
+}
+
+/// The sorted, distinct body counts of the scenes below `dir`; files that are not scenes
+/// are skipped.
+pub fn body_counts(dir: &Path) -> Vec<usize> {
+    let mut counts: Vec<usize> = scene_files(dir)
+        .iter()
+        .filter_map(|p| std::fs::read_to_string(p).ok())
+        .filter_map(|t| body_count(&t).ok())
+        .collect();
+    counts.sort_unstable();
+    counts.dedup();
+    counts
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn counts_bodies_of_a_scene() {
+        let text = "[chain]\nelements = 15\n[cable]\n[[cable.stages]]\nelements = 3\n[[cable.stages]]\nelements = 12\n\
+                    [[cable.stages]]\nelements = 13\n";
+        assert_eq!(body_count(text), Ok(46));
+        assert!(body_count("[chain]\n").is_err());
+    }
+}

@@ -1,0 +1,210 @@
+//! The generated kernel: flat code emitted by `kanestop-codegen` for the chain's body count
+//! and water switch (crate `kanestop-generated`), behind the same [`Kernel`] interface as
+//! the reference.
+//!
+//! One kernel serves every scene with the same shape: masses, lengths and inertias are
+//! runtime parameters ([`BodyParams`]); only the structurally zero ones are folded into the
+//! code, and [`GeneratedKernel::new`] checks that the chain agrees before using it.
+//!
+//! [`Kernel::solve`] uses the generated O(N) articulated-body recursion by default
+//! ([`SolvePath::Recursive`]); [`SolvePath::Assembled`] assembles the generated a_lp and f_l
+//! and factors them like the reference (kept for comparison and benchmarks).
+
+use kanestop_codegen::planar::{structural_zeros, Variant, Water};
+use kanestop_generated::BodyParams;
+
+use crate::chain::Chain;
+use crate::integrate::RhsError;
+use crate::kernel::{solve_assembled, AnchorDof, Assembly, BodyAcceleration, BodyState, Kernel, Load, LoadModel};
+
+/// How [`GeneratedKernel`] solves for the generalised accelerations.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SolvePath {
+    /// The generated O(N) recursion (default).
+    Recursive,
+    /// Generated a_lp and f_l, then Cholesky (O(N²) to build, O(N³) to factor).
+    Assembled,
+}
+
+/// Why a chain has no generated kernel.
+#[derive(Clone, Debug, PartialEq)]
+pub struct GeneratedError(pub String);
+
+impl std::fmt::Display for GeneratedError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for GeneratedError {}
+
+/// Every (N, water on) with a generated kernel in this build.
+pub fn available() -> Vec<(usize, bool)> {
+    kanestop_generated::available()
+}
+
+/// A generated kernel bound to one chain's numbers.
+pub struct GeneratedKernel {
+    kernel: kanestop_generated::Kernel,
+    solve_path: SolvePath,
+    params: Vec<BodyParams>,
+    trig: Vec<[f64; 2]>,
+    states: Vec<[f64; 6]>,
+    loads: Vec<Load>,
+    load_array: Vec<[f64; 3]>,
+    acc: Vec<[f64; 3]>,
+}
+
+impl GeneratedKernel {
+    /// The generated kernel for `chain`: water on when any body has added mass.
+    pub fn new(chain: &Chain) -> Result<Self, GeneratedError> {
+        let n = chain.len();
+        if n < 3 {
+            return Err(GeneratedError(format!("a chain of {n} bodies has no generated kernel (N ≥ 3)")));
+        }
+        let wet = chain.bodies.iter().any(|b| b.added_mass != 0.0);
+        let variant = Variant::new(n, if wet { Water::On } else { Water::Off });
+        let kernel = kanestop_generated::find(n, wet).ok_or_else(|| {
+            GeneratedError(format!(
+                "no generated kernel for N = {n} bodies ({}): it is built for the scenes under scenes/ \
+                 and KANESTOP_EXTRA_BODY_COUNTS; use --kernel reference or rebuild with \
+                 KANESTOP_EXTRA_BODY_COUNTS={n}",
+                if wet { "water on" } else { "water off" }
+            ))
+        })?;
+        let params: Vec<BodyParams> = chain
+            .bodies
+            .iter()
+            .map(|b| BodyParams {
+                mass: b.mass,
+                inertia: b.inertia[1] + b.added_inertia,
+                centroid: b.centroid,
+                joint: b.joint,
+                added_mass: b.added_mass,
+            })
+            .collect();
+        for (k, field) in structural_zeros(variant) {
+            let b = &params[k];
+            let value = match field {
+                "centroid[1]" => b.centroid[1],
+                "joint[1]" => b.joint[1],
+                "added_mass" => b.added_mass,
+                other => unreachable!("unknown structural field {other}"),
+            };
+            if value != 0.0 {
+                return Err(GeneratedError(format!(
+                    "B_{} ({}) has {field} = {value}, which the generated kernels fold to zero; \
+                     use --kernel reference",
+                    k + 1,
+                    chain.bodies[k].kind
+                )));
+            }
+        }
+        Ok(GeneratedKernel {
+            kernel,
+            solve_path: SolvePath::Recursive,
+            params,
+            trig: vec![[0.0; 2]; n],
+            states: vec![[0.0; 6]; n],
+            loads: vec![Load::default(); n],
+            load_array: vec![[0.0; 3]; n],
+            acc: vec![[0.0; 3]; n],
+        })
+    }
+
+    /// The same kernel with another solve path.
+    pub fn with_solve_path(mut self, path: SolvePath) -> Self {
+        self.solve_path = path;
+        self
+    }
+
+    pub fn solve_path(&self) -> SolvePath {
+        self.solve_path
+    }
+
+    /// True when the added-mass variant is in use.
+    pub fn is_wet(&self) -> bool {
+        self.kernel.wet
+    }
+
+    fn states(&mut self, q: &[f64], u: &[f64], bodies: &mut [BodyState]) {
+        (self.kernel.kinematics)(&self.params, q, u, &mut self.trig, &mut self.states);
+        for (b, s) in bodies.iter_mut().zip(&self.states) {
+            *b = BodyState { x: s[0], z: s[1], theta: s[2], vx: s[3], vz: s[4], omega: s[5] };
+        }
+    }
+
+    fn loads(&mut self, model: &mut dyn LoadModel, bodies: &[BodyState]) {
+        model.loads(bodies, &mut self.loads);
+        for (a, l) in self.load_array.iter_mut().zip(&self.loads) {
+            *a = [l.fx, l.fz, l.my];
+        }
+    }
+}
+
+impl Kernel for GeneratedKernel {
+    fn name(&self) -> &'static str {
+        "generated"
+    }
+
+    fn body_count(&self) -> usize {
+        self.kernel.bodies
+    }
+
+    fn kinematics(&mut self, q: &[f64], u: &[f64], bodies: &mut [BodyState]) {
+        self.states(q, u, bodies);
+    }
+
+    fn assemble(&mut self, q: &[f64], u: &[f64], model: &mut dyn LoadModel, out: &mut Assembly) {
+        self.states(q, u, &mut out.bodies);
+        self.loads(model, &out.bodies);
+        (self.kernel.assemble)(
+            &self.params,
+            u,
+            &self.trig,
+            &self.load_array,
+            out.mass.as_mut_slice(),
+            out.rhs.as_mut_slice(),
+        );
+    }
+
+    fn accelerations(&mut self, q: &[f64], u: &[f64], qdd: &[f64], out: &mut [BodyAcceleration]) {
+        (self.kernel.kinematics)(&self.params, q, u, &mut self.trig, &mut self.states);
+        (self.kernel.accelerations)(&self.params, u, &self.trig, qdd, &mut self.acc);
+        for (o, a) in out.iter_mut().zip(&self.acc) {
+            *o = BodyAcceleration { ax: a[0], az: a[1], alpha: a[2] };
+        }
+    }
+
+    fn solve(
+        &mut self,
+        q: &[f64],
+        u: &[f64],
+        anchor: AnchorDof,
+        model: &mut dyn LoadModel,
+        scratch: &mut Assembly,
+        qdd: &mut [f64],
+    ) -> Result<f64, RhsError> {
+        if self.solve_path == SolvePath::Assembled {
+            self.assemble(q, u, model, scratch);
+            return solve_assembled(scratch, anchor, qdd);
+        }
+        self.states(q, u, &mut scratch.bodies);
+        self.loads(model, &scratch.bodies);
+        let force = match anchor {
+            AnchorDof::Free => {
+                (self.kernel.solve_free)(&self.params, u, &self.trig, &self.load_array, qdd);
+                0.0
+            }
+            AnchorDof::Stuck => (self.kernel.solve_stuck)(&self.params, u, &self.trig, &self.load_array, qdd),
+        };
+        if !force.is_finite() || qdd.iter().any(|x| !x.is_finite()) {
+            return Err(RhsError(
+                "the generated recursive solve produced a non-finite acceleration (non-finite state or \
+                 degenerate chain)"
+                    .into(),
+            ));
+        }
+        Ok(force)
+    }
+}

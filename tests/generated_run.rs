@@ -1,0 +1,58 @@
+//! Whole runs with the generated kernel and with the reference: the same trajectory.
+
+use kanestop_runtime::generated::GeneratedKernel;
+use kanestop_runtime::model::Model;
+use kanestop_runtime::paper::DEFAULT_SCENE;
+use kanestop_runtime::reference::ReferenceKernel;
+use kanestop_runtime::scene::Scene;
+use kanestop_runtime::simulate::{self, RunResult};
+
+fn case1(end_time: Option<f64>) -> Model {
+    let mut scene = Scene::from_toml(DEFAULT_SCENE, "case01.toml").unwrap();
+    if let Some(t) = end_time {
+        scene.solver.end_time = t;
+    }
+    Model::new(&scene).unwrap()
+}
+
+fn runs(model: &Model) -> (RunResult, RunResult) {
+    let reference = simulate::run(model, Box::new(ReferenceKernel::new(&model.chain)));
+    let generated = simulate::run(model, Box::new(GeneratedKernel::new(&model.chain).unwrap()));
+    (reference, generated)
+}
+
+/// Case 1 for its first half second: every sampled body state agrees.
+#[test]
+fn case1_start_is_the_same_with_both_kernels() {
+    let model = case1(Some(0.5));
+    let (r, g) = runs(&model);
+    assert_eq!(g.kernel, "generated");
+    assert_eq!(r.stop, g.stop);
+    assert_eq!(r.samples.len(), g.samples.len());
+    let mut worst: f64 = 0.0;
+    for (a, b) in r.samples.iter().zip(&g.samples) {
+        assert_eq!(a.t, b.t);
+        for (x, y) in a.bodies.iter().zip(&b.bodies) {
+            let d = [(x.x - y.x).abs(), (x.z - y.z).abs(), (x.theta - y.theta).abs(), (x.vx - y.vx).abs()];
+            worst = worst.max(d.into_iter().fold(0.0, f64::max));
+        }
+    }
+    assert!(worst < 1e-8, "largest state difference {worst:e}");
+}
+
+/// The whole of case 1: the same stopping time to 1e-6 s (about a minute with the
+/// reference kernel; the test profile is optimised).
+#[test]
+fn case1_stopping_time_is_the_same_with_both_kernels() {
+    let model = case1(None);
+    let (r, g) = runs(&model);
+    eprintln!(
+        "reference: {:?} {:?} in {:?}; generated: {:?} {:?} in {:?}",
+        r.stop, r.stopping_time, r.wall_time, g.stop, g.stopping_time, g.wall_time
+    );
+    assert_eq!(r.stop, g.stop);
+    match (r.stopping_time, g.stopping_time) {
+        (Some(a), Some(b)) => assert!((a - b).abs() < 1e-6, "stopping time {a} vs {b}"),
+        (a, b) => assert_eq!(a, b),
+    }
+}

@@ -1,0 +1,239 @@
+//! The generated kernels against the reference formulation (the oracle), for every variant
+//! (water off and on; anchor free and stuck) and N ∈ {3, 5, 46, 48, 50}, at 100 random
+//! states each: body states, a_lp and f_l entrywise to 1e-12 of their scale, body
+//! accelerations, and both solve paths by the residual of the reference system.
+
+mod common;
+
+use std::path::Path;
+
+use common::*;
+use kanestop_runtime::chain::Chain;
+use kanestop_runtime::generated::{GeneratedKernel, SolvePath};
+use kanestop_runtime::kernel::{
+    solve_assembled, AnchorDof, Assembly, BodyAcceleration, BodyState, Kernel, Load, LoadModel,
+};
+use kanestop_runtime::model::Model;
+use kanestop_runtime::reference::ReferenceKernel;
+use kanestop_runtime::scene::Scene;
+use nalgebra::DVector;
+use rand::rngs::StdRng;
+use rand::Rng;
+
+const STATES: usize = 100;
+
+/// Loads that depend on the body states (so a kernel must hand the right states to the
+/// force models), plus fixed random parts: weight, linear drag on velocity and spin, a
+/// position-dependent spring.
+struct StateLoads {
+    fixed: Vec<Load>,
+    masses: Vec<f64>,
+}
+
+impl LoadModel for StateLoads {
+    fn loads(&mut self, bodies: &[BodyState], loads: &mut [Load]) {
+        for (k, (l, b)) in loads.iter_mut().zip(bodies).enumerate() {
+            let m = self.masses[k];
+            *l = Load {
+                fx: self.fixed[k].fx - 0.3 * m * b.vx - 0.01 * m * b.x,
+                fz: self.fixed[k].fz - G * m - 0.3 * m * b.vz - 0.01 * m * b.z,
+                my: self.fixed[k].my - 0.2 * m * b.omega + 0.1 * m * b.theta.sin(),
+            };
+        }
+    }
+}
+
+fn random_loads(chain: &Chain, rng: &mut StdRng) -> StateLoads {
+    let fixed = chain
+        .bodies
+        .iter()
+        .map(|b| Load {
+            fx: rng.gen_range(-1.0..1.0) * b.mass * G,
+            fz: rng.gen_range(-1.0..1.0) * b.mass * G,
+            my: rng.gen_range(-1.0..1.0) * b.mass * G,
+        })
+        .collect();
+    StateLoads { fixed, masses: chain.bodies.iter().map(|b| b.mass).collect() }
+}
+
+fn paper_chain(case: &str, wet: bool, rng: &mut StdRng) -> Chain {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let scene = Scene::load(&root.join("scenes/paper").join(case)).unwrap();
+    let mut chain = Model::new(&scene).unwrap().chain;
+    let has_added_mass = chain.bodies.iter().any(|b| b.added_mass != 0.0);
+    for b in chain.bodies.iter_mut().filter(|b| b.kind.is_rod_like()) {
+        if !wet {
+            b.added_mass = 0.0;
+            b.added_inertia = 0.0;
+        } else if !has_added_mass {
+            // Added mass of the order Eq. 46 gives submerged rods (C_M ρ π D² L / 4).
+            b.added_mass = rng.gen_range(0.2..1.2) * b.mass;
+            b.added_inertia = b.added_mass * b.length() * b.length() / 12.0;
+        }
+    }
+    chain
+}
+
+/// The chains a size is checked on: random chains and, for the paper's sizes, the paper's.
+fn chains(n: usize, wet: bool, rng: &mut StdRng) -> Vec<Chain> {
+    let random = if wet { random_wet_chain(n, rng) } else { random_chain(n, rng) };
+    let mut out = vec![random];
+    let case = match n {
+        46 => Some("case01.toml"),
+        48 | 50 => std::fs::read_dir(Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/paper"))
+            .unwrap()
+            .flatten()
+            .map(|e| e.path())
+            .find(|p| {
+                let scene = Scene::load(p).unwrap();
+                Model::new(&scene).unwrap().body_count() == n
+            })
+            .map(|p| p.file_name().unwrap().to_str().unwrap().to_string())
+            .map(|s| Box::leak(s.into_boxed_str()) as &str),
+        _ => None,
+    };
+    if let Some(case) = case {
+        out.push(paper_chain(case, wet, rng));
+    }
+    out
+}
+
+fn residual(asm: &Assembly, active: usize, qdd: &[f64]) -> f64 {
+    let m = asm.mass.view((0, 0), (active, active));
+    let f = asm.rhs.rows(0, active);
+    let x = DVector::from_column_slice(&qdd[..active]);
+    (m * x - f).norm() / f.norm()
+}
+
+fn check_size(n: usize, wet: bool) {
+    let mut rng = rng(1000 + n as u64 + wet as u64);
+    let chains = chains(n, wet, &mut rng);
+    let per_chain = STATES.div_ceil(chains.len());
+    let mut worst = [0.0f64; 5];
+    for chain in &chains {
+        let mut reference = ReferenceKernel::new(chain);
+        let mut generated = GeneratedKernel::new(chain).unwrap();
+        assert_eq!(generated.is_wet(), wet);
+        let mut assembled = GeneratedKernel::new(chain).unwrap().with_solve_path(SolvePath::Assembled);
+        for trial in 0..per_chain {
+            let (q, mut u) = random_state(n, &mut rng);
+            let mut loads = random_loads(chain, &mut rng);
+            let anchor = if trial % 2 == 0 { AnchorDof::Free } else { AnchorDof::Stuck };
+            if anchor == AnchorDof::Stuck {
+                u[n - 1] = 0.0;
+            }
+            let mut a_ref = Assembly::new(n);
+            let mut a_gen = Assembly::new(n);
+            reference.assemble(&q, &u, &mut loads, &mut a_ref);
+            generated.assemble(&q, &u, &mut loads, &mut a_gen);
+
+            // Body states.
+            for (k, (r, g)) in a_ref.bodies.iter().zip(&a_gen.bodies).enumerate() {
+                let scale = 1.0 + r.x.abs().max(r.z.abs());
+                let vscale = 1.0 + r.vx.abs().max(r.vz.abs());
+                assert!((r.x - g.x).abs() <= 1e-12 * scale && (r.z - g.z).abs() <= 1e-12 * scale, "N={n} B_{k}");
+                assert!((r.vx - g.vx).abs() <= 1e-12 * vscale && (r.vz - g.vz).abs() <= 1e-12 * vscale);
+                assert!((r.theta - g.theta).abs() <= 1e-14 * (1.0 + r.theta.abs()), "N={n} θ of B_{k}");
+                assert!((r.omega - g.omega).abs() <= 1e-14 * (1.0 + r.omega.abs()), "N={n} ω of B_{k}");
+            }
+
+            // a_lp entrywise, scaled by the diagonal (|a_ij| ≤ √(a_ii a_jj)); f by its norm.
+            let (m_ref, m_gen) = (&a_ref.mass, &a_gen.mass);
+            for i in 0..n {
+                for j in 0..n {
+                    let scale = (m_ref[(i, i)] * m_ref[(j, j)]).sqrt();
+                    let d = (m_ref[(i, j)] - m_gen[(i, j)]).abs() / scale;
+                    worst[0] = worst[0].max(d);
+                    assert!(d <= 1e-12, "N={n} wet={wet} M[{i},{j}]: {} vs {} ({d:e})", m_ref[(i, j)], m_gen[(i, j)]);
+                }
+            }
+            let f_scale = a_ref.rhs.norm();
+            for i in 0..n {
+                let d = (a_ref.rhs[i] - a_gen.rhs[i]).abs() / f_scale;
+                worst[1] = worst[1].max(d);
+                assert!(d <= 1e-12, "N={n} wet={wet} f[{i}]: {} vs {} ({d:e})", a_ref.rhs[i], a_gen.rhs[i]);
+            }
+
+            // Both solve paths, judged by the reference system.
+            let active = if anchor == AnchorDof::Free { n } else { n - 1 };
+            let mut qdd_ref = vec![0.0; n];
+            let hold_ref = solve_assembled(&a_ref, anchor, &mut qdd_ref).unwrap();
+            let mut scratch = Assembly::new(n);
+            for (kernel, slot) in [(&mut generated, 2), (&mut assembled, 3)] {
+                let mut qdd = vec![0.0; n];
+                let hold = kernel.solve(&q, &u, anchor, &mut loads, &mut scratch, &mut qdd).unwrap();
+                let r = residual(&a_ref, active, &qdd);
+                worst[slot] = worst[slot].max(r);
+                assert!(r <= 1e-12, "N={n} wet={wet} {anchor:?} {:?}: residual {r:e}", kernel.solve_path());
+                if anchor == AnchorDof::Stuck {
+                    assert_eq!(qdd[n - 1], 0.0);
+                    // F = a_{N,p} ẍ_p − f_N: compare on the scale of its terms.
+                    let row: f64 = (0..active).map(|p| (a_ref.mass[(n - 1, p)] * qdd[p]).abs()).sum::<f64>()
+                        + a_ref.rhs[n - 1].abs();
+                    let d = (hold - hold_ref).abs() / row;
+                    assert!(d <= 1e-10, "N={n} holding force {hold} vs {hold_ref} ({d:e})");
+                } else {
+                    assert_eq!(hold, 0.0);
+                }
+            }
+
+            // Body accelerations (Eq. 17) for the same ẍ.
+            let mut acc_ref = vec![BodyAcceleration::default(); n];
+            let mut acc_gen = vec![BodyAcceleration::default(); n];
+            reference.accelerations(&q, &u, &qdd_ref, &mut acc_ref);
+            generated.accelerations(&q, &u, &qdd_ref, &mut acc_gen);
+            let a_scale = acc_ref.iter().map(|a| a.ax.abs().max(a.az.abs()).max(a.alpha.abs())).fold(1.0, f64::max);
+            for (r, g) in acc_ref.iter().zip(&acc_gen) {
+                let d = (r.ax - g.ax).abs().max((r.az - g.az).abs()).max((r.alpha - g.alpha).abs()) / a_scale;
+                worst[4] = worst[4].max(d);
+                assert!(d <= 1e-12, "N={n} accelerations: {r:?} vs {g:?}");
+            }
+        }
+    }
+    eprintln!(
+        "N={n} wet={wet}: worst M {:.1e}, f {:.1e}, residual recursive {:.1e}, assembled {:.1e}, acc {:.1e}",
+        worst[0], worst[1], worst[2], worst[3], worst[4]
+    );
+}
+
+#[test]
+fn generated_matches_reference_n3() {
+    check_size(3, false);
+    check_size(3, true);
+}
+
+#[test]
+fn generated_matches_reference_n5() {
+    check_size(5, false);
+    check_size(5, true);
+}
+
+#[test]
+fn generated_matches_reference_n46() {
+    check_size(46, false);
+    check_size(46, true);
+}
+
+#[test]
+fn generated_matches_reference_n48() {
+    check_size(48, false);
+    check_size(48, true);
+}
+
+#[test]
+fn generated_matches_reference_n50() {
+    check_size(50, false);
+    check_size(50, true);
+}
+
+#[test]
+fn chain_that_breaks_a_structural_zero_is_refused() {
+    let mut rng = rng(5);
+    let mut chain = random_chain(5, &mut rng);
+    chain.bodies[2].centroid[1] = 0.1;
+    let err = GeneratedKernel::new(&chain).err().expect("refused");
+    assert!(err.0.contains("B_3") && err.0.contains("centroid[1]"), "{err}");
+    let mut chain = random_chain(5, &mut rng);
+    chain.bodies[4].added_mass = 1.0;
+    assert!(GeneratedKernel::new(&chain).is_err());
+}
