@@ -8,7 +8,8 @@
 //!
 //! Without the variable only the checked-in sizes (3, 5, 46, 48, 50) have generated kernels
 //! and the others are skipped. Medians of 15 batches of at least 20 ms each; the ratios are
-//! measured side by side in one run. Results are recorded in docs/codegen.md.
+//! measured side by side in one run. Results are recorded in docs/codegen.md. The last table
+//! times whole runs of paper cases 1 and 17 with full physics.
 
 use std::hint::black_box;
 use std::time::Instant;
@@ -155,5 +156,41 @@ fn main() {
     row("reference solve", &mut |c| per_solve(&mut ReferenceKernel::new(c), c, AnchorDof::Free));
     for (name, [a, b]) in rows {
         println!("{name:>22} {a:>10.2} {b:>10.2}");
+    }
+
+    whole_runs();
+}
+
+/// Whole runs of paper cases with full physics (RK4, dt = 0.002 s, generated kernel): wall
+/// time of `simulate::run`, median of 5, one core.
+fn whole_runs() {
+    use kanestop_runtime::model::Model;
+    use kanestop_runtime::paper::CASES;
+    use kanestop_runtime::simulate;
+    println!(
+        "
+whole runs, full physics, RK4 dt = 0.002 s, generated kernel (median of 5)"
+    );
+    println!("{:>8} {:>12} {:>10} {:>12} {:>12}", "case", "simulated s", "wall s", "RHS evals", "µs per RHS");
+    for number in [1, 17] {
+        let model = Model::new(&CASES[number - 1].scene()).unwrap();
+        let mut walls = Vec::new();
+        let mut last = None;
+        for _ in 0..5 {
+            let r = simulate::run(&model, Box::new(GeneratedKernel::new(&model.chain).unwrap()));
+            walls.push(r.wall_time.as_secs_f64());
+            last = Some(r);
+        }
+        walls.sort_by(f64::total_cmp);
+        let r = last.unwrap();
+        let wall = walls[walls.len() / 2];
+        println!(
+            "{:>8} {:>12.3} {:>10.3} {:>12} {:>12.2}",
+            number,
+            r.t_end,
+            wall,
+            r.rhs_evaluations,
+            1e6 * wall / r.rhs_evaluations as f64
+        );
     }
 }

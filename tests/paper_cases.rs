@@ -74,3 +74,20 @@ fn anchor_release_is_located_inside_a_step() {
     assert!((steps - steps.round()).abs() > 1e-6, "release at {} s is on the step grid", release.t);
     assert!((1.0..1.5).contains(&release.t), "release at {} s", release.t);
 }
+
+#[test]
+fn line_friction_on_the_seabed_dissipates_and_keeps_the_balance() {
+    let run_with = |mu: f64| {
+        let mut scene = CASES[0].scene();
+        scene.environment.line_friction = mu;
+        let model = Model::new(&scene).unwrap();
+        simulate::run(&model, Box::new(GeneratedKernel::new(&model.chain).unwrap()))
+    };
+    let (smooth, rough) = (run_with(0.0), run_with(0.8));
+    let (t0, t1) = (smooth.stopping_time.unwrap(), rough.stopping_time.unwrap());
+    assert!(t1 < t0 - 0.1, "with line friction the ship stops at {t1:.3} s, without at {t0:.3} s");
+    // Friction work (index 2) is larger with the chain and cable rubbing too.
+    let friction = |r: &RunResult| r.samples.last().unwrap().energy.work[2];
+    assert!(friction(&rough) < friction(&smooth), "{} vs {}", friction(&rough), friction(&smooth));
+    assert!(rough.max_energy_drift < 1e-4, "energy balance drift {:.2e}", rough.max_energy_drift);
+}

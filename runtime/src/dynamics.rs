@@ -4,7 +4,7 @@
 
 use crate::forces::{Forces, WORK_TERMS};
 use crate::integrate::{OdeSystem, RhsError};
-use crate::kernel::{AnchorDof, Assembly, Kernel};
+use crate::kernel::{AnchorDof, Assembly, BodyState, Kernel, Load, LoadModel};
 
 /// Number of work accumulators at the end of the state.
 pub const WORK_COUNT: usize = WORK_TERMS.len();
@@ -18,12 +18,35 @@ pub struct Dynamics {
     assembly: Assembly,
     evaluations: u64,
     holding_force: f64,
+    loads: Vec<Load>,
+}
+
+/// The forces seen by the kernel, keeping a copy of the loads they returned.
+struct Recording<'a> {
+    forces: &'a mut Forces,
+    loads: &'a mut Vec<Load>,
+}
+
+impl LoadModel for Recording<'_> {
+    fn loads(&mut self, bodies: &[BodyState], loads: &mut [Load]) {
+        self.forces.loads(bodies, loads);
+        self.loads.clear();
+        self.loads.extend_from_slice(loads);
+    }
 }
 
 impl Dynamics {
     pub fn new(kernel: Box<dyn Kernel>, forces: Forces, anchor: AnchorDof) -> Self {
         let n = kernel.body_count();
-        Dynamics { kernel, forces, anchor, assembly: Assembly::new(n), evaluations: 0, holding_force: 0.0 }
+        Dynamics {
+            kernel,
+            forces,
+            anchor,
+            assembly: Assembly::new(n),
+            evaluations: 0,
+            holding_force: 0.0,
+            loads: vec![Load::default(); n],
+        }
     }
 
     /// N.
@@ -54,6 +77,11 @@ impl Dynamics {
         &self.assembly
     }
 
+    /// The applied loads of the last evaluation, per body.
+    pub fn loads(&self) -> &[Load] {
+        &self.loads
+    }
+
     /// The anchor's holding force of the last evaluation (Eq. 50), N; 0 when free.
     pub fn holding_force(&self) -> f64 {
         self.holding_force
@@ -71,7 +99,8 @@ impl Dynamics {
     /// zero. Returns the anchor's holding force (see [`Kernel::solve`]).
     pub fn accelerations(&mut self, q: &[f64], u: &[f64], qdd: &mut [f64]) -> Result<f64, RhsError> {
         self.evaluations += 1;
-        let h = self.kernel.solve(q, u, self.anchor, &mut self.forces, &mut self.assembly, qdd)?;
+        let mut model = Recording { forces: &mut self.forces, loads: &mut self.loads };
+        let h = self.kernel.solve(q, u, self.anchor, &mut model, &mut self.assembly, qdd)?;
         self.holding_force = h;
         Ok(h)
     }

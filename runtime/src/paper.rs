@@ -160,6 +160,7 @@ impl Case {
                 seabed: true,
                 seabed_stiffness: SEABED_STIFFNESS,
                 seabed_friction: self.friction,
+                line_friction: 0.0,
                 current_surface_speed: self.current,
                 current_exponent: 1.0 / 7.0,
             },

@@ -58,6 +58,10 @@ pub struct Environment {
     pub seabed_stiffness: f64,
     /// μ, anchor–seabed sliding friction coefficient, dimensionless (Eq. 37).
     pub seabed_friction: f64,
+    /// μ_l, friction coefficient between chain or cable elements and the seabed, acting on
+    /// the foundation reaction of Eq. 41, dimensionless. The paper's links slide without
+    /// friction (assumption 4): 0 in its cases.
+    pub line_friction: f64,
     /// U_ST, current speed at the free surface along +x, m/s (Eq. 38).
     pub current_surface_speed: f64,
     /// Exponent of the current profile U = U_ST (h/d)^exponent, dimensionless (Eq. 38: 1/7).
@@ -296,6 +300,7 @@ impl Scene {
         c.positive("environment.kinematic_viscosity", e.kinematic_viscosity, "m²/s");
         c.positive("environment.seabed_stiffness", e.seabed_stiffness, "N/m³");
         c.range("environment.seabed_friction", e.seabed_friction, 0.0, 2.0, true, "(dimensionless)");
+        c.range("environment.line_friction", e.line_friction, 0.0, 2.0, true, "(dimensionless)");
         c.range("environment.current_surface_speed", e.current_surface_speed, -10.0, 10.0, true, "m/s");
         c.range("environment.current_exponent", e.current_exponent, 0.0, 1.0, false, "(dimensionless)");
         let h = &self.hydrodynamics;

@@ -23,7 +23,7 @@ use crate::dynamics::{Dynamics, WORK_COUNT};
 use crate::energy::Energy;
 use crate::forces::Forces;
 use crate::integrate::{Integrator, RhsError, Rk4};
-use crate::kernel::{AnchorDof, BodyAcceleration, BodyState, Kernel, Load, LoadModel};
+use crate::kernel::{AnchorDof, BodyAcceleration, BodyState, Kernel, Load};
 use crate::model::Model;
 use crate::scene::IntegratorKind;
 
@@ -205,8 +205,7 @@ impl Runner<'_> {
         let holding = self.dynamics.accelerations(q, u, &mut self.qdd)?;
         let bodies = self.dynamics.assembly().bodies.clone();
         self.dynamics.kernel_mut().accelerations(q, u, &self.qdd, &mut self.acc);
-        let mut forces = self.dynamics.forces.clone();
-        forces.loads(&bodies, &mut self.loads);
+        self.loads.copy_from_slice(self.dynamics.loads());
         // Eq. 52 in Newton's form: the joint force on B_k balances the outboard bodies'
         // inertia (with added mass) less their applied loads.
         let mut joints = vec![[0.0; 2]; n - 1];

@@ -49,6 +49,7 @@ pub struct Forces {
     water: bool,
     seabed: bool,
     k_z: f64,
+    line_friction: f64,
     c_d: f64,
     c_f: f64,
     seabed_z: f64,
@@ -70,6 +71,7 @@ impl Forces {
         f.water = e.water;
         f.seabed = e.seabed;
         f.k_z = e.seabed_stiffness;
+        f.line_friction = e.line_friction;
         f.c_d = s.hydrodynamics.normal_drag_coefficient;
         f.c_f = s.hydrodynamics.tangential_drag_coefficient;
         f.seabed_z = model.seabed_z;
@@ -120,6 +122,7 @@ impl Forces {
             water: false,
             seabed: false,
             k_z: 0.0,
+            line_friction: 0.0,
             c_d: 0.0,
             c_f: 0.0,
             seabed_z: 0.0,
@@ -227,13 +230,21 @@ impl Forces {
         let (za, zb) = (s.z - half * ex[1], s.z + half * ex[1]);
         let at = |xi: f64| [xi * ex[0], xi * ex[1]];
 
-        // Seabed foundation, Eq. 41, at the centroid of the embedded volume.
+        // Seabed foundation, Eq. 41, at the centroid of the embedded volume, with the
+        // element's sliding friction there.
         let mut embedded = 0.0;
         if self.seabed {
             let (v, s_bar) = seabed::embedded_volume(e.radius, e.length, za - self.seabed_z, zb - self.seabed_z);
             if v > 0.0 {
                 embedded = v;
-                power[1] += apply(load, s, at(s_bar - half), 0.0, self.k_z * v);
+                let (arm, reaction) = (at(s_bar - half), self.k_z * v);
+                power[1] += apply(load, s, arm, 0.0, reaction);
+                if self.line_friction > 0.0 {
+                    // Velocity of the contact point along x: v_x − ξ ω sin θ.
+                    let slip = s.vx - (s_bar - half) * s.omega * sin;
+                    let friction = seabed::sliding_friction(self.line_friction, reaction, slip);
+                    power[2] += apply(load, s, arm, friction, 0.0);
+                }
             }
         }
         if !self.water {
