@@ -3,6 +3,14 @@
 
 use std::fmt;
 
+pub mod adaptive;
+pub mod dopri5;
+pub mod sdirk4;
+
+pub use adaptive::{AdaptiveIntegrator, AdaptiveStats, StepControl, StepError, StepOutcome, Tolerances};
+pub use dopri5::Dopri5;
+pub use sdirk4::Sdirk4;
+
 /// The right-hand side could not be evaluated (e.g. a singular mass matrix).
 #[derive(Clone, Debug, PartialEq)]
 pub struct RhsError(pub String);
@@ -68,6 +76,33 @@ impl Integrator for Rk4 {
         for i in 0..n {
             y[i] += dt / 6.0 * (self.k1[i] + 2.0 * self.k2[i] + 2.0 * self.k3[i] + self.k4[i]);
         }
+        Ok(())
+    }
+}
+
+/// An adaptive method behind the fixed-step [`Integrator`] interface: `step(t, y, dt)`
+/// integrates [t, t + dt] with as many error-controlled sub-steps as the tolerances need,
+/// remembering the step size between calls. The existing driver can use it as it is (its
+/// bisection re-integrates partial steps); a driver that locates events on the dense output
+/// should call [`AdaptiveIntegrator::step_adaptive`] directly.
+#[derive(Clone, Debug)]
+pub struct Adaptive<M> {
+    pub method: M,
+    /// The step to try next; `None` before the first step (then Hairer's starting step).
+    pub h_next: Option<f64>,
+}
+
+impl<M: AdaptiveIntegrator> Adaptive<M> {
+    pub fn new(method: M) -> Self {
+        Adaptive { method, h_next: None }
+    }
+}
+
+impl<M: AdaptiveIntegrator> Integrator for Adaptive<M> {
+    fn step(&mut self, sys: &mut dyn OdeSystem, t: f64, y: &mut [f64], dt: f64) -> Result<(), RhsError> {
+        let h = self.h_next.unwrap_or(dt);
+        let next = self.method.integrate_to(sys, t, y, t + dt, h)?;
+        self.h_next = Some(next);
         Ok(())
     }
 }

@@ -1,0 +1,305 @@
+//! What the adaptive methods share: tolerances, the step-size controller, the outcome of one
+//! accepted step and the errors an adaptive step can end in.
+
+use std::fmt;
+
+use super::{OdeSystem, RhsError};
+
+/// Error tolerances: a component's error is measured against atol_i + rtol·max(|y0_i|, |y1_i|).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Tolerances {
+    /// Relative tolerance (≥ 0).
+    pub rtol: f64,
+    /// Absolute tolerance per component (≥ 0), or one value for all (length 1).
+    pub atol: Vec<f64>,
+}
+
+impl Tolerances {
+    /// Checks the values: finite, not negative, and not both zero (a zero tolerance cannot be met).
+    pub fn new(rtol: f64, atol: f64) -> Result<Self, StepError> {
+        Self::with_vector(rtol, vec![atol])
+    }
+
+    /// As [`Tolerances::new`] with one absolute tolerance per component.
+    pub fn with_vector(rtol: f64, atol: Vec<f64>) -> Result<Self, StepError> {
+        let bad = |what: String| Err(StepError::InvalidTolerance(what));
+        if !rtol.is_finite() || rtol < 0.0 {
+            return bad(format!("rtol = {rtol}: must be finite and ≥ 0"));
+        }
+        if atol.is_empty() {
+            return bad("atol is empty: give one value or one per component".into());
+        }
+        for (i, &a) in atol.iter().enumerate() {
+            if !a.is_finite() || a < 0.0 {
+                return bad(format!("atol[{i}] = {a}: must be finite and ≥ 0"));
+            }
+            if a == 0.0 && rtol == 0.0 {
+                return bad(format!("rtol = 0 and atol[{i}] = 0: at least one tolerance must be > 0"));
+            }
+        }
+        if rtol > 0.0 && rtol < 1e-14 {
+            return bad(format!("rtol = {rtol:e}: below 1e-14 it cannot be met in double precision"));
+        }
+        Ok(Tolerances { rtol, atol })
+    }
+
+    #[inline]
+    pub fn atol(&self, i: usize) -> f64 {
+        if self.atol.len() == 1 {
+            self.atol[0]
+        } else {
+            self.atol[i]
+        }
+    }
+
+    /// The scale of component i for the error norm.
+    #[inline]
+    pub fn scale(&self, i: usize, y0: f64, y1: f64) -> f64 {
+        self.atol(i) + self.rtol * y0.abs().max(y1.abs())
+    }
+
+    /// RMS norm of `err` scaled by the tolerances, and the component with the largest share.
+    pub fn norm(&self, err: &[f64], y0: &[f64], y1: &[f64]) -> (f64, usize) {
+        let mut sum = 0.0;
+        let (mut worst, mut worst_i) = (-1.0, 0);
+        for i in 0..err.len() {
+            let e = err[i] / self.scale(i, y0[i], y1[i]);
+            let e2 = e * e;
+            sum += e2;
+            // A non-finite error is the worst there is.
+            let key = if e2.is_finite() { e2 } else { f64::INFINITY };
+            if key > worst {
+                worst = key;
+                worst_i = i;
+            }
+        }
+        let n = err.len().max(1) as f64;
+        let norm = (sum / n).sqrt();
+        (if norm.is_nan() { f64::INFINITY } else { norm }, worst_i)
+    }
+}
+
+/// Step-size control: h_new = h · clamp(safety · err^(−α) · err_old^β, fac_min, fac_max)
+/// (Gustafsson's PI controller with α = 1/(q+1) − 0.75β, q the lower order of the pair),
+/// bounded by [h_min, h_max].
+#[derive(Clone, Debug, PartialEq)]
+pub struct StepControl {
+    /// Safety factor on the optimal step (0.9).
+    pub safety: f64,
+    /// Smallest factor of one change (0.2).
+    pub fac_min: f64,
+    /// Largest factor of one change (10).
+    pub fac_max: f64,
+    /// β of the PI controller (0.04 as in Hairer's dopri5; 0 is the plain I controller).
+    pub beta: f64,
+    /// Step-size floor: a step that must go below it is a [`StepError::StepSizeCollapse`], s.
+    /// The effective floor is max(h_min, 64 ε |t|), so that t + h ≠ t.
+    pub h_min: f64,
+    /// Largest step, s.
+    pub h_max: f64,
+    /// Consecutive rejections of one step after which it is given up.
+    pub max_rejections: u32,
+}
+
+impl Default for StepControl {
+    fn default() -> Self {
+        StepControl {
+            safety: 0.9,
+            fac_min: 0.2,
+            fac_max: 10.0,
+            beta: 0.04,
+            h_min: 1e-12,
+            h_max: f64::INFINITY,
+            max_rejections: 60,
+        }
+    }
+}
+
+impl StepControl {
+    /// The effective floor at time t.
+    pub fn floor(&self, t: f64) -> f64 {
+        self.h_min.max(64.0 * f64::EPSILON * t.abs())
+    }
+}
+
+/// One accepted adaptive step.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct StepOutcome {
+    /// The step taken: the state is now at t + h.
+    pub h: f64,
+    /// The step the controller suggests next.
+    pub h_next: f64,
+    /// Attempts rejected before this one was accepted.
+    pub rejected: u32,
+    /// Scaled error norm of the accepted step (≤ 1).
+    pub error: f64,
+    /// Right-hand-side evaluations spent in this call (attempts and Jacobians included).
+    pub rhs_evaluations: u64,
+}
+
+/// Counters over the life of an adaptive integrator.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct AdaptiveStats {
+    pub accepted: u64,
+    pub rejected: u64,
+    pub rhs_evaluations: u64,
+    /// Finite-difference Jacobians (stiff methods).
+    pub jacobians: u64,
+    /// LU factorisations (stiff methods).
+    pub factorisations: u64,
+    /// Newton iterations (stiff methods).
+    pub newton_iterations: u64,
+}
+
+/// Why an adaptive step failed.
+#[derive(Clone, Debug, PartialEq)]
+pub enum StepError {
+    /// The right-hand side failed.
+    Rhs(RhsError),
+    /// The error test (or, for implicit methods, Newton) kept failing until the step would
+    /// have to go below the floor.
+    StepSizeCollapse {
+        /// Start of the step, s.
+        t: f64,
+        /// The step that would have been tried next, s.
+        h: f64,
+        /// The floor, s.
+        h_min: f64,
+        /// Scaled error norm of the last attempt (∞ for a non-finite state or no convergence).
+        error: f64,
+        /// The state component with the largest error of the last attempt.
+        component: usize,
+        /// What kept failing.
+        reason: String,
+    },
+    /// A tolerance is zero, negative or not finite.
+    InvalidTolerance(String),
+    /// The step requested is not positive and finite.
+    InvalidStep(f64),
+}
+
+impl fmt::Display for StepError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            StepError::Rhs(e) => write!(f, "{e}"),
+            StepError::StepSizeCollapse { t, h, h_min, error, component, reason } => write!(
+                f,
+                "step-size collapse at t = {t:.6} s: the step fell to {h:.3e} s, below the floor {h_min:.3e} s \
+                 ({reason}; scaled error {error:.3e}, largest in state component {component}); the problem is \
+                 stiff or singular here: try the stiff method or looser tolerances"
+            ),
+            StepError::InvalidTolerance(m) => write!(f, "invalid tolerance: {m}"),
+            StepError::InvalidStep(h) => write!(f, "invalid step h = {h}: must be finite and > 0"),
+        }
+    }
+}
+
+impl std::error::Error for StepError {}
+
+impl From<RhsError> for StepError {
+    fn from(e: RhsError) -> Self {
+        StepError::Rhs(e)
+    }
+}
+
+impl From<StepError> for RhsError {
+    fn from(e: StepError) -> Self {
+        match e {
+            StepError::Rhs(r) => r,
+            other => RhsError(other.to_string()),
+        }
+    }
+}
+
+/// An adaptive one-step method with dense output over its last accepted step.
+pub trait AdaptiveIntegrator {
+    /// Takes one accepted step from (t, y) trying `h_try` first; `y` becomes the state at
+    /// t + outcome.h. The step is never longer than `h_try`, so a driver reaches an output
+    /// time exactly by passing h_try = min(h_suggested, t_out − t).
+    fn step_adaptive(
+        &mut self,
+        sys: &mut dyn OdeSystem,
+        t: f64,
+        y: &mut [f64],
+        h_try: f64,
+    ) -> Result<StepOutcome, StepError>;
+
+    /// The interpolant of the last accepted step at θ ∈ [0, 1] (t = t0 + θh), into `out`.
+    fn dense_into(&self, theta: f64, out: &mut [f64]);
+
+    /// (t0, h) of the last accepted step, if any.
+    fn last_step(&self) -> Option<(f64, f64)>;
+
+    /// Forgets cached derivatives (FSAL): call after changing the system (an anchor switch,
+    /// a new friction force) or the state outside the integrator.
+    fn invalidate(&mut self);
+
+    /// Counters so far.
+    fn stats(&self) -> AdaptiveStats;
+
+    /// The interpolant at time t inside the last accepted step.
+    fn dense_at(&self, t: f64, out: &mut [f64]) {
+        if let Some((t0, h)) = self.last_step() {
+            self.dense_into(((t - t0) / h).clamp(0.0, 1.0), out);
+        }
+    }
+
+    /// Integrates from t0 to t1 (> t0) with as many steps as the tolerances need, the last
+    /// one clipped to land on t1. Returns the step to try next time (unclipped).
+    fn integrate_to(
+        &mut self,
+        sys: &mut dyn OdeSystem,
+        t0: f64,
+        y: &mut [f64],
+        t1: f64,
+        h_try: f64,
+    ) -> Result<f64, StepError> {
+        if !(h_try.is_finite() && h_try > 0.0) {
+            return Err(StepError::InvalidStep(h_try));
+        }
+        let mut t = t0;
+        let mut h = h_try;
+        let span = t1 - t0;
+        while t1 - t > 1e-14 * span.abs().max(t1.abs()) {
+            let remaining = t1 - t;
+            let clipped = h >= remaining;
+            let out = self.step_adaptive(sys, t, y, h.min(remaining))?;
+            t = if clipped && out.h == remaining { t1 } else { t + out.h };
+            // A clipped last step says nothing about the step size the problem allows.
+            h = if clipped && out.rejected == 0 { h.max(out.h_next) } else { out.h_next };
+        }
+        Ok(h)
+    }
+}
+
+/// Hairer's starting step (HNW I, II.4): from ‖y0‖, ‖f0‖ and one explicit Euler probe.
+pub fn initial_step(
+    sys: &mut dyn OdeSystem,
+    tol: &Tolerances,
+    order: u32,
+    t: f64,
+    y: &[f64],
+    h_max: f64,
+) -> Result<f64, StepError> {
+    let n = y.len();
+    let mut f0 = vec![0.0; n];
+    sys.rhs(t, y, &mut f0)?;
+    let sk = |i: usize| tol.atol(i) + tol.rtol * y[i].abs();
+    let rms = |v: &dyn Fn(usize) -> f64| ((0..n).map(|i| v(i).powi(2)).sum::<f64>() / n.max(1) as f64).sqrt();
+    let d0 = rms(&|i| y[i] / sk(i));
+    let d1 = rms(&|i| f0[i] / sk(i));
+    let mut h0 = if d0 < 1e-5 || d1 < 1e-5 { 1e-6 } else { 0.01 * d0 / d1 };
+    h0 = h0.min(h_max);
+    let y1: Vec<f64> = (0..n).map(|i| y[i] + h0 * f0[i]).collect();
+    let mut f1 = vec![0.0; n];
+    sys.rhs(t + h0, &y1, &mut f1)?;
+    let d2 = rms(&|i| (f1[i] - f0[i]) / sk(i)) / h0;
+    let h1 =
+        if d1.max(d2) <= 1e-15 { (h0 * 1e-3).max(1e-6) } else { (0.01 / d1.max(d2)).powf(1.0 / (order as f64 + 1.0)) };
+    let h = (100.0 * h0).min(h1).min(h_max);
+    if h.is_finite() && h > 0.0 {
+        Ok(h)
+    } else {
+        Err(StepError::Rhs(RhsError(format!("non-finite derivative at t = {t}: no starting step"))))
+    }
+}

@@ -1,0 +1,490 @@
+//! An L-stable singly diagonally implicit Runge–Kutta method for stiff problems: the
+//! 5-stage, stiffly accurate SDIRK of order 4 with an embedded order-3 solution and γ = 1/4
+//! (Hairer & Wanner, *Solving ODEs II*, IV.6, Table 6.5, "SDIRK4").
+//!
+//! - The Jacobian J = ∂f/∂y is formed by forward differences (n + 1 right-hand-side
+//!   evaluations) and kept across steps while Newton converges quickly.
+//! - Every stage solves z = s + hγ f(t + c h, y + z) by simplified Newton iterations with one
+//!   LU factorisation of (I − hγJ) (nalgebra), shared by all five stages and reused across
+//!   steps while hγ is unchanged; step-size changes below 20 % upward are suppressed so the
+//!   factorisation is reused.
+//! - The local error y − ŷ is filtered through (I − hγJ)⁻¹ (Hairer & Wanner IV.8, for
+//!   stiff components), then controlled like DOPRI5 with exponent 1/4.
+//! - Dense output: the cubic Hermite interpolant on (y0, f0, y1, f1) (order 3).
+//!
+//! Stiffly accurate (y1 is the last stage) and L-stable: very stiff modes are damped in one
+//! step, whatever h.
+
+use nalgebra::{DMatrix, DVector, Dyn, LU};
+
+use super::adaptive::{
+    initial_step, AdaptiveIntegrator, AdaptiveStats, StepControl, StepError, StepOutcome, Tolerances,
+};
+use super::{Integrator, OdeSystem, RhsError};
+
+const GAMMA: f64 = 0.25;
+const C: [f64; 5] = [0.25, 0.75, 11.0 / 20.0, 0.5, 1.0];
+/// Strictly lower part of A.
+const A: [[f64; 4]; 5] = [
+    [0.0, 0.0, 0.0, 0.0],
+    [0.5, 0.0, 0.0, 0.0],
+    [17.0 / 50.0, -1.0 / 25.0, 0.0, 0.0],
+    [371.0 / 1360.0, -137.0 / 2720.0, 15.0 / 544.0, 0.0],
+    [25.0 / 24.0, -49.0 / 48.0, 125.0 / 16.0, -85.0 / 12.0],
+];
+/// b − b̂ (b is the last row of A with γ; b̂ = (59/48, −17/96, 225/32, −85/12, 0)).
+const D: [f64; 5] = [-3.0 / 16.0, -27.0 / 32.0, 25.0 / 32.0, 0.0, 0.25];
+
+/// Why the stage equations were not solved.
+enum NewtonFailure {
+    Rhs(RhsError),
+    /// Diverged, too slow, or non-finite.
+    NoConvergence(String),
+}
+
+impl From<RhsError> for NewtonFailure {
+    fn from(e: RhsError) -> Self {
+        NewtonFailure::Rhs(e)
+    }
+}
+
+/// The SDIRK4 method with a finite-difference Jacobian and simplified Newton iterations.
+#[derive(Clone, Debug)]
+pub struct Sdirk4 {
+    dim: usize,
+    tol: Tolerances,
+    /// Step-size control; public so a driver can set h_min/h_max.
+    pub control: StepControl,
+    /// Newton iterations per stage before the attempt counts as not converged.
+    pub max_newton: u32,
+    /// Newton stops when the estimated remaining error is below κ (in tolerance units);
+    /// min(0.03, √rtol) by default (Hairer's choice in RADAU5).
+    pub kappa: f64,
+    /// Smallest magnitude a component is perturbed by in the difference Jacobian, relative
+    /// to √ε: 1 suits angles in rad and speeds in m/s. (Much smaller increments lose the
+    /// Jacobian to round-off when |f| is large.)
+    pub jacobian_scale: f64,
+    jac: DMatrix<f64>,
+    /// J is available / J was formed at the current step's start.
+    jac_valid: bool,
+    jac_current: bool,
+    lu: Option<LU<f64, Dyn, Dyn>>,
+    lu_hgamma: f64,
+    /// h·f(Y_i) of the stages.
+    hk: [Vec<f64>; 5],
+    z: Vec<f64>,
+    s: Vec<f64>,
+    ytmp: Vec<f64>,
+    ftmp: Vec<f64>,
+    rhs_vec: DVector<f64>,
+    err: Vec<f64>,
+    f0: Vec<f64>,
+    /// (t, y, f) at the end of the last step.
+    end: Option<(f64, Vec<f64>)>,
+    dense: [Vec<f64>; 4],
+    last: Option<(f64, f64)>,
+    facold: f64,
+    eta_old: f64,
+    theta_max: f64,
+    stats: AdaptiveStats,
+}
+
+impl Sdirk4 {
+    pub fn new(dim: usize, rtol: f64, atol: f64) -> Result<Self, StepError> {
+        Ok(Self::with_tolerances(dim, Tolerances::new(rtol, atol)?))
+    }
+
+    pub fn with_tolerances(dim: usize, tol: Tolerances) -> Self {
+        let z = || vec![0.0; dim];
+        let kappa = 0.03f64.min(tol.rtol.sqrt()).max(1e-4);
+        Sdirk4 {
+            dim,
+            tol,
+            control: StepControl::default(),
+            max_newton: 7,
+            kappa,
+            jacobian_scale: 1.0,
+            jac: DMatrix::zeros(dim, dim),
+            jac_valid: false,
+            jac_current: false,
+            lu: None,
+            lu_hgamma: f64::NAN,
+            hk: [z(), z(), z(), z(), z()],
+            z: z(),
+            s: z(),
+            ytmp: z(),
+            ftmp: z(),
+            rhs_vec: DVector::zeros(dim),
+            err: z(),
+            f0: z(),
+            end: None,
+            dense: [z(), z(), z(), z()],
+            last: None,
+            facold: 1e-4,
+            eta_old: 1.0,
+            theta_max: 0.0,
+            stats: AdaptiveStats::default(),
+        }
+    }
+
+    pub fn tolerances(&self) -> &Tolerances {
+        &self.tol
+    }
+
+    /// Hairer's starting step for (t, y).
+    pub fn initial_step(&mut self, sys: &mut dyn OdeSystem, t: f64, y: &[f64]) -> Result<f64, StepError> {
+        self.stats.rhs_evaluations += 2;
+        initial_step(sys, &self.tol, 3, t, y, self.control.h_max)
+    }
+
+    pub fn dense(&self, theta: f64) -> Vec<f64> {
+        let mut out = vec![0.0; self.dim];
+        self.dense_into(theta, &mut out);
+        out
+    }
+
+    fn resize(&mut self, n: usize) {
+        if self.dim != n {
+            let (control, max_newton, kappa, jacobian_scale) =
+                (self.control.clone(), self.max_newton, self.kappa, self.jacobian_scale);
+            *self = Self { control, max_newton, kappa, jacobian_scale, ..Self::with_tolerances(n, self.tol.clone()) };
+        }
+    }
+
+    fn eval(&mut self, sys: &mut dyn OdeSystem, t: f64, y: &[f64], out: &mut [f64]) -> Result<(), RhsError> {
+        self.stats.rhs_evaluations += 1;
+        sys.rhs(t, y, out)
+    }
+
+    /// f0 = f(t, y): from the end of the last step when y is that state, else evaluated.
+    fn start(&mut self, sys: &mut dyn OdeSystem, t: f64, y: &[f64]) -> Result<(), RhsError> {
+        let hit = matches!(&self.end, Some((te, ye)) if *te == t && ye.as_slice() == y);
+        if !hit {
+            let mut f0 = std::mem::take(&mut self.f0);
+            let r = self.eval(sys, t, y, &mut f0);
+            self.f0 = f0;
+            r?;
+            // A new start point: the Jacobian no longer belongs to it.
+            self.jac_current = false;
+        }
+        Ok(())
+    }
+
+    /// J at (t, y) by forward differences with the increment √ε·max(|y_j|, `jacobian_scale`)
+    /// and a fresh f(t, y) as the base point.
+    fn jacobian(&mut self, sys: &mut dyn OdeSystem, t: f64, y: &[f64]) -> Result<(), RhsError> {
+        let n = self.dim;
+        let mut f0 = std::mem::take(&mut self.f0);
+        let mut ft = std::mem::take(&mut self.ftmp);
+        let mut yp = y.to_vec();
+        let result: Result<(), RhsError> = (|| {
+            self.eval(sys, t, y, &mut f0)?;
+            for j in 0..n {
+                let delta = f64::EPSILON.sqrt() * y[j].abs().max(self.jacobian_scale);
+                yp[j] = y[j] + delta;
+                self.eval(sys, t, &yp, &mut ft)?;
+                yp[j] = y[j];
+                for i in 0..n {
+                    self.jac[(i, j)] = (ft[i] - f0[i]) / delta;
+                }
+            }
+            Ok(())
+        })();
+        self.f0 = f0;
+        self.ftmp = ft;
+        result?;
+        self.stats.jacobians += 1;
+        self.jac_valid = true;
+        self.jac_current = true;
+        self.lu = None;
+        Ok(())
+    }
+
+    /// LU of (I − hγJ); false if singular.
+    fn factor(&mut self, h: f64) -> bool {
+        let hg = h * GAMMA;
+        if self.lu.is_some() && self.lu_hgamma == hg {
+            return true;
+        }
+        let n = self.dim;
+        let mut m = &self.jac * (-hg);
+        for i in 0..n {
+            m[(i, i)] += 1.0;
+        }
+        let lu = m.lu();
+        self.stats.factorisations += 1;
+        if !lu.is_invertible() {
+            self.lu = None;
+            return false;
+        }
+        self.lu = Some(lu);
+        self.lu_hgamma = hg;
+        true
+    }
+
+    fn solve_in_place(&mut self, v: &mut [f64]) {
+        self.rhs_vec.as_mut_slice().copy_from_slice(v);
+        let ok = self.lu.as_ref().expect("factored").solve_mut(&mut self.rhs_vec);
+        debug_assert!(ok);
+        v.copy_from_slice(self.rhs_vec.as_slice());
+    }
+
+    /// Solves the five stage equations for a step h from (t, y); y1 = y + z (last stage).
+    fn stages(&mut self, sys: &mut dyn OdeSystem, t: f64, y: &[f64], h: f64) -> Result<(), NewtonFailure> {
+        let n = self.dim;
+        let hg = h * GAMMA;
+        self.theta_max = 0.0;
+        let mut z = std::mem::take(&mut self.z);
+        let mut s = std::mem::take(&mut self.s);
+        let mut ytmp = std::mem::take(&mut self.ytmp);
+        let mut ft = std::mem::take(&mut self.ftmp);
+        let result = (|| {
+            for st in 0..5 {
+                // Known part s = Σ_{j<st} a_ij h k_j and a predictor for z.
+                for i in 0..n {
+                    let mut acc = 0.0;
+                    for (j, a) in A[st].iter().enumerate().take(st) {
+                        acc += a * self.hk[j][i];
+                    }
+                    s[i] = acc;
+                    let last = if st == 0 { h * self.f0[i] } else { self.hk[st - 1][i] };
+                    z[i] = acc + GAMMA * last;
+                }
+                let mut norm_prev = f64::NAN;
+                let mut eta = self.eta_old.max(f64::EPSILON).powf(0.8);
+                let mut converged = false;
+                for m in 0..self.max_newton {
+                    for i in 0..n {
+                        ytmp[i] = y[i] + z[i];
+                    }
+                    self.eval(sys, t + C[st] * h, &ytmp, &mut ft)?;
+                    self.stats.newton_iterations += 1;
+                    let mut delta = vec![0.0; n];
+                    for i in 0..n {
+                        delta[i] = s[i] + hg * ft[i] - z[i];
+                    }
+                    self.solve_in_place(&mut delta);
+                    let mut sum = 0.0;
+                    for i in 0..n {
+                        z[i] += delta[i];
+                        let sc = self.tol.scale(i, y[i], y[i]);
+                        sum += (delta[i] / sc).powi(2);
+                    }
+                    let norm = (sum / n.max(1) as f64).sqrt();
+                    if !norm.is_finite() {
+                        return Err(NewtonFailure::NoConvergence(format!(
+                            "non-finite Newton update in stage {}",
+                            st + 1
+                        )));
+                    }
+                    if m > 0 {
+                        let theta = norm / norm_prev;
+                        self.theta_max = self.theta_max.max(theta);
+                        if theta >= 0.99 {
+                            return Err(NewtonFailure::NoConvergence(format!(
+                                "Newton diverges in stage {} (contraction {theta:.2})",
+                                st + 1
+                            )));
+                        }
+                        eta = theta / (1.0 - theta);
+                    }
+                    norm_prev = norm;
+                    if eta * norm <= self.kappa || norm <= 1e-12 {
+                        converged = true;
+                        break;
+                    }
+                }
+                if !converged {
+                    return Err(NewtonFailure::NoConvergence(format!(
+                        "Newton not converged in {} iterations in stage {}",
+                        self.max_newton,
+                        st + 1
+                    )));
+                }
+                self.eta_old = eta;
+                for i in 0..n {
+                    self.hk[st][i] = (z[i] - s[i]) / GAMMA;
+                }
+            }
+            Ok(())
+        })();
+        self.z = z;
+        self.s = s;
+        self.ytmp = ytmp;
+        self.ftmp = ft;
+        result
+    }
+
+    /// Filtered error estimate of the solved stages into `err`.
+    fn error_estimate(&mut self) {
+        let n = self.dim;
+        let mut err = std::mem::take(&mut self.err);
+        for i in 0..n {
+            err[i] = (0..5).map(|j| D[j] * self.hk[j][i]).sum();
+        }
+        self.solve_in_place(&mut err);
+        self.err = err;
+    }
+
+    fn accept(&mut self, t: f64, y: &mut [f64], h: f64) {
+        let n = self.dim;
+        for i in 0..n {
+            let y1 = y[i] + self.z[i];
+            self.dense[0][i] = y[i];
+            self.dense[1][i] = h * self.f0[i];
+            self.dense[2][i] = y1;
+            self.dense[3][i] = self.hk[4][i];
+            y[i] = y1;
+        }
+        // f(y1) = k_5 (stiffly accurate); the next step starts from it.
+        for i in 0..n {
+            self.f0[i] = self.hk[4][i] / h;
+        }
+        self.end = Some((t + h, y.to_vec()));
+        self.last = Some((t, h));
+        self.stats.accepted += 1;
+        // The Jacobian belongs to the old start; keep it while Newton contracts well.
+        self.jac_current = false;
+        if self.theta_max > 0.3 {
+            self.jac_valid = false;
+        }
+    }
+
+    fn ynew(&self, y: &[f64]) -> Vec<f64> {
+        y.iter().zip(&self.z).map(|(a, b)| a + b).collect()
+    }
+}
+
+impl AdaptiveIntegrator for Sdirk4 {
+    fn step_adaptive(
+        &mut self,
+        sys: &mut dyn OdeSystem,
+        t: f64,
+        y: &mut [f64],
+        h_try: f64,
+    ) -> Result<StepOutcome, StepError> {
+        if !(h_try.is_finite() && h_try > 0.0) {
+            return Err(StepError::InvalidStep(h_try));
+        }
+        self.resize(y.len());
+        let evals0 = self.stats.rhs_evaluations;
+        self.start(sys, t, y)?;
+        let ctl = self.control.clone();
+        let alpha = 0.25 - 0.75 * ctl.beta;
+        let mut h = h_try.min(ctl.h_max);
+        let mut rejected = 0u32;
+        let (mut last_err, mut last_comp, mut reason) = (f64::NAN, 0, String::new());
+        loop {
+            let floor = ctl.floor(t);
+            if (h < floor && h < h_try) || rejected > ctl.max_rejections {
+                return Err(StepError::StepSizeCollapse {
+                    t,
+                    h,
+                    h_min: floor,
+                    error: last_err,
+                    component: last_comp,
+                    reason: format!("{rejected} consecutive failures, the last: {reason}"),
+                });
+            }
+            if !self.jac_valid {
+                self.jacobian(sys, t, y)?;
+            }
+            if !self.factor(h) {
+                reason = "singular iteration matrix I − hγJ".into();
+                rejected += 1;
+                self.stats.rejected += 1;
+                h *= 0.5;
+                continue;
+            }
+            match self.stages(sys, t, y, h) {
+                Err(NewtonFailure::Rhs(e)) => return Err(e.into()),
+                Err(NewtonFailure::NoConvergence(why)) => {
+                    rejected += 1;
+                    self.stats.rejected += 1;
+                    (last_err, reason) = (f64::INFINITY, why);
+                    if self.jac_current {
+                        h *= 0.5;
+                    } else {
+                        // A stale Jacobian first: refresh it at this start and retry.
+                        self.jac_valid = false;
+                    }
+                    continue;
+                }
+                Ok(()) => {}
+            }
+            self.error_estimate();
+            let y1 = self.ynew(y);
+            let (err, comp) = self.tol.norm(&self.err, y, &y1);
+            if err <= 1.0 {
+                let fac =
+                    if err == 0.0 { ctl.fac_max } else { ctl.safety * err.powf(-alpha) * self.facold.powf(ctl.beta) };
+                let fac_max = if rejected > 0 { 1.0 } else { ctl.fac_max };
+                let fac = fac.clamp(ctl.fac_min, fac_max);
+                // Keep h (and the LU) for small increases.
+                let h_next = if (1.0..1.2).contains(&fac) { h } else { (h * fac).min(ctl.h_max) };
+                self.facold = err.max(1e-4);
+                self.accept(t, y, h);
+                return Ok(StepOutcome {
+                    h,
+                    h_next,
+                    rejected,
+                    error: err,
+                    rhs_evaluations: self.stats.rhs_evaluations - evals0,
+                });
+            }
+            rejected += 1;
+            self.stats.rejected += 1;
+            (last_err, last_comp, reason) = (err, comp, "error test failed".into());
+            let fac = if err.is_finite() { (ctl.safety * err.powf(-0.25)).max(ctl.fac_min) } else { ctl.fac_min };
+            h *= fac.min(1.0);
+        }
+    }
+
+    fn dense_into(&self, theta: f64, out: &mut [f64]) {
+        let (t2, t3) = (theta * theta, theta * theta * theta);
+        let (h00, h10, h01, h11) = (2.0 * t3 - 3.0 * t2 + 1.0, t3 - 2.0 * t2 + theta, -2.0 * t3 + 3.0 * t2, t3 - t2);
+        let d = &self.dense;
+        for i in 0..self.dim.min(out.len()) {
+            out[i] = h00 * d[0][i] + h10 * d[1][i] + h01 * d[2][i] + h11 * d[3][i];
+        }
+    }
+
+    fn last_step(&self) -> Option<(f64, f64)> {
+        self.last
+    }
+
+    fn invalidate(&mut self) {
+        self.end = None;
+        self.jac_valid = false;
+        self.jac_current = false;
+        self.lu = None;
+    }
+
+    fn stats(&self) -> AdaptiveStats {
+        self.stats
+    }
+}
+
+impl Integrator for Sdirk4 {
+    /// One SDIRK4 step of exactly `dt`, without error control; the Jacobian is formed at
+    /// every step's start.
+    fn step(&mut self, sys: &mut dyn OdeSystem, t: f64, y: &mut [f64], dt: f64) -> Result<(), RhsError> {
+        self.resize(y.len());
+        self.start(sys, t, y)?;
+        if !self.jac_current {
+            self.jacobian(sys, t, y)?;
+        }
+        if !self.factor(dt) {
+            return Err(RhsError(format!("SDIRK4: I − hγJ is singular at t = {t} with h = {dt}")));
+        }
+        match self.stages(sys, t, y, dt) {
+            Ok(()) => {}
+            Err(NewtonFailure::Rhs(e)) => return Err(e),
+            Err(NewtonFailure::NoConvergence(why)) => {
+                return Err(RhsError(format!("SDIRK4 at t = {t}, h = {dt}: {why}; reduce the step")))
+            }
+        }
+        self.accept(t, y, dt);
+        Ok(())
+    }
+}
