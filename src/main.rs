@@ -16,7 +16,7 @@ use kanestop_runtime::model::Model;
 use kanestop_runtime::paper::DEFAULT_SCENE;
 use kanestop_runtime::reference::ReferenceKernel;
 use kanestop_runtime::report;
-use kanestop_runtime::scene::Scene;
+use kanestop_runtime::scene::{IntegratorKind, Scene, SceneError};
 use kanestop_runtime::simulate::{self, Stop};
 
 #[derive(Parser)]
@@ -45,6 +45,8 @@ enum Command {
         /// Which Kane kernel evaluates the equations of motion.
         #[arg(long, value_enum, default_value_t = KernelChoice::Generated)]
         kernel: KernelChoice,
+        #[command(flatten)]
+        solver: SolverOverrides,
     },
     /// Evaluate the equations of motion once and print JSON (M, f, qdd, body states).
     Eval {
@@ -180,10 +182,56 @@ fn codegen(scene: Option<&PathBuf>, write: bool, root: &std::path::Path) -> Resu
 }
 
 fn load_model(scene: Option<&PathBuf>) -> Result<Model> {
-    let scene = match scene {
-        Some(path) => Scene::load(path)?,
-        None => Scene::from_toml(DEFAULT_SCENE, "embedded case01.toml")?,
+    load_model_with(scene, &SolverOverrides::default())
+}
+
+/// Command-line overrides of the scene's `[solver]` section.
+#[derive(clap::Args, Default)]
+struct SolverOverrides {
+    /// Integration method (overrides solver.integrator).
+    #[arg(long, value_enum)]
+    integrator: Option<IntegratorChoice>,
+    /// Time step or, for adaptive methods, observation interval, s (overrides solver.dt).
+    #[arg(long)]
+    dt: Option<f64>,
+    /// Relative tolerance of the adaptive methods (overrides solver.rtol).
+    #[arg(long)]
+    rtol: Option<f64>,
+    /// Absolute tolerance of the adaptive methods (overrides solver.atol).
+    #[arg(long)]
+    atol: Option<f64>,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum IntegratorChoice {
+    /// Classic RK4, fixed step (the paper's).
+    Rk4,
+    /// Dormand–Prince 5(4), adaptive.
+    Dp5,
+    /// L-stable SDIRK4, adaptive, for stiff scenes.
+    Sdirk4,
+}
+
+fn load_model_with(scene: Option<&PathBuf>, o: &SolverOverrides) -> Result<Model> {
+    let (mut scene, file) = match scene {
+        Some(path) => (Scene::load(path)?, path.display().to_string()),
+        None => (Scene::from_toml(DEFAULT_SCENE, "embedded case01.toml")?, "embedded case01.toml".to_string()),
     };
+    let s = &mut scene.solver;
+    if let Some(i) = o.integrator {
+        s.integrator = match i {
+            IntegratorChoice::Rk4 => IntegratorKind::Rk4,
+            IntegratorChoice::Dp5 => IntegratorKind::Dp5,
+            IntegratorChoice::Sdirk4 => IntegratorKind::Sdirk4,
+        };
+    }
+    s.dt = o.dt.unwrap_or(s.dt);
+    s.rtol = o.rtol.unwrap_or(s.rtol);
+    s.atol = o.atol.unwrap_or(s.atol);
+    let problems = scene.problems();
+    if !problems.is_empty() {
+        return Err(SceneError::Invalid { file: format!("{file} (with command-line overrides)"), problems }.into());
+    }
     Ok(Model::new(&scene)?)
 }
 
@@ -202,11 +250,16 @@ fn main() -> ExitCode {
 
 fn try_main() -> Result<ExitCode> {
     let cli = Cli::parse();
-    let command =
-        cli.command.unwrap_or(Command::Run { scene: None, out: None, plot: None, kernel: KernelChoice::Generated });
+    let command = cli.command.unwrap_or(Command::Run {
+        scene: None,
+        out: None,
+        plot: None,
+        kernel: KernelChoice::Generated,
+        solver: SolverOverrides::default(),
+    });
     match command {
-        Command::Run { scene, out, plot, kernel: choice } => {
-            let model = load_model(scene.as_ref())?;
+        Command::Run { scene, out, plot, kernel: choice, solver } => {
+            let model = load_model_with(scene.as_ref(), &solver)?;
             let result =
                 simulate::run_checked(&model, kernel(choice, &model), Box::new(ReferenceKernel::new(&model.chain)));
             print!("{}", report::summary(&model, &result));

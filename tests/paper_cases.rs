@@ -91,3 +91,32 @@ fn line_friction_on_the_seabed_dissipates_and_keeps_the_balance() {
     assert!(friction(&rough) < friction(&smooth), "{} vs {}", friction(&rough), friction(&smooth));
     assert!(rough.max_energy_drift < 1e-4, "energy balance drift {:.2e}", rough.max_energy_drift);
 }
+
+#[test]
+fn adaptive_methods_reproduce_the_rk4_stopping_time() {
+    use kanestop_runtime::scene::IntegratorKind;
+    let run_with = |kind: IntegratorKind, dt: f64, rtol: f64, end: f64| {
+        let mut scene = CASES[0].scene();
+        scene.solver.integrator = kind;
+        scene.solver.dt = dt;
+        scene.solver.rtol = rtol;
+        scene.solver.atol = rtol * 1e-2;
+        scene.solver.end_time = end;
+        assert!(scene.problems().is_empty());
+        let model = Model::new(&scene).unwrap();
+        simulate::run(&model, Box::new(GeneratedKernel::new(&model.chain).unwrap()))
+    };
+    let rk4 = run_with(IntegratorKind::Rk4, 0.002, 1e-6, 60.0);
+    let dp5 = run_with(IntegratorKind::Dp5, 0.02, 1e-7, 60.0);
+    let (a, b) = (rk4.stopping_time.unwrap(), dp5.stopping_time.unwrap());
+    println!("stopping time: RK4 dt = 0.002 s {a:.6} s, DP5 rtol = 1e-7 {b:.6} s");
+    assert!((a - b).abs() < 2e-3, "RK4 {a:.6} s vs DP5 {b:.6} s");
+    assert!(dp5.max_energy_drift < 1e-5, "DP5 drift {:.2e}", dp5.max_energy_drift);
+    let (ra, rb) = (rk4.anchor_start().unwrap(), dp5.anchor_start().unwrap());
+    assert!((ra - rb).abs() < 1e-3, "anchor start {ra} vs {rb}");
+    // The stiff method runs the same scene through the anchor's release.
+    let sdirk = run_with(IntegratorKind::Sdirk4, 0.02, 1e-5, 2.0);
+    assert_eq!(sdirk.stop, Stop::EndTime, "{:?}", sdirk.stop);
+    assert!(sdirk.max_energy_drift < 1e-4, "SDIRK4 drift {:.2e}", sdirk.max_energy_drift);
+    assert!((sdirk.anchor_start().unwrap() - ra).abs() < 5e-3);
+}

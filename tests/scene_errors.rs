@@ -116,3 +116,17 @@ fn missing_file_names_the_path() {
     let e = Scene::load(std::path::Path::new("no/such/scene.toml")).unwrap_err().to_string();
     assert_mentions(&e, &["no/such/scene.toml"]);
 }
+
+#[test]
+fn zero_or_negative_tolerance() {
+    let e = error(&edited("rtol = 0.000001", "rtol = 0.0"));
+    assert_mentions(&e, &["solver.rtol = 0", "(0, 0.1]"]);
+    let e = error(&edited("atol = 0.00000001", "atol = -1e-8"));
+    assert_mentions(&e, &["solver.atol = -0.00000001", "(0, 1]"]);
+}
+
+#[test]
+fn unknown_integrator() {
+    let e = error(&edited("integrator = \"rk4\"", "integrator = \"euler\""));
+    assert_mentions(&e, &["bad.toml", "euler", "rk4", "dp5", "sdirk4"]);
+}

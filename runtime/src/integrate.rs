@@ -35,6 +35,11 @@ pub trait OdeSystem {
 pub trait Integrator {
     /// Advances `y` from `t` to `t + dt`.
     fn step(&mut self, system: &mut dyn OdeSystem, t: f64, y: &mut [f64], dt: f64) -> Result<(), RhsError>;
+
+    /// Forgets anything cached from earlier steps (e.g. a first-same-as-last derivative):
+    /// called before a step from a state the method did not produce, or after the system
+    /// changed without the state changing (an anchor switch, a new friction force).
+    fn reset(&mut self) {}
 }
 
 /// The classic fourth-order Runge–Kutta method with a fixed step (the paper's method).
@@ -104,6 +109,10 @@ impl<M: AdaptiveIntegrator> Integrator for Adaptive<M> {
         let next = self.method.integrate_to(sys, t, y, t + dt, h)?;
         self.h_next = Some(next);
         Ok(())
+    }
+
+    fn reset(&mut self) {
+        self.method.invalidate();
     }
 }
 

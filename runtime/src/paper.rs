@@ -212,6 +212,8 @@ impl Case {
             solver: Solver {
                 integrator: IntegratorKind::Rk4,
                 dt: 0.002,
+                rtol: 1e-6,
+                atol: 1e-8,
                 end_time: 60.0,
                 output_interval: 0.02,
                 stop_when_ship_stops: true,

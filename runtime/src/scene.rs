@@ -190,8 +190,14 @@ pub struct Initial {
 pub struct Solver {
     /// The method.
     pub integrator: IntegratorKind,
-    /// Time step, s.
+    /// Time step of `rk4`, s. For the adaptive methods, the observation interval: events,
+    /// stability checks and peak tensions are evaluated every `dt`, and the method takes its
+    /// own error-controlled steps (never longer) in between.
     pub dt: f64,
+    /// Relative tolerance of the adaptive methods (`dp5`, `sdirk4`), dimensionless.
+    pub rtol: f64,
+    /// Absolute tolerance of the adaptive methods, in the state's units (rad, m, rad/s, m/s, J).
+    pub atol: f64,
     /// Simulated time after which the run ends in any case, s.
     pub end_time: f64,
     /// Interval between recorded samples, s (rounded to a whole number of steps).
@@ -208,6 +214,10 @@ pub struct Solver {
 pub enum IntegratorKind {
     /// Classic fourth-order Runge–Kutta with fixed step (the paper's method).
     Rk4,
+    /// Dormand–Prince 5(4), adaptive (explicit).
+    Dp5,
+    /// L-stable SDIRK of order 4, adaptive, for stiff scenes (implicit).
+    Sdirk4,
 }
 
 /// A scene that could not be read or is not valid.
@@ -383,6 +393,8 @@ impl Scene {
             }
         }
         c.range("solver.max_energy_drift", so.max_energy_drift, 0.0, 10.0, false, "(relative)");
+        c.range("solver.rtol", so.rtol, 0.0, 0.1, false, "(relative tolerance)");
+        c.range("solver.atol", so.atol, 0.0, 1.0, false, "(absolute tolerance)");
         c.problems
     }
 }

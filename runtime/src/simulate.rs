@@ -22,7 +22,7 @@ use std::time::{Duration, Instant};
 use crate::dynamics::{Dynamics, WORK_COUNT};
 use crate::energy::Energy;
 use crate::forces::Forces;
-use crate::integrate::{Integrator, RhsError, Rk4};
+use crate::integrate::{Adaptive, Dopri5, Integrator, RhsError, Rk4, Sdirk4, Tolerances};
 use crate::kernel::{AnchorDof, BodyAcceleration, BodyState, Kernel, Load};
 use crate::model::Model;
 use crate::scene::IntegratorKind;
@@ -226,9 +226,12 @@ impl Runner<'_> {
         Ok(Observation { bodies, joints, normal: sum[1], holding, energy })
     }
 
-    /// One RK4 (or other) step of size h from (t, y0).
+    /// Integrates from (t, y0) over h: one RK4 step, or error-controlled sub-steps of an
+    /// adaptive method. The method forgets its cached derivatives first: y0 may not be the
+    /// state it last produced (bisection) and the friction may have changed.
     fn advance(&mut self, t: f64, y0: &[f64], h: f64) -> Result<Vec<f64>, RhsError> {
         let mut y = y0.to_vec();
+        self.integrator.reset();
         self.integrator.step(&mut self.dynamics, t, &mut y, h)?;
         Ok(y)
     }
@@ -309,9 +312,7 @@ pub fn run(model: &Model, kernel: Box<dyn Kernel>) -> RunResult {
     let mut r = Runner {
         model,
         dynamics: Dynamics::new(kernel, forces, model.anchor),
-        integrator: match solver.integrator {
-            IntegratorKind::Rk4 => Box::new(Rk4::new(dim)),
-        },
+        integrator: integrator(solver, dim),
         direction: 0.0,
         qdd: vec![0.0; n],
         acc: vec![BodyAcceleration::default(); n],
@@ -478,6 +479,24 @@ pub fn run(model: &Model, kernel: Box<dyn Kernel>) -> RunResult {
     result.rhs_evaluations = r.dynamics.evaluations();
     result.wall_time = start.elapsed();
     result
+}
+
+/// The method a scene names, sized for states of `dim` entries.
+pub fn integrator(solver: &crate::scene::Solver, dim: usize) -> Box<dyn Integrator> {
+    let tolerances = || Tolerances::new(solver.rtol, solver.atol).expect("tolerances checked with the scene");
+    match solver.integrator {
+        IntegratorKind::Rk4 => Box::new(Rk4::new(dim)),
+        IntegratorKind::Dp5 => {
+            let mut m = Dopri5::with_tolerances(dim, tolerances());
+            m.control.h_max = solver.dt;
+            Box::new(Adaptive::new(m))
+        }
+        IntegratorKind::Sdirk4 => {
+            let mut m = Sdirk4::with_tolerances(dim, tolerances());
+            m.control.h_max = solver.dt;
+            Box::new(Adaptive::new(m))
+        }
+    }
 }
 
 /// Static friction is exceeded: |H| > μN (Eq. 37 and the discussion after Eq. 26).
