@@ -83,3 +83,15 @@ pub fn write_plots(models: &[Model], results: &[RunResult], out: &Path) -> Resul
     }
     Ok(files)
 }
+
+/// `report accuracy`: the work–precision study, printed and written into `out`.
+pub fn accuracy(scene: &Scene, out: &Path, repeats: usize, kernel: KernelFactory) -> Result<()> {
+    anyhow::ensure!(repeats >= 1, "--repeats {repeats}: must be at least 1");
+    let plan = kanestop_runtime::accuracy::default_plan();
+    let study = kanestop_runtime::accuracy::study(scene, &plan, kernel, repeats).map_err(anyhow::Error::msg)?;
+    print!("{}", kanestop_runtime::accuracy::table(&study));
+    for f in kanestop_runtime::accuracy::write(&study, out).map_err(anyhow::Error::msg)? {
+        println!("written   {}", f.display());
+    }
+    Ok(())
+}

@@ -60,6 +60,11 @@ enum Command {
         #[arg(long, value_enum, default_value_t = KernelChoice::Generated)]
         kernel: KernelChoice,
     },
+    /// Reports that run a scene many times (e.g. `report accuracy`).
+    Report {
+        #[command(subcommand)]
+        kind: ReportKind,
+    },
     /// Run every scene of a folder in parallel: a table of stopping times (against Table 3
     /// where the scene names one), peak tensions, anchor start and energy drift, also
     /// written as batch.csv and batch.json.
@@ -100,6 +105,26 @@ enum Command {
         /// Repository root holding scenes/ and generated/ (for --write).
         #[arg(long, default_value = ".")]
         root: PathBuf,
+    },
+}
+
+/// The reports.
+#[derive(Subcommand)]
+enum ReportKind {
+    /// Error against run time: a work–precision study of RK4 (over dt), DP5 and SDIRK4
+    /// (over tolerances) against a tight reference run; table, accuracy.csv/json and a
+    /// log–log plot (accuracy.svg).
+    Accuracy {
+        /// Scene TOML file; omitted: the embedded case 1.
+        scene: Option<PathBuf>,
+        /// Folder for accuracy.csv, accuracy.json and accuracy.svg.
+        #[arg(long, default_value = "out/accuracy")]
+        out: PathBuf,
+        /// Runs per setting; the median wall time is reported.
+        #[arg(long, default_value_t = 3)]
+        repeats: usize,
+        #[arg(long, value_enum, default_value_t = KernelChoice::Generated)]
+        kernel: KernelChoice,
     },
 }
 
@@ -290,6 +315,11 @@ fn try_main() -> Result<ExitCode> {
             };
             let out = evaluate(&model, kernel(choice, &model), state.as_ref())?;
             println!("{}", serde_json::to_string_pretty(&out)?);
+            Ok(ExitCode::SUCCESS)
+        }
+        Command::Report { kind: ReportKind::Accuracy { scene, out, repeats, kernel: choice } } => {
+            let model = load_model(scene.as_ref())?;
+            commands::accuracy(&model.scene, &out, repeats, &|m: &Model| kernel(choice, m))?;
             Ok(ExitCode::SUCCESS)
         }
         Command::Plot { scenes, out, kernel: choice } => {

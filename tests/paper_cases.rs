@@ -120,3 +120,30 @@ fn adaptive_methods_reproduce_the_rk4_stopping_time() {
     assert!(sdirk.max_energy_drift < 1e-4, "SDIRK4 drift {:.2e}", sdirk.max_energy_drift);
     assert!((sdirk.anchor_start().unwrap() - ra).abs() < 5e-3);
 }
+
+#[test]
+fn accuracy_study_compares_methods_with_a_tight_reference() {
+    use kanestop_runtime::accuracy;
+    use kanestop_runtime::scene::IntegratorKind;
+    // Case 3 (μ = 0.7) stops in about 10 s: a short study.
+    let scene = CASES[2].scene();
+    let plan =
+        [(IntegratorKind::Rk4, 0.004, 1e-6), (IntegratorKind::Rk4, 0.002, 1e-6), (IntegratorKind::Dp5, 0.02, 1e-4)];
+    let kernel =
+        |m: &Model| -> Box<dyn kanestop_runtime::kernel::Kernel> { Box::new(GeneratedKernel::new(&m.chain).unwrap()) };
+    let s = accuracy::study(&scene, &plan, &kernel, 1).unwrap();
+    assert!((s.reference_stopping_time - 10.025).abs() < 0.01, "{}", s.reference_stopping_time);
+    assert!(s.reference_error < 1e-4, "reference error {}", s.reference_error);
+    assert_eq!(s.rows.len(), 3);
+    for r in &s.rows {
+        assert_eq!(r.status, "stopped", "{r:?}");
+        assert!(r.stopping_time_error.unwrap() < 1e-2, "{r:?}");
+        assert!(r.trajectory_error.unwrap() < 0.05, "{r:?}");
+        assert!(r.rhs_evaluations > 0 && r.wall_time > 0.0);
+    }
+    let dir = std::env::temp_dir().join(format!("kanestop-accuracy-{}", std::process::id()));
+    let files = accuracy::write(&s, &dir).unwrap();
+    assert_eq!(files.len(), 3);
+    let svg = std::fs::read_to_string(&files[2]).unwrap();
+    assert!(svg.starts_with("<svg") && svg.contains("Error against run time"));
+}

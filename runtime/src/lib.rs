@@ -10,6 +10,7 @@
 //! Equation numbers refer to Liu, Hearn, Chen, Jiang & Wu, "Analysis of Dynamic Response of
 //! a Restraining System for a Powerless Advancing Ship Based on the Kane Method".
 
+pub mod accuracy;
 pub mod batch;
 pub mod catenary;
 pub mod chain;

@@ -179,3 +179,75 @@ pub fn write_plots(runs: &[(&Model, &RunResult)], dir: &Path) -> Result<Vec<Path
     }
     Ok(files)
 }
+
+/// Work–precision chart of an accuracy study: stopping-time error (and trajectory error,
+/// dashed) against wall time, log–log, one curve per method.
+pub fn work_precision(study: &crate::accuracy::AccuracyStudy) -> Result<String, String> {
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (900, 540)).into_drawing_area();
+        root.fill(&WHITE).map_err(|e| e.to_string())?;
+        let points = |m: &str, pick: fn(&crate::accuracy::AccuracyRow) -> Option<f64>| -> Vec<(f64, f64)> {
+            study
+                .rows
+                .iter()
+                .filter(|r| r.method == m)
+                .filter_map(|r| pick(r).filter(|e| *e > 0.0).map(|e| (r.wall_time, e)))
+                .collect()
+        };
+        let all: Vec<(f64, f64)> = ["rk4", "dp5", "sdirk4"]
+            .iter()
+            .flat_map(|m| points(m, |r| r.stopping_time_error).into_iter().chain(points(m, |r| r.trajectory_error)))
+            .collect();
+        let (mut x0, mut x1, mut y0, mut y1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
+        for &(x, y) in &all {
+            (x0, x1, y0, y1) = (x0.min(x), x1.max(x), y0.min(y), y1.max(y));
+        }
+        if all.is_empty() {
+            (x0, x1, y0, y1) = (1e-3, 1.0, 1e-9, 1.0);
+        }
+        let mut c = ChartBuilder::on(&root)
+            .caption(format!("Error against run time, {}", study.scene), ("sans-serif", 22))
+            .margin(12)
+            .x_label_area_size(44)
+            .y_label_area_size(80)
+            .build_cartesian_2d((x0 * 0.8..x1 * 1.25).log_scale(), (y0 * 0.5..y1 * 2.0).log_scale())
+            .map_err(|e| e.to_string())?;
+        c.configure_mesh()
+            .x_desc("wall time (s)")
+            .y_desc("error: stopping time (s), trajectory (m, thin)")
+            .x_label_formatter(&|v| format!("{v:.2}"))
+            .y_label_formatter(&|v| format!("{v:.0e}"))
+            .draw()
+            .map_err(|e| e.to_string())?;
+        for (i, m) in ["rk4", "dp5", "sdirk4"].iter().enumerate() {
+            let color = PALETTE[i];
+            for (dashed, pick) in [
+                (false, (|r: &crate::accuracy::AccuracyRow| r.stopping_time_error) as fn(&_) -> _),
+                (true, |r: &crate::accuracy::AccuracyRow| r.trajectory_error),
+            ] {
+                let mut pts = points(m, pick);
+                pts.sort_by(|a, b| a.0.total_cmp(&b.0));
+                if pts.is_empty() {
+                    continue;
+                }
+                let style =
+                    ShapeStyle { color: color.to_rgba(), filled: false, stroke_width: if dashed { 1 } else { 2 } };
+                let series = c.draw_series(LineSeries::new(pts.clone(), style)).map_err(|e| e.to_string())?;
+                if !dashed {
+                    series
+                        .label(m.to_string())
+                        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], color.stroke_width(2)));
+                }
+                c.draw_series(pts.iter().map(|&p| Circle::new(p, 3, color.filled()))).map_err(|e| e.to_string())?;
+            }
+        }
+        c.configure_series_labels()
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK)
+            .draw()
+            .map_err(|e| e.to_string())?;
+        root.present().map_err(|e| e.to_string())?;
+    }
+    Ok(svg)
+}

@@ -1,0 +1,238 @@
+//! Error against run time: a work–precision study of the integrators on one scene.
+//!
+//! The reference solution is the tightest run (Dormand–Prince at rtol = 1e-10); its own
+//! error is estimated against a run at rtol = 1e-9. Each method is then run over a range of
+//! step sizes (RK4) or tolerances (DP5, SDIRK4), and every run is compared with the
+//! reference: stopping time, final ship and anchor displacement, peak tension, and the
+//! largest position error of any body at the common output times (the trajectory error).
+//! Wall times are medians of repeated runs.
+//!
+//! The anchor's sliding friction uses the normal force of the last observation (the paper's
+//! lag, see docs/model-choices.md), so the model itself moves with the observation interval
+//! (dt for RK4, `solver.dt` for the adaptive methods) by a first-order amount: about 1e-4 s
+//! in case 1's stopping time. Errors below that floor are not integration errors.
+
+use std::path::{Path, PathBuf};
+
+use serde::{Deserialize, Serialize};
+
+use crate::kernel::Kernel;
+use crate::model::Model;
+use crate::report::write_atomically;
+use crate::scene::{IntegratorKind, Scene};
+use crate::simulate::{self, RunResult, Stop};
+
+/// One run of the study.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct AccuracyRow {
+    /// "rk4", "dp5" or "sdirk4".
+    pub method: String,
+    /// dt (s) for RK4, rtol for the adaptive methods.
+    pub setting: f64,
+    /// "stopped", or why not.
+    pub status: String,
+    /// |t_stop − t_stop,ref|, s.
+    pub stopping_time_error: Option<f64>,
+    /// |Δx_ship − Δx_ship,ref| at the stop, m.
+    pub ship_displacement_error: Option<f64>,
+    /// |Δx_anchor − Δx_anchor,ref| at the stop, m.
+    pub anchor_displacement_error: Option<f64>,
+    /// |peak − peak_ref| / peak_ref of the largest joint tension.
+    pub peak_tension_error: Option<f64>,
+    /// Largest |position − reference| of any body's centroid at the common output times, m.
+    pub trajectory_error: Option<f64>,
+    /// Median wall time, s.
+    pub wall_time: f64,
+    /// Right-hand-side evaluations.
+    pub rhs_evaluations: u64,
+}
+
+/// The whole study.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct AccuracyStudy {
+    pub scene: String,
+    /// Stopping time of the reference solution, s.
+    pub reference_stopping_time: f64,
+    /// Its estimated error: difference with the next-tightest run, s.
+    pub reference_error: f64,
+    /// Its estimated trajectory error, m.
+    pub reference_trajectory_error: f64,
+    pub rows: Vec<AccuracyRow>,
+}
+
+fn configured(base: &Scene, method: IntegratorKind, dt: f64, rtol: f64) -> Scene {
+    let mut s = base.clone();
+    s.solver.integrator = method;
+    s.solver.dt = dt;
+    s.solver.rtol = rtol;
+    s.solver.atol = rtol * 1e-2;
+    // A common output grid for every run: 0.04 s is a multiple of every dt used.
+    s.solver.output_interval = 0.04;
+    s.solver.stop_when_ship_stops = true;
+    s
+}
+
+fn run(scene: &Scene, kernel: &dyn Fn(&Model) -> Box<dyn Kernel>, repeats: usize) -> Result<(RunResult, f64), String> {
+    let model = Model::new(scene).map_err(|e| e.to_string())?;
+    let mut walls = Vec::new();
+    let mut last = None;
+    for _ in 0..repeats.max(1) {
+        let r = simulate::run(&model, kernel(&model));
+        walls.push(r.wall_time.as_secs_f64());
+        last = Some(r);
+    }
+    walls.sort_by(f64::total_cmp);
+    Ok((last.unwrap(), walls[walls.len() / 2]))
+}
+
+/// Largest centroid position difference at the output times both runs share, m.
+fn trajectory_error(a: &RunResult, b: &RunResult) -> f64 {
+    let mut worst: f64 = 0.0;
+    let mut j = 0;
+    for s in &a.samples {
+        while j < b.samples.len() && b.samples[j].t < s.t - 1e-9 {
+            j += 1;
+        }
+        if j < b.samples.len() && (b.samples[j].t - s.t).abs() <= 1e-9 {
+            for (p, q) in s.bodies.iter().zip(&b.samples[j].bodies) {
+                worst = worst.max((p.x - q.x).hypot(p.z - q.z));
+            }
+        }
+    }
+    worst
+}
+
+fn displacement(r: &RunResult, body: usize) -> f64 {
+    let (first, last) = (r.samples.first().unwrap(), r.samples.last().unwrap());
+    let k = if body == usize::MAX { first.bodies.len() - 1 } else { body };
+    last.bodies[k].x - first.bodies[k].x
+}
+
+/// The largest joint tension at the common output times (each run's own peak depends on
+/// its observation grid, so peaks are compared on the shared one), N.
+fn peak(r: &RunResult) -> f64 {
+    r.samples.iter().flat_map(|s| s.tensions.iter().copied()).fold(0.0, f64::max)
+}
+
+/// One setting of the study: method, dt (s) and rtol.
+pub type Setting = (IntegratorKind, f64, f64);
+
+/// The default sweep: RK4 at dt = 4, 2, 1, 0.5 ms; DP5 at rtol = 1e-3 … 1e-8; SDIRK4 at
+/// 1e-4 … 1e-6 (adaptive methods observed every 0.02 s; atol = rtol/100).
+pub fn default_plan() -> Vec<Setting> {
+    [0.004, 0.002, 0.001, 0.0005]
+        .iter()
+        .map(|&dt| (IntegratorKind::Rk4, dt, 1e-6))
+        .chain([1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8].iter().map(|&tol| (IntegratorKind::Dp5, 0.02, tol)))
+        .chain([1e-4, 1e-5, 1e-6].iter().map(|&tol| (IntegratorKind::Sdirk4, 0.02, tol)))
+        .collect()
+}
+
+/// Runs the study on `scene` over `plan` with kernels from `kernel`; `repeats` wall-time
+/// repetitions per setting.
+pub fn study(
+    scene: &Scene,
+    plan: &[Setting],
+    kernel: &dyn Fn(&Model) -> Box<dyn Kernel>,
+    repeats: usize,
+) -> Result<AccuracyStudy, String> {
+    let (reference, _) = run(&configured(scene, IntegratorKind::Dp5, 0.02, 1e-10), kernel, 1)?;
+    let (check, _) = run(&configured(scene, IntegratorKind::Dp5, 0.02, 1e-9), kernel, 1)?;
+    let t_ref = match (&reference.stop, reference.stopping_time) {
+        (Stop::ShipStopped, Some(t)) => t,
+        _ => return Err(format!("the reference run did not stop the ship: {:?}", reference.stop)),
+    };
+    let mut rows = Vec::new();
+    for &(method, dt, rtol) in plan {
+        let name = format!("{method:?}").to_lowercase();
+        let setting = if method == IntegratorKind::Rk4 { dt } else { rtol };
+        let (r, wall) = run(&configured(scene, method, dt, rtol), kernel, repeats)?;
+        let stopped = matches!(r.stop, Stop::ShipStopped);
+        let status = match &r.stop {
+            Stop::ShipStopped => "stopped".to_string(),
+            Stop::EndTime => "end time".to_string(),
+            Stop::Failed(f) => format!("failed at {:.3} s", f.t),
+        };
+        let when = |v: f64| stopped.then_some(v);
+        rows.push(AccuracyRow {
+            method: name,
+            setting,
+            status,
+            stopping_time_error: r.stopping_time.filter(|_| stopped).map(|t| (t - t_ref).abs()),
+            ship_displacement_error: when((displacement(&r, usize::MAX) - displacement(&reference, usize::MAX)).abs()),
+            anchor_displacement_error: when((displacement(&r, 0) - displacement(&reference, 0)).abs()),
+            peak_tension_error: when((peak(&r) - peak(&reference)).abs() / peak(&reference)),
+            trajectory_error: Some(trajectory_error(&r, &reference)),
+            wall_time: wall,
+            rhs_evaluations: r.rhs_evaluations,
+        });
+    }
+    Ok(AccuracyStudy {
+        scene: scene.meta.name.clone(),
+        reference_stopping_time: t_ref,
+        reference_error: (check.stopping_time.unwrap_or(f64::NAN) - t_ref).abs(),
+        reference_trajectory_error: trajectory_error(&check, &reference),
+        rows,
+    })
+}
+
+fn e(v: Option<f64>) -> String {
+    v.map(|v| format!("{v:.2e}")).unwrap_or_else(|| "—".into())
+}
+
+/// The study as a terminal table.
+pub fn table(s: &AccuracyStudy) -> String {
+    let mut out = format!(
+        "reference: DP5 rtol 1e-10, stopping time {:.9} s (estimated error {:.1e} s, trajectory {:.1e} m)\n",
+        s.reference_stopping_time, s.reference_error, s.reference_trajectory_error
+    );
+    out.push_str(&format!(
+        "{:<7} {:>9} {:<9} {:>10} {:>10} {:>10} {:>10} {:>10} {:>9} {:>9}\n",
+        "method", "dt/rtol", "status", "t_stop", "ship x", "anchor x", "peak T", "trajectory", "wall s", "RHS"
+    ));
+    for r in &s.rows {
+        out.push_str(&format!(
+            "{:<7} {:>9.1e} {:<9} {:>10} {:>10} {:>10} {:>10} {:>10} {:>9.3} {:>9}\n",
+            r.method,
+            r.setting,
+            r.status,
+            e(r.stopping_time_error),
+            e(r.ship_displacement_error),
+            e(r.anchor_displacement_error),
+            e(r.peak_tension_error),
+            e(r.trajectory_error),
+            r.wall_time,
+            r.rhs_evaluations
+        ));
+    }
+    out
+}
+
+/// Writes accuracy.csv, accuracy.json and accuracy.svg (stopping-time error against wall
+/// time, log–log, one curve per method) into `dir`.
+pub fn write(s: &AccuracyStudy, dir: &Path) -> Result<Vec<PathBuf>, String> {
+    std::fs::create_dir_all(dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
+    let o = |v: Option<f64>| v.map(|v| format!("{v:e}")).unwrap_or_default();
+    let mut csv = String::from("method,setting,status,stopping_time_error,ship_displacement_error,anchor_displacement_error,peak_tension_error,trajectory_error,wall_time,rhs_evaluations\n");
+    for r in &s.rows {
+        csv.push_str(&format!(
+            "{},{:e},{},{},{},{},{},{},{},{}\n",
+            r.method,
+            r.setting,
+            r.status,
+            o(r.stopping_time_error),
+            o(r.ship_displacement_error),
+            o(r.anchor_displacement_error),
+            o(r.peak_tension_error),
+            o(r.trajectory_error),
+            r.wall_time,
+            r.rhs_evaluations
+        ));
+    }
+    let files = [dir.join("accuracy.csv"), dir.join("accuracy.json"), dir.join("accuracy.svg")];
+    let w = |p: &Path, b: &[u8]| write_atomically(p, b).map_err(|e| format!("cannot write {}: {e}", p.display()));
+    w(&files[0], csv.as_bytes())?;
+    w(&files[1], serde_json::to_string_pretty(s).map_err(|e| e.to_string())?.as_bytes())?;
+    w(&files[2], crate::plot::work_precision(s)?.as_bytes())?;
+    Ok(files.to_vec())
+}
