@@ -99,7 +99,7 @@ enum Command {
     Codegen {
         /// Scene TOML file; omitted: the embedded case 1.
         scene: Option<PathBuf>,
-        /// Rewrite every checked-in kernel (the test sizes and the counts of scenes/**).
+        /// Rewrite every checked-in kernel (the test sizes and the counts of scenes/paper).
         #[arg(long)]
         write: bool,
         /// Repository root holding scenes/ and generated/ (for --write).
@@ -194,7 +194,7 @@ fn codegen(scene: Option<&PathBuf>, write: bool, root: &std::path::Path) -> Resu
     if write {
         let dir = root.join("generated/src");
         anyhow::ensure!(dir.is_dir(), "{} is not a directory: pass --root <repository>", dir.display());
-        for (name, text) in kanestop_codegen::checked_in_files(&root.join("scenes")) {
+        for (name, text) in kanestop_codegen::checked_in_files(&root.join("scenes/paper")) {
             let path = dir.join(&name);
             let old = std::fs::read_to_string(&path).unwrap_or_default();
             if old != text {

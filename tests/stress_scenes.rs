@@ -86,3 +86,17 @@ fn every_stress_scene_loads() {
     }
     assert!(count >= 10, "{count} stress scenes");
 }
+
+/// A cable of 1 m elements (N = 170, its kernel generated into OUT_DIR at build time)
+/// stops the ship at case 1's time: the paper's discretisation is converged.
+#[test]
+fn fine_cable_converges_to_the_paper_discretisation() {
+    let fine = run("fine_cable", 60.0);
+    check("fine_cable", &fine);
+    assert_eq!(fine.samples[0].bodies.len(), 170);
+    let scene = kanestop_runtime::paper::CASES[0].scene();
+    let model = Model::new(&scene).unwrap();
+    let coarse = simulate::run(&model, Box::new(GeneratedKernel::new(&model.chain).unwrap()));
+    let (a, b) = (fine.stopping_time.unwrap(), coarse.stopping_time.unwrap());
+    assert!((a - b).abs() < 0.01 * b, "fine cable stops at {a:.4} s, case 1 at {b:.4} s");
+}
