@@ -27,11 +27,17 @@ fn progress(len: usize) -> ProgressBar {
 
 /// `batch DIR`: runs every scene, prints the table, writes batch.csv and batch.json; with a
 /// `tolerance`, validates against Table 3 and returns whether every check passed.
-pub fn batch(dir: &Path, out: &Path, kernel: KernelFactory, tolerance: Option<f64>) -> Result<bool> {
+pub fn batch(
+    dir: &Path,
+    out: &Path,
+    configure: batch::Configure,
+    kernel: KernelFactory,
+    tolerance: Option<f64>,
+) -> Result<bool> {
     let files = batch::scene_files(dir).with_context(|| format!("cannot read scene folder {}", dir.display()))?;
     anyhow::ensure!(!files.is_empty(), "no *.toml scene in {}", dir.display());
     let bar = progress(files.len());
-    let rows = batch::run_all(&files, kernel, &|row| {
+    let rows = batch::run_all(&files, configure, kernel, &|row| {
         bar.set_message(format!("{} {}", row.case, row.status));
         bar.inc(1);
     });

@@ -81,6 +81,8 @@ enum Command {
         tolerance: Option<f64>,
         #[arg(long, value_enum, default_value_t = KernelChoice::Generated)]
         kernel: KernelChoice,
+        #[command(flatten)]
+        solver: SolverOverrides,
     },
     /// Run one or more scenes and plot them overlaid (SVG): ship surge speed, ship and
     /// anchor displacement, peak joint tension along the line, energy terms.
@@ -242,22 +244,31 @@ fn load_model_with(scene: Option<&PathBuf>, o: &SolverOverrides) -> Result<Model
         Some(path) => (Scene::load(path)?, path.display().to_string()),
         None => (Scene::from_toml(DEFAULT_SCENE, "embedded case01.toml")?, "embedded case01.toml".to_string()),
     };
-    let s = &mut scene.solver;
-    if let Some(i) = o.integrator {
-        s.integrator = match i {
-            IntegratorChoice::Rk4 => IntegratorKind::Rk4,
-            IntegratorChoice::Dp5 => IntegratorKind::Dp5,
-            IntegratorChoice::Sdirk4 => IntegratorKind::Sdirk4,
-        };
-    }
-    s.dt = o.dt.unwrap_or(s.dt);
-    s.rtol = o.rtol.unwrap_or(s.rtol);
-    s.atol = o.atol.unwrap_or(s.atol);
-    let problems = scene.problems();
-    if !problems.is_empty() {
-        return Err(SceneError::Invalid { file: format!("{file} (with command-line overrides)"), problems }.into());
-    }
+    o.apply(&mut scene, &file)?;
     Ok(Model::new(&scene)?)
+}
+
+impl SolverOverrides {
+    /// Applies the overrides to `scene` (read from `file`) and checks the result.
+    fn apply(&self, scene: &mut Scene, file: &str) -> Result<(), SceneError> {
+        let s = &mut scene.solver;
+        if let Some(i) = self.integrator {
+            s.integrator = match i {
+                IntegratorChoice::Rk4 => IntegratorKind::Rk4,
+                IntegratorChoice::Dp5 => IntegratorKind::Dp5,
+                IntegratorChoice::Sdirk4 => IntegratorKind::Sdirk4,
+            };
+        }
+        s.dt = self.dt.unwrap_or(s.dt);
+        s.rtol = self.rtol.unwrap_or(s.rtol);
+        s.atol = self.atol.unwrap_or(s.atol);
+        let problems = scene.problems();
+        if problems.is_empty() {
+            Ok(())
+        } else {
+            Err(SceneError::Invalid { file: format!("{file} (with command-line overrides)"), problems })
+        }
+    }
 }
 
 /// Exit code of a run that ended in a numerical failure.
@@ -326,11 +337,13 @@ fn try_main() -> Result<ExitCode> {
             commands::plot(&scenes, &out, &|model: &Model| kernel(choice, model))?;
             Ok(ExitCode::SUCCESS)
         }
-        Command::Batch { dir, out, tolerance, kernel: choice } => {
+        Command::Batch { dir, out, tolerance, kernel: choice, solver } => {
             if let Some(t) = tolerance {
                 anyhow::ensure!(t.is_finite() && t > 0.0, "--tolerance {t}: must be a number > 0 (e.g. 0.05 for 5 %)");
             }
-            let ok = commands::batch(&dir, &out, &|model: &Model| kernel(choice, model), tolerance)?;
+            let configure =
+                |scene: &mut Scene| solver.apply(scene, &scene.meta.name.clone()).map_err(|e| e.to_string());
+            let ok = commands::batch(&dir, &out, &configure, &|model: &Model| kernel(choice, model), tolerance)?;
             Ok(if ok { ExitCode::SUCCESS } else { ExitCode::from(1) })
         }
         Command::Codegen { scene, write, root } => {

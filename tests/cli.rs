@@ -218,3 +218,31 @@ fn plot_writes_the_four_svg_charts() {
         assert!(svg.contains("<polyline") || svg.contains("<path"), "{name} has no curve");
     }
 }
+
+#[test]
+fn batch_and_run_take_solver_overrides() {
+    let dir = temp_dir("overrides");
+    let scenes = dir.join("scenes");
+    std::fs::create_dir_all(&scenes).unwrap();
+    std::fs::copy(short_scene(&dir), scenes.join("a.toml")).unwrap();
+    let out = kanestop()
+        .args(["batch"])
+        .arg(&scenes)
+        .args(["--integrator", "dp5", "--dt", "0.01", "--rtol", "1e-5", "--atol", "1e-7", "--out"])
+        .arg(dir.join("out"))
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{stdout}");
+    assert!(stdout.contains("end time"), "{stdout}");
+    // A bad override makes the scene invalid with the usual clear message.
+    let out =
+        kanestop().args(["batch"]).arg(&scenes).args(["--rtol", "0", "--out"]).arg(dir.join("out2")).output().unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(out.status.code(), Some(1), "{stdout}");
+    assert!(stdout.contains("invalid") && stdout.contains("solver.rtol = 0"), "{stdout}");
+    let out =
+        kanestop().args(["run"]).arg(short_scene(&dir)).args(["--integrator", "sdirk4", "--atol=-1"]).output().unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("solver.atol = -1"));
+}

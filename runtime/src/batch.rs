@@ -85,20 +85,27 @@ pub fn row(file: &Path, model: &Model, result: &RunResult) -> BatchRow {
     }
 }
 
-/// Runs every file in parallel; `kernel` builds each run's kernel and `done` is called
-/// (from any thread) as each run finishes. Rows come back in file order.
+/// Adjusts a loaded scene before it runs (e.g. command-line solver overrides); an error
+/// marks the scene invalid.
+pub type Configure<'a> = &'a (dyn Fn(&mut Scene) -> Result<(), String> + Sync);
+
+/// Runs every file in parallel; `configure` adjusts each scene, `kernel` builds each run's
+/// kernel and `done` is called (from any thread) as each run finishes. Rows come back in
+/// file order.
 pub fn run_all(
     files: &[PathBuf],
+    configure: Configure,
     kernel: &(dyn Fn(&Model) -> Box<dyn Kernel> + Sync),
     done: &(dyn Fn(&BatchRow) + Sync),
 ) -> Vec<BatchRow> {
     files
         .par_iter()
         .map(|file| {
-            let row = match Scene::load(file)
-                .map_err(|e| e.to_string())
-                .and_then(|s| Model::new(&s).map_err(|e| e.to_string()))
-            {
+            let model = Scene::load(file).map_err(|e| e.to_string()).and_then(|mut s| {
+                configure(&mut s)?;
+                Model::new(&s).map_err(|e| e.to_string())
+            });
+            let row = match model {
                 Ok(model) => {
                     let result = simulate::run(&model, kernel(&model));
                     row(file, &model, &result)
@@ -139,12 +146,12 @@ fn opt(v: Option<f64>, scale: f64, digits: usize) -> String {
 /// The rows as a terminal table.
 pub fn table(rows: &[BatchRow]) -> String {
     let mut out = format!(
-        "{:<10} {:>3} {:<9} {:>9} {:>9} {:>8} {:>11} {:>6} {:>8} {:>9} {:>8}\n",
+        "{:<15} {:>3} {:<9} {:>9} {:>9} {:>8} {:>11} {:>6} {:>8} {:>9} {:>8}\n",
         "case", "N", "status", "stop (s)", "paper (s)", "diff %", "peak (kN)", "joint", "anchor s", "drift", "wall (s)"
     );
     for r in rows {
         out.push_str(&format!(
-            "{:<10} {:>3} {:<9} {:>9} {:>9} {:>8} {:>11} {:>6} {:>8} {:>9} {:>8.2}\n",
+            "{:<15} {:>3} {:<9} {:>9} {:>9} {:>8} {:>11} {:>6} {:>8} {:>9} {:>8.2}\n",
             r.case,
             r.bodies.map(|n| n.to_string()).unwrap_or_default(),
             r.status,
