@@ -60,7 +60,7 @@ pub fn scene_files(dir: &Path) -> std::io::Result<Vec<PathBuf>> {
 /// The row of one finished run.
 pub fn row(file: &Path, model: &Model, result: &RunResult) -> BatchRow {
     let paper = model.scene.meta.paper_stopping_time;
-    let peak = result.peak_tensions.iter().enumerate().max_by(|a, b| a.1.tension.total_cmp(&b.1.tension));
+    let peak = result.peak_tension();
     let (status, message) = match &result.stop {
         Stop::ShipStopped => ("stopped", String::new()),
         Stop::EndTime => ("end time", String::new()),
@@ -75,7 +75,7 @@ pub fn row(file: &Path, model: &Model, result: &RunResult) -> BatchRow {
         paper_stopping_time: paper,
         relative_difference: result.stopping_time.zip(paper).map(|(t, p)| (t - p) / p),
         peak_tension: peak.map(|p| p.1.tension),
-        peak_joint: peak.map(|p| p.0 + 2),
+        peak_joint: peak.map(|p| p.0),
         peak_time: peak.map(|p| p.1.t),
         break_exceedances: break_exceedances(model, result).len(),
         anchor_start: result.anchor_start(),

@@ -89,12 +89,6 @@ impl Catenary {
         self.horizontal - self.suspended_horizontal()
     }
 
-    /// T_h / w_c and T_v / w_c at the top (Eqs. 31, 32): multiply by the submerged weight
-    /// per metre w_c (N/m) for the tensions.
-    pub fn top_tension_per_weight(&self) -> (f64, f64) {
-        (self.a, self.a * self.b.sinh())
-    }
-
     /// The point at arc length `s` from o (Eqs. 33, 34), continued analytically past the
     /// end, m.
     pub fn point(&self, s: f64) -> [f64; 2] {

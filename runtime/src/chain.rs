@@ -93,9 +93,4 @@ impl Chain {
     pub fn is_empty(&self) -> bool {
         self.bodies.is_empty()
     }
-
-    /// Total mass, kg.
-    pub fn total_mass(&self) -> f64 {
-        self.bodies.iter().map(|b| b.mass).sum()
-    }
 }

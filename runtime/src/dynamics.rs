@@ -17,7 +17,6 @@ pub struct Dynamics {
     anchor: AnchorDof,
     assembly: Assembly,
     evaluations: u64,
-    holding_force: f64,
     loads: Vec<Load>,
 }
 
@@ -38,15 +37,7 @@ impl LoadModel for Recording<'_> {
 impl Dynamics {
     pub fn new(kernel: Box<dyn Kernel>, forces: Forces, anchor: AnchorDof) -> Self {
         let n = kernel.body_count();
-        Dynamics {
-            kernel,
-            forces,
-            anchor,
-            assembly: Assembly::new(n),
-            evaluations: 0,
-            holding_force: 0.0,
-            loads: vec![Load::default(); n],
-        }
+        Dynamics { kernel, forces, anchor, assembly: Assembly::new(n), evaluations: 0, loads: vec![Load::default(); n] }
     }
 
     /// N.
@@ -82,11 +73,6 @@ impl Dynamics {
         &self.loads
     }
 
-    /// The anchor's holding force of the last evaluation (Eq. 50), N; 0 when free.
-    pub fn holding_force(&self) -> f64 {
-        self.holding_force
-    }
-
     /// Number of active speeds: N (anchor free) or N − 1 (stuck).
     pub fn active_speeds(&self) -> usize {
         match self.anchor {
@@ -100,9 +86,13 @@ impl Dynamics {
     pub fn accelerations(&mut self, q: &[f64], u: &[f64], qdd: &mut [f64]) -> Result<f64, RhsError> {
         self.evaluations += 1;
         let mut model = Recording { forces: &mut self.forces, loads: &mut self.loads };
-        let h = self.kernel.solve(q, u, self.anchor, &mut model, &mut self.assembly, qdd)?;
-        self.holding_force = h;
-        Ok(h)
+        self.kernel.solve(q, u, self.anchor, &mut model, &mut self.assembly, qdd)
+    }
+
+    /// a_lp and f_l at (q, u) with this system's loads, whatever path `accelerations` takes
+    /// (for reports such as `eval`).
+    pub fn assemble(&mut self, q: &[f64], u: &[f64], out: &mut Assembly) {
+        self.kernel.assemble(q, u, &mut self.forces, out);
     }
 }
 

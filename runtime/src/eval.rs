@@ -125,13 +125,15 @@ pub fn evaluate(model: &Model, kernel: Box<dyn Kernel>, state: Option<&StateFile
         u[n - 1] = 0.0;
     }
     let kernel_name = kernel.name().to_string();
-    let mut dynamics = Dynamics::new(kernel, Forces::new(model), anchor);
+    let forces = Forces::new(model);
+    let physics = forces.description();
+    let mut dynamics = Dynamics::new(kernel, forces, anchor);
     let mut qdd = vec![0.0; n];
     dynamics.accelerations(&q, &u, &mut qdd).map_err(|e| EvalError(e.0))?;
     let active = dynamics.active_speeds();
     // M and f for the report come from an assembly, whatever the kernel's solve path.
     let mut asm = Assembly::new(n);
-    dynamics.kernel_mut().assemble(&q, &u, &mut Forces::new(model), &mut asm);
+    dynamics.assemble(&q, &u, &mut asm);
     let m: DMatrix<f64> = asm.mass.view((0, 0), (active, active)).into_owned();
     let f: DVector<f64> = asm.rhs.rows(0, active).into_owned();
     let x = DVector::from_column_slice(&qdd[..active]);
@@ -163,7 +165,7 @@ pub fn evaluate(model: &Model, kernel: Box<dyn Kernel>, state: Option<&StateFile
     Ok(EvalOutput {
         scene: model.scene.meta.name.clone(),
         kernel: kernel_name,
-        physics: Forces::new(model).description(),
+        physics,
         bodies_count: n,
         anchor,
         coordinates: coordinate_names(n),

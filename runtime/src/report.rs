@@ -141,9 +141,7 @@ pub fn summary(model: &Model, result: &RunResult) -> String {
         (AnchorDof::Free, None) => "free (no seabed friction)".to_string(),
     };
     w(&mut out, "anchor", anchor);
-    if let Some((i, peak)) = result.peak_tensions.iter().enumerate().max_by(|a, b| a.1.tension.total_cmp(&b.1.tension))
-    {
-        let k = i + 2;
+    if let Some((k, peak)) = result.peak_tension() {
         let (proof, brk) = joint_limits(model, k);
         let limit = |name: &str, v: Option<f64>| {
             v.map(|v| format!(", {name} {:.0} kN ({:.0} %)", v / 1e3, 100.0 * peak.tension / v)).unwrap_or_default()

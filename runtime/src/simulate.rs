@@ -23,7 +23,7 @@ use crate::dynamics::{Dynamics, WORK_COUNT};
 use crate::energy::Energy;
 use crate::forces::Forces;
 use crate::integrate::{Adaptive, Dopri5, Integrator, RhsError, Rk4, Sdirk4, Tolerances};
-use crate::kernel::{AnchorDof, BodyAcceleration, BodyState, Kernel, Load};
+use crate::kernel::{AnchorDof, BodyAcceleration, BodyState, Kernel};
 use crate::model::Model;
 use crate::scene::IntegratorKind;
 
@@ -167,6 +167,15 @@ impl RunResult {
     pub fn anchor_start(&self) -> Option<f64> {
         self.anchor_events.iter().find(|e| e.now == AnchorDof::Free).map(|e| e.t)
     }
+
+    /// The largest peak tension of the run and its joint k (between B_{k−1} and B_k).
+    pub fn peak_tension(&self) -> Option<(usize, PeakTension)> {
+        self.peak_tensions
+            .iter()
+            .enumerate()
+            .max_by(|a, b| a.1.tension.total_cmp(&b.1.tension))
+            .map(|(i, p)| (i + 2, *p))
+    }
 }
 
 /// The observed state after an accepted step.
@@ -190,7 +199,6 @@ struct Runner<'a> {
     direction: f64,
     qdd: Vec<f64>,
     acc: Vec<BodyAcceleration>,
-    loads: Vec<Load>,
 }
 
 impl Runner<'_> {
@@ -205,13 +213,12 @@ impl Runner<'_> {
         let holding = self.dynamics.accelerations(q, u, &mut self.qdd)?;
         let bodies = self.dynamics.assembly().bodies.clone();
         self.dynamics.kernel_mut().accelerations(q, u, &self.qdd, &mut self.acc);
-        self.loads.copy_from_slice(self.dynamics.loads());
         // Eq. 52 in Newton's form: the joint force on B_k balances the outboard bodies'
         // inertia (with added mass) less their applied loads.
         let mut joints = vec![[0.0; 2]; n - 1];
         let mut sum = [0.0, 0.0];
         for k in (0..n).rev() {
-            let (b, a, l, s) = (&self.model.chain.bodies[k], &self.acc[k], &self.loads[k], &bodies[k]);
+            let (b, a, l, s) = (&self.model.chain.bodies[k], &self.acc[k], &self.dynamics.loads()[k], &bodies[k]);
             let (sin, cos) = s.theta.sin_cos();
             let a_n = a.ax * sin + a.az * cos;
             sum[0] += b.mass * a.ax + b.added_mass * a_n * sin - l.fx;
@@ -316,7 +323,6 @@ pub fn run(model: &Model, kernel: Box<dyn Kernel>) -> RunResult {
         direction: 0.0,
         qdd: vec![0.0; n],
         acc: vec![BodyAcceleration::default(); n],
-        loads: vec![Load::default(); n],
     };
     let dt = solver.dt;
     let stride = ((solver.output_interval / dt).round() as u64).max(1);
@@ -534,21 +540,34 @@ fn failure(model: &Model, t: f64, last_good: &[f64], what: &str) -> Failure {
         .fold((0, -1.0), |best, (i, &v)| if v.abs() > best.1 { (i, v.abs()) } else { best });
     let k = i + 2;
     let body = &model.chain.bodies[k - 1];
-    let dt = model.scene.solver.dt;
+    let solver = &model.scene.solver;
+    let dt = solver.dt;
+    let ratio = model.chain.bodies.iter().map(|b| b.mass).fold(0.0, f64::max) / body.mass;
+    let mode = format!(
+        "the stiffest mode: a light element swinging between heavy neighbours under high tension (mass ratio \
+         {ratio:.0}:1 with the heaviest body)"
+    );
+    let kept = format!("the first {:.3} s up to the failure are kept", (t - dt).max(0.0));
+    let (cause, suggestion) = match solver.integrator {
+        IntegratorKind::Rk4 => (
+            format!("the explicit step dt = {dt} s is beyond the stability limit of {mode}"),
+            format!("reduce solver.dt (try {:.1e} s) or use integrator = \"dp5\"; {kept}", dt / 16.0),
+        ),
+        IntegratorKind::Dp5 => (
+            format!("the error-controlled steps could not follow {mode}"),
+            format!("tighten solver.rtol (now {}) or use integrator = \"sdirk4\"; {kept}", solver.rtol),
+        ),
+        IntegratorKind::Sdirk4 => (
+            format!("the implicit method's Newton iterations or error control failed on {mode}"),
+            format!("tighten solver.rtol (now {}) or reduce solver.dt (now {dt} s); {kept}", solver.rtol),
+        ),
+    };
     Failure {
         t,
         body: k,
         body_name: format!("{} (B_{k}, {:.1} kg, {:.2} m)", body.kind, body.mass, body.length()),
         what: what.to_string(),
-        cause: format!(
-            "the explicit step dt = {dt} s is beyond the stability limit of the stiffest mode: a light element \
-             swinging between heavy neighbours under high tension (mass ratio {:.0}:1 with the heaviest body)",
-            model.chain.bodies.iter().map(|b| b.mass).fold(0.0, f64::max) / body.mass
-        ),
-        suggestion: format!(
-            "reduce solver.dt (try {:.1e} s) and rerun; the first {:.3} s up to the failure are kept",
-            dt / 16.0,
-            (t - dt).max(0.0)
-        ),
+        cause,
+        suggestion,
     }
 }

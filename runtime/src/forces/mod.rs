@@ -164,13 +164,6 @@ impl Forces {
         }
         parts.join(", ")
     }
-
-    /// The seabed's normal force on the anchor would need the chain pull; see `simulate`.
-    /// Weight less buoyancy of the anchor, N.
-    pub fn anchor_submerged_weight(&self) -> f64 {
-        let buoyancy = if self.water { self.rho * self.anchor.volume * self.g } else { 0.0 };
-        self.elements[0].mass * self.g - buoyancy
-    }
 }
 
 /// Adds force `(fx, fz)` applied at `arm` from the centroid to `load`, and returns its power
