@@ -1,7 +1,9 @@
 //! The generated kernels against the reference formulation (the oracle), for every variant
 //! (water off and on; anchor free and stuck) and N ∈ {3, 5, 46, 48, 50}, at 100 random
-//! states each: body states, a_lp and f_l entrywise to 1e-12 of their scale, body
-//! accelerations, and both solve paths by the residual of the reference system.
+//! states each: body states, a_lp, f_l and the anchor's heave row entrywise to 1e-12 of
+//! their scale, body accelerations, and both solve paths by the residual of the reference
+//! system, with the anchor stuck, free, or sliding with implicit friction; the normal force
+//! of the heave row against Newton's sum over the bodies (Eq. 52).
 
 mod common;
 
@@ -98,11 +100,32 @@ fn chains(n: usize, wet: bool, rng: &mut StdRng) -> Vec<Chain> {
     out
 }
 
-fn residual(asm: &Assembly, active: usize, qdd: &[f64]) -> f64 {
-    let m = asm.mass.view((0, 0), (active, active));
-    let f = asm.rhs.rows(0, active);
+/// The relative residual of the reference system over the active speeds; with the anchor
+/// sliding under friction −k N, N = a_w ẍ − f_w moves into the surge row.
+fn residual(asm: &Assembly, active: usize, friction: f64, qdd: &[f64]) -> f64 {
+    let mut m = asm.mass.view((0, 0), (active, active)).into_owned();
+    let mut f = asm.rhs.rows(0, active).into_owned();
+    if active == asm.rhs.len() {
+        let s = active - 1;
+        for p in 0..active {
+            m[(s, p)] += friction * asm.heave[p];
+        }
+        f[s] += friction * asm.heave_rhs;
+    }
     let x = DVector::from_column_slice(&qdd[..active]);
-    (m * x - f).norm() / f.norm()
+    (m * x - &f).norm() / f.norm()
+}
+
+/// The seabed's normal force on the anchor by Newton's sum over all bodies (Eq. 52 at the
+/// anchor): N = Σ_k (m_k a_kz + m_a,k a_kn cos θ_k − F_kz).
+fn newton_normal(chain: &Chain, bodies: &[BodyState], acc: &[BodyAcceleration], loads: &[Load]) -> f64 {
+    let mut sum = 0.0;
+    for (((b, s), a), l) in chain.bodies.iter().zip(bodies).zip(acc).zip(loads) {
+        let (sin, cos) = s.theta.sin_cos();
+        let a_n = a.ax * sin + a.az * cos;
+        sum += b.mass * a.az + b.added_mass * a_n * cos - l.fz;
+    }
+    sum
 }
 
 fn check_size(n: usize, wet: bool) {
@@ -110,6 +133,7 @@ fn check_size(n: usize, wet: bool) {
     let chains = chains(n, wet, &mut rng);
     let per_chain = STATES.div_ceil(chains.len());
     let mut worst = [0.0f64; 5];
+    let mut sliding = 0;
     for chain in &chains {
         let mut reference = ReferenceKernel::new(chain);
         let mut generated = GeneratedKernel::new(chain).unwrap();
@@ -118,7 +142,12 @@ fn check_size(n: usize, wet: bool) {
         for trial in 0..per_chain {
             let (q, mut u) = random_state(n, &mut rng);
             let mut loads = random_loads(chain, &mut rng);
-            let anchor = if trial % 2 == 0 { AnchorDof::Free } else { AnchorDof::Stuck };
+            // Free without friction, stuck, sliding either way (k = ±μ).
+            let (anchor, friction) = match trial % 4 {
+                0 => (AnchorDof::Free, 0.0),
+                1 | 3 => (AnchorDof::Stuck, 0.0),
+                _ => (AnchorDof::Free, rng.gen_range(-0.6..0.6)),
+            };
             if anchor == AnchorDof::Stuck {
                 u[n - 1] = 0.0;
             }
@@ -154,28 +183,73 @@ fn check_size(n: usize, wet: bool) {
                 assert!(d <= 1e-12, "N={n} wet={wet} f[{i}]: {} vs {} ({d:e})", a_ref.rhs[i], a_gen.rhs[i]);
             }
 
+            // The heave row, on the scale of a_ss and of f.
+            let h_scale = m_ref[(n - 1, n - 1)];
+            for p in 0..n {
+                let d = (a_ref.heave[p] - a_gen.heave[p]).abs() / (h_scale * m_ref[(p, p)]).sqrt();
+                worst[0] = worst[0].max(d);
+                assert!(d <= 1e-12, "N={n} wet={wet} a_w[{p}]: {} vs {} ({d:e})", a_ref.heave[p], a_gen.heave[p]);
+            }
+            let d = (a_ref.heave_rhs - a_gen.heave_rhs).abs() / f_scale.max(a_ref.heave_rhs.abs());
+            worst[1] = worst[1].max(d);
+            assert!(d <= 1e-12, "N={n} wet={wet} f_w: {} vs {} ({d:e})", a_ref.heave_rhs, a_gen.heave_rhs);
+
             // Both solve paths, judged by the reference system.
             let active = if anchor == AnchorDof::Free { n } else { n - 1 };
             let mut qdd_ref = vec![0.0; n];
-            let hold_ref = solve_assembled(&a_ref, anchor, &mut qdd_ref).unwrap();
+            let reference_solve = solve_assembled(&a_ref, anchor, friction, &mut qdd_ref);
             let mut scratch = Assembly::new(n);
             for (kernel, slot) in [(&mut generated, 2), (&mut assembled, 3)] {
                 let mut qdd = vec![0.0; n];
-                let hold = kernel.solve(&q, &u, anchor, &mut loads, &mut scratch, &mut qdd).unwrap();
-                let r = residual(&a_ref, active, &qdd);
+                let solved = kernel.solve(&q, &u, anchor, friction, &mut loads, &mut scratch, &mut qdd);
+                let (reaction, reaction_ref) = match (solved, &reference_solve) {
+                    (Ok(a), Ok(b)) => (a, *b),
+                    (Err(a), Err(_)) => {
+                        // Friction made the sliding problem ill-posed for both.
+                        assert!(a.0.contains("Painlevé"), "{a}");
+                        continue;
+                    }
+                    (a, b) => panic!("N={n} {anchor:?} k={friction}: {a:?} vs reference {b:?}"),
+                };
+                sliding += usize::from(friction != 0.0);
+                let r = residual(&a_ref, active, friction, &qdd);
                 worst[slot] = worst[slot].max(r);
                 assert!(r <= 1e-12, "N={n} wet={wet} {anchor:?} {:?}: residual {r:e}", kernel.solve_path());
+                // N = a_w ẍ − f_w, on the scale of its terms.
+                let row: f64 =
+                    (0..active).map(|p| (a_ref.heave[p] * qdd[p]).abs()).sum::<f64>() + a_ref.heave_rhs.abs();
+                let normal =
+                    a_ref.heave.rows(0, active).dot(&DVector::from_column_slice(&qdd[..active])) - a_ref.heave_rhs;
+                for value in [reaction.normal, reaction_ref.normal] {
+                    let d = (value - normal).abs() / row;
+                    assert!(d <= 1e-10, "N={n} {anchor:?} normal force {value} vs {normal} ({d:e})");
+                }
                 if anchor == AnchorDof::Stuck {
                     assert_eq!(qdd[n - 1], 0.0);
                     // F = a_{N,p} ẍ_p − f_N: compare on the scale of its terms.
                     let row: f64 = (0..active).map(|p| (a_ref.mass[(n - 1, p)] * qdd[p]).abs()).sum::<f64>()
                         + a_ref.rhs[n - 1].abs();
-                    let d = (hold - hold_ref).abs() / row;
-                    assert!(d <= 1e-10, "N={n} holding force {hold} vs {hold_ref} ({d:e})");
+                    let d = (reaction.holding - reaction_ref.holding).abs() / row;
+                    assert!(d <= 1e-10, "N={n} holding force {} vs {} ({d:e})", reaction.holding, reaction_ref.holding);
                 } else {
-                    assert_eq!(hold, 0.0);
+                    assert_eq!(reaction.holding, 0.0);
                 }
             }
+            let Ok(reaction_ref) = reference_solve else { continue };
+
+            // The heave row's normal force is Newton's: N by Eq. 52 from the accelerations.
+            let mut acc = vec![BodyAcceleration::default(); n];
+            reference.accelerations(&q, &u, &qdd_ref, &mut acc);
+            let mut applied = vec![Load::default(); n];
+            loads.loads(&a_ref.bodies, &mut applied);
+            let newton = newton_normal(chain, &a_ref.bodies, &acc, &applied);
+            let scale: f64 = applied.iter().map(|l| l.fz.abs()).sum();
+            let d = (newton - reaction_ref.normal).abs() / scale;
+            assert!(
+                d <= 1e-10,
+                "N={n} wet={wet} normal force: Kane {} vs Newton {newton} ({d:e})",
+                reaction_ref.normal
+            );
 
             // Body accelerations (Eq. 17) for the same ẍ.
             let mut acc_ref = vec![BodyAcceleration::default(); n];
@@ -190,8 +264,11 @@ fn check_size(n: usize, wet: bool) {
             }
         }
     }
+    // Both solve paths of most sliding trials were checked (not skipped as ill-posed).
+    assert!(sliding >= STATES / 4, "N={n}: only {sliding} sliding solves checked");
     eprintln!(
-        "N={n} wet={wet}: worst M {:.1e}, f {:.1e}, residual recursive {:.1e}, assembled {:.1e}, acc {:.1e}",
+        "N={n} wet={wet}: worst M {:.1e}, f {:.1e}, residual recursive {:.1e}, assembled {:.1e}, acc {:.1e}, \
+         {sliding} sliding solves",
         worst[0], worst[1], worst[2], worst[3], worst[4]
     );
 }

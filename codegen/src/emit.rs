@@ -169,9 +169,12 @@ fn body(f: &Function) -> (TokenStream, usize) {
     if f.dense_fill {
         stmts.extend(dense_fill(n_of(f)));
     }
-    if let Some(r) = f.ret {
-        let value = operand[r.index()].clone().expect("returned value is live").0;
-        stmts.extend(quote!(#value));
+    let returned: Vec<TokenStream> =
+        f.ret.iter().map(|r| operand[r.index()].clone().expect("returned value is live").0).collect();
+    match returned.as_slice() {
+        [] => {}
+        [value] => stmts.extend(quote!(#value)),
+        values => stmts.extend(quote!([#(#values),*])),
     }
     (stmts, count)
 }
@@ -248,6 +251,7 @@ pub fn generate(variant: Variant) -> GeneratedFile {
     let bodies = fixed("bodies", quote!([f64; 6]), n, true);
     let m = fixed("m", f64_.clone(), n * n, true);
     let f = fixed("f", f64_.clone(), n, true);
+    let heave = fixed("heave", f64_.clone(), n + 1, true);
     let qdd_in = fixed("qdd", f64_.clone(), n, false);
     let qdd_out = fixed("qdd", f64_.clone(), n, true);
     let acc = fixed("acc", quote!([f64; 3]), n, true);
@@ -291,10 +295,12 @@ pub fn generate(variant: Variant) -> GeneratedFile {
             "The reduced Kane equations a_lp ẍ_p = f_l (Eqs. 25–27) over all N = {n} speeds.\n\n\
              `m` receives a_lp (Eq. 26), row-major and symmetric; `f` receives f_l (Eq. 25) with the\n\
              per-body loads `[F_x, F_z, T_y]` at the centroids projected by the partial velocities\n\
-             (Eqs. 15, 23). Reads the rotation table written by [`kinematics`]."
+             (Eqs. 15, 23). `heave` receives the row of the anchor's constrained heave speed:\n\
+             a_{{w,p}} for the N speeds, then f_w, so that the seabed's normal force on the anchor is\n\
+             N = a_{{w,p}} ẍ_p − f_w (Eqs. 37, 50). Reads the rotation table written by [`kinematics`]."
         ),
-        quote!(pub fn assemble(p: &[crate::BodyParams], u: &[f64], trig: &[[f64; 2]], loads: &[[f64; 3]], m: &mut [f64], f: &mut [f64])),
-        quote!(#params #u #trig_in #loads #m #f),
+        quote!(pub fn assemble(p: &[crate::BodyParams], u: &[f64], trig: &[[f64; 2]], loads: &[[f64; 3]], m: &mut [f64], f: &mut [f64], heave: &mut [f64])),
+        quote!(#params #u #trig_in #loads #m #f #heave),
     );
     function(
         "accelerations",
@@ -307,18 +313,22 @@ pub fn generate(variant: Variant) -> GeneratedFile {
         "solve_free",
         planar::solve(variant, false),
         "ẍ of Eq. 27 with the anchor free (all N speeds), by the O(N) articulated-body recursion\n\
-         on the Kane quantities of Eqs. 15–17 and 22–23: inward over the hinges, then outward."
+         on the Kane quantities of Eqs. 15–17 and 22–23: inward over the hinges, then outward.\n\n\
+         The anchor slides with friction −`friction`·N along x (`friction` = μ times the direction\n\
+         of sliding, 0 for none), N the seabed's normal force taken implicitly (Eq. 37). Returns\n\
+         `[N, 1 + friction·∂N/∂F_x]`: the second is positive for a well-posed sliding problem."
             .to_string(),
-        quote!(pub fn solve_free(p: &[crate::BodyParams], u: &[f64], trig: &[[f64; 2]], loads: &[[f64; 3]], qdd: &mut [f64])),
+        quote!(pub fn solve_free(p: &[crate::BodyParams], u: &[f64], trig: &[[f64; 2]], loads: &[[f64; 3]], friction: f64, qdd: &mut [f64]) -> [f64; 2]),
         quote!(#params #u #trig_in #loads #qdd_out),
     );
     function(
         "solve_stuck",
         planar::solve(variant, true),
         "ẍ of Eq. 27 with the anchor stuck (ẍ_{3N+1} = 0), by the O(N) recursion; returns the\n\
-         anchor's holding force F^C_{3N+1} = a_{3N+1,p} ẍ_p − f_{3N+1} (Eq. 50), N along +x."
+         anchor's holding force F^C_{3N+1} = a_{3N+1,p} ẍ_p − f_{3N+1} (Eq. 50), N along +x, and\n\
+         the seabed's normal force on it (Eq. 37), N along +z."
             .to_string(),
-        quote!(pub fn solve_stuck(p: &[crate::BodyParams], u: &[f64], trig: &[[f64; 2]], loads: &[[f64; 3]], qdd: &mut [f64]) -> f64),
+        quote!(pub fn solve_stuck(p: &[crate::BodyParams], u: &[f64], trig: &[[f64; 2]], loads: &[[f64; 3]], qdd: &mut [f64]) -> [f64; 2]),
         quote!(#params #u #trig_in #loads #qdd_out),
     );
 

@@ -321,8 +321,8 @@ pub struct Function {
     pub dag: Dag,
     /// (place, value): `place = value;` in order.
     pub stores: Vec<(String, Id)>,
-    /// The returned value, if any.
-    pub ret: Option<Id>,
+    /// The returned values: none, one (`-> f64`) or several (`-> [f64; n]`).
+    pub ret: Vec<Id>,
     /// With N ≥ 4, the dense block of a_lp over the coordinates 1 ≤ j < l ≤ N − 2 is
     /// filled after the stores by a fixed loop nest, a_jl = K_l − ō_j · S_l, from the local
     /// arrays `k_col`, `s_col` and `o_rel` that the stores fill (see [`assemble`]).
@@ -331,12 +331,12 @@ pub struct Function {
 
 impl Function {
     fn new(dag: Dag) -> Self {
-        Function { dag, stores: Vec::new(), ret: None, dense_fill: false }
+        Function { dag, stores: Vec::new(), ret: Vec::new(), dense_fill: false }
     }
 
     /// Every value the function computes.
     pub fn roots(&self) -> Vec<Id> {
-        self.stores.iter().map(|s| s.1).chain(self.ret).collect()
+        self.stores.iter().map(|s| s.1).chain(self.ret.iter().copied()).collect()
     }
 }
 
@@ -391,7 +391,14 @@ pub fn kinematics(variant: Variant) -> Function {
 }
 
 /// a_lp (Eq. 26) over all N speeds, both triangles, and f_l (Eq. 25) with the loads
-/// projected by Eq. 23.
+/// projected by Eq. 23; plus the row of the anchor's heave speed w = ẋ_{3N+3}, which is
+/// always constrained: `heave[p]` = a_{w,p} for the N active speeds and `heave[N]` = f_w,
+/// so that the seabed's normal force on the anchor is N = a_{w,p} ẍ_p − f_w (Eq. 50 for
+/// the vertical; Eq. 37).
+///
+/// The heave speed moves every centroid by (0, 1), so a_{w,β_l} = Σ_{k≥l} e_zᵀ A_k J(p_k −
+/// o_l) = −(S_l)_x (J(−1, 0) = e_z), a_{w,s} = Σ_k (A_k)_xz = Σ m_a,k sin θ_k cos θ_k and
+/// f_w = Σ_k F̃_kz.
 pub fn assemble(variant: Variant) -> Function {
     let n = variant.bodies;
     let mut dag = Dag::new();
@@ -467,18 +474,28 @@ pub fn assemble(variant: Variant) -> Function {
         entries.push((l - 1, l - 1, j_l[l]));
         // a_{β_l s} = (S_l)_z.
         entries.push((l - 1, n - 1, s_l[l][1]));
+        // a_{w β_l} = −(S_l)_x.
+        let a_w = dag.neg(s_l[l][0]);
+        let a_w = dag.name(a_w, format!("a_w_{}", l - 1));
+        f.stores.push((format!("heave[{}]", l - 1), a_w));
     }
     f.dense_fill = n >= 4;
-    // a_{ss} = Σ m_k + m_a,k sin²θ_k.
+    // a_{ss} = Σ m_k + m_a,k sin²θ_k and a_{ws} = Σ m_a,k sin θ_k cos θ_k.
     let mut ass = zero;
+    let mut aws = zero;
     for k in 0..n {
-        let s = kin.cs[k][1];
+        let [c, s] = kin.cs[k];
         let s2 = dag.mul(s, s);
         let a = dag.mul(kin.p.added_mass[k], s2);
         let t = dag.add(kin.p.mass[k], a);
         ass = dag.add(ass, t);
+        let sc = dag.mul(s, c);
+        let a = dag.mul(kin.p.added_mass[k], sc);
+        aws = dag.add(aws, a);
     }
     entries.push((n - 1, n - 1, ass));
+    let aws = dag.name(aws, format!("a_w_{}", n - 1));
+    f.stores.push((format!("heave[{}]", n - 1), aws));
     entries.sort_by_key(|&(i, j, _)| (i, j));
     for &(i, j, a) in &entries {
         dag.name(a, format!("a_{i}_{j}"));
@@ -508,6 +525,8 @@ pub fn assemble(variant: Variant) -> Function {
     for (i, &v) in rhs.iter().enumerate() {
         f.stores.push((format!("f[{i}]"), v));
     }
+    let f_w = dag.name(g[1], "f_w");
+    f.stores.push((format!("heave[{n}]"), f_w));
     f.dag = dag;
     f
 }
@@ -560,8 +579,10 @@ pub fn accelerations(variant: Variant) -> Function {
 /// its moment), minus the applied load. Inward, the articulated inertia IA_k and bias pA_k
 /// of the outboard subchain absorb each hinge (smooth: no joint moment): the hinge's row is
 /// eliminated and the rest is carried across d_k to o_{k−1}. Outward, each hinge's
-/// acceleration follows from its row. With the anchor free ẍ_s = −pA_1x / IA_1xx; with it
-/// stuck ẍ_s = 0 and pA_1x is the holding force of Eq. 50.
+/// acceleration follows from its row. With the anchor free ẍ_s = −pA_1x / IA_1xx, or with
+/// the sliding friction −k N taken implicitly, ẍ_s = −(pA_1x + k pA_1z) / (IA_1xx + k IA_1xz);
+/// with it stuck ẍ_s = 0 and pA_1x is the holding force of Eq. 50. Both return the seabed's
+/// normal force N = IA_1xz ẍ_s + pA_1z (Eq. 37).
 pub fn solve(variant: Variant, stuck: bool) -> Function {
     let n = variant.bodies;
     let mut dag = Dag::new();
@@ -662,14 +683,33 @@ pub fn solve(variant: Variant, stuck: bool) -> Function {
         carry = Some(([x00, y1, y2, r11, r12, r22], [xp0, z1, z2]));
     }
 
-    // The anchor.
+    // The anchor. The seabed supplies the wrench IA_1 (0, ẍ_s, 0) + pA_1 at o_1: its x part
+    // is the holding force (Eq. 50), its z part the normal force N (Eq. 37).
     let s_dd = if stuck {
-        f.ret = Some(dag.name(pa[0][1], "holding_force"));
+        let holding = dag.name(pa[0][1], "holding_force");
+        let normal = dag.name(pa[0][2], "normal_force");
+        f.ret = vec![holding, normal];
         zero
     } else {
-        let v = dag.div(pa[0][1], ia[0][3]);
+        // Sliding friction −k N along x with k = μ·(direction of sliding), N = IA_xz ẍ_s +
+        // pA_z implicit in ẍ_s: (IA_xx + k IA_xz) ẍ_s = −(pA_x + k pA_z).
+        let k = dag.input("friction");
+        let kz = dag.mul(k, ia[0][4]);
+        let den = dag.add(ia[0][3], kz);
+        let kp = dag.mul(k, pa[0][2]);
+        let num = dag.add(pa[0][1], kp);
+        let v = dag.div(num, den);
         let v = dag.neg(v);
-        dag.name(v, "s_dd")
+        let s_dd = dag.name(v, "s_dd");
+        let nz = dag.mul(ia[0][4], s_dd);
+        let normal = dag.add(nz, pa[0][2]);
+        let normal = dag.name(normal, "normal_force");
+        // den / IA_xx = 1 + k ∂N/∂F_x: positive unless friction locks the anchor's surge
+        // (Painlevé's paradox); the runtime refuses a non-positive value.
+        let factor = dag.div(den, ia[0][3]);
+        let factor = dag.name(factor, "friction_factor");
+        f.ret = vec![normal, factor];
+        s_dd
     };
     f.stores.push((format!("qdd[{}]", n - 1), s_dd));
 

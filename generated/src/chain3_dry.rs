@@ -89,7 +89,9 @@ pub fn kinematics(
 ///
 /// `m` receives a_lp (Eq. 26), row-major and symmetric; `f` receives f_l (Eq. 25) with the
 /// per-body loads `[F_x, F_z, T_y]` at the centroids projected by the partial velocities
-/// (Eqs. 15, 23). Reads the rotation table written by [`kinematics`].
+/// (Eqs. 15, 23). `heave` receives the row of the anchor's constrained heave speed:
+/// a_{w,p} for the N speeds, then f_w, so that the seabed's normal force on the anchor is
+/// N = a_{w,p} ẍ_p − f_w (Eqs. 37, 50). Reads the rotation table written by [`kinematics`].
 pub fn assemble(
     p: &[crate::BodyParams],
     u: &[f64],
@@ -97,6 +99,7 @@ pub fn assemble(
     loads: &[[f64; 3]],
     m: &mut [f64],
     f: &mut [f64],
+    heave: &mut [f64],
 ) {
     let p: &[crate::BodyParams; 3] = p.try_into().expect("p must have 3 entries");
     let u: &[f64; 3] = u.try_into().expect("u must have 3 entries");
@@ -104,6 +107,7 @@ pub fn assemble(
     let loads: &[[f64; 3]; 3] = loads.try_into().expect("loads must have 3 entries");
     let m: &mut [f64; 9] = m.try_into().expect("m must have 9 entries");
     let f: &mut [f64; 3] = f.try_into().expect("f must have 3 entries");
+    let heave: &mut [f64; 4] = heave.try_into().expect("heave must have 4 entries");
     let w_3 = u[0] + u[1];
     let e_2_x = trig[1][0] * p[1].centroid[0];
     let t25 = trig[1][1] * p[1].centroid[0];
@@ -117,20 +121,23 @@ pub fn assemble(
         + p[2].mass
             * (p[2].centroid[0] * p[2].centroid[0]
                 + p[2].centroid[1] * p[2].centroid[1]);
+    let sm_2_x = p[2].mass * d_3_x + (sm_3_x + p[1].mass * e_2_x);
     let sm_2_z = sm_3_z - p[1].mass * t25 - p[2].mass * t28;
     let t69 = d_3_x * sm_3_x - t28 * sm_3_z;
     let j_2 = p[2].mass * (p[2].joint[0] * p[2].joint[0])
         + (t69 + t69
             + (j_3
                 + (p[1].inertia + p[1].mass * (p[1].centroid[0] * p[1].centroid[0]))));
+    let a_w_0 = -sm_2_x;
     let k_3 = j_3 + t69;
+    let a_w_1 = -sm_3_x;
     let a_2_2 = p[2].mass + (p[0].mass + p[1].mass);
-    let t80 = u[0] * u[0];
-    let ac_2_z = t25 * t80;
-    let t89 = w_3 * w_3;
-    let ac_3_x = -(d_3_x * t80) - e_3_x * t89;
-    let ac_3_z = t28 * t80 - e_3_z * t89;
-    let fe_2_x = loads[1][0] + p[1].mass * (e_2_x * t80);
+    let t82 = u[0] * u[0];
+    let ac_2_z = t25 * t82;
+    let t91 = w_3 * w_3;
+    let ac_3_x = -(d_3_x * t82) - e_3_x * t91;
+    let ac_3_z = t28 * t82 - e_3_z * t91;
+    let fe_2_x = loads[1][0] + p[1].mass * (e_2_x * t82);
     let fe_2_z = loads[1][1] - p[1].mass * ac_2_z;
     let fe_3_x = loads[2][0] - p[2].mass * ac_3_x;
     let fe_3_z = loads[2][1] - p[2].mass * ac_3_z;
@@ -139,7 +146,12 @@ pub fn assemble(
         + (-(t25 * fe_2_x) - e_2_x * fe_2_z
             + (f_1 + (-(t28 * fe_3_x) - d_3_x * fe_3_z)));
     let g_2_x = fe_2_x + fe_3_x;
+    let g_2_z = fe_2_z + fe_3_z;
     let g_1_x = loads[0][0] + g_2_x;
+    let g_1_z = loads[0][1] + g_2_z;
+    heave[0] = a_w_0;
+    heave[1] = a_w_1;
+    heave[2] = 0.0;
     m[0] = j_2;
     m[1] = k_3;
     m[3] = k_3;
@@ -152,6 +164,7 @@ pub fn assemble(
     f[0] = f_0;
     f[1] = f_1;
     f[2] = g_1_x;
+    heave[3] = g_1_z;
 }
 /// Body accelerations (Eq. 17): `acc[k] = [a_x, a_z, α]` of C_k for generalised accelerations `qdd`.
 pub fn accelerations(
@@ -194,13 +207,18 @@ pub fn accelerations(
 }
 /// ẍ of Eq. 27 with the anchor free (all N speeds), by the O(N) articulated-body recursion
 /// on the Kane quantities of Eqs. 15–17 and 22–23: inward over the hinges, then outward.
+///
+/// The anchor slides with friction −`friction`·N along x (`friction` = μ times the direction
+/// of sliding, 0 for none), N the seabed's normal force taken implicitly (Eq. 37). Returns
+/// `[N, 1 + friction·∂N/∂F_x]`: the second is positive for a well-posed sliding problem.
 pub fn solve_free(
     p: &[crate::BodyParams],
     u: &[f64],
     trig: &[[f64; 2]],
     loads: &[[f64; 3]],
+    friction: f64,
     qdd: &mut [f64],
-) {
+) -> [f64; 2] {
     let p: &[crate::BodyParams; 3] = p.try_into().expect("p must have 3 entries");
     let u: &[f64; 3] = u.try_into().expect("u must have 3 entries");
     let trig: &[[f64; 2]; 3] = trig.try_into().expect("trig must have 3 entries");
@@ -233,39 +251,51 @@ pub fn solve_free(
     let t90 = d_3_x * t89;
     let t91 = t28 * t89;
     let t98 = pa_3_x + t69 * t74 + (ia_2_12 * t91 - t81 * t90);
+    let t103 = pa_3_z - t69 * t75 + (t82 * t91 - ia_2_12 * t90);
     let t108 = -(t28 * t81) - d_3_x * ia_2_12;
-    let ia_2_00 = -(t28 * t108) - d_3_x * (-(t28 * ia_2_12) - d_3_x * t82)
+    let t113 = -(t28 * ia_2_12) - d_3_x * t82;
+    let t127 = p[1].mass * e_2_x;
+    let t128 = p[1].mass * t25;
+    let ia_2_00 = -(t28 * t108) - d_3_x * t113
         + (p[1].inertia + p[1].mass * (p[1].centroid[0] * p[1].centroid[0]));
-    let ia_2_01 = t108 - p[1].mass * t25;
+    let ia_2_01 = t108 - t128;
+    let ia_2_02 = t113 - t127;
     let ia_2_11 = p[1].mass + t81;
-    let pa_2_m = -(t28 * t98)
-        - d_3_x * (pa_3_z - t69 * t75 + (t82 * t91 - ia_2_12 * t90))
+    let pa_2_m = -(t28 * t98) - d_3_x * t103
         - (loads[1][2] + (-(t25 * loads[1][0]) - e_2_x * loads[1][1]));
-    let pa_2_x = t98 + (-(t89 * (p[1].mass * e_2_x)) - loads[1][0]);
+    let pa_2_x = t98 + (-(t89 * t127) - loads[1][0]);
+    let pa_2_z = t103 + (t89 * t128 - loads[1][1]);
     let inv_2 = 1.0 / ia_2_00;
     let t160 = ia_2_01 * inv_2;
+    let ia_1_12 = ia_2_12 - ia_2_02 * t160;
     let ia_1_11 = p[0].mass + (ia_2_11 - ia_2_01 * t160);
     let pa_1_x = pa_2_x - pa_2_m * t160 - loads[0][0];
-    let t212 = pa_1_x / ia_1_11;
-    let s_dd = -t212;
-    let t217 = inv_2 * (pa_2_m - ia_2_01 * t212);
-    let alpha_2 = -t217;
-    let ao_3_x = t28 * t217 - t212 - t90;
-    let ao_3_z = t91 + d_3_x * t217;
-    let qdd_1 = t217 - inv_3 * (ia_3_01 * ao_3_x - t50 * ao_3_z - t69);
+    let pa_1_z = pa_2_z - pa_2_m * (ia_2_02 * inv_2) - loads[0][1];
+    let t214 = ia_1_11 + ia_1_12 * friction;
+    let t217 = (pa_1_x + pa_1_z * friction) / t214;
+    let s_dd = -t217;
+    let normal_force = pa_1_z - ia_1_12 * t217;
+    let friction_factor = t214 / ia_1_11;
+    let t226 = inv_2 * (pa_2_m - ia_2_01 * t217);
+    let alpha_2 = -t226;
+    let ao_3_x = t28 * t226 - t217 - t90;
+    let ao_3_z = t91 + d_3_x * t226;
+    let qdd_1 = t226 - inv_3 * (ia_3_01 * ao_3_x - t50 * ao_3_z - t69);
     qdd[0] = alpha_2;
     qdd[1] = qdd_1;
     qdd[2] = s_dd;
+    [normal_force, friction_factor]
 }
 /// ẍ of Eq. 27 with the anchor stuck (ẍ_{3N+1} = 0), by the O(N) recursion; returns the
-/// anchor's holding force F^C_{3N+1} = a_{3N+1,p} ẍ_p − f_{3N+1} (Eq. 50), N along +x.
+/// anchor's holding force F^C_{3N+1} = a_{3N+1,p} ẍ_p − f_{3N+1} (Eq. 50), N along +x, and
+/// the seabed's normal force on it (Eq. 37), N along +z.
 pub fn solve_stuck(
     p: &[crate::BodyParams],
     u: &[f64],
     trig: &[[f64; 2]],
     loads: &[[f64; 3]],
     qdd: &mut [f64],
-) -> f64 {
+) -> [f64; 2] {
     let p: &[crate::BodyParams; 3] = p.try_into().expect("p must have 3 entries");
     let u: &[f64; 3] = u.try_into().expect("u must have 3 entries");
     let trig: &[[f64; 2]; 3] = trig.try_into().expect("trig must have 3 entries");
@@ -298,16 +328,22 @@ pub fn solve_stuck(
     let t90 = d_3_x * t89;
     let t91 = t28 * t89;
     let t98 = pa_3_x + t69 * t74 + (ia_2_12 * t91 - t81 * t90);
+    let t103 = pa_3_z - t69 * t75 + (t82 * t91 - ia_2_12 * t90);
     let t108 = -(t28 * t81) - d_3_x * ia_2_12;
-    let ia_2_00 = -(t28 * t108) - d_3_x * (-(t28 * ia_2_12) - d_3_x * t82)
+    let t113 = -(t28 * ia_2_12) - d_3_x * t82;
+    let t127 = p[1].mass * e_2_x;
+    let t128 = p[1].mass * t25;
+    let ia_2_00 = -(t28 * t108) - d_3_x * t113
         + (p[1].inertia + p[1].mass * (p[1].centroid[0] * p[1].centroid[0]));
-    let ia_2_01 = t108 - p[1].mass * t25;
-    let pa_2_m = -(t28 * t98)
-        - d_3_x * (pa_3_z - t69 * t75 + (t82 * t91 - ia_2_12 * t90))
+    let ia_2_01 = t108 - t128;
+    let ia_2_02 = t113 - t127;
+    let pa_2_m = -(t28 * t98) - d_3_x * t103
         - (loads[1][2] + (-(t25 * loads[1][0]) - e_2_x * loads[1][1]));
-    let pa_2_x = t98 + (-(t89 * (p[1].mass * e_2_x)) - loads[1][0]);
+    let pa_2_x = t98 + (-(t89 * t127) - loads[1][0]);
+    let pa_2_z = t103 + (t89 * t128 - loads[1][1]);
     let inv_2 = 1.0 / ia_2_00;
     let pa_1_x = pa_2_x - pa_2_m * (ia_2_01 * inv_2) - loads[0][0];
+    let pa_1_z = pa_2_z - pa_2_m * (ia_2_02 * inv_2) - loads[0][1];
     let t212 = pa_2_m * inv_2;
     let alpha_2 = -t212;
     let ao_3_x = t28 * t212 - t90;
@@ -316,5 +352,5 @@ pub fn solve_stuck(
     qdd[0] = alpha_2;
     qdd[1] = qdd_1;
     qdd[2] = 0.0;
-    pa_1_x
+    [pa_1_x, pa_1_z]
 }

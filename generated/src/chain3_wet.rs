@@ -89,7 +89,9 @@ pub fn kinematics(
 ///
 /// `m` receives a_lp (Eq. 26), row-major and symmetric; `f` receives f_l (Eq. 25) with the
 /// per-body loads `[F_x, F_z, T_y]` at the centroids projected by the partial velocities
-/// (Eqs. 15, 23). Reads the rotation table written by [`kinematics`].
+/// (Eqs. 15, 23). `heave` receives the row of the anchor's constrained heave speed:
+/// a_{w,p} for the N speeds, then f_w, so that the seabed's normal force on the anchor is
+/// N = a_{w,p} ẍ_p − f_w (Eqs. 37, 50). Reads the rotation table written by [`kinematics`].
 pub fn assemble(
     p: &[crate::BodyParams],
     u: &[f64],
@@ -97,6 +99,7 @@ pub fn assemble(
     loads: &[[f64; 3]],
     m: &mut [f64],
     f: &mut [f64],
+    heave: &mut [f64],
 ) {
     let p: &[crate::BodyParams; 3] = p.try_into().expect("p must have 3 entries");
     let u: &[f64; 3] = u.try_into().expect("u must have 3 entries");
@@ -104,6 +107,7 @@ pub fn assemble(
     let loads: &[[f64; 3]; 3] = loads.try_into().expect("loads must have 3 entries");
     let m: &mut [f64; 9] = m.try_into().expect("m must have 9 entries");
     let f: &mut [f64; 3] = f.try_into().expect("f must have 3 entries");
+    let heave: &mut [f64; 4] = heave.try_into().expect("heave must have 4 entries");
     let w_3 = u[0] + u[1];
     let e_2_x = trig[1][0] * p[1].centroid[0];
     let t26 = trig[1][1] * p[1].centroid[0];
@@ -117,26 +121,29 @@ pub fn assemble(
         + p[2].mass
             * (p[2].centroid[0] * p[2].centroid[0]
                 + p[2].centroid[1] * p[2].centroid[1]);
+    let a_w_2 = p[1].added_mass * (trig[1][0] * trig[1][1]);
+    let t63 = p[1].centroid[0] * p[1].added_mass;
     let t69 = p[1].centroid[0] * p[1].centroid[0];
-    let sm_2_z = sm_3_z
-        + (-(p[1].mass * t26) - trig[1][1] * (p[1].centroid[0] * p[1].added_mass))
-        - p[2].mass * t29;
+    let sm_2_x = p[2].mass * d_3_x + (sm_3_x + (p[1].mass * e_2_x + trig[1][0] * t63));
+    let sm_2_z = sm_3_z + (-(p[1].mass * t26) - trig[1][1] * t63) - p[2].mass * t29;
     let t84 = d_3_x * sm_3_x - t29 * sm_3_z;
     let j_2 = p[2].mass * (p[2].joint[0] * p[2].joint[0])
         + (t84 + t84
             + (j_3 + (p[1].inertia + (p[1].mass * t69 + p[1].added_mass * t69))));
+    let a_w_0 = -sm_2_x;
     let k_3 = j_3 + t84;
+    let a_w_1 = -sm_3_x;
     let a_2_2 = p[2].mass
         + (p[0].mass + (p[1].mass + p[1].added_mass * (trig[1][1] * trig[1][1])));
-    let t96 = u[0] * u[0];
-    let t97 = e_2_x * t96;
-    let ac_2_z = t26 * t96;
-    let t105 = w_3 * w_3;
-    let ac_3_x = -(d_3_x * t96) - e_3_x * t105;
-    let ac_3_z = t29 * t96 - e_3_z * t105;
-    let t123 = p[1].added_mass * (trig[1][0] * ac_2_z - trig[1][1] * t97);
-    let fe_2_x = loads[1][0] - (trig[1][1] * t123 - p[1].mass * t97);
-    let fe_2_z = loads[1][1] - (p[1].mass * ac_2_z + trig[1][0] * t123);
+    let t98 = u[0] * u[0];
+    let t99 = e_2_x * t98;
+    let ac_2_z = t26 * t98;
+    let t107 = w_3 * w_3;
+    let ac_3_x = -(d_3_x * t98) - e_3_x * t107;
+    let ac_3_z = t29 * t98 - e_3_z * t107;
+    let t125 = p[1].added_mass * (trig[1][0] * ac_2_z - trig[1][1] * t99);
+    let fe_2_x = loads[1][0] - (trig[1][1] * t125 - p[1].mass * t99);
+    let fe_2_z = loads[1][1] - (p[1].mass * ac_2_z + trig[1][0] * t125);
     let fe_3_x = loads[2][0] - p[2].mass * ac_3_x;
     let fe_3_z = loads[2][1] - p[2].mass * ac_3_z;
     let f_1 = loads[2][2] + (e_3_z * fe_3_x - e_3_x * fe_3_z);
@@ -144,7 +151,12 @@ pub fn assemble(
         + (-(t26 * fe_2_x) - e_2_x * fe_2_z
             + (f_1 + (-(t29 * fe_3_x) - d_3_x * fe_3_z)));
     let g_2_x = fe_2_x + fe_3_x;
+    let g_2_z = fe_2_z + fe_3_z;
     let g_1_x = loads[0][0] + g_2_x;
+    let g_1_z = loads[0][1] + g_2_z;
+    heave[0] = a_w_0;
+    heave[1] = a_w_1;
+    heave[2] = a_w_2;
     m[0] = j_2;
     m[1] = k_3;
     m[3] = k_3;
@@ -157,6 +169,7 @@ pub fn assemble(
     f[0] = f_0;
     f[1] = f_1;
     f[2] = g_1_x;
+    heave[3] = g_1_z;
 }
 /// Body accelerations (Eq. 17): `acc[k] = [a_x, a_z, α]` of C_k for generalised accelerations `qdd`.
 pub fn accelerations(
@@ -199,13 +212,18 @@ pub fn accelerations(
 }
 /// ẍ of Eq. 27 with the anchor free (all N speeds), by the O(N) articulated-body recursion
 /// on the Kane quantities of Eqs. 15–17 and 22–23: inward over the hinges, then outward.
+///
+/// The anchor slides with friction −`friction`·N along x (`friction` = μ times the direction
+/// of sliding, 0 for none), N the seabed's normal force taken implicitly (Eq. 37). Returns
+/// `[N, 1 + friction·∂N/∂F_x]`: the second is positive for a well-posed sliding problem.
 pub fn solve_free(
     p: &[crate::BodyParams],
     u: &[f64],
     trig: &[[f64; 2]],
     loads: &[[f64; 3]],
+    friction: f64,
     qdd: &mut [f64],
-) {
+) -> [f64; 2] {
     let p: &[crate::BodyParams; 3] = p.try_into().expect("p must have 3 entries");
     let u: &[f64; 3] = u.try_into().expect("u must have 3 entries");
     let trig: &[[f64; 2]; 3] = trig.try_into().expect("trig must have 3 entries");
@@ -238,45 +256,55 @@ pub fn solve_free(
     let t91 = d_3_x * t90;
     let t92 = t29 * t90;
     let t99 = pa_3_x + t70 * t75 + (t79 * t92 - t82 * t91);
+    let t104 = pa_3_z - t70 * t76 + (t83 * t92 - t79 * t91);
     let t109 = -(t29 * t82) - d_3_x * t79;
+    let t114 = -(t29 * t79) - d_3_x * t83;
     let t125 = p[1].centroid[0] * p[1].centroid[0];
-    let ia_2_00 = -(t29 * t109) - d_3_x * (-(t29 * t79) - d_3_x * t83)
+    let t130 = p[1].mass * e_2_x;
+    let t131 = p[1].mass * t26;
+    let t134 = p[1].centroid[0] * p[1].added_mass;
+    let t153 = p[1].added_mass * (trig[1][1] * e_2_x - trig[1][0] * t26);
+    let ia_2_00 = -(t29 * t109) - d_3_x * t114
         + (p[1].inertia + (p[1].mass * t125 + p[1].added_mass * t125));
-    let ia_2_01 = t109
-        + (-(p[1].mass * t26) - trig[1][1] * (p[1].centroid[0] * p[1].added_mass));
+    let ia_2_01 = t109 + (-t131 - trig[1][1] * t134);
+    let ia_2_02 = t114 - (t130 + trig[1][0] * t134);
     let ia_2_11 = t82 + (p[1].mass + p[1].added_mass * (trig[1][1] * trig[1][1]));
-    let pa_2_m = -(t29 * t99) - d_3_x * (pa_3_z - t70 * t76 + (t83 * t92 - t79 * t91))
+    let ia_2_12 = t79 + p[1].added_mass * (trig[1][0] * trig[1][1]);
+    let pa_2_m = -(t29 * t99) - d_3_x * t104
         - (loads[1][2] + (-(t26 * loads[1][0]) - e_2_x * loads[1][1]));
-    let pa_2_x = t99
-        + (-(t90
-            * (p[1].mass * e_2_x
-                + trig[1][1]
-                    * (p[1].added_mass * (trig[1][1] * e_2_x - trig[1][0] * t26))))
-            - loads[1][0]);
+    let pa_2_x = t99 + (-(t90 * (t130 + trig[1][1] * t153)) - loads[1][0]);
+    let pa_2_z = t104 + (-(t90 * (trig[1][0] * t153 - t131)) - loads[1][1]);
     let inv_2 = 1.0 / ia_2_00;
     let t180 = ia_2_01 * inv_2;
+    let ia_1_12 = ia_2_12 - ia_2_02 * t180;
     let ia_1_11 = p[0].mass + (ia_2_11 - ia_2_01 * t180);
     let pa_1_x = pa_2_x - pa_2_m * t180 - loads[0][0];
-    let t232 = pa_1_x / ia_1_11;
-    let s_dd = -t232;
-    let t237 = inv_2 * (pa_2_m - ia_2_01 * t232);
-    let alpha_2 = -t237;
-    let ao_3_x = t29 * t237 - t232 - t91;
-    let ao_3_z = t92 + d_3_x * t237;
-    let qdd_1 = t237 - inv_3 * (ia_3_01 * ao_3_x - t51 * ao_3_z - t70);
+    let pa_1_z = pa_2_z - pa_2_m * (ia_2_02 * inv_2) - loads[0][1];
+    let t234 = ia_1_11 + ia_1_12 * friction;
+    let t237 = (pa_1_x + pa_1_z * friction) / t234;
+    let s_dd = -t237;
+    let normal_force = pa_1_z - ia_1_12 * t237;
+    let friction_factor = t234 / ia_1_11;
+    let t246 = inv_2 * (pa_2_m - ia_2_01 * t237);
+    let alpha_2 = -t246;
+    let ao_3_x = t29 * t246 - t237 - t91;
+    let ao_3_z = t92 + d_3_x * t246;
+    let qdd_1 = t246 - inv_3 * (ia_3_01 * ao_3_x - t51 * ao_3_z - t70);
     qdd[0] = alpha_2;
     qdd[1] = qdd_1;
     qdd[2] = s_dd;
+    [normal_force, friction_factor]
 }
 /// ẍ of Eq. 27 with the anchor stuck (ẍ_{3N+1} = 0), by the O(N) recursion; returns the
-/// anchor's holding force F^C_{3N+1} = a_{3N+1,p} ẍ_p − f_{3N+1} (Eq. 50), N along +x.
+/// anchor's holding force F^C_{3N+1} = a_{3N+1,p} ẍ_p − f_{3N+1} (Eq. 50), N along +x, and
+/// the seabed's normal force on it (Eq. 37), N along +z.
 pub fn solve_stuck(
     p: &[crate::BodyParams],
     u: &[f64],
     trig: &[[f64; 2]],
     loads: &[[f64; 3]],
     qdd: &mut [f64],
-) -> f64 {
+) -> [f64; 2] {
     let p: &[crate::BodyParams; 3] = p.try_into().expect("p must have 3 entries");
     let u: &[f64; 3] = u.try_into().expect("u must have 3 entries");
     let trig: &[[f64; 2]; 3] = trig.try_into().expect("trig must have 3 entries");
@@ -309,22 +337,25 @@ pub fn solve_stuck(
     let t91 = d_3_x * t90;
     let t92 = t29 * t90;
     let t99 = pa_3_x + t70 * t75 + (t79 * t92 - t82 * t91);
+    let t104 = pa_3_z - t70 * t76 + (t83 * t92 - t79 * t91);
     let t109 = -(t29 * t82) - d_3_x * t79;
+    let t114 = -(t29 * t79) - d_3_x * t83;
     let t125 = p[1].centroid[0] * p[1].centroid[0];
-    let ia_2_00 = -(t29 * t109) - d_3_x * (-(t29 * t79) - d_3_x * t83)
+    let t130 = p[1].mass * e_2_x;
+    let t131 = p[1].mass * t26;
+    let t134 = p[1].centroid[0] * p[1].added_mass;
+    let t153 = p[1].added_mass * (trig[1][1] * e_2_x - trig[1][0] * t26);
+    let ia_2_00 = -(t29 * t109) - d_3_x * t114
         + (p[1].inertia + (p[1].mass * t125 + p[1].added_mass * t125));
-    let ia_2_01 = t109
-        + (-(p[1].mass * t26) - trig[1][1] * (p[1].centroid[0] * p[1].added_mass));
-    let pa_2_m = -(t29 * t99) - d_3_x * (pa_3_z - t70 * t76 + (t83 * t92 - t79 * t91))
+    let ia_2_01 = t109 + (-t131 - trig[1][1] * t134);
+    let ia_2_02 = t114 - (t130 + trig[1][0] * t134);
+    let pa_2_m = -(t29 * t99) - d_3_x * t104
         - (loads[1][2] + (-(t26 * loads[1][0]) - e_2_x * loads[1][1]));
-    let pa_2_x = t99
-        + (-(t90
-            * (p[1].mass * e_2_x
-                + trig[1][1]
-                    * (p[1].added_mass * (trig[1][1] * e_2_x - trig[1][0] * t26))))
-            - loads[1][0]);
+    let pa_2_x = t99 + (-(t90 * (t130 + trig[1][1] * t153)) - loads[1][0]);
+    let pa_2_z = t104 + (-(t90 * (trig[1][0] * t153 - t131)) - loads[1][1]);
     let inv_2 = 1.0 / ia_2_00;
     let pa_1_x = pa_2_x - pa_2_m * (ia_2_01 * inv_2) - loads[0][0];
+    let pa_1_z = pa_2_z - pa_2_m * (ia_2_02 * inv_2) - loads[0][1];
     let t232 = pa_2_m * inv_2;
     let alpha_2 = -t232;
     let ao_3_x = t29 * t232 - t91;
@@ -333,5 +364,5 @@ pub fn solve_stuck(
     qdd[0] = alpha_2;
     qdd[1] = qdd_1;
     qdd[2] = 0.0;
-    pa_1_x
+    [pa_1_x, pa_1_z]
 }

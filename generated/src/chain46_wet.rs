@@ -1121,7 +1121,9 @@ pub fn kinematics(
 ///
 /// `m` receives a_lp (Eq. 26), row-major and symmetric; `f` receives f_l (Eq. 25) with the
 /// per-body loads `[F_x, F_z, T_y]` at the centroids projected by the partial velocities
-/// (Eqs. 15, 23). Reads the rotation table written by [`kinematics`].
+/// (Eqs. 15, 23). `heave` receives the row of the anchor's constrained heave speed:
+/// a_{w,p} for the N speeds, then f_w, so that the seabed's normal force on the anchor is
+/// N = a_{w,p} ẍ_p − f_w (Eqs. 37, 50). Reads the rotation table written by [`kinematics`].
 pub fn assemble(
     p: &[crate::BodyParams],
     u: &[f64],
@@ -1129,6 +1131,7 @@ pub fn assemble(
     loads: &[[f64; 3]],
     m: &mut [f64],
     f: &mut [f64],
+    heave: &mut [f64],
 ) {
     let p: &[crate::BodyParams; 46] = p.try_into().expect("p must have 46 entries");
     let u: &[f64; 46] = u.try_into().expect("u must have 46 entries");
@@ -1136,6 +1139,7 @@ pub fn assemble(
     let loads: &[[f64; 3]; 46] = loads.try_into().expect("loads must have 46 entries");
     let m: &mut [f64; 2116] = m.try_into().expect("m must have 2116 entries");
     let f: &mut [f64; 46] = f.try_into().expect("f must have 46 entries");
+    let heave: &mut [f64; 47] = heave.try_into().expect("heave must have 47 entries");
     let mut k_col = [0.0f64; 45];
     let mut s_col = [[0.0f64; 2]; 45];
     let mut o_rel = [[0.0f64; 2]; 45];
@@ -1383,6 +1387,7 @@ pub fn assemble(
     let bt_45_xx = p[45].mass
         + (p[44].mass + p[44].added_mass * (trig[44][0] * trig[44][0]));
     let bt_45_zz = p[45].mass + t704;
+    let t744 = p[43].added_mass * (trig[43][0] * trig[43][1]);
     let t748 = p[43].mass + p[43].added_mass * (trig[43][1] * trig[43][1]);
     let t752 = p[43].centroid[0] * p[43].added_mass;
     let t758 = p[43].centroid[0] * p[43].centroid[0];
@@ -1396,8 +1401,9 @@ pub fn assemble(
             + (j_45 + (p[43].inertia + (p[43].mass * t758 + p[43].added_mass * t758))));
     let bt_44_xx = bt_45_xx
         + (p[43].mass + p[43].added_mass * (trig[43][0] * trig[43][0]));
-    let bt_44_xz = -(p[43].added_mass * (trig[43][0] * trig[43][1])) - t700;
+    let bt_44_xz = -t744 - t700;
     let bt_44_zz = bt_45_zz + t748;
+    let t796 = p[42].added_mass * (trig[42][0] * trig[42][1]);
     let t800 = p[42].mass + p[42].added_mass * (trig[42][1] * trig[42][1]);
     let t804 = p[42].centroid[0] * p[42].added_mass;
     let t810 = p[42].centroid[0] * p[42].centroid[0];
@@ -1411,8 +1417,9 @@ pub fn assemble(
             + (j_44 + (p[42].inertia + (p[42].mass * t810 + p[42].added_mass * t810))));
     let bt_43_xx = bt_44_xx
         + (p[42].mass + p[42].added_mass * (trig[42][0] * trig[42][0]));
-    let bt_43_xz = bt_44_xz - p[42].added_mass * (trig[42][0] * trig[42][1]);
+    let bt_43_xz = bt_44_xz - t796;
     let bt_43_zz = bt_44_zz + t800;
+    let t848 = p[41].added_mass * (trig[41][0] * trig[41][1]);
     let t852 = p[41].mass + p[41].added_mass * (trig[41][1] * trig[41][1]);
     let t856 = p[41].centroid[0] * p[41].added_mass;
     let t862 = p[41].centroid[0] * p[41].centroid[0];
@@ -1426,8 +1433,9 @@ pub fn assemble(
             + (j_43 + (p[41].inertia + (p[41].mass * t862 + p[41].added_mass * t862))));
     let bt_42_xx = bt_43_xx
         + (p[41].mass + p[41].added_mass * (trig[41][0] * trig[41][0]));
-    let bt_42_xz = bt_43_xz - p[41].added_mass * (trig[41][0] * trig[41][1]);
+    let bt_42_xz = bt_43_xz - t848;
     let bt_42_zz = bt_43_zz + t852;
+    let t900 = p[40].added_mass * (trig[40][0] * trig[40][1]);
     let t904 = p[40].mass + p[40].added_mass * (trig[40][1] * trig[40][1]);
     let t908 = p[40].centroid[0] * p[40].added_mass;
     let t914 = p[40].centroid[0] * p[40].centroid[0];
@@ -1441,8 +1449,9 @@ pub fn assemble(
             + (j_42 + (p[40].inertia + (p[40].mass * t914 + p[40].added_mass * t914))));
     let bt_41_xx = bt_42_xx
         + (p[40].mass + p[40].added_mass * (trig[40][0] * trig[40][0]));
-    let bt_41_xz = bt_42_xz - p[40].added_mass * (trig[40][0] * trig[40][1]);
+    let bt_41_xz = bt_42_xz - t900;
     let bt_41_zz = bt_42_zz + t904;
+    let t952 = p[39].added_mass * (trig[39][0] * trig[39][1]);
     let t956 = p[39].mass + p[39].added_mass * (trig[39][1] * trig[39][1]);
     let t960 = p[39].centroid[0] * p[39].added_mass;
     let t966 = p[39].centroid[0] * p[39].centroid[0];
@@ -1456,8 +1465,9 @@ pub fn assemble(
             + (j_41 + (p[39].inertia + (p[39].mass * t966 + p[39].added_mass * t966))));
     let bt_40_xx = bt_41_xx
         + (p[39].mass + p[39].added_mass * (trig[39][0] * trig[39][0]));
-    let bt_40_xz = bt_41_xz - p[39].added_mass * (trig[39][0] * trig[39][1]);
+    let bt_40_xz = bt_41_xz - t952;
     let bt_40_zz = bt_41_zz + t956;
+    let t1004 = p[38].added_mass * (trig[38][0] * trig[38][1]);
     let t1008 = p[38].mass + p[38].added_mass * (trig[38][1] * trig[38][1]);
     let t1012 = p[38].centroid[0] * p[38].added_mass;
     let t1018 = p[38].centroid[0] * p[38].centroid[0];
@@ -1472,8 +1482,9 @@ pub fn assemble(
                 + (p[38].inertia + (p[38].mass * t1018 + p[38].added_mass * t1018))));
     let bt_39_xx = bt_40_xx
         + (p[38].mass + p[38].added_mass * (trig[38][0] * trig[38][0]));
-    let bt_39_xz = bt_40_xz - p[38].added_mass * (trig[38][0] * trig[38][1]);
+    let bt_39_xz = bt_40_xz - t1004;
     let bt_39_zz = bt_40_zz + t1008;
+    let t1056 = p[37].added_mass * (trig[37][0] * trig[37][1]);
     let t1060 = p[37].mass + p[37].added_mass * (trig[37][1] * trig[37][1]);
     let t1064 = p[37].centroid[0] * p[37].added_mass;
     let t1070 = p[37].centroid[0] * p[37].centroid[0];
@@ -1488,8 +1499,9 @@ pub fn assemble(
                 + (p[37].inertia + (p[37].mass * t1070 + p[37].added_mass * t1070))));
     let bt_38_xx = bt_39_xx
         + (p[37].mass + p[37].added_mass * (trig[37][0] * trig[37][0]));
-    let bt_38_xz = bt_39_xz - p[37].added_mass * (trig[37][0] * trig[37][1]);
+    let bt_38_xz = bt_39_xz - t1056;
     let bt_38_zz = bt_39_zz + t1060;
+    let t1108 = p[36].added_mass * (trig[36][0] * trig[36][1]);
     let t1112 = p[36].mass + p[36].added_mass * (trig[36][1] * trig[36][1]);
     let t1116 = p[36].centroid[0] * p[36].added_mass;
     let t1122 = p[36].centroid[0] * p[36].centroid[0];
@@ -1504,8 +1516,9 @@ pub fn assemble(
                 + (p[36].inertia + (p[36].mass * t1122 + p[36].added_mass * t1122))));
     let bt_37_xx = bt_38_xx
         + (p[36].mass + p[36].added_mass * (trig[36][0] * trig[36][0]));
-    let bt_37_xz = bt_38_xz - p[36].added_mass * (trig[36][0] * trig[36][1]);
+    let bt_37_xz = bt_38_xz - t1108;
     let bt_37_zz = bt_38_zz + t1112;
+    let t1160 = p[35].added_mass * (trig[35][0] * trig[35][1]);
     let t1164 = p[35].mass + p[35].added_mass * (trig[35][1] * trig[35][1]);
     let t1168 = p[35].centroid[0] * p[35].added_mass;
     let t1174 = p[35].centroid[0] * p[35].centroid[0];
@@ -1520,8 +1533,9 @@ pub fn assemble(
                 + (p[35].inertia + (p[35].mass * t1174 + p[35].added_mass * t1174))));
     let bt_36_xx = bt_37_xx
         + (p[35].mass + p[35].added_mass * (trig[35][0] * trig[35][0]));
-    let bt_36_xz = bt_37_xz - p[35].added_mass * (trig[35][0] * trig[35][1]);
+    let bt_36_xz = bt_37_xz - t1160;
     let bt_36_zz = bt_37_zz + t1164;
+    let t1212 = p[34].added_mass * (trig[34][0] * trig[34][1]);
     let t1216 = p[34].mass + p[34].added_mass * (trig[34][1] * trig[34][1]);
     let t1220 = p[34].centroid[0] * p[34].added_mass;
     let t1226 = p[34].centroid[0] * p[34].centroid[0];
@@ -1536,8 +1550,9 @@ pub fn assemble(
                 + (p[34].inertia + (p[34].mass * t1226 + p[34].added_mass * t1226))));
     let bt_35_xx = bt_36_xx
         + (p[34].mass + p[34].added_mass * (trig[34][0] * trig[34][0]));
-    let bt_35_xz = bt_36_xz - p[34].added_mass * (trig[34][0] * trig[34][1]);
+    let bt_35_xz = bt_36_xz - t1212;
     let bt_35_zz = bt_36_zz + t1216;
+    let t1264 = p[33].added_mass * (trig[33][0] * trig[33][1]);
     let t1268 = p[33].mass + p[33].added_mass * (trig[33][1] * trig[33][1]);
     let t1272 = p[33].centroid[0] * p[33].added_mass;
     let t1278 = p[33].centroid[0] * p[33].centroid[0];
@@ -1552,8 +1567,9 @@ pub fn assemble(
                 + (p[33].inertia + (p[33].mass * t1278 + p[33].added_mass * t1278))));
     let bt_34_xx = bt_35_xx
         + (p[33].mass + p[33].added_mass * (trig[33][0] * trig[33][0]));
-    let bt_34_xz = bt_35_xz - p[33].added_mass * (trig[33][0] * trig[33][1]);
+    let bt_34_xz = bt_35_xz - t1264;
     let bt_34_zz = bt_35_zz + t1268;
+    let t1316 = p[32].added_mass * (trig[32][0] * trig[32][1]);
     let t1320 = p[32].mass + p[32].added_mass * (trig[32][1] * trig[32][1]);
     let t1324 = p[32].centroid[0] * p[32].added_mass;
     let t1330 = p[32].centroid[0] * p[32].centroid[0];
@@ -1568,8 +1584,9 @@ pub fn assemble(
                 + (p[32].inertia + (p[32].mass * t1330 + p[32].added_mass * t1330))));
     let bt_33_xx = bt_34_xx
         + (p[32].mass + p[32].added_mass * (trig[32][0] * trig[32][0]));
-    let bt_33_xz = bt_34_xz - p[32].added_mass * (trig[32][0] * trig[32][1]);
+    let bt_33_xz = bt_34_xz - t1316;
     let bt_33_zz = bt_34_zz + t1320;
+    let t1368 = p[31].added_mass * (trig[31][0] * trig[31][1]);
     let t1372 = p[31].mass + p[31].added_mass * (trig[31][1] * trig[31][1]);
     let t1376 = p[31].centroid[0] * p[31].added_mass;
     let t1382 = p[31].centroid[0] * p[31].centroid[0];
@@ -1584,8 +1601,9 @@ pub fn assemble(
                 + (p[31].inertia + (p[31].mass * t1382 + p[31].added_mass * t1382))));
     let bt_32_xx = bt_33_xx
         + (p[31].mass + p[31].added_mass * (trig[31][0] * trig[31][0]));
-    let bt_32_xz = bt_33_xz - p[31].added_mass * (trig[31][0] * trig[31][1]);
+    let bt_32_xz = bt_33_xz - t1368;
     let bt_32_zz = bt_33_zz + t1372;
+    let t1420 = p[30].added_mass * (trig[30][0] * trig[30][1]);
     let t1424 = p[30].mass + p[30].added_mass * (trig[30][1] * trig[30][1]);
     let t1428 = p[30].centroid[0] * p[30].added_mass;
     let t1434 = p[30].centroid[0] * p[30].centroid[0];
@@ -1600,8 +1618,9 @@ pub fn assemble(
                 + (p[30].inertia + (p[30].mass * t1434 + p[30].added_mass * t1434))));
     let bt_31_xx = bt_32_xx
         + (p[30].mass + p[30].added_mass * (trig[30][0] * trig[30][0]));
-    let bt_31_xz = bt_32_xz - p[30].added_mass * (trig[30][0] * trig[30][1]);
+    let bt_31_xz = bt_32_xz - t1420;
     let bt_31_zz = bt_32_zz + t1424;
+    let t1472 = p[29].added_mass * (trig[29][0] * trig[29][1]);
     let t1476 = p[29].mass + p[29].added_mass * (trig[29][1] * trig[29][1]);
     let t1480 = p[29].centroid[0] * p[29].added_mass;
     let t1486 = p[29].centroid[0] * p[29].centroid[0];
@@ -1616,8 +1635,9 @@ pub fn assemble(
                 + (p[29].inertia + (p[29].mass * t1486 + p[29].added_mass * t1486))));
     let bt_30_xx = bt_31_xx
         + (p[29].mass + p[29].added_mass * (trig[29][0] * trig[29][0]));
-    let bt_30_xz = bt_31_xz - p[29].added_mass * (trig[29][0] * trig[29][1]);
+    let bt_30_xz = bt_31_xz - t1472;
     let bt_30_zz = bt_31_zz + t1476;
+    let t1524 = p[28].added_mass * (trig[28][0] * trig[28][1]);
     let t1528 = p[28].mass + p[28].added_mass * (trig[28][1] * trig[28][1]);
     let t1532 = p[28].centroid[0] * p[28].added_mass;
     let t1538 = p[28].centroid[0] * p[28].centroid[0];
@@ -1632,8 +1652,9 @@ pub fn assemble(
                 + (p[28].inertia + (p[28].mass * t1538 + p[28].added_mass * t1538))));
     let bt_29_xx = bt_30_xx
         + (p[28].mass + p[28].added_mass * (trig[28][0] * trig[28][0]));
-    let bt_29_xz = bt_30_xz - p[28].added_mass * (trig[28][0] * trig[28][1]);
+    let bt_29_xz = bt_30_xz - t1524;
     let bt_29_zz = bt_30_zz + t1528;
+    let t1576 = p[27].added_mass * (trig[27][0] * trig[27][1]);
     let t1580 = p[27].mass + p[27].added_mass * (trig[27][1] * trig[27][1]);
     let t1584 = p[27].centroid[0] * p[27].added_mass;
     let t1590 = p[27].centroid[0] * p[27].centroid[0];
@@ -1648,8 +1669,9 @@ pub fn assemble(
                 + (p[27].inertia + (p[27].mass * t1590 + p[27].added_mass * t1590))));
     let bt_28_xx = bt_29_xx
         + (p[27].mass + p[27].added_mass * (trig[27][0] * trig[27][0]));
-    let bt_28_xz = bt_29_xz - p[27].added_mass * (trig[27][0] * trig[27][1]);
+    let bt_28_xz = bt_29_xz - t1576;
     let bt_28_zz = bt_29_zz + t1580;
+    let t1628 = p[26].added_mass * (trig[26][0] * trig[26][1]);
     let t1632 = p[26].mass + p[26].added_mass * (trig[26][1] * trig[26][1]);
     let t1636 = p[26].centroid[0] * p[26].added_mass;
     let t1642 = p[26].centroid[0] * p[26].centroid[0];
@@ -1664,8 +1686,9 @@ pub fn assemble(
                 + (p[26].inertia + (p[26].mass * t1642 + p[26].added_mass * t1642))));
     let bt_27_xx = bt_28_xx
         + (p[26].mass + p[26].added_mass * (trig[26][0] * trig[26][0]));
-    let bt_27_xz = bt_28_xz - p[26].added_mass * (trig[26][0] * trig[26][1]);
+    let bt_27_xz = bt_28_xz - t1628;
     let bt_27_zz = bt_28_zz + t1632;
+    let t1680 = p[25].added_mass * (trig[25][0] * trig[25][1]);
     let t1684 = p[25].mass + p[25].added_mass * (trig[25][1] * trig[25][1]);
     let t1688 = p[25].centroid[0] * p[25].added_mass;
     let t1694 = p[25].centroid[0] * p[25].centroid[0];
@@ -1680,8 +1703,9 @@ pub fn assemble(
                 + (p[25].inertia + (p[25].mass * t1694 + p[25].added_mass * t1694))));
     let bt_26_xx = bt_27_xx
         + (p[25].mass + p[25].added_mass * (trig[25][0] * trig[25][0]));
-    let bt_26_xz = bt_27_xz - p[25].added_mass * (trig[25][0] * trig[25][1]);
+    let bt_26_xz = bt_27_xz - t1680;
     let bt_26_zz = bt_27_zz + t1684;
+    let t1732 = p[24].added_mass * (trig[24][0] * trig[24][1]);
     let t1736 = p[24].mass + p[24].added_mass * (trig[24][1] * trig[24][1]);
     let t1740 = p[24].centroid[0] * p[24].added_mass;
     let t1746 = p[24].centroid[0] * p[24].centroid[0];
@@ -1696,8 +1720,9 @@ pub fn assemble(
                 + (p[24].inertia + (p[24].mass * t1746 + p[24].added_mass * t1746))));
     let bt_25_xx = bt_26_xx
         + (p[24].mass + p[24].added_mass * (trig[24][0] * trig[24][0]));
-    let bt_25_xz = bt_26_xz - p[24].added_mass * (trig[24][0] * trig[24][1]);
+    let bt_25_xz = bt_26_xz - t1732;
     let bt_25_zz = bt_26_zz + t1736;
+    let t1784 = p[23].added_mass * (trig[23][0] * trig[23][1]);
     let t1788 = p[23].mass + p[23].added_mass * (trig[23][1] * trig[23][1]);
     let t1792 = p[23].centroid[0] * p[23].added_mass;
     let t1798 = p[23].centroid[0] * p[23].centroid[0];
@@ -1712,8 +1737,9 @@ pub fn assemble(
                 + (p[23].inertia + (p[23].mass * t1798 + p[23].added_mass * t1798))));
     let bt_24_xx = bt_25_xx
         + (p[23].mass + p[23].added_mass * (trig[23][0] * trig[23][0]));
-    let bt_24_xz = bt_25_xz - p[23].added_mass * (trig[23][0] * trig[23][1]);
+    let bt_24_xz = bt_25_xz - t1784;
     let bt_24_zz = bt_25_zz + t1788;
+    let t1836 = p[22].added_mass * (trig[22][0] * trig[22][1]);
     let t1840 = p[22].mass + p[22].added_mass * (trig[22][1] * trig[22][1]);
     let t1844 = p[22].centroid[0] * p[22].added_mass;
     let t1850 = p[22].centroid[0] * p[22].centroid[0];
@@ -1728,8 +1754,9 @@ pub fn assemble(
                 + (p[22].inertia + (p[22].mass * t1850 + p[22].added_mass * t1850))));
     let bt_23_xx = bt_24_xx
         + (p[22].mass + p[22].added_mass * (trig[22][0] * trig[22][0]));
-    let bt_23_xz = bt_24_xz - p[22].added_mass * (trig[22][0] * trig[22][1]);
+    let bt_23_xz = bt_24_xz - t1836;
     let bt_23_zz = bt_24_zz + t1840;
+    let t1888 = p[21].added_mass * (trig[21][0] * trig[21][1]);
     let t1892 = p[21].mass + p[21].added_mass * (trig[21][1] * trig[21][1]);
     let t1896 = p[21].centroid[0] * p[21].added_mass;
     let t1902 = p[21].centroid[0] * p[21].centroid[0];
@@ -1744,8 +1771,9 @@ pub fn assemble(
                 + (p[21].inertia + (p[21].mass * t1902 + p[21].added_mass * t1902))));
     let bt_22_xx = bt_23_xx
         + (p[21].mass + p[21].added_mass * (trig[21][0] * trig[21][0]));
-    let bt_22_xz = bt_23_xz - p[21].added_mass * (trig[21][0] * trig[21][1]);
+    let bt_22_xz = bt_23_xz - t1888;
     let bt_22_zz = bt_23_zz + t1892;
+    let t1940 = p[20].added_mass * (trig[20][0] * trig[20][1]);
     let t1944 = p[20].mass + p[20].added_mass * (trig[20][1] * trig[20][1]);
     let t1948 = p[20].centroid[0] * p[20].added_mass;
     let t1954 = p[20].centroid[0] * p[20].centroid[0];
@@ -1760,8 +1788,9 @@ pub fn assemble(
                 + (p[20].inertia + (p[20].mass * t1954 + p[20].added_mass * t1954))));
     let bt_21_xx = bt_22_xx
         + (p[20].mass + p[20].added_mass * (trig[20][0] * trig[20][0]));
-    let bt_21_xz = bt_22_xz - p[20].added_mass * (trig[20][0] * trig[20][1]);
+    let bt_21_xz = bt_22_xz - t1940;
     let bt_21_zz = bt_22_zz + t1944;
+    let t1992 = p[19].added_mass * (trig[19][0] * trig[19][1]);
     let t1996 = p[19].mass + p[19].added_mass * (trig[19][1] * trig[19][1]);
     let t2000 = p[19].centroid[0] * p[19].added_mass;
     let t2006 = p[19].centroid[0] * p[19].centroid[0];
@@ -1776,8 +1805,9 @@ pub fn assemble(
                 + (p[19].inertia + (p[19].mass * t2006 + p[19].added_mass * t2006))));
     let bt_20_xx = bt_21_xx
         + (p[19].mass + p[19].added_mass * (trig[19][0] * trig[19][0]));
-    let bt_20_xz = bt_21_xz - p[19].added_mass * (trig[19][0] * trig[19][1]);
+    let bt_20_xz = bt_21_xz - t1992;
     let bt_20_zz = bt_21_zz + t1996;
+    let t2044 = p[18].added_mass * (trig[18][0] * trig[18][1]);
     let t2048 = p[18].mass + p[18].added_mass * (trig[18][1] * trig[18][1]);
     let t2052 = p[18].centroid[0] * p[18].added_mass;
     let t2058 = p[18].centroid[0] * p[18].centroid[0];
@@ -1792,8 +1822,9 @@ pub fn assemble(
                 + (p[18].inertia + (p[18].mass * t2058 + p[18].added_mass * t2058))));
     let bt_19_xx = bt_20_xx
         + (p[18].mass + p[18].added_mass * (trig[18][0] * trig[18][0]));
-    let bt_19_xz = bt_20_xz - p[18].added_mass * (trig[18][0] * trig[18][1]);
+    let bt_19_xz = bt_20_xz - t2044;
     let bt_19_zz = bt_20_zz + t2048;
+    let t2096 = p[17].added_mass * (trig[17][0] * trig[17][1]);
     let t2100 = p[17].mass + p[17].added_mass * (trig[17][1] * trig[17][1]);
     let t2104 = p[17].centroid[0] * p[17].added_mass;
     let t2110 = p[17].centroid[0] * p[17].centroid[0];
@@ -1808,8 +1839,9 @@ pub fn assemble(
                 + (p[17].inertia + (p[17].mass * t2110 + p[17].added_mass * t2110))));
     let bt_18_xx = bt_19_xx
         + (p[17].mass + p[17].added_mass * (trig[17][0] * trig[17][0]));
-    let bt_18_xz = bt_19_xz - p[17].added_mass * (trig[17][0] * trig[17][1]);
+    let bt_18_xz = bt_19_xz - t2096;
     let bt_18_zz = bt_19_zz + t2100;
+    let t2148 = p[16].added_mass * (trig[16][0] * trig[16][1]);
     let t2152 = p[16].mass + p[16].added_mass * (trig[16][1] * trig[16][1]);
     let t2156 = p[16].centroid[0] * p[16].added_mass;
     let t2162 = p[16].centroid[0] * p[16].centroid[0];
@@ -1824,8 +1856,9 @@ pub fn assemble(
                 + (p[16].inertia + (p[16].mass * t2162 + p[16].added_mass * t2162))));
     let bt_17_xx = bt_18_xx
         + (p[16].mass + p[16].added_mass * (trig[16][0] * trig[16][0]));
-    let bt_17_xz = bt_18_xz - p[16].added_mass * (trig[16][0] * trig[16][1]);
+    let bt_17_xz = bt_18_xz - t2148;
     let bt_17_zz = bt_18_zz + t2152;
+    let t2200 = p[15].added_mass * (trig[15][0] * trig[15][1]);
     let t2204 = p[15].mass + p[15].added_mass * (trig[15][1] * trig[15][1]);
     let t2208 = p[15].centroid[0] * p[15].added_mass;
     let t2214 = p[15].centroid[0] * p[15].centroid[0];
@@ -1840,8 +1873,9 @@ pub fn assemble(
                 + (p[15].inertia + (p[15].mass * t2214 + p[15].added_mass * t2214))));
     let bt_16_xx = bt_17_xx
         + (p[15].mass + p[15].added_mass * (trig[15][0] * trig[15][0]));
-    let bt_16_xz = bt_17_xz - p[15].added_mass * (trig[15][0] * trig[15][1]);
+    let bt_16_xz = bt_17_xz - t2200;
     let bt_16_zz = bt_17_zz + t2204;
+    let t2252 = p[14].added_mass * (trig[14][0] * trig[14][1]);
     let t2256 = p[14].mass + p[14].added_mass * (trig[14][1] * trig[14][1]);
     let t2260 = p[14].centroid[0] * p[14].added_mass;
     let t2266 = p[14].centroid[0] * p[14].centroid[0];
@@ -1856,8 +1890,9 @@ pub fn assemble(
                 + (p[14].inertia + (p[14].mass * t2266 + p[14].added_mass * t2266))));
     let bt_15_xx = bt_16_xx
         + (p[14].mass + p[14].added_mass * (trig[14][0] * trig[14][0]));
-    let bt_15_xz = bt_16_xz - p[14].added_mass * (trig[14][0] * trig[14][1]);
+    let bt_15_xz = bt_16_xz - t2252;
     let bt_15_zz = bt_16_zz + t2256;
+    let t2304 = p[13].added_mass * (trig[13][0] * trig[13][1]);
     let t2308 = p[13].mass + p[13].added_mass * (trig[13][1] * trig[13][1]);
     let t2312 = p[13].centroid[0] * p[13].added_mass;
     let t2318 = p[13].centroid[0] * p[13].centroid[0];
@@ -1872,8 +1907,9 @@ pub fn assemble(
                 + (p[13].inertia + (p[13].mass * t2318 + p[13].added_mass * t2318))));
     let bt_14_xx = bt_15_xx
         + (p[13].mass + p[13].added_mass * (trig[13][0] * trig[13][0]));
-    let bt_14_xz = bt_15_xz - p[13].added_mass * (trig[13][0] * trig[13][1]);
+    let bt_14_xz = bt_15_xz - t2304;
     let bt_14_zz = bt_15_zz + t2308;
+    let t2356 = p[12].added_mass * (trig[12][0] * trig[12][1]);
     let t2360 = p[12].mass + p[12].added_mass * (trig[12][1] * trig[12][1]);
     let t2364 = p[12].centroid[0] * p[12].added_mass;
     let t2370 = p[12].centroid[0] * p[12].centroid[0];
@@ -1888,8 +1924,9 @@ pub fn assemble(
                 + (p[12].inertia + (p[12].mass * t2370 + p[12].added_mass * t2370))));
     let bt_13_xx = bt_14_xx
         + (p[12].mass + p[12].added_mass * (trig[12][0] * trig[12][0]));
-    let bt_13_xz = bt_14_xz - p[12].added_mass * (trig[12][0] * trig[12][1]);
+    let bt_13_xz = bt_14_xz - t2356;
     let bt_13_zz = bt_14_zz + t2360;
+    let t2408 = p[11].added_mass * (trig[11][0] * trig[11][1]);
     let t2412 = p[11].mass + p[11].added_mass * (trig[11][1] * trig[11][1]);
     let t2416 = p[11].centroid[0] * p[11].added_mass;
     let t2422 = p[11].centroid[0] * p[11].centroid[0];
@@ -1904,8 +1941,9 @@ pub fn assemble(
                 + (p[11].inertia + (p[11].mass * t2422 + p[11].added_mass * t2422))));
     let bt_12_xx = bt_13_xx
         + (p[11].mass + p[11].added_mass * (trig[11][0] * trig[11][0]));
-    let bt_12_xz = bt_13_xz - p[11].added_mass * (trig[11][0] * trig[11][1]);
+    let bt_12_xz = bt_13_xz - t2408;
     let bt_12_zz = bt_13_zz + t2412;
+    let t2460 = p[10].added_mass * (trig[10][0] * trig[10][1]);
     let t2464 = p[10].mass + p[10].added_mass * (trig[10][1] * trig[10][1]);
     let t2468 = p[10].centroid[0] * p[10].added_mass;
     let t2474 = p[10].centroid[0] * p[10].centroid[0];
@@ -1920,8 +1958,9 @@ pub fn assemble(
                 + (p[10].inertia + (p[10].mass * t2474 + p[10].added_mass * t2474))));
     let bt_11_xx = bt_12_xx
         + (p[10].mass + p[10].added_mass * (trig[10][0] * trig[10][0]));
-    let bt_11_xz = bt_12_xz - p[10].added_mass * (trig[10][0] * trig[10][1]);
+    let bt_11_xz = bt_12_xz - t2460;
     let bt_11_zz = bt_12_zz + t2464;
+    let t2512 = p[9].added_mass * (trig[9][0] * trig[9][1]);
     let t2516 = p[9].mass + p[9].added_mass * (trig[9][1] * trig[9][1]);
     let t2520 = p[9].centroid[0] * p[9].added_mass;
     let t2526 = p[9].centroid[0] * p[9].centroid[0];
@@ -1934,8 +1973,9 @@ pub fn assemble(
         + (t2546 + t2546
             + (j_11 + (p[9].inertia + (p[9].mass * t2526 + p[9].added_mass * t2526))));
     let bt_10_xx = bt_11_xx + (p[9].mass + p[9].added_mass * (trig[9][0] * trig[9][0]));
-    let bt_10_xz = bt_11_xz - p[9].added_mass * (trig[9][0] * trig[9][1]);
+    let bt_10_xz = bt_11_xz - t2512;
     let bt_10_zz = bt_11_zz + t2516;
+    let t2564 = p[8].added_mass * (trig[8][0] * trig[8][1]);
     let t2568 = p[8].mass + p[8].added_mass * (trig[8][1] * trig[8][1]);
     let t2572 = p[8].centroid[0] * p[8].added_mass;
     let t2578 = p[8].centroid[0] * p[8].centroid[0];
@@ -1948,8 +1988,9 @@ pub fn assemble(
         + (t2598 + t2598
             + (j_10 + (p[8].inertia + (p[8].mass * t2578 + p[8].added_mass * t2578))));
     let bt_9_xx = bt_10_xx + (p[8].mass + p[8].added_mass * (trig[8][0] * trig[8][0]));
-    let bt_9_xz = bt_10_xz - p[8].added_mass * (trig[8][0] * trig[8][1]);
+    let bt_9_xz = bt_10_xz - t2564;
     let bt_9_zz = bt_10_zz + t2568;
+    let t2616 = p[7].added_mass * (trig[7][0] * trig[7][1]);
     let t2620 = p[7].mass + p[7].added_mass * (trig[7][1] * trig[7][1]);
     let t2624 = p[7].centroid[0] * p[7].added_mass;
     let t2630 = p[7].centroid[0] * p[7].centroid[0];
@@ -1962,8 +2003,9 @@ pub fn assemble(
         + (t2650 + t2650
             + (j_9 + (p[7].inertia + (p[7].mass * t2630 + p[7].added_mass * t2630))));
     let bt_8_xx = bt_9_xx + (p[7].mass + p[7].added_mass * (trig[7][0] * trig[7][0]));
-    let bt_8_xz = bt_9_xz - p[7].added_mass * (trig[7][0] * trig[7][1]);
+    let bt_8_xz = bt_9_xz - t2616;
     let bt_8_zz = bt_9_zz + t2620;
+    let t2668 = p[6].added_mass * (trig[6][0] * trig[6][1]);
     let t2672 = p[6].mass + p[6].added_mass * (trig[6][1] * trig[6][1]);
     let t2676 = p[6].centroid[0] * p[6].added_mass;
     let t2682 = p[6].centroid[0] * p[6].centroid[0];
@@ -1976,8 +2018,9 @@ pub fn assemble(
         + (t2702 + t2702
             + (j_8 + (p[6].inertia + (p[6].mass * t2682 + p[6].added_mass * t2682))));
     let bt_7_xx = bt_8_xx + (p[6].mass + p[6].added_mass * (trig[6][0] * trig[6][0]));
-    let bt_7_xz = bt_8_xz - p[6].added_mass * (trig[6][0] * trig[6][1]);
+    let bt_7_xz = bt_8_xz - t2668;
     let bt_7_zz = bt_8_zz + t2672;
+    let t2720 = p[5].added_mass * (trig[5][0] * trig[5][1]);
     let t2724 = p[5].mass + p[5].added_mass * (trig[5][1] * trig[5][1]);
     let t2728 = p[5].centroid[0] * p[5].added_mass;
     let t2734 = p[5].centroid[0] * p[5].centroid[0];
@@ -1990,8 +2033,9 @@ pub fn assemble(
         + (t2754 + t2754
             + (j_7 + (p[5].inertia + (p[5].mass * t2734 + p[5].added_mass * t2734))));
     let bt_6_xx = bt_7_xx + (p[5].mass + p[5].added_mass * (trig[5][0] * trig[5][0]));
-    let bt_6_xz = bt_7_xz - p[5].added_mass * (trig[5][0] * trig[5][1]);
+    let bt_6_xz = bt_7_xz - t2720;
     let bt_6_zz = bt_7_zz + t2724;
+    let t2772 = p[4].added_mass * (trig[4][0] * trig[4][1]);
     let t2776 = p[4].mass + p[4].added_mass * (trig[4][1] * trig[4][1]);
     let t2780 = p[4].centroid[0] * p[4].added_mass;
     let t2786 = p[4].centroid[0] * p[4].centroid[0];
@@ -2004,8 +2048,9 @@ pub fn assemble(
         + (t2806 + t2806
             + (j_6 + (p[4].inertia + (p[4].mass * t2786 + p[4].added_mass * t2786))));
     let bt_5_xx = bt_6_xx + (p[4].mass + p[4].added_mass * (trig[4][0] * trig[4][0]));
-    let bt_5_xz = bt_6_xz - p[4].added_mass * (trig[4][0] * trig[4][1]);
+    let bt_5_xz = bt_6_xz - t2772;
     let bt_5_zz = bt_6_zz + t2776;
+    let t2824 = p[3].added_mass * (trig[3][0] * trig[3][1]);
     let t2828 = p[3].mass + p[3].added_mass * (trig[3][1] * trig[3][1]);
     let t2832 = p[3].centroid[0] * p[3].added_mass;
     let t2838 = p[3].centroid[0] * p[3].centroid[0];
@@ -2018,8 +2063,9 @@ pub fn assemble(
         + (t2858 + t2858
             + (j_5 + (p[3].inertia + (p[3].mass * t2838 + p[3].added_mass * t2838))));
     let bt_4_xx = bt_5_xx + (p[3].mass + p[3].added_mass * (trig[3][0] * trig[3][0]));
-    let bt_4_xz = bt_5_xz - p[3].added_mass * (trig[3][0] * trig[3][1]);
+    let bt_4_xz = bt_5_xz - t2824;
     let bt_4_zz = bt_5_zz + t2828;
+    let t2876 = p[2].added_mass * (trig[2][0] * trig[2][1]);
     let t2880 = p[2].mass + p[2].added_mass * (trig[2][1] * trig[2][1]);
     let t2884 = p[2].centroid[0] * p[2].added_mass;
     let t2890 = p[2].centroid[0] * p[2].centroid[0];
@@ -2032,15 +2078,16 @@ pub fn assemble(
         + (t2910 + t2910
             + (j_4 + (p[2].inertia + (p[2].mass * t2890 + p[2].added_mass * t2890))));
     let bt_3_xx = bt_4_xx + (p[2].mass + p[2].added_mass * (trig[2][0] * trig[2][0]));
-    let bt_3_xz = bt_4_xz - p[2].added_mass * (trig[2][0] * trig[2][1]);
+    let bt_3_xz = bt_4_xz - t2876;
     let bt_3_zz = bt_4_zz + t2880;
+    let t2936 = p[1].centroid[0] * p[1].added_mass;
     let t2942 = p[1].centroid[0] * p[1].centroid[0];
+    let t2950 = d_3_x * bt_3_xx - t416 * bt_3_xz;
     let t2954 = d_3_x * bt_3_xz - t416 * bt_3_zz;
-    let sm_2_z = t2954
-        + (sm_3_z
-            + (-(p[1].mass * t413) - trig[1][1] * (p[1].centroid[0] * p[1].added_mass)));
+    let sm_2_x = t2950 + (sm_3_x + (p[1].mass * e_2_x + trig[1][0] * t2936));
+    let sm_2_z = t2954 + (sm_3_z + (-(p[1].mass * t413) - trig[1][1] * t2936));
     let t2962 = d_3_x * sm_3_x - t416 * sm_3_z;
-    let j_2 = d_3_x * (d_3_x * bt_3_xx - t416 * bt_3_xz) - t416 * t2954
+    let j_2 = d_3_x * t2950 - t416 * t2954
         + (t2962 + t2962
             + (j_3 + (p[1].inertia + (p[1].mass * t2942 + p[1].added_mass * t2942))));
     let o_4_x = d_3_x + d_4_x;
@@ -2129,50 +2176,141 @@ pub fn assemble(
     let o_45_z = o_44_z - t668;
     let o_46_x = d_46_x + o_45_x;
     let o_46_z = o_45_z - t674;
+    let a_w_0 = -sm_2_x;
     let k_3 = j_3 + t2962;
+    let a_w_1 = -sm_3_x;
     let k_4 = j_4 + (sm_4_x * o_4_x + sm_4_z * o_4_z);
+    let a_w_2 = -sm_4_x;
     let k_5 = j_5 + (sm_5_x * o_5_x + sm_5_z * o_5_z);
+    let a_w_3 = -sm_5_x;
     let k_6 = j_6 + (sm_6_x * o_6_x + sm_6_z * o_6_z);
+    let a_w_4 = -sm_6_x;
     let k_7 = j_7 + (sm_7_x * o_7_x + sm_7_z * o_7_z);
+    let a_w_5 = -sm_7_x;
     let k_8 = j_8 + (sm_8_x * o_8_x + sm_8_z * o_8_z);
+    let a_w_6 = -sm_8_x;
     let k_9 = j_9 + (sm_9_x * o_9_x + sm_9_z * o_9_z);
+    let a_w_7 = -sm_9_x;
     let k_10 = j_10 + (sm_10_x * o_10_x + sm_10_z * o_10_z);
+    let a_w_8 = -sm_10_x;
     let k_11 = j_11 + (sm_11_x * o_11_x + sm_11_z * o_11_z);
+    let a_w_9 = -sm_11_x;
     let k_12 = j_12 + (sm_12_x * o_12_x + sm_12_z * o_12_z);
+    let a_w_10 = -sm_12_x;
     let k_13 = j_13 + (sm_13_x * o_13_x + sm_13_z * o_13_z);
+    let a_w_11 = -sm_13_x;
     let k_14 = j_14 + (sm_14_x * o_14_x + sm_14_z * o_14_z);
+    let a_w_12 = -sm_14_x;
     let k_15 = j_15 + (sm_15_x * o_15_x + sm_15_z * o_15_z);
+    let a_w_13 = -sm_15_x;
     let k_16 = j_16 + (sm_16_x * o_16_x + sm_16_z * o_16_z);
+    let a_w_14 = -sm_16_x;
     let k_17 = j_17 + (sm_17_x * o_17_x + sm_17_z * o_17_z);
+    let a_w_15 = -sm_17_x;
     let k_18 = j_18 + (sm_18_x * o_18_x + sm_18_z * o_18_z);
+    let a_w_16 = -sm_18_x;
     let k_19 = j_19 + (sm_19_x * o_19_x + sm_19_z * o_19_z);
+    let a_w_17 = -sm_19_x;
     let k_20 = j_20 + (sm_20_x * o_20_x + sm_20_z * o_20_z);
+    let a_w_18 = -sm_20_x;
     let k_21 = j_21 + (sm_21_x * o_21_x + sm_21_z * o_21_z);
+    let a_w_19 = -sm_21_x;
     let k_22 = j_22 + (sm_22_x * o_22_x + sm_22_z * o_22_z);
+    let a_w_20 = -sm_22_x;
     let k_23 = j_23 + (sm_23_x * o_23_x + sm_23_z * o_23_z);
+    let a_w_21 = -sm_23_x;
     let k_24 = j_24 + (sm_24_x * o_24_x + sm_24_z * o_24_z);
+    let a_w_22 = -sm_24_x;
     let k_25 = j_25 + (sm_25_x * o_25_x + sm_25_z * o_25_z);
+    let a_w_23 = -sm_25_x;
     let k_26 = j_26 + (sm_26_x * o_26_x + sm_26_z * o_26_z);
+    let a_w_24 = -sm_26_x;
     let k_27 = j_27 + (sm_27_x * o_27_x + sm_27_z * o_27_z);
+    let a_w_25 = -sm_27_x;
     let k_28 = j_28 + (sm_28_x * o_28_x + sm_28_z * o_28_z);
+    let a_w_26 = -sm_28_x;
     let k_29 = j_29 + (sm_29_x * o_29_x + sm_29_z * o_29_z);
+    let a_w_27 = -sm_29_x;
     let k_30 = j_30 + (sm_30_x * o_30_x + sm_30_z * o_30_z);
+    let a_w_28 = -sm_30_x;
     let k_31 = j_31 + (sm_31_x * o_31_x + sm_31_z * o_31_z);
+    let a_w_29 = -sm_31_x;
     let k_32 = j_32 + (sm_32_x * o_32_x + sm_32_z * o_32_z);
+    let a_w_30 = -sm_32_x;
     let k_33 = j_33 + (sm_33_x * o_33_x + sm_33_z * o_33_z);
+    let a_w_31 = -sm_33_x;
     let k_34 = j_34 + (sm_34_x * o_34_x + sm_34_z * o_34_z);
+    let a_w_32 = -sm_34_x;
     let k_35 = j_35 + (sm_35_x * o_35_x + sm_35_z * o_35_z);
+    let a_w_33 = -sm_35_x;
     let k_36 = j_36 + (sm_36_x * o_36_x + sm_36_z * o_36_z);
+    let a_w_34 = -sm_36_x;
     let k_37 = j_37 + (sm_37_x * o_37_x + sm_37_z * o_37_z);
+    let a_w_35 = -sm_37_x;
     let k_38 = j_38 + (sm_38_x * o_38_x + sm_38_z * o_38_z);
+    let a_w_36 = -sm_38_x;
     let k_39 = j_39 + (sm_39_x * o_39_x + sm_39_z * o_39_z);
+    let a_w_37 = -sm_39_x;
     let k_40 = j_40 + (sm_40_x * o_40_x + sm_40_z * o_40_z);
+    let a_w_38 = -sm_40_x;
     let k_41 = j_41 + (sm_41_x * o_41_x + sm_41_z * o_41_z);
+    let a_w_39 = -sm_41_x;
     let k_42 = j_42 + (sm_42_x * o_42_x + sm_42_z * o_42_z);
+    let a_w_40 = -sm_42_x;
     let k_43 = j_43 + (sm_43_x * o_43_x + sm_43_z * o_43_z);
+    let a_w_41 = -sm_43_x;
     let k_44 = j_44 + (sm_44_x * o_44_x + sm_44_z * o_44_z);
+    let a_w_42 = -sm_44_x;
     let k_45 = j_45 + (sm_45_x * o_45_x + sm_45_z * o_45_z);
+    let a_w_43 = -sm_45_x;
     let k_46 = j_46 + (sm_46_x * o_46_x + sm_46_z * o_46_z);
+    let a_w_44 = -sm_46_x;
+    let a_w_45 = t700
+        + (t744
+            + (t796
+                + (t848
+                    + (t900
+                        + (t952
+                            + (t1004
+                                + (t1056
+                                    + (t1108
+                                        + (t1160
+                                            + (t1212
+                                                + (t1264
+                                                    + (t1316
+                                                        + (t1368
+                                                            + (t1420
+                                                                + (t1472
+                                                                    + (t1524
+                                                                        + (t1576
+                                                                            + (t1628
+                                                                                + (t1680
+                                                                                    + (t1732
+                                                                                        + (t1784
+                                                                                            + (t1836
+                                                                                                + (t1888
+                                                                                                    + (t1940
+                                                                                                        + (t1992
+                                                                                                            + (t2044
+                                                                                                                + (t2096
+                                                                                                                    + (t2148
+                                                                                                                        + (t2200
+                                                                                                                            + (t2252
+                                                                                                                                + (t2304
+                                                                                                                                    + (t2356
+                                                                                                                                        + (t2408
+                                                                                                                                            + (t2460
+                                                                                                                                                + (t2512
+                                                                                                                                                    + (t2564
+                                                                                                                                                        + (t2616
+                                                                                                                                                            + (t2668
+                                                                                                                                                                + (t2720
+                                                                                                                                                                    + (t2772
+                                                                                                                                                                        + (t2824
+                                                                                                                                                                            + (t2876
+                                                                                                                                                                                + p[1].added_mass
+                                                                                                                                                                                    * (trig[1][0]
+                                                                                                                                                                                        * trig[1][1])))))))))))))))))))))))))))))))))))))))))));
     let a_45_45 = p[45].mass
         + (t704
             + (t748
@@ -2222,359 +2360,359 @@ pub fn assemble(
                                                                                                                                                                                             + p[1].added_mass
                                                                                                                                                                                                 * (trig[1][1]
                                                                                                                                                                                                     * trig[1][1]))))))))))))))))))))))))))))))))))))))))))))));
-    let t3278 = u[0] * u[0];
-    let t3279 = e_2_x * t3278;
-    let ac_2_z = t413 * t3278;
-    let t3284 = t416 * t3278;
-    let t3286 = -(d_3_x * t3278);
-    let t3287 = w_3 * w_3;
-    let ac_3_x = t3286 - e_3_x * t3287;
-    let ac_3_z = t3284 + t419 * t3287;
-    let t3296 = t3286 - d_4_x * t3287;
-    let t3297 = t3284 + t422 * t3287;
-    let t3298 = w_4 * w_4;
-    let ac_4_x = t3296 - e_4_x * t3298;
-    let ac_4_z = t3297 + t425 * t3298;
-    let t3307 = t3296 - d_5_x * t3298;
-    let t3308 = t3297 + t428 * t3298;
-    let t3309 = w_5 * w_5;
-    let ac_5_x = t3307 - e_5_x * t3309;
-    let ac_5_z = t3308 + t431 * t3309;
-    let t3318 = t3307 - d_6_x * t3309;
-    let t3319 = t3308 + t434 * t3309;
-    let t3320 = w_6 * w_6;
-    let ac_6_x = t3318 - e_6_x * t3320;
-    let ac_6_z = t3319 + t437 * t3320;
-    let t3329 = t3318 - d_7_x * t3320;
-    let t3330 = t3319 + t440 * t3320;
-    let t3331 = w_7 * w_7;
-    let ac_7_x = t3329 - e_7_x * t3331;
-    let ac_7_z = t3330 + t443 * t3331;
-    let t3340 = t3329 - d_8_x * t3331;
-    let t3341 = t3330 + t446 * t3331;
-    let t3342 = w_8 * w_8;
-    let ac_8_x = t3340 - e_8_x * t3342;
-    let ac_8_z = t3341 + t449 * t3342;
-    let t3351 = t3340 - d_9_x * t3342;
-    let t3352 = t3341 + t452 * t3342;
-    let t3353 = w_9 * w_9;
-    let ac_9_x = t3351 - e_9_x * t3353;
-    let ac_9_z = t3352 + t455 * t3353;
-    let t3362 = t3351 - d_10_x * t3353;
-    let t3363 = t3352 + t458 * t3353;
-    let t3364 = w_10 * w_10;
-    let ac_10_x = t3362 - e_10_x * t3364;
-    let ac_10_z = t3363 + t461 * t3364;
-    let t3373 = t3362 - d_11_x * t3364;
-    let t3374 = t3363 + t464 * t3364;
-    let t3375 = w_11 * w_11;
-    let ac_11_x = t3373 - e_11_x * t3375;
-    let ac_11_z = t3374 + t467 * t3375;
-    let t3384 = t3373 - d_12_x * t3375;
-    let t3385 = t3374 + t470 * t3375;
-    let t3386 = w_12 * w_12;
-    let ac_12_x = t3384 - e_12_x * t3386;
-    let ac_12_z = t3385 + t473 * t3386;
-    let t3395 = t3384 - d_13_x * t3386;
-    let t3396 = t3385 + t476 * t3386;
-    let t3397 = w_13 * w_13;
-    let ac_13_x = t3395 - e_13_x * t3397;
-    let ac_13_z = t3396 + t479 * t3397;
-    let t3406 = t3395 - d_14_x * t3397;
-    let t3407 = t3396 + t482 * t3397;
-    let t3408 = w_14 * w_14;
-    let ac_14_x = t3406 - e_14_x * t3408;
-    let ac_14_z = t3407 + t485 * t3408;
-    let t3417 = t3406 - d_15_x * t3408;
-    let t3418 = t3407 + t488 * t3408;
-    let t3419 = w_15 * w_15;
-    let ac_15_x = t3417 - e_15_x * t3419;
-    let ac_15_z = t3418 + t491 * t3419;
-    let t3428 = t3417 - d_16_x * t3419;
-    let t3429 = t3418 + t494 * t3419;
-    let t3430 = w_16 * w_16;
-    let ac_16_x = t3428 - e_16_x * t3430;
-    let ac_16_z = t3429 + t497 * t3430;
-    let t3439 = t3428 - d_17_x * t3430;
-    let t3440 = t3429 + t500 * t3430;
-    let t3441 = w_17 * w_17;
-    let ac_17_x = t3439 - e_17_x * t3441;
-    let ac_17_z = t3440 + t503 * t3441;
-    let t3450 = t3439 - d_18_x * t3441;
-    let t3451 = t3440 + t506 * t3441;
-    let t3452 = w_18 * w_18;
-    let ac_18_x = t3450 - e_18_x * t3452;
-    let ac_18_z = t3451 + t509 * t3452;
-    let t3461 = t3450 - d_19_x * t3452;
-    let t3462 = t3451 + t512 * t3452;
-    let t3463 = w_19 * w_19;
-    let ac_19_x = t3461 - e_19_x * t3463;
-    let ac_19_z = t3462 + t515 * t3463;
-    let t3472 = t3461 - d_20_x * t3463;
-    let t3473 = t3462 + t518 * t3463;
-    let t3474 = w_20 * w_20;
-    let ac_20_x = t3472 - e_20_x * t3474;
-    let ac_20_z = t3473 + t521 * t3474;
-    let t3483 = t3472 - d_21_x * t3474;
-    let t3484 = t3473 + t524 * t3474;
-    let t3485 = w_21 * w_21;
-    let ac_21_x = t3483 - e_21_x * t3485;
-    let ac_21_z = t3484 + t527 * t3485;
-    let t3494 = t3483 - d_22_x * t3485;
-    let t3495 = t3484 + t530 * t3485;
-    let t3496 = w_22 * w_22;
-    let ac_22_x = t3494 - e_22_x * t3496;
-    let ac_22_z = t3495 + t533 * t3496;
-    let t3505 = t3494 - d_23_x * t3496;
-    let t3506 = t3495 + t536 * t3496;
-    let t3507 = w_23 * w_23;
-    let ac_23_x = t3505 - e_23_x * t3507;
-    let ac_23_z = t3506 + t539 * t3507;
-    let t3516 = t3505 - d_24_x * t3507;
-    let t3517 = t3506 + t542 * t3507;
-    let t3518 = w_24 * w_24;
-    let ac_24_x = t3516 - e_24_x * t3518;
-    let ac_24_z = t3517 + t545 * t3518;
-    let t3527 = t3516 - d_25_x * t3518;
-    let t3528 = t3517 + t548 * t3518;
-    let t3529 = w_25 * w_25;
-    let ac_25_x = t3527 - e_25_x * t3529;
-    let ac_25_z = t3528 + t551 * t3529;
-    let t3538 = t3527 - d_26_x * t3529;
-    let t3539 = t3528 + t554 * t3529;
-    let t3540 = w_26 * w_26;
-    let ac_26_x = t3538 - e_26_x * t3540;
-    let ac_26_z = t3539 + t557 * t3540;
-    let t3549 = t3538 - d_27_x * t3540;
-    let t3550 = t3539 + t560 * t3540;
-    let t3551 = w_27 * w_27;
-    let ac_27_x = t3549 - e_27_x * t3551;
-    let ac_27_z = t3550 + t563 * t3551;
-    let t3560 = t3549 - d_28_x * t3551;
-    let t3561 = t3550 + t566 * t3551;
-    let t3562 = w_28 * w_28;
-    let ac_28_x = t3560 - e_28_x * t3562;
-    let ac_28_z = t3561 + t569 * t3562;
-    let t3571 = t3560 - d_29_x * t3562;
-    let t3572 = t3561 + t572 * t3562;
-    let t3573 = w_29 * w_29;
-    let ac_29_x = t3571 - e_29_x * t3573;
-    let ac_29_z = t3572 + t575 * t3573;
-    let t3582 = t3571 - d_30_x * t3573;
-    let t3583 = t3572 + t578 * t3573;
-    let t3584 = w_30 * w_30;
-    let ac_30_x = t3582 - e_30_x * t3584;
-    let ac_30_z = t3583 + t581 * t3584;
-    let t3593 = t3582 - d_31_x * t3584;
-    let t3594 = t3583 + t584 * t3584;
-    let t3595 = w_31 * w_31;
-    let ac_31_x = t3593 - e_31_x * t3595;
-    let ac_31_z = t3594 + t587 * t3595;
-    let t3604 = t3593 - d_32_x * t3595;
-    let t3605 = t3594 + t590 * t3595;
-    let t3606 = w_32 * w_32;
-    let ac_32_x = t3604 - e_32_x * t3606;
-    let ac_32_z = t3605 + t593 * t3606;
-    let t3615 = t3604 - d_33_x * t3606;
-    let t3616 = t3605 + t596 * t3606;
-    let t3617 = w_33 * w_33;
-    let ac_33_x = t3615 - e_33_x * t3617;
-    let ac_33_z = t3616 + t599 * t3617;
-    let t3626 = t3615 - d_34_x * t3617;
-    let t3627 = t3616 + t602 * t3617;
-    let t3628 = w_34 * w_34;
-    let ac_34_x = t3626 - e_34_x * t3628;
-    let ac_34_z = t3627 + t605 * t3628;
-    let t3637 = t3626 - d_35_x * t3628;
-    let t3638 = t3627 + t608 * t3628;
-    let t3639 = w_35 * w_35;
-    let ac_35_x = t3637 - e_35_x * t3639;
-    let ac_35_z = t3638 + t611 * t3639;
-    let t3648 = t3637 - d_36_x * t3639;
-    let t3649 = t3638 + t614 * t3639;
-    let t3650 = w_36 * w_36;
-    let ac_36_x = t3648 - e_36_x * t3650;
-    let ac_36_z = t3649 + t617 * t3650;
-    let t3659 = t3648 - d_37_x * t3650;
-    let t3660 = t3649 + t620 * t3650;
-    let t3661 = w_37 * w_37;
-    let ac_37_x = t3659 - e_37_x * t3661;
-    let ac_37_z = t3660 + t623 * t3661;
-    let t3670 = t3659 - d_38_x * t3661;
-    let t3671 = t3660 + t626 * t3661;
-    let t3672 = w_38 * w_38;
-    let ac_38_x = t3670 - e_38_x * t3672;
-    let ac_38_z = t3671 + t629 * t3672;
-    let t3681 = t3670 - d_39_x * t3672;
-    let t3682 = t3671 + t632 * t3672;
-    let t3683 = w_39 * w_39;
-    let ac_39_x = t3681 - e_39_x * t3683;
-    let ac_39_z = t3682 + t635 * t3683;
-    let t3692 = t3681 - d_40_x * t3683;
-    let t3693 = t3682 + t638 * t3683;
-    let t3694 = w_40 * w_40;
-    let ac_40_x = t3692 - e_40_x * t3694;
-    let ac_40_z = t3693 + t641 * t3694;
-    let t3703 = t3692 - d_41_x * t3694;
-    let t3704 = t3693 + t644 * t3694;
-    let t3705 = w_41 * w_41;
-    let ac_41_x = t3703 - e_41_x * t3705;
-    let ac_41_z = t3704 + t647 * t3705;
-    let t3714 = t3703 - d_42_x * t3705;
-    let t3715 = t3704 + t650 * t3705;
-    let t3716 = w_42 * w_42;
-    let ac_42_x = t3714 - e_42_x * t3716;
-    let ac_42_z = t3715 + t653 * t3716;
-    let t3725 = t3714 - d_43_x * t3716;
-    let t3726 = t3715 + t656 * t3716;
-    let t3727 = w_43 * w_43;
-    let ac_43_x = t3725 - e_43_x * t3727;
-    let ac_43_z = t3726 + t659 * t3727;
-    let t3736 = t3725 - d_44_x * t3727;
-    let t3737 = t3726 + t662 * t3727;
-    let t3738 = w_44 * w_44;
-    let ac_44_x = t3736 - e_44_x * t3738;
-    let ac_44_z = t3737 + t665 * t3738;
-    let t3747 = t3736 - d_45_x * t3738;
-    let t3748 = t3737 + t668 * t3738;
-    let t3749 = w_45 * w_45;
-    let ac_45_x = t3747 - e_45_x * t3749;
-    let ac_45_z = t3748 + t671 * t3749;
-    let t3760 = w_46 * w_46;
-    let ac_46_x = t3747 - d_46_x * t3749 - e_46_x * t3760;
-    let ac_46_z = t3748 + t674 * t3749 - e_46_z * t3760;
-    let t3778 = p[1].added_mass * (trig[1][0] * ac_2_z - trig[1][1] * t3279);
-    let fe_2_x = loads[1][0] - (trig[1][1] * t3778 - p[1].mass * t3279);
-    let fe_2_z = loads[1][1] - (p[1].mass * ac_2_z + trig[1][0] * t3778);
-    let t3793 = p[2].added_mass * (trig[2][1] * ac_3_x + trig[2][0] * ac_3_z);
-    let fe_3_x = loads[2][0] - (p[2].mass * ac_3_x + trig[2][1] * t3793);
-    let fe_3_z = loads[2][1] - (p[2].mass * ac_3_z + trig[2][0] * t3793);
-    let t3808 = p[3].added_mass * (trig[3][1] * ac_4_x + trig[3][0] * ac_4_z);
-    let fe_4_x = loads[3][0] - (p[3].mass * ac_4_x + trig[3][1] * t3808);
-    let fe_4_z = loads[3][1] - (p[3].mass * ac_4_z + trig[3][0] * t3808);
-    let t3823 = p[4].added_mass * (trig[4][1] * ac_5_x + trig[4][0] * ac_5_z);
-    let fe_5_x = loads[4][0] - (p[4].mass * ac_5_x + trig[4][1] * t3823);
-    let fe_5_z = loads[4][1] - (p[4].mass * ac_5_z + trig[4][0] * t3823);
-    let t3838 = p[5].added_mass * (trig[5][1] * ac_6_x + trig[5][0] * ac_6_z);
-    let fe_6_x = loads[5][0] - (p[5].mass * ac_6_x + trig[5][1] * t3838);
-    let fe_6_z = loads[5][1] - (p[5].mass * ac_6_z + trig[5][0] * t3838);
-    let t3853 = p[6].added_mass * (trig[6][1] * ac_7_x + trig[6][0] * ac_7_z);
-    let fe_7_x = loads[6][0] - (p[6].mass * ac_7_x + trig[6][1] * t3853);
-    let fe_7_z = loads[6][1] - (p[6].mass * ac_7_z + trig[6][0] * t3853);
-    let t3868 = p[7].added_mass * (trig[7][1] * ac_8_x + trig[7][0] * ac_8_z);
-    let fe_8_x = loads[7][0] - (p[7].mass * ac_8_x + trig[7][1] * t3868);
-    let fe_8_z = loads[7][1] - (p[7].mass * ac_8_z + trig[7][0] * t3868);
-    let t3883 = p[8].added_mass * (trig[8][1] * ac_9_x + trig[8][0] * ac_9_z);
-    let fe_9_x = loads[8][0] - (p[8].mass * ac_9_x + trig[8][1] * t3883);
-    let fe_9_z = loads[8][1] - (p[8].mass * ac_9_z + trig[8][0] * t3883);
-    let t3898 = p[9].added_mass * (trig[9][1] * ac_10_x + trig[9][0] * ac_10_z);
-    let fe_10_x = loads[9][0] - (p[9].mass * ac_10_x + trig[9][1] * t3898);
-    let fe_10_z = loads[9][1] - (p[9].mass * ac_10_z + trig[9][0] * t3898);
-    let t3913 = p[10].added_mass * (trig[10][1] * ac_11_x + trig[10][0] * ac_11_z);
-    let fe_11_x = loads[10][0] - (p[10].mass * ac_11_x + trig[10][1] * t3913);
-    let fe_11_z = loads[10][1] - (p[10].mass * ac_11_z + trig[10][0] * t3913);
-    let t3928 = p[11].added_mass * (trig[11][1] * ac_12_x + trig[11][0] * ac_12_z);
-    let fe_12_x = loads[11][0] - (p[11].mass * ac_12_x + trig[11][1] * t3928);
-    let fe_12_z = loads[11][1] - (p[11].mass * ac_12_z + trig[11][0] * t3928);
-    let t3943 = p[12].added_mass * (trig[12][1] * ac_13_x + trig[12][0] * ac_13_z);
-    let fe_13_x = loads[12][0] - (p[12].mass * ac_13_x + trig[12][1] * t3943);
-    let fe_13_z = loads[12][1] - (p[12].mass * ac_13_z + trig[12][0] * t3943);
-    let t3958 = p[13].added_mass * (trig[13][1] * ac_14_x + trig[13][0] * ac_14_z);
-    let fe_14_x = loads[13][0] - (p[13].mass * ac_14_x + trig[13][1] * t3958);
-    let fe_14_z = loads[13][1] - (p[13].mass * ac_14_z + trig[13][0] * t3958);
-    let t3973 = p[14].added_mass * (trig[14][1] * ac_15_x + trig[14][0] * ac_15_z);
-    let fe_15_x = loads[14][0] - (p[14].mass * ac_15_x + trig[14][1] * t3973);
-    let fe_15_z = loads[14][1] - (p[14].mass * ac_15_z + trig[14][0] * t3973);
-    let t3988 = p[15].added_mass * (trig[15][1] * ac_16_x + trig[15][0] * ac_16_z);
-    let fe_16_x = loads[15][0] - (p[15].mass * ac_16_x + trig[15][1] * t3988);
-    let fe_16_z = loads[15][1] - (p[15].mass * ac_16_z + trig[15][0] * t3988);
-    let t4003 = p[16].added_mass * (trig[16][1] * ac_17_x + trig[16][0] * ac_17_z);
-    let fe_17_x = loads[16][0] - (p[16].mass * ac_17_x + trig[16][1] * t4003);
-    let fe_17_z = loads[16][1] - (p[16].mass * ac_17_z + trig[16][0] * t4003);
-    let t4018 = p[17].added_mass * (trig[17][1] * ac_18_x + trig[17][0] * ac_18_z);
-    let fe_18_x = loads[17][0] - (p[17].mass * ac_18_x + trig[17][1] * t4018);
-    let fe_18_z = loads[17][1] - (p[17].mass * ac_18_z + trig[17][0] * t4018);
-    let t4033 = p[18].added_mass * (trig[18][1] * ac_19_x + trig[18][0] * ac_19_z);
-    let fe_19_x = loads[18][0] - (p[18].mass * ac_19_x + trig[18][1] * t4033);
-    let fe_19_z = loads[18][1] - (p[18].mass * ac_19_z + trig[18][0] * t4033);
-    let t4048 = p[19].added_mass * (trig[19][1] * ac_20_x + trig[19][0] * ac_20_z);
-    let fe_20_x = loads[19][0] - (p[19].mass * ac_20_x + trig[19][1] * t4048);
-    let fe_20_z = loads[19][1] - (p[19].mass * ac_20_z + trig[19][0] * t4048);
-    let t4063 = p[20].added_mass * (trig[20][1] * ac_21_x + trig[20][0] * ac_21_z);
-    let fe_21_x = loads[20][0] - (p[20].mass * ac_21_x + trig[20][1] * t4063);
-    let fe_21_z = loads[20][1] - (p[20].mass * ac_21_z + trig[20][0] * t4063);
-    let t4078 = p[21].added_mass * (trig[21][1] * ac_22_x + trig[21][0] * ac_22_z);
-    let fe_22_x = loads[21][0] - (p[21].mass * ac_22_x + trig[21][1] * t4078);
-    let fe_22_z = loads[21][1] - (p[21].mass * ac_22_z + trig[21][0] * t4078);
-    let t4093 = p[22].added_mass * (trig[22][1] * ac_23_x + trig[22][0] * ac_23_z);
-    let fe_23_x = loads[22][0] - (p[22].mass * ac_23_x + trig[22][1] * t4093);
-    let fe_23_z = loads[22][1] - (p[22].mass * ac_23_z + trig[22][0] * t4093);
-    let t4108 = p[23].added_mass * (trig[23][1] * ac_24_x + trig[23][0] * ac_24_z);
-    let fe_24_x = loads[23][0] - (p[23].mass * ac_24_x + trig[23][1] * t4108);
-    let fe_24_z = loads[23][1] - (p[23].mass * ac_24_z + trig[23][0] * t4108);
-    let t4123 = p[24].added_mass * (trig[24][1] * ac_25_x + trig[24][0] * ac_25_z);
-    let fe_25_x = loads[24][0] - (p[24].mass * ac_25_x + trig[24][1] * t4123);
-    let fe_25_z = loads[24][1] - (p[24].mass * ac_25_z + trig[24][0] * t4123);
-    let t4138 = p[25].added_mass * (trig[25][1] * ac_26_x + trig[25][0] * ac_26_z);
-    let fe_26_x = loads[25][0] - (p[25].mass * ac_26_x + trig[25][1] * t4138);
-    let fe_26_z = loads[25][1] - (p[25].mass * ac_26_z + trig[25][0] * t4138);
-    let t4153 = p[26].added_mass * (trig[26][1] * ac_27_x + trig[26][0] * ac_27_z);
-    let fe_27_x = loads[26][0] - (p[26].mass * ac_27_x + trig[26][1] * t4153);
-    let fe_27_z = loads[26][1] - (p[26].mass * ac_27_z + trig[26][0] * t4153);
-    let t4168 = p[27].added_mass * (trig[27][1] * ac_28_x + trig[27][0] * ac_28_z);
-    let fe_28_x = loads[27][0] - (p[27].mass * ac_28_x + trig[27][1] * t4168);
-    let fe_28_z = loads[27][1] - (p[27].mass * ac_28_z + trig[27][0] * t4168);
-    let t4183 = p[28].added_mass * (trig[28][1] * ac_29_x + trig[28][0] * ac_29_z);
-    let fe_29_x = loads[28][0] - (p[28].mass * ac_29_x + trig[28][1] * t4183);
-    let fe_29_z = loads[28][1] - (p[28].mass * ac_29_z + trig[28][0] * t4183);
-    let t4198 = p[29].added_mass * (trig[29][1] * ac_30_x + trig[29][0] * ac_30_z);
-    let fe_30_x = loads[29][0] - (p[29].mass * ac_30_x + trig[29][1] * t4198);
-    let fe_30_z = loads[29][1] - (p[29].mass * ac_30_z + trig[29][0] * t4198);
-    let t4213 = p[30].added_mass * (trig[30][1] * ac_31_x + trig[30][0] * ac_31_z);
-    let fe_31_x = loads[30][0] - (p[30].mass * ac_31_x + trig[30][1] * t4213);
-    let fe_31_z = loads[30][1] - (p[30].mass * ac_31_z + trig[30][0] * t4213);
-    let t4228 = p[31].added_mass * (trig[31][1] * ac_32_x + trig[31][0] * ac_32_z);
-    let fe_32_x = loads[31][0] - (p[31].mass * ac_32_x + trig[31][1] * t4228);
-    let fe_32_z = loads[31][1] - (p[31].mass * ac_32_z + trig[31][0] * t4228);
-    let t4243 = p[32].added_mass * (trig[32][1] * ac_33_x + trig[32][0] * ac_33_z);
-    let fe_33_x = loads[32][0] - (p[32].mass * ac_33_x + trig[32][1] * t4243);
-    let fe_33_z = loads[32][1] - (p[32].mass * ac_33_z + trig[32][0] * t4243);
-    let t4258 = p[33].added_mass * (trig[33][1] * ac_34_x + trig[33][0] * ac_34_z);
-    let fe_34_x = loads[33][0] - (p[33].mass * ac_34_x + trig[33][1] * t4258);
-    let fe_34_z = loads[33][1] - (p[33].mass * ac_34_z + trig[33][0] * t4258);
-    let t4273 = p[34].added_mass * (trig[34][1] * ac_35_x + trig[34][0] * ac_35_z);
-    let fe_35_x = loads[34][0] - (p[34].mass * ac_35_x + trig[34][1] * t4273);
-    let fe_35_z = loads[34][1] - (p[34].mass * ac_35_z + trig[34][0] * t4273);
-    let t4288 = p[35].added_mass * (trig[35][1] * ac_36_x + trig[35][0] * ac_36_z);
-    let fe_36_x = loads[35][0] - (p[35].mass * ac_36_x + trig[35][1] * t4288);
-    let fe_36_z = loads[35][1] - (p[35].mass * ac_36_z + trig[35][0] * t4288);
-    let t4303 = p[36].added_mass * (trig[36][1] * ac_37_x + trig[36][0] * ac_37_z);
-    let fe_37_x = loads[36][0] - (p[36].mass * ac_37_x + trig[36][1] * t4303);
-    let fe_37_z = loads[36][1] - (p[36].mass * ac_37_z + trig[36][0] * t4303);
-    let t4318 = p[37].added_mass * (trig[37][1] * ac_38_x + trig[37][0] * ac_38_z);
-    let fe_38_x = loads[37][0] - (p[37].mass * ac_38_x + trig[37][1] * t4318);
-    let fe_38_z = loads[37][1] - (p[37].mass * ac_38_z + trig[37][0] * t4318);
-    let t4333 = p[38].added_mass * (trig[38][1] * ac_39_x + trig[38][0] * ac_39_z);
-    let fe_39_x = loads[38][0] - (p[38].mass * ac_39_x + trig[38][1] * t4333);
-    let fe_39_z = loads[38][1] - (p[38].mass * ac_39_z + trig[38][0] * t4333);
-    let t4348 = p[39].added_mass * (trig[39][1] * ac_40_x + trig[39][0] * ac_40_z);
-    let fe_40_x = loads[39][0] - (p[39].mass * ac_40_x + trig[39][1] * t4348);
-    let fe_40_z = loads[39][1] - (p[39].mass * ac_40_z + trig[39][0] * t4348);
-    let t4363 = p[40].added_mass * (trig[40][1] * ac_41_x + trig[40][0] * ac_41_z);
-    let fe_41_x = loads[40][0] - (p[40].mass * ac_41_x + trig[40][1] * t4363);
-    let fe_41_z = loads[40][1] - (p[40].mass * ac_41_z + trig[40][0] * t4363);
-    let t4378 = p[41].added_mass * (trig[41][1] * ac_42_x + trig[41][0] * ac_42_z);
-    let fe_42_x = loads[41][0] - (p[41].mass * ac_42_x + trig[41][1] * t4378);
-    let fe_42_z = loads[41][1] - (p[41].mass * ac_42_z + trig[41][0] * t4378);
-    let t4393 = p[42].added_mass * (trig[42][1] * ac_43_x + trig[42][0] * ac_43_z);
-    let fe_43_x = loads[42][0] - (p[42].mass * ac_43_x + trig[42][1] * t4393);
-    let fe_43_z = loads[42][1] - (p[42].mass * ac_43_z + trig[42][0] * t4393);
-    let t4408 = p[43].added_mass * (trig[43][1] * ac_44_x + trig[43][0] * ac_44_z);
-    let fe_44_x = loads[43][0] - (p[43].mass * ac_44_x + trig[43][1] * t4408);
-    let fe_44_z = loads[43][1] - (p[43].mass * ac_44_z + trig[43][0] * t4408);
-    let t4423 = p[44].added_mass * (trig[44][1] * ac_45_x + trig[44][0] * ac_45_z);
-    let fe_45_x = loads[44][0] - (p[44].mass * ac_45_x + trig[44][1] * t4423);
-    let fe_45_z = loads[44][1] - (p[44].mass * ac_45_z + trig[44][0] * t4423);
+    let t3366 = u[0] * u[0];
+    let t3367 = e_2_x * t3366;
+    let ac_2_z = t413 * t3366;
+    let t3372 = t416 * t3366;
+    let t3374 = -(d_3_x * t3366);
+    let t3375 = w_3 * w_3;
+    let ac_3_x = t3374 - e_3_x * t3375;
+    let ac_3_z = t3372 + t419 * t3375;
+    let t3384 = t3374 - d_4_x * t3375;
+    let t3385 = t3372 + t422 * t3375;
+    let t3386 = w_4 * w_4;
+    let ac_4_x = t3384 - e_4_x * t3386;
+    let ac_4_z = t3385 + t425 * t3386;
+    let t3395 = t3384 - d_5_x * t3386;
+    let t3396 = t3385 + t428 * t3386;
+    let t3397 = w_5 * w_5;
+    let ac_5_x = t3395 - e_5_x * t3397;
+    let ac_5_z = t3396 + t431 * t3397;
+    let t3406 = t3395 - d_6_x * t3397;
+    let t3407 = t3396 + t434 * t3397;
+    let t3408 = w_6 * w_6;
+    let ac_6_x = t3406 - e_6_x * t3408;
+    let ac_6_z = t3407 + t437 * t3408;
+    let t3417 = t3406 - d_7_x * t3408;
+    let t3418 = t3407 + t440 * t3408;
+    let t3419 = w_7 * w_7;
+    let ac_7_x = t3417 - e_7_x * t3419;
+    let ac_7_z = t3418 + t443 * t3419;
+    let t3428 = t3417 - d_8_x * t3419;
+    let t3429 = t3418 + t446 * t3419;
+    let t3430 = w_8 * w_8;
+    let ac_8_x = t3428 - e_8_x * t3430;
+    let ac_8_z = t3429 + t449 * t3430;
+    let t3439 = t3428 - d_9_x * t3430;
+    let t3440 = t3429 + t452 * t3430;
+    let t3441 = w_9 * w_9;
+    let ac_9_x = t3439 - e_9_x * t3441;
+    let ac_9_z = t3440 + t455 * t3441;
+    let t3450 = t3439 - d_10_x * t3441;
+    let t3451 = t3440 + t458 * t3441;
+    let t3452 = w_10 * w_10;
+    let ac_10_x = t3450 - e_10_x * t3452;
+    let ac_10_z = t3451 + t461 * t3452;
+    let t3461 = t3450 - d_11_x * t3452;
+    let t3462 = t3451 + t464 * t3452;
+    let t3463 = w_11 * w_11;
+    let ac_11_x = t3461 - e_11_x * t3463;
+    let ac_11_z = t3462 + t467 * t3463;
+    let t3472 = t3461 - d_12_x * t3463;
+    let t3473 = t3462 + t470 * t3463;
+    let t3474 = w_12 * w_12;
+    let ac_12_x = t3472 - e_12_x * t3474;
+    let ac_12_z = t3473 + t473 * t3474;
+    let t3483 = t3472 - d_13_x * t3474;
+    let t3484 = t3473 + t476 * t3474;
+    let t3485 = w_13 * w_13;
+    let ac_13_x = t3483 - e_13_x * t3485;
+    let ac_13_z = t3484 + t479 * t3485;
+    let t3494 = t3483 - d_14_x * t3485;
+    let t3495 = t3484 + t482 * t3485;
+    let t3496 = w_14 * w_14;
+    let ac_14_x = t3494 - e_14_x * t3496;
+    let ac_14_z = t3495 + t485 * t3496;
+    let t3505 = t3494 - d_15_x * t3496;
+    let t3506 = t3495 + t488 * t3496;
+    let t3507 = w_15 * w_15;
+    let ac_15_x = t3505 - e_15_x * t3507;
+    let ac_15_z = t3506 + t491 * t3507;
+    let t3516 = t3505 - d_16_x * t3507;
+    let t3517 = t3506 + t494 * t3507;
+    let t3518 = w_16 * w_16;
+    let ac_16_x = t3516 - e_16_x * t3518;
+    let ac_16_z = t3517 + t497 * t3518;
+    let t3527 = t3516 - d_17_x * t3518;
+    let t3528 = t3517 + t500 * t3518;
+    let t3529 = w_17 * w_17;
+    let ac_17_x = t3527 - e_17_x * t3529;
+    let ac_17_z = t3528 + t503 * t3529;
+    let t3538 = t3527 - d_18_x * t3529;
+    let t3539 = t3528 + t506 * t3529;
+    let t3540 = w_18 * w_18;
+    let ac_18_x = t3538 - e_18_x * t3540;
+    let ac_18_z = t3539 + t509 * t3540;
+    let t3549 = t3538 - d_19_x * t3540;
+    let t3550 = t3539 + t512 * t3540;
+    let t3551 = w_19 * w_19;
+    let ac_19_x = t3549 - e_19_x * t3551;
+    let ac_19_z = t3550 + t515 * t3551;
+    let t3560 = t3549 - d_20_x * t3551;
+    let t3561 = t3550 + t518 * t3551;
+    let t3562 = w_20 * w_20;
+    let ac_20_x = t3560 - e_20_x * t3562;
+    let ac_20_z = t3561 + t521 * t3562;
+    let t3571 = t3560 - d_21_x * t3562;
+    let t3572 = t3561 + t524 * t3562;
+    let t3573 = w_21 * w_21;
+    let ac_21_x = t3571 - e_21_x * t3573;
+    let ac_21_z = t3572 + t527 * t3573;
+    let t3582 = t3571 - d_22_x * t3573;
+    let t3583 = t3572 + t530 * t3573;
+    let t3584 = w_22 * w_22;
+    let ac_22_x = t3582 - e_22_x * t3584;
+    let ac_22_z = t3583 + t533 * t3584;
+    let t3593 = t3582 - d_23_x * t3584;
+    let t3594 = t3583 + t536 * t3584;
+    let t3595 = w_23 * w_23;
+    let ac_23_x = t3593 - e_23_x * t3595;
+    let ac_23_z = t3594 + t539 * t3595;
+    let t3604 = t3593 - d_24_x * t3595;
+    let t3605 = t3594 + t542 * t3595;
+    let t3606 = w_24 * w_24;
+    let ac_24_x = t3604 - e_24_x * t3606;
+    let ac_24_z = t3605 + t545 * t3606;
+    let t3615 = t3604 - d_25_x * t3606;
+    let t3616 = t3605 + t548 * t3606;
+    let t3617 = w_25 * w_25;
+    let ac_25_x = t3615 - e_25_x * t3617;
+    let ac_25_z = t3616 + t551 * t3617;
+    let t3626 = t3615 - d_26_x * t3617;
+    let t3627 = t3616 + t554 * t3617;
+    let t3628 = w_26 * w_26;
+    let ac_26_x = t3626 - e_26_x * t3628;
+    let ac_26_z = t3627 + t557 * t3628;
+    let t3637 = t3626 - d_27_x * t3628;
+    let t3638 = t3627 + t560 * t3628;
+    let t3639 = w_27 * w_27;
+    let ac_27_x = t3637 - e_27_x * t3639;
+    let ac_27_z = t3638 + t563 * t3639;
+    let t3648 = t3637 - d_28_x * t3639;
+    let t3649 = t3638 + t566 * t3639;
+    let t3650 = w_28 * w_28;
+    let ac_28_x = t3648 - e_28_x * t3650;
+    let ac_28_z = t3649 + t569 * t3650;
+    let t3659 = t3648 - d_29_x * t3650;
+    let t3660 = t3649 + t572 * t3650;
+    let t3661 = w_29 * w_29;
+    let ac_29_x = t3659 - e_29_x * t3661;
+    let ac_29_z = t3660 + t575 * t3661;
+    let t3670 = t3659 - d_30_x * t3661;
+    let t3671 = t3660 + t578 * t3661;
+    let t3672 = w_30 * w_30;
+    let ac_30_x = t3670 - e_30_x * t3672;
+    let ac_30_z = t3671 + t581 * t3672;
+    let t3681 = t3670 - d_31_x * t3672;
+    let t3682 = t3671 + t584 * t3672;
+    let t3683 = w_31 * w_31;
+    let ac_31_x = t3681 - e_31_x * t3683;
+    let ac_31_z = t3682 + t587 * t3683;
+    let t3692 = t3681 - d_32_x * t3683;
+    let t3693 = t3682 + t590 * t3683;
+    let t3694 = w_32 * w_32;
+    let ac_32_x = t3692 - e_32_x * t3694;
+    let ac_32_z = t3693 + t593 * t3694;
+    let t3703 = t3692 - d_33_x * t3694;
+    let t3704 = t3693 + t596 * t3694;
+    let t3705 = w_33 * w_33;
+    let ac_33_x = t3703 - e_33_x * t3705;
+    let ac_33_z = t3704 + t599 * t3705;
+    let t3714 = t3703 - d_34_x * t3705;
+    let t3715 = t3704 + t602 * t3705;
+    let t3716 = w_34 * w_34;
+    let ac_34_x = t3714 - e_34_x * t3716;
+    let ac_34_z = t3715 + t605 * t3716;
+    let t3725 = t3714 - d_35_x * t3716;
+    let t3726 = t3715 + t608 * t3716;
+    let t3727 = w_35 * w_35;
+    let ac_35_x = t3725 - e_35_x * t3727;
+    let ac_35_z = t3726 + t611 * t3727;
+    let t3736 = t3725 - d_36_x * t3727;
+    let t3737 = t3726 + t614 * t3727;
+    let t3738 = w_36 * w_36;
+    let ac_36_x = t3736 - e_36_x * t3738;
+    let ac_36_z = t3737 + t617 * t3738;
+    let t3747 = t3736 - d_37_x * t3738;
+    let t3748 = t3737 + t620 * t3738;
+    let t3749 = w_37 * w_37;
+    let ac_37_x = t3747 - e_37_x * t3749;
+    let ac_37_z = t3748 + t623 * t3749;
+    let t3758 = t3747 - d_38_x * t3749;
+    let t3759 = t3748 + t626 * t3749;
+    let t3760 = w_38 * w_38;
+    let ac_38_x = t3758 - e_38_x * t3760;
+    let ac_38_z = t3759 + t629 * t3760;
+    let t3769 = t3758 - d_39_x * t3760;
+    let t3770 = t3759 + t632 * t3760;
+    let t3771 = w_39 * w_39;
+    let ac_39_x = t3769 - e_39_x * t3771;
+    let ac_39_z = t3770 + t635 * t3771;
+    let t3780 = t3769 - d_40_x * t3771;
+    let t3781 = t3770 + t638 * t3771;
+    let t3782 = w_40 * w_40;
+    let ac_40_x = t3780 - e_40_x * t3782;
+    let ac_40_z = t3781 + t641 * t3782;
+    let t3791 = t3780 - d_41_x * t3782;
+    let t3792 = t3781 + t644 * t3782;
+    let t3793 = w_41 * w_41;
+    let ac_41_x = t3791 - e_41_x * t3793;
+    let ac_41_z = t3792 + t647 * t3793;
+    let t3802 = t3791 - d_42_x * t3793;
+    let t3803 = t3792 + t650 * t3793;
+    let t3804 = w_42 * w_42;
+    let ac_42_x = t3802 - e_42_x * t3804;
+    let ac_42_z = t3803 + t653 * t3804;
+    let t3813 = t3802 - d_43_x * t3804;
+    let t3814 = t3803 + t656 * t3804;
+    let t3815 = w_43 * w_43;
+    let ac_43_x = t3813 - e_43_x * t3815;
+    let ac_43_z = t3814 + t659 * t3815;
+    let t3824 = t3813 - d_44_x * t3815;
+    let t3825 = t3814 + t662 * t3815;
+    let t3826 = w_44 * w_44;
+    let ac_44_x = t3824 - e_44_x * t3826;
+    let ac_44_z = t3825 + t665 * t3826;
+    let t3835 = t3824 - d_45_x * t3826;
+    let t3836 = t3825 + t668 * t3826;
+    let t3837 = w_45 * w_45;
+    let ac_45_x = t3835 - e_45_x * t3837;
+    let ac_45_z = t3836 + t671 * t3837;
+    let t3848 = w_46 * w_46;
+    let ac_46_x = t3835 - d_46_x * t3837 - e_46_x * t3848;
+    let ac_46_z = t3836 + t674 * t3837 - e_46_z * t3848;
+    let t3866 = p[1].added_mass * (trig[1][0] * ac_2_z - trig[1][1] * t3367);
+    let fe_2_x = loads[1][0] - (trig[1][1] * t3866 - p[1].mass * t3367);
+    let fe_2_z = loads[1][1] - (p[1].mass * ac_2_z + trig[1][0] * t3866);
+    let t3881 = p[2].added_mass * (trig[2][1] * ac_3_x + trig[2][0] * ac_3_z);
+    let fe_3_x = loads[2][0] - (p[2].mass * ac_3_x + trig[2][1] * t3881);
+    let fe_3_z = loads[2][1] - (p[2].mass * ac_3_z + trig[2][0] * t3881);
+    let t3896 = p[3].added_mass * (trig[3][1] * ac_4_x + trig[3][0] * ac_4_z);
+    let fe_4_x = loads[3][0] - (p[3].mass * ac_4_x + trig[3][1] * t3896);
+    let fe_4_z = loads[3][1] - (p[3].mass * ac_4_z + trig[3][0] * t3896);
+    let t3911 = p[4].added_mass * (trig[4][1] * ac_5_x + trig[4][0] * ac_5_z);
+    let fe_5_x = loads[4][0] - (p[4].mass * ac_5_x + trig[4][1] * t3911);
+    let fe_5_z = loads[4][1] - (p[4].mass * ac_5_z + trig[4][0] * t3911);
+    let t3926 = p[5].added_mass * (trig[5][1] * ac_6_x + trig[5][0] * ac_6_z);
+    let fe_6_x = loads[5][0] - (p[5].mass * ac_6_x + trig[5][1] * t3926);
+    let fe_6_z = loads[5][1] - (p[5].mass * ac_6_z + trig[5][0] * t3926);
+    let t3941 = p[6].added_mass * (trig[6][1] * ac_7_x + trig[6][0] * ac_7_z);
+    let fe_7_x = loads[6][0] - (p[6].mass * ac_7_x + trig[6][1] * t3941);
+    let fe_7_z = loads[6][1] - (p[6].mass * ac_7_z + trig[6][0] * t3941);
+    let t3956 = p[7].added_mass * (trig[7][1] * ac_8_x + trig[7][0] * ac_8_z);
+    let fe_8_x = loads[7][0] - (p[7].mass * ac_8_x + trig[7][1] * t3956);
+    let fe_8_z = loads[7][1] - (p[7].mass * ac_8_z + trig[7][0] * t3956);
+    let t3971 = p[8].added_mass * (trig[8][1] * ac_9_x + trig[8][0] * ac_9_z);
+    let fe_9_x = loads[8][0] - (p[8].mass * ac_9_x + trig[8][1] * t3971);
+    let fe_9_z = loads[8][1] - (p[8].mass * ac_9_z + trig[8][0] * t3971);
+    let t3986 = p[9].added_mass * (trig[9][1] * ac_10_x + trig[9][0] * ac_10_z);
+    let fe_10_x = loads[9][0] - (p[9].mass * ac_10_x + trig[9][1] * t3986);
+    let fe_10_z = loads[9][1] - (p[9].mass * ac_10_z + trig[9][0] * t3986);
+    let t4001 = p[10].added_mass * (trig[10][1] * ac_11_x + trig[10][0] * ac_11_z);
+    let fe_11_x = loads[10][0] - (p[10].mass * ac_11_x + trig[10][1] * t4001);
+    let fe_11_z = loads[10][1] - (p[10].mass * ac_11_z + trig[10][0] * t4001);
+    let t4016 = p[11].added_mass * (trig[11][1] * ac_12_x + trig[11][0] * ac_12_z);
+    let fe_12_x = loads[11][0] - (p[11].mass * ac_12_x + trig[11][1] * t4016);
+    let fe_12_z = loads[11][1] - (p[11].mass * ac_12_z + trig[11][0] * t4016);
+    let t4031 = p[12].added_mass * (trig[12][1] * ac_13_x + trig[12][0] * ac_13_z);
+    let fe_13_x = loads[12][0] - (p[12].mass * ac_13_x + trig[12][1] * t4031);
+    let fe_13_z = loads[12][1] - (p[12].mass * ac_13_z + trig[12][0] * t4031);
+    let t4046 = p[13].added_mass * (trig[13][1] * ac_14_x + trig[13][0] * ac_14_z);
+    let fe_14_x = loads[13][0] - (p[13].mass * ac_14_x + trig[13][1] * t4046);
+    let fe_14_z = loads[13][1] - (p[13].mass * ac_14_z + trig[13][0] * t4046);
+    let t4061 = p[14].added_mass * (trig[14][1] * ac_15_x + trig[14][0] * ac_15_z);
+    let fe_15_x = loads[14][0] - (p[14].mass * ac_15_x + trig[14][1] * t4061);
+    let fe_15_z = loads[14][1] - (p[14].mass * ac_15_z + trig[14][0] * t4061);
+    let t4076 = p[15].added_mass * (trig[15][1] * ac_16_x + trig[15][0] * ac_16_z);
+    let fe_16_x = loads[15][0] - (p[15].mass * ac_16_x + trig[15][1] * t4076);
+    let fe_16_z = loads[15][1] - (p[15].mass * ac_16_z + trig[15][0] * t4076);
+    let t4091 = p[16].added_mass * (trig[16][1] * ac_17_x + trig[16][0] * ac_17_z);
+    let fe_17_x = loads[16][0] - (p[16].mass * ac_17_x + trig[16][1] * t4091);
+    let fe_17_z = loads[16][1] - (p[16].mass * ac_17_z + trig[16][0] * t4091);
+    let t4106 = p[17].added_mass * (trig[17][1] * ac_18_x + trig[17][0] * ac_18_z);
+    let fe_18_x = loads[17][0] - (p[17].mass * ac_18_x + trig[17][1] * t4106);
+    let fe_18_z = loads[17][1] - (p[17].mass * ac_18_z + trig[17][0] * t4106);
+    let t4121 = p[18].added_mass * (trig[18][1] * ac_19_x + trig[18][0] * ac_19_z);
+    let fe_19_x = loads[18][0] - (p[18].mass * ac_19_x + trig[18][1] * t4121);
+    let fe_19_z = loads[18][1] - (p[18].mass * ac_19_z + trig[18][0] * t4121);
+    let t4136 = p[19].added_mass * (trig[19][1] * ac_20_x + trig[19][0] * ac_20_z);
+    let fe_20_x = loads[19][0] - (p[19].mass * ac_20_x + trig[19][1] * t4136);
+    let fe_20_z = loads[19][1] - (p[19].mass * ac_20_z + trig[19][0] * t4136);
+    let t4151 = p[20].added_mass * (trig[20][1] * ac_21_x + trig[20][0] * ac_21_z);
+    let fe_21_x = loads[20][0] - (p[20].mass * ac_21_x + trig[20][1] * t4151);
+    let fe_21_z = loads[20][1] - (p[20].mass * ac_21_z + trig[20][0] * t4151);
+    let t4166 = p[21].added_mass * (trig[21][1] * ac_22_x + trig[21][0] * ac_22_z);
+    let fe_22_x = loads[21][0] - (p[21].mass * ac_22_x + trig[21][1] * t4166);
+    let fe_22_z = loads[21][1] - (p[21].mass * ac_22_z + trig[21][0] * t4166);
+    let t4181 = p[22].added_mass * (trig[22][1] * ac_23_x + trig[22][0] * ac_23_z);
+    let fe_23_x = loads[22][0] - (p[22].mass * ac_23_x + trig[22][1] * t4181);
+    let fe_23_z = loads[22][1] - (p[22].mass * ac_23_z + trig[22][0] * t4181);
+    let t4196 = p[23].added_mass * (trig[23][1] * ac_24_x + trig[23][0] * ac_24_z);
+    let fe_24_x = loads[23][0] - (p[23].mass * ac_24_x + trig[23][1] * t4196);
+    let fe_24_z = loads[23][1] - (p[23].mass * ac_24_z + trig[23][0] * t4196);
+    let t4211 = p[24].added_mass * (trig[24][1] * ac_25_x + trig[24][0] * ac_25_z);
+    let fe_25_x = loads[24][0] - (p[24].mass * ac_25_x + trig[24][1] * t4211);
+    let fe_25_z = loads[24][1] - (p[24].mass * ac_25_z + trig[24][0] * t4211);
+    let t4226 = p[25].added_mass * (trig[25][1] * ac_26_x + trig[25][0] * ac_26_z);
+    let fe_26_x = loads[25][0] - (p[25].mass * ac_26_x + trig[25][1] * t4226);
+    let fe_26_z = loads[25][1] - (p[25].mass * ac_26_z + trig[25][0] * t4226);
+    let t4241 = p[26].added_mass * (trig[26][1] * ac_27_x + trig[26][0] * ac_27_z);
+    let fe_27_x = loads[26][0] - (p[26].mass * ac_27_x + trig[26][1] * t4241);
+    let fe_27_z = loads[26][1] - (p[26].mass * ac_27_z + trig[26][0] * t4241);
+    let t4256 = p[27].added_mass * (trig[27][1] * ac_28_x + trig[27][0] * ac_28_z);
+    let fe_28_x = loads[27][0] - (p[27].mass * ac_28_x + trig[27][1] * t4256);
+    let fe_28_z = loads[27][1] - (p[27].mass * ac_28_z + trig[27][0] * t4256);
+    let t4271 = p[28].added_mass * (trig[28][1] * ac_29_x + trig[28][0] * ac_29_z);
+    let fe_29_x = loads[28][0] - (p[28].mass * ac_29_x + trig[28][1] * t4271);
+    let fe_29_z = loads[28][1] - (p[28].mass * ac_29_z + trig[28][0] * t4271);
+    let t4286 = p[29].added_mass * (trig[29][1] * ac_30_x + trig[29][0] * ac_30_z);
+    let fe_30_x = loads[29][0] - (p[29].mass * ac_30_x + trig[29][1] * t4286);
+    let fe_30_z = loads[29][1] - (p[29].mass * ac_30_z + trig[29][0] * t4286);
+    let t4301 = p[30].added_mass * (trig[30][1] * ac_31_x + trig[30][0] * ac_31_z);
+    let fe_31_x = loads[30][0] - (p[30].mass * ac_31_x + trig[30][1] * t4301);
+    let fe_31_z = loads[30][1] - (p[30].mass * ac_31_z + trig[30][0] * t4301);
+    let t4316 = p[31].added_mass * (trig[31][1] * ac_32_x + trig[31][0] * ac_32_z);
+    let fe_32_x = loads[31][0] - (p[31].mass * ac_32_x + trig[31][1] * t4316);
+    let fe_32_z = loads[31][1] - (p[31].mass * ac_32_z + trig[31][0] * t4316);
+    let t4331 = p[32].added_mass * (trig[32][1] * ac_33_x + trig[32][0] * ac_33_z);
+    let fe_33_x = loads[32][0] - (p[32].mass * ac_33_x + trig[32][1] * t4331);
+    let fe_33_z = loads[32][1] - (p[32].mass * ac_33_z + trig[32][0] * t4331);
+    let t4346 = p[33].added_mass * (trig[33][1] * ac_34_x + trig[33][0] * ac_34_z);
+    let fe_34_x = loads[33][0] - (p[33].mass * ac_34_x + trig[33][1] * t4346);
+    let fe_34_z = loads[33][1] - (p[33].mass * ac_34_z + trig[33][0] * t4346);
+    let t4361 = p[34].added_mass * (trig[34][1] * ac_35_x + trig[34][0] * ac_35_z);
+    let fe_35_x = loads[34][0] - (p[34].mass * ac_35_x + trig[34][1] * t4361);
+    let fe_35_z = loads[34][1] - (p[34].mass * ac_35_z + trig[34][0] * t4361);
+    let t4376 = p[35].added_mass * (trig[35][1] * ac_36_x + trig[35][0] * ac_36_z);
+    let fe_36_x = loads[35][0] - (p[35].mass * ac_36_x + trig[35][1] * t4376);
+    let fe_36_z = loads[35][1] - (p[35].mass * ac_36_z + trig[35][0] * t4376);
+    let t4391 = p[36].added_mass * (trig[36][1] * ac_37_x + trig[36][0] * ac_37_z);
+    let fe_37_x = loads[36][0] - (p[36].mass * ac_37_x + trig[36][1] * t4391);
+    let fe_37_z = loads[36][1] - (p[36].mass * ac_37_z + trig[36][0] * t4391);
+    let t4406 = p[37].added_mass * (trig[37][1] * ac_38_x + trig[37][0] * ac_38_z);
+    let fe_38_x = loads[37][0] - (p[37].mass * ac_38_x + trig[37][1] * t4406);
+    let fe_38_z = loads[37][1] - (p[37].mass * ac_38_z + trig[37][0] * t4406);
+    let t4421 = p[38].added_mass * (trig[38][1] * ac_39_x + trig[38][0] * ac_39_z);
+    let fe_39_x = loads[38][0] - (p[38].mass * ac_39_x + trig[38][1] * t4421);
+    let fe_39_z = loads[38][1] - (p[38].mass * ac_39_z + trig[38][0] * t4421);
+    let t4436 = p[39].added_mass * (trig[39][1] * ac_40_x + trig[39][0] * ac_40_z);
+    let fe_40_x = loads[39][0] - (p[39].mass * ac_40_x + trig[39][1] * t4436);
+    let fe_40_z = loads[39][1] - (p[39].mass * ac_40_z + trig[39][0] * t4436);
+    let t4451 = p[40].added_mass * (trig[40][1] * ac_41_x + trig[40][0] * ac_41_z);
+    let fe_41_x = loads[40][0] - (p[40].mass * ac_41_x + trig[40][1] * t4451);
+    let fe_41_z = loads[40][1] - (p[40].mass * ac_41_z + trig[40][0] * t4451);
+    let t4466 = p[41].added_mass * (trig[41][1] * ac_42_x + trig[41][0] * ac_42_z);
+    let fe_42_x = loads[41][0] - (p[41].mass * ac_42_x + trig[41][1] * t4466);
+    let fe_42_z = loads[41][1] - (p[41].mass * ac_42_z + trig[41][0] * t4466);
+    let t4481 = p[42].added_mass * (trig[42][1] * ac_43_x + trig[42][0] * ac_43_z);
+    let fe_43_x = loads[42][0] - (p[42].mass * ac_43_x + trig[42][1] * t4481);
+    let fe_43_z = loads[42][1] - (p[42].mass * ac_43_z + trig[42][0] * t4481);
+    let t4496 = p[43].added_mass * (trig[43][1] * ac_44_x + trig[43][0] * ac_44_z);
+    let fe_44_x = loads[43][0] - (p[43].mass * ac_44_x + trig[43][1] * t4496);
+    let fe_44_z = loads[43][1] - (p[43].mass * ac_44_z + trig[43][0] * t4496);
+    let t4511 = p[44].added_mass * (trig[44][1] * ac_45_x + trig[44][0] * ac_45_z);
+    let fe_45_x = loads[44][0] - (p[44].mass * ac_45_x + trig[44][1] * t4511);
+    let fe_45_z = loads[44][1] - (p[44].mass * ac_45_z + trig[44][0] * t4511);
     let fe_46_x = loads[45][0] - p[45].mass * ac_46_x;
     let fe_46_z = loads[45][1] - p[45].mass * ac_46_z;
     let f_44 = loads[45][2] + (e_46_z * fe_46_x - e_46_x * fe_46_z);
@@ -2797,222 +2935,270 @@ pub fn assemble(
         + (-(t413 * fe_2_x) - e_2_x * fe_2_z
             + (f_1 + (-(t416 * g_3_x) - d_3_x * g_3_z)));
     let g_2_x = fe_2_x + g_3_x;
+    let g_2_z = fe_2_z + g_3_z;
     let g_1_x = loads[0][0] + g_2_x;
+    let g_1_z = loads[0][1] + g_2_z;
+    heave[0] = a_w_0;
     o_rel[1][0] = d_3_x;
     o_rel[1][1] = d_3_z;
+    heave[1] = a_w_1;
     k_col[2] = k_4;
     s_col[2][0] = sm_4_x;
     s_col[2][1] = sm_4_z;
     o_rel[2][0] = o_4_x;
     o_rel[2][1] = o_4_z;
+    heave[2] = a_w_2;
     k_col[3] = k_5;
     s_col[3][0] = sm_5_x;
     s_col[3][1] = sm_5_z;
     o_rel[3][0] = o_5_x;
     o_rel[3][1] = o_5_z;
+    heave[3] = a_w_3;
     k_col[4] = k_6;
     s_col[4][0] = sm_6_x;
     s_col[4][1] = sm_6_z;
     o_rel[4][0] = o_6_x;
     o_rel[4][1] = o_6_z;
+    heave[4] = a_w_4;
     k_col[5] = k_7;
     s_col[5][0] = sm_7_x;
     s_col[5][1] = sm_7_z;
     o_rel[5][0] = o_7_x;
     o_rel[5][1] = o_7_z;
+    heave[5] = a_w_5;
     k_col[6] = k_8;
     s_col[6][0] = sm_8_x;
     s_col[6][1] = sm_8_z;
     o_rel[6][0] = o_8_x;
     o_rel[6][1] = o_8_z;
+    heave[6] = a_w_6;
     k_col[7] = k_9;
     s_col[7][0] = sm_9_x;
     s_col[7][1] = sm_9_z;
     o_rel[7][0] = o_9_x;
     o_rel[7][1] = o_9_z;
+    heave[7] = a_w_7;
     k_col[8] = k_10;
     s_col[8][0] = sm_10_x;
     s_col[8][1] = sm_10_z;
     o_rel[8][0] = o_10_x;
     o_rel[8][1] = o_10_z;
+    heave[8] = a_w_8;
     k_col[9] = k_11;
     s_col[9][0] = sm_11_x;
     s_col[9][1] = sm_11_z;
     o_rel[9][0] = o_11_x;
     o_rel[9][1] = o_11_z;
+    heave[9] = a_w_9;
     k_col[10] = k_12;
     s_col[10][0] = sm_12_x;
     s_col[10][1] = sm_12_z;
     o_rel[10][0] = o_12_x;
     o_rel[10][1] = o_12_z;
+    heave[10] = a_w_10;
     k_col[11] = k_13;
     s_col[11][0] = sm_13_x;
     s_col[11][1] = sm_13_z;
     o_rel[11][0] = o_13_x;
     o_rel[11][1] = o_13_z;
+    heave[11] = a_w_11;
     k_col[12] = k_14;
     s_col[12][0] = sm_14_x;
     s_col[12][1] = sm_14_z;
     o_rel[12][0] = o_14_x;
     o_rel[12][1] = o_14_z;
+    heave[12] = a_w_12;
     k_col[13] = k_15;
     s_col[13][0] = sm_15_x;
     s_col[13][1] = sm_15_z;
     o_rel[13][0] = o_15_x;
     o_rel[13][1] = o_15_z;
+    heave[13] = a_w_13;
     k_col[14] = k_16;
     s_col[14][0] = sm_16_x;
     s_col[14][1] = sm_16_z;
     o_rel[14][0] = o_16_x;
     o_rel[14][1] = o_16_z;
+    heave[14] = a_w_14;
     k_col[15] = k_17;
     s_col[15][0] = sm_17_x;
     s_col[15][1] = sm_17_z;
     o_rel[15][0] = o_17_x;
     o_rel[15][1] = o_17_z;
+    heave[15] = a_w_15;
     k_col[16] = k_18;
     s_col[16][0] = sm_18_x;
     s_col[16][1] = sm_18_z;
     o_rel[16][0] = o_18_x;
     o_rel[16][1] = o_18_z;
+    heave[16] = a_w_16;
     k_col[17] = k_19;
     s_col[17][0] = sm_19_x;
     s_col[17][1] = sm_19_z;
     o_rel[17][0] = o_19_x;
     o_rel[17][1] = o_19_z;
+    heave[17] = a_w_17;
     k_col[18] = k_20;
     s_col[18][0] = sm_20_x;
     s_col[18][1] = sm_20_z;
     o_rel[18][0] = o_20_x;
     o_rel[18][1] = o_20_z;
+    heave[18] = a_w_18;
     k_col[19] = k_21;
     s_col[19][0] = sm_21_x;
     s_col[19][1] = sm_21_z;
     o_rel[19][0] = o_21_x;
     o_rel[19][1] = o_21_z;
+    heave[19] = a_w_19;
     k_col[20] = k_22;
     s_col[20][0] = sm_22_x;
     s_col[20][1] = sm_22_z;
     o_rel[20][0] = o_22_x;
     o_rel[20][1] = o_22_z;
+    heave[20] = a_w_20;
     k_col[21] = k_23;
     s_col[21][0] = sm_23_x;
     s_col[21][1] = sm_23_z;
     o_rel[21][0] = o_23_x;
     o_rel[21][1] = o_23_z;
+    heave[21] = a_w_21;
     k_col[22] = k_24;
     s_col[22][0] = sm_24_x;
     s_col[22][1] = sm_24_z;
     o_rel[22][0] = o_24_x;
     o_rel[22][1] = o_24_z;
+    heave[22] = a_w_22;
     k_col[23] = k_25;
     s_col[23][0] = sm_25_x;
     s_col[23][1] = sm_25_z;
     o_rel[23][0] = o_25_x;
     o_rel[23][1] = o_25_z;
+    heave[23] = a_w_23;
     k_col[24] = k_26;
     s_col[24][0] = sm_26_x;
     s_col[24][1] = sm_26_z;
     o_rel[24][0] = o_26_x;
     o_rel[24][1] = o_26_z;
+    heave[24] = a_w_24;
     k_col[25] = k_27;
     s_col[25][0] = sm_27_x;
     s_col[25][1] = sm_27_z;
     o_rel[25][0] = o_27_x;
     o_rel[25][1] = o_27_z;
+    heave[25] = a_w_25;
     k_col[26] = k_28;
     s_col[26][0] = sm_28_x;
     s_col[26][1] = sm_28_z;
     o_rel[26][0] = o_28_x;
     o_rel[26][1] = o_28_z;
+    heave[26] = a_w_26;
     k_col[27] = k_29;
     s_col[27][0] = sm_29_x;
     s_col[27][1] = sm_29_z;
     o_rel[27][0] = o_29_x;
     o_rel[27][1] = o_29_z;
+    heave[27] = a_w_27;
     k_col[28] = k_30;
     s_col[28][0] = sm_30_x;
     s_col[28][1] = sm_30_z;
     o_rel[28][0] = o_30_x;
     o_rel[28][1] = o_30_z;
+    heave[28] = a_w_28;
     k_col[29] = k_31;
     s_col[29][0] = sm_31_x;
     s_col[29][1] = sm_31_z;
     o_rel[29][0] = o_31_x;
     o_rel[29][1] = o_31_z;
+    heave[29] = a_w_29;
     k_col[30] = k_32;
     s_col[30][0] = sm_32_x;
     s_col[30][1] = sm_32_z;
     o_rel[30][0] = o_32_x;
     o_rel[30][1] = o_32_z;
+    heave[30] = a_w_30;
     k_col[31] = k_33;
     s_col[31][0] = sm_33_x;
     s_col[31][1] = sm_33_z;
     o_rel[31][0] = o_33_x;
     o_rel[31][1] = o_33_z;
+    heave[31] = a_w_31;
     k_col[32] = k_34;
     s_col[32][0] = sm_34_x;
     s_col[32][1] = sm_34_z;
     o_rel[32][0] = o_34_x;
     o_rel[32][1] = o_34_z;
+    heave[32] = a_w_32;
     k_col[33] = k_35;
     s_col[33][0] = sm_35_x;
     s_col[33][1] = sm_35_z;
     o_rel[33][0] = o_35_x;
     o_rel[33][1] = o_35_z;
+    heave[33] = a_w_33;
     k_col[34] = k_36;
     s_col[34][0] = sm_36_x;
     s_col[34][1] = sm_36_z;
     o_rel[34][0] = o_36_x;
     o_rel[34][1] = o_36_z;
+    heave[34] = a_w_34;
     k_col[35] = k_37;
     s_col[35][0] = sm_37_x;
     s_col[35][1] = sm_37_z;
     o_rel[35][0] = o_37_x;
     o_rel[35][1] = o_37_z;
+    heave[35] = a_w_35;
     k_col[36] = k_38;
     s_col[36][0] = sm_38_x;
     s_col[36][1] = sm_38_z;
     o_rel[36][0] = o_38_x;
     o_rel[36][1] = o_38_z;
+    heave[36] = a_w_36;
     k_col[37] = k_39;
     s_col[37][0] = sm_39_x;
     s_col[37][1] = sm_39_z;
     o_rel[37][0] = o_39_x;
     o_rel[37][1] = o_39_z;
+    heave[37] = a_w_37;
     k_col[38] = k_40;
     s_col[38][0] = sm_40_x;
     s_col[38][1] = sm_40_z;
     o_rel[38][0] = o_40_x;
     o_rel[38][1] = o_40_z;
+    heave[38] = a_w_38;
     k_col[39] = k_41;
     s_col[39][0] = sm_41_x;
     s_col[39][1] = sm_41_z;
     o_rel[39][0] = o_41_x;
     o_rel[39][1] = o_41_z;
+    heave[39] = a_w_39;
     k_col[40] = k_42;
     s_col[40][0] = sm_42_x;
     s_col[40][1] = sm_42_z;
     o_rel[40][0] = o_42_x;
     o_rel[40][1] = o_42_z;
+    heave[40] = a_w_40;
     k_col[41] = k_43;
     s_col[41][0] = sm_43_x;
     s_col[41][1] = sm_43_z;
     o_rel[41][0] = o_43_x;
     o_rel[41][1] = o_43_z;
+    heave[41] = a_w_41;
     k_col[42] = k_44;
     s_col[42][0] = sm_44_x;
     s_col[42][1] = sm_44_z;
     o_rel[42][0] = o_44_x;
     o_rel[42][1] = o_44_z;
+    heave[42] = a_w_42;
     k_col[43] = k_45;
     s_col[43][0] = sm_45_x;
     s_col[43][1] = sm_45_z;
     o_rel[43][0] = o_45_x;
     o_rel[43][1] = o_45_z;
+    heave[43] = a_w_43;
     k_col[44] = k_46;
     s_col[44][0] = sm_46_x;
     s_col[44][1] = sm_46_z;
+    heave[44] = a_w_44;
+    heave[45] = a_w_45;
     m[0] = j_2;
     m[1] = k_3;
     m[46] = k_3;
@@ -3283,6 +3469,7 @@ pub fn assemble(
     f[43] = f_43;
     f[44] = f_44;
     f[45] = g_1_x;
+    heave[46] = g_1_z;
     for l in 2..45 {
         let (k, s) = (k_col[l], s_col[l]);
         for j in 1..l {
@@ -3935,13 +4122,18 @@ pub fn accelerations(
 }
 /// ẍ of Eq. 27 with the anchor free (all N speeds), by the O(N) articulated-body recursion
 /// on the Kane quantities of Eqs. 15–17 and 22–23: inward over the hinges, then outward.
+///
+/// The anchor slides with friction −`friction`·N along x (`friction` = μ times the direction
+/// of sliding, 0 for none), N the seabed's normal force taken implicitly (Eq. 37). Returns
+/// `[N, 1 + friction·∂N/∂F_x]`: the second is positive for a well-posed sliding problem.
 pub fn solve_free(
     p: &[crate::BodyParams],
     u: &[f64],
     trig: &[[f64; 2]],
     loads: &[[f64; 3]],
+    friction: f64,
     qdd: &mut [f64],
-) {
+) -> [f64; 2] {
     let p: &[crate::BodyParams; 46] = p.try_into().expect("p must have 46 entries");
     let u: &[f64; 46] = u.try_into().expect("u must have 46 entries");
     let trig: &[[f64; 2]; 46] = trig.try_into().expect("trig must have 46 entries");
@@ -5436,205 +5628,212 @@ pub fn solve_free(
     let t5294 = d_3_x * t5293;
     let t5295 = t416 * t5293;
     let t5302 = pa_3_x - pa_3_m * t5280 + (t5286 * t5295 - t5285 * t5294);
+    let t5307 = pa_3_z - pa_3_m * t5281 + (t5287 * t5295 - t5286 * t5294);
     let t5312 = -(t416 * t5285) - d_3_x * t5286;
+    let t5317 = -(t416 * t5286) - d_3_x * t5287;
     let t5328 = p[1].centroid[0] * p[1].centroid[0];
-    let ia_2_00 = -(t416 * t5312) - d_3_x * (-(t416 * t5286) - d_3_x * t5287)
+    let t5333 = p[1].mass * e_2_x;
+    let t5334 = p[1].mass * t413;
+    let t5337 = p[1].centroid[0] * p[1].added_mass;
+    let t5356 = p[1].added_mass * (trig[1][1] * e_2_x - trig[1][0] * t413);
+    let ia_2_00 = -(t416 * t5312) - d_3_x * t5317
         + (p[1].inertia + (p[1].mass * t5328 + p[1].added_mass * t5328));
-    let ia_2_01 = t5312
-        + (-(p[1].mass * t413) - trig[1][1] * (p[1].centroid[0] * p[1].added_mass));
+    let ia_2_01 = t5312 + (-t5334 - trig[1][1] * t5337);
+    let ia_2_02 = t5317 - (t5333 + trig[1][0] * t5337);
     let ia_2_11 = t5285 + (p[1].mass + p[1].added_mass * (trig[1][1] * trig[1][1]));
-    let pa_2_m = -(t416 * t5302)
-        - d_3_x * (pa_3_z - pa_3_m * t5281 + (t5287 * t5295 - t5286 * t5294))
+    let ia_2_12 = t5286 + p[1].added_mass * (trig[1][0] * trig[1][1]);
+    let pa_2_m = -(t416 * t5302) - d_3_x * t5307
         - (loads[1][2] + (-(t413 * loads[1][0]) - e_2_x * loads[1][1]));
-    let pa_2_x = t5302
-        + (-(t5293
-            * (p[1].mass * e_2_x
-                + trig[1][1]
-                    * (p[1].added_mass * (trig[1][1] * e_2_x - trig[1][0] * t413))))
-            - loads[1][0]);
+    let pa_2_x = t5302 + (-(t5293 * (t5333 + trig[1][1] * t5356)) - loads[1][0]);
+    let pa_2_z = t5307 + (-(t5293 * (trig[1][0] * t5356 - t5334)) - loads[1][1]);
     let inv_2 = 1.0 / ia_2_00;
     let t5383 = ia_2_01 * inv_2;
+    let ia_1_12 = ia_2_12 - ia_2_02 * t5383;
     let ia_1_11 = p[0].mass + (ia_2_11 - ia_2_01 * t5383);
     let pa_1_x = pa_2_x - pa_2_m * t5383 - loads[0][0];
-    let t5435 = pa_1_x / ia_1_11;
-    let s_dd = -t5435;
-    let t5440 = inv_2 * (pa_2_m - ia_2_01 * t5435);
-    let alpha_2 = -t5440;
-    let ao_3_x = t416 * t5440 - t5435 - t5294;
-    let ao_3_z = t5295 + d_3_x * t5440;
-    let t5451 = inv_3 * (pa_3_m + (ia_3_01 * ao_3_x + ia_3_02 * ao_3_z));
-    let qdd_1 = t5440 - t5451;
-    let ao_4_x = ao_3_x + t422 * t5451 - t5191;
-    let ao_4_z = t5192 + (ao_3_z + d_4_x * t5451);
-    let t5464 = inv_4 * (pa_4_m + (ia_4_01 * ao_4_x + ia_4_02 * ao_4_z));
-    let qdd_2 = t5451 - t5464;
-    let ao_5_x = ao_4_x + t428 * t5464 - t5088;
-    let ao_5_z = t5089 + (ao_4_z + d_5_x * t5464);
-    let t5477 = inv_5 * (pa_5_m + (ia_5_01 * ao_5_x + ia_5_02 * ao_5_z));
-    let qdd_3 = t5464 - t5477;
-    let ao_6_x = ao_5_x + t434 * t5477 - t4985;
-    let ao_6_z = t4986 + (ao_5_z + d_6_x * t5477);
-    let t5490 = inv_6 * (pa_6_m + (ia_6_01 * ao_6_x + ia_6_02 * ao_6_z));
-    let qdd_4 = t5477 - t5490;
-    let ao_7_x = ao_6_x + t440 * t5490 - t4882;
-    let ao_7_z = t4883 + (ao_6_z + d_7_x * t5490);
-    let t5503 = inv_7 * (pa_7_m + (ia_7_01 * ao_7_x + ia_7_02 * ao_7_z));
-    let qdd_5 = t5490 - t5503;
-    let ao_8_x = ao_7_x + t446 * t5503 - t4779;
-    let ao_8_z = t4780 + (ao_7_z + d_8_x * t5503);
-    let t5516 = inv_8 * (pa_8_m + (ia_8_01 * ao_8_x + ia_8_02 * ao_8_z));
-    let qdd_6 = t5503 - t5516;
-    let ao_9_x = ao_8_x + t452 * t5516 - t4676;
-    let ao_9_z = t4677 + (ao_8_z + d_9_x * t5516);
-    let t5529 = inv_9 * (pa_9_m + (ia_9_01 * ao_9_x + ia_9_02 * ao_9_z));
-    let qdd_7 = t5516 - t5529;
-    let ao_10_x = ao_9_x + t458 * t5529 - t4573;
-    let ao_10_z = t4574 + (ao_9_z + d_10_x * t5529);
-    let t5542 = inv_10 * (pa_10_m + (ia_10_01 * ao_10_x + ia_10_02 * ao_10_z));
-    let qdd_8 = t5529 - t5542;
-    let ao_11_x = ao_10_x + t464 * t5542 - t4470;
-    let ao_11_z = t4471 + (ao_10_z + d_11_x * t5542);
-    let t5555 = inv_11 * (pa_11_m + (ia_11_01 * ao_11_x + ia_11_02 * ao_11_z));
-    let qdd_9 = t5542 - t5555;
-    let ao_12_x = ao_11_x + t470 * t5555 - t4367;
-    let ao_12_z = t4368 + (ao_11_z + d_12_x * t5555);
-    let t5568 = inv_12 * (pa_12_m + (ia_12_01 * ao_12_x + ia_12_02 * ao_12_z));
-    let qdd_10 = t5555 - t5568;
-    let ao_13_x = ao_12_x + t476 * t5568 - t4264;
-    let ao_13_z = t4265 + (ao_12_z + d_13_x * t5568);
-    let t5581 = inv_13 * (pa_13_m + (ia_13_01 * ao_13_x + ia_13_02 * ao_13_z));
-    let qdd_11 = t5568 - t5581;
-    let ao_14_x = ao_13_x + t482 * t5581 - t4161;
-    let ao_14_z = t4162 + (ao_13_z + d_14_x * t5581);
-    let t5594 = inv_14 * (pa_14_m + (ia_14_01 * ao_14_x + ia_14_02 * ao_14_z));
-    let qdd_12 = t5581 - t5594;
-    let ao_15_x = ao_14_x + t488 * t5594 - t4058;
-    let ao_15_z = t4059 + (ao_14_z + d_15_x * t5594);
-    let t5607 = inv_15 * (pa_15_m + (ia_15_01 * ao_15_x + ia_15_02 * ao_15_z));
-    let qdd_13 = t5594 - t5607;
-    let ao_16_x = ao_15_x + t494 * t5607 - t3955;
-    let ao_16_z = t3956 + (ao_15_z + d_16_x * t5607);
-    let t5620 = inv_16 * (pa_16_m + (ia_16_01 * ao_16_x + ia_16_02 * ao_16_z));
-    let qdd_14 = t5607 - t5620;
-    let ao_17_x = ao_16_x + t500 * t5620 - t3852;
-    let ao_17_z = t3853 + (ao_16_z + d_17_x * t5620);
-    let t5633 = inv_17 * (pa_17_m + (ia_17_01 * ao_17_x + ia_17_02 * ao_17_z));
-    let qdd_15 = t5620 - t5633;
-    let ao_18_x = ao_17_x + t506 * t5633 - t3749;
-    let ao_18_z = t3750 + (ao_17_z + d_18_x * t5633);
-    let t5646 = inv_18 * (pa_18_m + (ia_18_01 * ao_18_x + ia_18_02 * ao_18_z));
-    let qdd_16 = t5633 - t5646;
-    let ao_19_x = ao_18_x + t512 * t5646 - t3646;
-    let ao_19_z = t3647 + (ao_18_z + d_19_x * t5646);
-    let t5659 = inv_19 * (pa_19_m + (ia_19_01 * ao_19_x + ia_19_02 * ao_19_z));
-    let qdd_17 = t5646 - t5659;
-    let ao_20_x = ao_19_x + t518 * t5659 - t3543;
-    let ao_20_z = t3544 + (ao_19_z + d_20_x * t5659);
-    let t5672 = inv_20 * (pa_20_m + (ia_20_01 * ao_20_x + ia_20_02 * ao_20_z));
-    let qdd_18 = t5659 - t5672;
-    let ao_21_x = ao_20_x + t524 * t5672 - t3440;
-    let ao_21_z = t3441 + (ao_20_z + d_21_x * t5672);
-    let t5685 = inv_21 * (pa_21_m + (ia_21_01 * ao_21_x + ia_21_02 * ao_21_z));
-    let qdd_19 = t5672 - t5685;
-    let ao_22_x = ao_21_x + t530 * t5685 - t3337;
-    let ao_22_z = t3338 + (ao_21_z + d_22_x * t5685);
-    let t5698 = inv_22 * (pa_22_m + (ia_22_01 * ao_22_x + ia_22_02 * ao_22_z));
-    let qdd_20 = t5685 - t5698;
-    let ao_23_x = ao_22_x + t536 * t5698 - t3234;
-    let ao_23_z = t3235 + (ao_22_z + d_23_x * t5698);
-    let t5711 = inv_23 * (pa_23_m + (ia_23_01 * ao_23_x + ia_23_02 * ao_23_z));
-    let qdd_21 = t5698 - t5711;
-    let ao_24_x = ao_23_x + t542 * t5711 - t3131;
-    let ao_24_z = t3132 + (ao_23_z + d_24_x * t5711);
-    let t5724 = inv_24 * (pa_24_m + (ia_24_01 * ao_24_x + ia_24_02 * ao_24_z));
-    let qdd_22 = t5711 - t5724;
-    let ao_25_x = ao_24_x + t548 * t5724 - t3028;
-    let ao_25_z = t3029 + (ao_24_z + d_25_x * t5724);
-    let t5737 = inv_25 * (pa_25_m + (ia_25_01 * ao_25_x + ia_25_02 * ao_25_z));
-    let qdd_23 = t5724 - t5737;
-    let ao_26_x = ao_25_x + t554 * t5737 - t2925;
-    let ao_26_z = t2926 + (ao_25_z + d_26_x * t5737);
-    let t5750 = inv_26 * (pa_26_m + (ia_26_01 * ao_26_x + ia_26_02 * ao_26_z));
-    let qdd_24 = t5737 - t5750;
-    let ao_27_x = ao_26_x + t560 * t5750 - t2822;
-    let ao_27_z = t2823 + (ao_26_z + d_27_x * t5750);
-    let t5763 = inv_27 * (pa_27_m + (ia_27_01 * ao_27_x + ia_27_02 * ao_27_z));
-    let qdd_25 = t5750 - t5763;
-    let ao_28_x = ao_27_x + t566 * t5763 - t2719;
-    let ao_28_z = t2720 + (ao_27_z + d_28_x * t5763);
-    let t5776 = inv_28 * (pa_28_m + (ia_28_01 * ao_28_x + ia_28_02 * ao_28_z));
-    let qdd_26 = t5763 - t5776;
-    let ao_29_x = ao_28_x + t572 * t5776 - t2616;
-    let ao_29_z = t2617 + (ao_28_z + d_29_x * t5776);
-    let t5789 = inv_29 * (pa_29_m + (ia_29_01 * ao_29_x + ia_29_02 * ao_29_z));
-    let qdd_27 = t5776 - t5789;
-    let ao_30_x = ao_29_x + t578 * t5789 - t2513;
-    let ao_30_z = t2514 + (ao_29_z + d_30_x * t5789);
-    let t5802 = inv_30 * (pa_30_m + (ia_30_01 * ao_30_x + ia_30_02 * ao_30_z));
-    let qdd_28 = t5789 - t5802;
-    let ao_31_x = ao_30_x + t584 * t5802 - t2410;
-    let ao_31_z = t2411 + (ao_30_z + d_31_x * t5802);
-    let t5815 = inv_31 * (pa_31_m + (ia_31_01 * ao_31_x + ia_31_02 * ao_31_z));
-    let qdd_29 = t5802 - t5815;
-    let ao_32_x = ao_31_x + t590 * t5815 - t2307;
-    let ao_32_z = t2308 + (ao_31_z + d_32_x * t5815);
-    let t5828 = inv_32 * (pa_32_m + (ia_32_01 * ao_32_x + ia_32_02 * ao_32_z));
-    let qdd_30 = t5815 - t5828;
-    let ao_33_x = ao_32_x + t596 * t5828 - t2204;
-    let ao_33_z = t2205 + (ao_32_z + d_33_x * t5828);
-    let t5841 = inv_33 * (pa_33_m + (ia_33_01 * ao_33_x + ia_33_02 * ao_33_z));
-    let qdd_31 = t5828 - t5841;
-    let ao_34_x = ao_33_x + t602 * t5841 - t2101;
-    let ao_34_z = t2102 + (ao_33_z + d_34_x * t5841);
-    let t5854 = inv_34 * (pa_34_m + (ia_34_01 * ao_34_x + ia_34_02 * ao_34_z));
-    let qdd_32 = t5841 - t5854;
-    let ao_35_x = ao_34_x + t608 * t5854 - t1998;
-    let ao_35_z = t1999 + (ao_34_z + d_35_x * t5854);
-    let t5867 = inv_35 * (pa_35_m + (ia_35_01 * ao_35_x + ia_35_02 * ao_35_z));
-    let qdd_33 = t5854 - t5867;
-    let ao_36_x = ao_35_x + t614 * t5867 - t1895;
-    let ao_36_z = t1896 + (ao_35_z + d_36_x * t5867);
-    let t5880 = inv_36 * (pa_36_m + (ia_36_01 * ao_36_x + ia_36_02 * ao_36_z));
-    let qdd_34 = t5867 - t5880;
-    let ao_37_x = ao_36_x + t620 * t5880 - t1792;
-    let ao_37_z = t1793 + (ao_36_z + d_37_x * t5880);
-    let t5893 = inv_37 * (pa_37_m + (ia_37_01 * ao_37_x + ia_37_02 * ao_37_z));
-    let qdd_35 = t5880 - t5893;
-    let ao_38_x = ao_37_x + t626 * t5893 - t1689;
-    let ao_38_z = t1690 + (ao_37_z + d_38_x * t5893);
-    let t5906 = inv_38 * (pa_38_m + (ia_38_01 * ao_38_x + ia_38_02 * ao_38_z));
-    let qdd_36 = t5893 - t5906;
-    let ao_39_x = ao_38_x + t632 * t5906 - t1586;
-    let ao_39_z = t1587 + (ao_38_z + d_39_x * t5906);
-    let t5919 = inv_39 * (pa_39_m + (ia_39_01 * ao_39_x + ia_39_02 * ao_39_z));
-    let qdd_37 = t5906 - t5919;
-    let ao_40_x = ao_39_x + t638 * t5919 - t1483;
-    let ao_40_z = t1484 + (ao_39_z + d_40_x * t5919);
-    let t5932 = inv_40 * (pa_40_m + (ia_40_01 * ao_40_x + ia_40_02 * ao_40_z));
-    let qdd_38 = t5919 - t5932;
-    let ao_41_x = ao_40_x + t644 * t5932 - t1380;
-    let ao_41_z = t1381 + (ao_40_z + d_41_x * t5932);
-    let t5945 = inv_41 * (pa_41_m + (ia_41_01 * ao_41_x + ia_41_02 * ao_41_z));
-    let qdd_39 = t5932 - t5945;
-    let ao_42_x = ao_41_x + t650 * t5945 - t1277;
-    let ao_42_z = t1278 + (ao_41_z + d_42_x * t5945);
-    let t5958 = inv_42 * (pa_42_m + (ia_42_01 * ao_42_x + ia_42_02 * ao_42_z));
-    let qdd_40 = t5945 - t5958;
-    let ao_43_x = ao_42_x + t656 * t5958 - t1174;
-    let ao_43_z = t1175 + (ao_42_z + d_43_x * t5958);
-    let t5971 = inv_43 * (pa_43_m + (ia_43_01 * ao_43_x + ia_43_02 * ao_43_z));
-    let qdd_41 = t5958 - t5971;
-    let ao_44_x = ao_43_x + t662 * t5971 - t1071;
-    let ao_44_z = t1072 + (ao_43_z + d_44_x * t5971);
-    let t5984 = inv_44 * (pa_44_m + (ia_44_01 * ao_44_x + ia_44_02 * ao_44_z));
-    let qdd_42 = t5971 - t5984;
-    let ao_45_x = ao_44_x + t668 * t5984 - t968;
-    let ao_45_z = t969 + (ao_44_z + d_45_x * t5984);
-    let t5997 = inv_45 * (pa_45_m + (ia_45_01 * ao_45_x + ia_45_02 * ao_45_z));
-    let qdd_43 = t5984 - t5997;
-    let ao_46_x = ao_45_x + t674 * t5997 - t865;
-    let ao_46_z = t866 + (ao_45_z + d_46_x * t5997);
-    let qdd_44 = t5997 - inv_46 * (ia_46_01 * ao_46_x - t825 * ao_46_z - t844);
+    let pa_1_z = pa_2_z - pa_2_m * (ia_2_02 * inv_2) - loads[0][1];
+    let t5437 = ia_1_11 + ia_1_12 * friction;
+    let t5440 = (pa_1_x + pa_1_z * friction) / t5437;
+    let s_dd = -t5440;
+    let normal_force = pa_1_z - ia_1_12 * t5440;
+    let friction_factor = t5437 / ia_1_11;
+    let t5449 = inv_2 * (pa_2_m - ia_2_01 * t5440);
+    let alpha_2 = -t5449;
+    let ao_3_x = t416 * t5449 - t5440 - t5294;
+    let ao_3_z = t5295 + d_3_x * t5449;
+    let t5460 = inv_3 * (pa_3_m + (ia_3_01 * ao_3_x + ia_3_02 * ao_3_z));
+    let qdd_1 = t5449 - t5460;
+    let ao_4_x = ao_3_x + t422 * t5460 - t5191;
+    let ao_4_z = t5192 + (ao_3_z + d_4_x * t5460);
+    let t5473 = inv_4 * (pa_4_m + (ia_4_01 * ao_4_x + ia_4_02 * ao_4_z));
+    let qdd_2 = t5460 - t5473;
+    let ao_5_x = ao_4_x + t428 * t5473 - t5088;
+    let ao_5_z = t5089 + (ao_4_z + d_5_x * t5473);
+    let t5486 = inv_5 * (pa_5_m + (ia_5_01 * ao_5_x + ia_5_02 * ao_5_z));
+    let qdd_3 = t5473 - t5486;
+    let ao_6_x = ao_5_x + t434 * t5486 - t4985;
+    let ao_6_z = t4986 + (ao_5_z + d_6_x * t5486);
+    let t5499 = inv_6 * (pa_6_m + (ia_6_01 * ao_6_x + ia_6_02 * ao_6_z));
+    let qdd_4 = t5486 - t5499;
+    let ao_7_x = ao_6_x + t440 * t5499 - t4882;
+    let ao_7_z = t4883 + (ao_6_z + d_7_x * t5499);
+    let t5512 = inv_7 * (pa_7_m + (ia_7_01 * ao_7_x + ia_7_02 * ao_7_z));
+    let qdd_5 = t5499 - t5512;
+    let ao_8_x = ao_7_x + t446 * t5512 - t4779;
+    let ao_8_z = t4780 + (ao_7_z + d_8_x * t5512);
+    let t5525 = inv_8 * (pa_8_m + (ia_8_01 * ao_8_x + ia_8_02 * ao_8_z));
+    let qdd_6 = t5512 - t5525;
+    let ao_9_x = ao_8_x + t452 * t5525 - t4676;
+    let ao_9_z = t4677 + (ao_8_z + d_9_x * t5525);
+    let t5538 = inv_9 * (pa_9_m + (ia_9_01 * ao_9_x + ia_9_02 * ao_9_z));
+    let qdd_7 = t5525 - t5538;
+    let ao_10_x = ao_9_x + t458 * t5538 - t4573;
+    let ao_10_z = t4574 + (ao_9_z + d_10_x * t5538);
+    let t5551 = inv_10 * (pa_10_m + (ia_10_01 * ao_10_x + ia_10_02 * ao_10_z));
+    let qdd_8 = t5538 - t5551;
+    let ao_11_x = ao_10_x + t464 * t5551 - t4470;
+    let ao_11_z = t4471 + (ao_10_z + d_11_x * t5551);
+    let t5564 = inv_11 * (pa_11_m + (ia_11_01 * ao_11_x + ia_11_02 * ao_11_z));
+    let qdd_9 = t5551 - t5564;
+    let ao_12_x = ao_11_x + t470 * t5564 - t4367;
+    let ao_12_z = t4368 + (ao_11_z + d_12_x * t5564);
+    let t5577 = inv_12 * (pa_12_m + (ia_12_01 * ao_12_x + ia_12_02 * ao_12_z));
+    let qdd_10 = t5564 - t5577;
+    let ao_13_x = ao_12_x + t476 * t5577 - t4264;
+    let ao_13_z = t4265 + (ao_12_z + d_13_x * t5577);
+    let t5590 = inv_13 * (pa_13_m + (ia_13_01 * ao_13_x + ia_13_02 * ao_13_z));
+    let qdd_11 = t5577 - t5590;
+    let ao_14_x = ao_13_x + t482 * t5590 - t4161;
+    let ao_14_z = t4162 + (ao_13_z + d_14_x * t5590);
+    let t5603 = inv_14 * (pa_14_m + (ia_14_01 * ao_14_x + ia_14_02 * ao_14_z));
+    let qdd_12 = t5590 - t5603;
+    let ao_15_x = ao_14_x + t488 * t5603 - t4058;
+    let ao_15_z = t4059 + (ao_14_z + d_15_x * t5603);
+    let t5616 = inv_15 * (pa_15_m + (ia_15_01 * ao_15_x + ia_15_02 * ao_15_z));
+    let qdd_13 = t5603 - t5616;
+    let ao_16_x = ao_15_x + t494 * t5616 - t3955;
+    let ao_16_z = t3956 + (ao_15_z + d_16_x * t5616);
+    let t5629 = inv_16 * (pa_16_m + (ia_16_01 * ao_16_x + ia_16_02 * ao_16_z));
+    let qdd_14 = t5616 - t5629;
+    let ao_17_x = ao_16_x + t500 * t5629 - t3852;
+    let ao_17_z = t3853 + (ao_16_z + d_17_x * t5629);
+    let t5642 = inv_17 * (pa_17_m + (ia_17_01 * ao_17_x + ia_17_02 * ao_17_z));
+    let qdd_15 = t5629 - t5642;
+    let ao_18_x = ao_17_x + t506 * t5642 - t3749;
+    let ao_18_z = t3750 + (ao_17_z + d_18_x * t5642);
+    let t5655 = inv_18 * (pa_18_m + (ia_18_01 * ao_18_x + ia_18_02 * ao_18_z));
+    let qdd_16 = t5642 - t5655;
+    let ao_19_x = ao_18_x + t512 * t5655 - t3646;
+    let ao_19_z = t3647 + (ao_18_z + d_19_x * t5655);
+    let t5668 = inv_19 * (pa_19_m + (ia_19_01 * ao_19_x + ia_19_02 * ao_19_z));
+    let qdd_17 = t5655 - t5668;
+    let ao_20_x = ao_19_x + t518 * t5668 - t3543;
+    let ao_20_z = t3544 + (ao_19_z + d_20_x * t5668);
+    let t5681 = inv_20 * (pa_20_m + (ia_20_01 * ao_20_x + ia_20_02 * ao_20_z));
+    let qdd_18 = t5668 - t5681;
+    let ao_21_x = ao_20_x + t524 * t5681 - t3440;
+    let ao_21_z = t3441 + (ao_20_z + d_21_x * t5681);
+    let t5694 = inv_21 * (pa_21_m + (ia_21_01 * ao_21_x + ia_21_02 * ao_21_z));
+    let qdd_19 = t5681 - t5694;
+    let ao_22_x = ao_21_x + t530 * t5694 - t3337;
+    let ao_22_z = t3338 + (ao_21_z + d_22_x * t5694);
+    let t5707 = inv_22 * (pa_22_m + (ia_22_01 * ao_22_x + ia_22_02 * ao_22_z));
+    let qdd_20 = t5694 - t5707;
+    let ao_23_x = ao_22_x + t536 * t5707 - t3234;
+    let ao_23_z = t3235 + (ao_22_z + d_23_x * t5707);
+    let t5720 = inv_23 * (pa_23_m + (ia_23_01 * ao_23_x + ia_23_02 * ao_23_z));
+    let qdd_21 = t5707 - t5720;
+    let ao_24_x = ao_23_x + t542 * t5720 - t3131;
+    let ao_24_z = t3132 + (ao_23_z + d_24_x * t5720);
+    let t5733 = inv_24 * (pa_24_m + (ia_24_01 * ao_24_x + ia_24_02 * ao_24_z));
+    let qdd_22 = t5720 - t5733;
+    let ao_25_x = ao_24_x + t548 * t5733 - t3028;
+    let ao_25_z = t3029 + (ao_24_z + d_25_x * t5733);
+    let t5746 = inv_25 * (pa_25_m + (ia_25_01 * ao_25_x + ia_25_02 * ao_25_z));
+    let qdd_23 = t5733 - t5746;
+    let ao_26_x = ao_25_x + t554 * t5746 - t2925;
+    let ao_26_z = t2926 + (ao_25_z + d_26_x * t5746);
+    let t5759 = inv_26 * (pa_26_m + (ia_26_01 * ao_26_x + ia_26_02 * ao_26_z));
+    let qdd_24 = t5746 - t5759;
+    let ao_27_x = ao_26_x + t560 * t5759 - t2822;
+    let ao_27_z = t2823 + (ao_26_z + d_27_x * t5759);
+    let t5772 = inv_27 * (pa_27_m + (ia_27_01 * ao_27_x + ia_27_02 * ao_27_z));
+    let qdd_25 = t5759 - t5772;
+    let ao_28_x = ao_27_x + t566 * t5772 - t2719;
+    let ao_28_z = t2720 + (ao_27_z + d_28_x * t5772);
+    let t5785 = inv_28 * (pa_28_m + (ia_28_01 * ao_28_x + ia_28_02 * ao_28_z));
+    let qdd_26 = t5772 - t5785;
+    let ao_29_x = ao_28_x + t572 * t5785 - t2616;
+    let ao_29_z = t2617 + (ao_28_z + d_29_x * t5785);
+    let t5798 = inv_29 * (pa_29_m + (ia_29_01 * ao_29_x + ia_29_02 * ao_29_z));
+    let qdd_27 = t5785 - t5798;
+    let ao_30_x = ao_29_x + t578 * t5798 - t2513;
+    let ao_30_z = t2514 + (ao_29_z + d_30_x * t5798);
+    let t5811 = inv_30 * (pa_30_m + (ia_30_01 * ao_30_x + ia_30_02 * ao_30_z));
+    let qdd_28 = t5798 - t5811;
+    let ao_31_x = ao_30_x + t584 * t5811 - t2410;
+    let ao_31_z = t2411 + (ao_30_z + d_31_x * t5811);
+    let t5824 = inv_31 * (pa_31_m + (ia_31_01 * ao_31_x + ia_31_02 * ao_31_z));
+    let qdd_29 = t5811 - t5824;
+    let ao_32_x = ao_31_x + t590 * t5824 - t2307;
+    let ao_32_z = t2308 + (ao_31_z + d_32_x * t5824);
+    let t5837 = inv_32 * (pa_32_m + (ia_32_01 * ao_32_x + ia_32_02 * ao_32_z));
+    let qdd_30 = t5824 - t5837;
+    let ao_33_x = ao_32_x + t596 * t5837 - t2204;
+    let ao_33_z = t2205 + (ao_32_z + d_33_x * t5837);
+    let t5850 = inv_33 * (pa_33_m + (ia_33_01 * ao_33_x + ia_33_02 * ao_33_z));
+    let qdd_31 = t5837 - t5850;
+    let ao_34_x = ao_33_x + t602 * t5850 - t2101;
+    let ao_34_z = t2102 + (ao_33_z + d_34_x * t5850);
+    let t5863 = inv_34 * (pa_34_m + (ia_34_01 * ao_34_x + ia_34_02 * ao_34_z));
+    let qdd_32 = t5850 - t5863;
+    let ao_35_x = ao_34_x + t608 * t5863 - t1998;
+    let ao_35_z = t1999 + (ao_34_z + d_35_x * t5863);
+    let t5876 = inv_35 * (pa_35_m + (ia_35_01 * ao_35_x + ia_35_02 * ao_35_z));
+    let qdd_33 = t5863 - t5876;
+    let ao_36_x = ao_35_x + t614 * t5876 - t1895;
+    let ao_36_z = t1896 + (ao_35_z + d_36_x * t5876);
+    let t5889 = inv_36 * (pa_36_m + (ia_36_01 * ao_36_x + ia_36_02 * ao_36_z));
+    let qdd_34 = t5876 - t5889;
+    let ao_37_x = ao_36_x + t620 * t5889 - t1792;
+    let ao_37_z = t1793 + (ao_36_z + d_37_x * t5889);
+    let t5902 = inv_37 * (pa_37_m + (ia_37_01 * ao_37_x + ia_37_02 * ao_37_z));
+    let qdd_35 = t5889 - t5902;
+    let ao_38_x = ao_37_x + t626 * t5902 - t1689;
+    let ao_38_z = t1690 + (ao_37_z + d_38_x * t5902);
+    let t5915 = inv_38 * (pa_38_m + (ia_38_01 * ao_38_x + ia_38_02 * ao_38_z));
+    let qdd_36 = t5902 - t5915;
+    let ao_39_x = ao_38_x + t632 * t5915 - t1586;
+    let ao_39_z = t1587 + (ao_38_z + d_39_x * t5915);
+    let t5928 = inv_39 * (pa_39_m + (ia_39_01 * ao_39_x + ia_39_02 * ao_39_z));
+    let qdd_37 = t5915 - t5928;
+    let ao_40_x = ao_39_x + t638 * t5928 - t1483;
+    let ao_40_z = t1484 + (ao_39_z + d_40_x * t5928);
+    let t5941 = inv_40 * (pa_40_m + (ia_40_01 * ao_40_x + ia_40_02 * ao_40_z));
+    let qdd_38 = t5928 - t5941;
+    let ao_41_x = ao_40_x + t644 * t5941 - t1380;
+    let ao_41_z = t1381 + (ao_40_z + d_41_x * t5941);
+    let t5954 = inv_41 * (pa_41_m + (ia_41_01 * ao_41_x + ia_41_02 * ao_41_z));
+    let qdd_39 = t5941 - t5954;
+    let ao_42_x = ao_41_x + t650 * t5954 - t1277;
+    let ao_42_z = t1278 + (ao_41_z + d_42_x * t5954);
+    let t5967 = inv_42 * (pa_42_m + (ia_42_01 * ao_42_x + ia_42_02 * ao_42_z));
+    let qdd_40 = t5954 - t5967;
+    let ao_43_x = ao_42_x + t656 * t5967 - t1174;
+    let ao_43_z = t1175 + (ao_42_z + d_43_x * t5967);
+    let t5980 = inv_43 * (pa_43_m + (ia_43_01 * ao_43_x + ia_43_02 * ao_43_z));
+    let qdd_41 = t5967 - t5980;
+    let ao_44_x = ao_43_x + t662 * t5980 - t1071;
+    let ao_44_z = t1072 + (ao_43_z + d_44_x * t5980);
+    let t5993 = inv_44 * (pa_44_m + (ia_44_01 * ao_44_x + ia_44_02 * ao_44_z));
+    let qdd_42 = t5980 - t5993;
+    let ao_45_x = ao_44_x + t668 * t5993 - t968;
+    let ao_45_z = t969 + (ao_44_z + d_45_x * t5993);
+    let t6006 = inv_45 * (pa_45_m + (ia_45_01 * ao_45_x + ia_45_02 * ao_45_z));
+    let qdd_43 = t5993 - t6006;
+    let ao_46_x = ao_45_x + t674 * t6006 - t865;
+    let ao_46_z = t866 + (ao_45_z + d_46_x * t6006);
+    let qdd_44 = t6006 - inv_46 * (ia_46_01 * ao_46_x - t825 * ao_46_z - t844);
     qdd[0] = alpha_2;
     qdd[1] = qdd_1;
     qdd[2] = qdd_2;
@@ -5681,16 +5880,18 @@ pub fn solve_free(
     qdd[43] = qdd_43;
     qdd[44] = qdd_44;
     qdd[45] = s_dd;
+    [normal_force, friction_factor]
 }
 /// ẍ of Eq. 27 with the anchor stuck (ẍ_{3N+1} = 0), by the O(N) recursion; returns the
-/// anchor's holding force F^C_{3N+1} = a_{3N+1,p} ẍ_p − f_{3N+1} (Eq. 50), N along +x.
+/// anchor's holding force F^C_{3N+1} = a_{3N+1,p} ẍ_p − f_{3N+1} (Eq. 50), N along +x, and
+/// the seabed's normal force on it (Eq. 37), N along +z.
 pub fn solve_stuck(
     p: &[crate::BodyParams],
     u: &[f64],
     trig: &[[f64; 2]],
     loads: &[[f64; 3]],
     qdd: &mut [f64],
-) -> f64 {
+) -> [f64; 2] {
     let p: &[crate::BodyParams; 46] = p.try_into().expect("p must have 46 entries");
     let u: &[f64; 46] = u.try_into().expect("u must have 46 entries");
     let trig: &[[f64; 2]; 46] = trig.try_into().expect("trig must have 46 entries");
@@ -7185,23 +7386,25 @@ pub fn solve_stuck(
     let t5294 = d_3_x * t5293;
     let t5295 = t416 * t5293;
     let t5302 = pa_3_x - pa_3_m * t5280 + (t5286 * t5295 - t5285 * t5294);
+    let t5307 = pa_3_z - pa_3_m * t5281 + (t5287 * t5295 - t5286 * t5294);
     let t5312 = -(t416 * t5285) - d_3_x * t5286;
+    let t5317 = -(t416 * t5286) - d_3_x * t5287;
     let t5328 = p[1].centroid[0] * p[1].centroid[0];
-    let ia_2_00 = -(t416 * t5312) - d_3_x * (-(t416 * t5286) - d_3_x * t5287)
+    let t5333 = p[1].mass * e_2_x;
+    let t5334 = p[1].mass * t413;
+    let t5337 = p[1].centroid[0] * p[1].added_mass;
+    let t5356 = p[1].added_mass * (trig[1][1] * e_2_x - trig[1][0] * t413);
+    let ia_2_00 = -(t416 * t5312) - d_3_x * t5317
         + (p[1].inertia + (p[1].mass * t5328 + p[1].added_mass * t5328));
-    let ia_2_01 = t5312
-        + (-(p[1].mass * t413) - trig[1][1] * (p[1].centroid[0] * p[1].added_mass));
-    let pa_2_m = -(t416 * t5302)
-        - d_3_x * (pa_3_z - pa_3_m * t5281 + (t5287 * t5295 - t5286 * t5294))
+    let ia_2_01 = t5312 + (-t5334 - trig[1][1] * t5337);
+    let ia_2_02 = t5317 - (t5333 + trig[1][0] * t5337);
+    let pa_2_m = -(t416 * t5302) - d_3_x * t5307
         - (loads[1][2] + (-(t413 * loads[1][0]) - e_2_x * loads[1][1]));
-    let pa_2_x = t5302
-        + (-(t5293
-            * (p[1].mass * e_2_x
-                + trig[1][1]
-                    * (p[1].added_mass * (trig[1][1] * e_2_x - trig[1][0] * t413))))
-            - loads[1][0]);
+    let pa_2_x = t5302 + (-(t5293 * (t5333 + trig[1][1] * t5356)) - loads[1][0]);
+    let pa_2_z = t5307 + (-(t5293 * (trig[1][0] * t5356 - t5334)) - loads[1][1]);
     let inv_2 = 1.0 / ia_2_00;
     let pa_1_x = pa_2_x - pa_2_m * (ia_2_01 * inv_2) - loads[0][0];
+    let pa_1_z = pa_2_z - pa_2_m * (ia_2_02 * inv_2) - loads[0][1];
     let t5435 = pa_2_m * inv_2;
     let alpha_2 = -t5435;
     let ao_3_x = t416 * t5435 - t5294;
@@ -7425,5 +7628,5 @@ pub fn solve_stuck(
     qdd[43] = qdd_43;
     qdd[44] = qdd_44;
     qdd[45] = 0.0;
-    pa_1_x
+    [pa_1_x, pa_1_z]
 }

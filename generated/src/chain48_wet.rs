@@ -1169,7 +1169,9 @@ pub fn kinematics(
 ///
 /// `m` receives a_lp (Eq. 26), row-major and symmetric; `f` receives f_l (Eq. 25) with the
 /// per-body loads `[F_x, F_z, T_y]` at the centroids projected by the partial velocities
-/// (Eqs. 15, 23). Reads the rotation table written by [`kinematics`].
+/// (Eqs. 15, 23). `heave` receives the row of the anchor's constrained heave speed:
+/// a_{w,p} for the N speeds, then f_w, so that the seabed's normal force on the anchor is
+/// N = a_{w,p} ẍ_p − f_w (Eqs. 37, 50). Reads the rotation table written by [`kinematics`].
 pub fn assemble(
     p: &[crate::BodyParams],
     u: &[f64],
@@ -1177,6 +1179,7 @@ pub fn assemble(
     loads: &[[f64; 3]],
     m: &mut [f64],
     f: &mut [f64],
+    heave: &mut [f64],
 ) {
     let p: &[crate::BodyParams; 48] = p.try_into().expect("p must have 48 entries");
     let u: &[f64; 48] = u.try_into().expect("u must have 48 entries");
@@ -1184,6 +1187,7 @@ pub fn assemble(
     let loads: &[[f64; 3]; 48] = loads.try_into().expect("loads must have 48 entries");
     let m: &mut [f64; 2304] = m.try_into().expect("m must have 2304 entries");
     let f: &mut [f64; 48] = f.try_into().expect("f must have 48 entries");
+    let heave: &mut [f64; 49] = heave.try_into().expect("heave must have 49 entries");
     let mut k_col = [0.0f64; 47];
     let mut s_col = [[0.0f64; 2]; 47];
     let mut o_rel = [[0.0f64; 2]; 47];
@@ -1441,6 +1445,7 @@ pub fn assemble(
     let bt_47_xx = p[47].mass
         + (p[46].mass + p[46].added_mass * (trig[46][0] * trig[46][0]));
     let bt_47_zz = p[47].mass + t734;
+    let t774 = p[45].added_mass * (trig[45][0] * trig[45][1]);
     let t778 = p[45].mass + p[45].added_mass * (trig[45][1] * trig[45][1]);
     let t782 = p[45].centroid[0] * p[45].added_mass;
     let t788 = p[45].centroid[0] * p[45].centroid[0];
@@ -1454,8 +1459,9 @@ pub fn assemble(
             + (j_47 + (p[45].inertia + (p[45].mass * t788 + p[45].added_mass * t788))));
     let bt_46_xx = bt_47_xx
         + (p[45].mass + p[45].added_mass * (trig[45][0] * trig[45][0]));
-    let bt_46_xz = -(p[45].added_mass * (trig[45][0] * trig[45][1])) - t730;
+    let bt_46_xz = -t774 - t730;
     let bt_46_zz = bt_47_zz + t778;
+    let t826 = p[44].added_mass * (trig[44][0] * trig[44][1]);
     let t830 = p[44].mass + p[44].added_mass * (trig[44][1] * trig[44][1]);
     let t834 = p[44].centroid[0] * p[44].added_mass;
     let t840 = p[44].centroid[0] * p[44].centroid[0];
@@ -1469,8 +1475,9 @@ pub fn assemble(
             + (j_46 + (p[44].inertia + (p[44].mass * t840 + p[44].added_mass * t840))));
     let bt_45_xx = bt_46_xx
         + (p[44].mass + p[44].added_mass * (trig[44][0] * trig[44][0]));
-    let bt_45_xz = bt_46_xz - p[44].added_mass * (trig[44][0] * trig[44][1]);
+    let bt_45_xz = bt_46_xz - t826;
     let bt_45_zz = bt_46_zz + t830;
+    let t878 = p[43].added_mass * (trig[43][0] * trig[43][1]);
     let t882 = p[43].mass + p[43].added_mass * (trig[43][1] * trig[43][1]);
     let t886 = p[43].centroid[0] * p[43].added_mass;
     let t892 = p[43].centroid[0] * p[43].centroid[0];
@@ -1484,8 +1491,9 @@ pub fn assemble(
             + (j_45 + (p[43].inertia + (p[43].mass * t892 + p[43].added_mass * t892))));
     let bt_44_xx = bt_45_xx
         + (p[43].mass + p[43].added_mass * (trig[43][0] * trig[43][0]));
-    let bt_44_xz = bt_45_xz - p[43].added_mass * (trig[43][0] * trig[43][1]);
+    let bt_44_xz = bt_45_xz - t878;
     let bt_44_zz = bt_45_zz + t882;
+    let t930 = p[42].added_mass * (trig[42][0] * trig[42][1]);
     let t934 = p[42].mass + p[42].added_mass * (trig[42][1] * trig[42][1]);
     let t938 = p[42].centroid[0] * p[42].added_mass;
     let t944 = p[42].centroid[0] * p[42].centroid[0];
@@ -1499,8 +1507,9 @@ pub fn assemble(
             + (j_44 + (p[42].inertia + (p[42].mass * t944 + p[42].added_mass * t944))));
     let bt_43_xx = bt_44_xx
         + (p[42].mass + p[42].added_mass * (trig[42][0] * trig[42][0]));
-    let bt_43_xz = bt_44_xz - p[42].added_mass * (trig[42][0] * trig[42][1]);
+    let bt_43_xz = bt_44_xz - t930;
     let bt_43_zz = bt_44_zz + t934;
+    let t982 = p[41].added_mass * (trig[41][0] * trig[41][1]);
     let t986 = p[41].mass + p[41].added_mass * (trig[41][1] * trig[41][1]);
     let t990 = p[41].centroid[0] * p[41].added_mass;
     let t996 = p[41].centroid[0] * p[41].centroid[0];
@@ -1514,8 +1523,9 @@ pub fn assemble(
             + (j_43 + (p[41].inertia + (p[41].mass * t996 + p[41].added_mass * t996))));
     let bt_42_xx = bt_43_xx
         + (p[41].mass + p[41].added_mass * (trig[41][0] * trig[41][0]));
-    let bt_42_xz = bt_43_xz - p[41].added_mass * (trig[41][0] * trig[41][1]);
+    let bt_42_xz = bt_43_xz - t982;
     let bt_42_zz = bt_43_zz + t986;
+    let t1034 = p[40].added_mass * (trig[40][0] * trig[40][1]);
     let t1038 = p[40].mass + p[40].added_mass * (trig[40][1] * trig[40][1]);
     let t1042 = p[40].centroid[0] * p[40].added_mass;
     let t1048 = p[40].centroid[0] * p[40].centroid[0];
@@ -1530,8 +1540,9 @@ pub fn assemble(
                 + (p[40].inertia + (p[40].mass * t1048 + p[40].added_mass * t1048))));
     let bt_41_xx = bt_42_xx
         + (p[40].mass + p[40].added_mass * (trig[40][0] * trig[40][0]));
-    let bt_41_xz = bt_42_xz - p[40].added_mass * (trig[40][0] * trig[40][1]);
+    let bt_41_xz = bt_42_xz - t1034;
     let bt_41_zz = bt_42_zz + t1038;
+    let t1086 = p[39].added_mass * (trig[39][0] * trig[39][1]);
     let t1090 = p[39].mass + p[39].added_mass * (trig[39][1] * trig[39][1]);
     let t1094 = p[39].centroid[0] * p[39].added_mass;
     let t1100 = p[39].centroid[0] * p[39].centroid[0];
@@ -1546,8 +1557,9 @@ pub fn assemble(
                 + (p[39].inertia + (p[39].mass * t1100 + p[39].added_mass * t1100))));
     let bt_40_xx = bt_41_xx
         + (p[39].mass + p[39].added_mass * (trig[39][0] * trig[39][0]));
-    let bt_40_xz = bt_41_xz - p[39].added_mass * (trig[39][0] * trig[39][1]);
+    let bt_40_xz = bt_41_xz - t1086;
     let bt_40_zz = bt_41_zz + t1090;
+    let t1138 = p[38].added_mass * (trig[38][0] * trig[38][1]);
     let t1142 = p[38].mass + p[38].added_mass * (trig[38][1] * trig[38][1]);
     let t1146 = p[38].centroid[0] * p[38].added_mass;
     let t1152 = p[38].centroid[0] * p[38].centroid[0];
@@ -1562,8 +1574,9 @@ pub fn assemble(
                 + (p[38].inertia + (p[38].mass * t1152 + p[38].added_mass * t1152))));
     let bt_39_xx = bt_40_xx
         + (p[38].mass + p[38].added_mass * (trig[38][0] * trig[38][0]));
-    let bt_39_xz = bt_40_xz - p[38].added_mass * (trig[38][0] * trig[38][1]);
+    let bt_39_xz = bt_40_xz - t1138;
     let bt_39_zz = bt_40_zz + t1142;
+    let t1190 = p[37].added_mass * (trig[37][0] * trig[37][1]);
     let t1194 = p[37].mass + p[37].added_mass * (trig[37][1] * trig[37][1]);
     let t1198 = p[37].centroid[0] * p[37].added_mass;
     let t1204 = p[37].centroid[0] * p[37].centroid[0];
@@ -1578,8 +1591,9 @@ pub fn assemble(
                 + (p[37].inertia + (p[37].mass * t1204 + p[37].added_mass * t1204))));
     let bt_38_xx = bt_39_xx
         + (p[37].mass + p[37].added_mass * (trig[37][0] * trig[37][0]));
-    let bt_38_xz = bt_39_xz - p[37].added_mass * (trig[37][0] * trig[37][1]);
+    let bt_38_xz = bt_39_xz - t1190;
     let bt_38_zz = bt_39_zz + t1194;
+    let t1242 = p[36].added_mass * (trig[36][0] * trig[36][1]);
     let t1246 = p[36].mass + p[36].added_mass * (trig[36][1] * trig[36][1]);
     let t1250 = p[36].centroid[0] * p[36].added_mass;
     let t1256 = p[36].centroid[0] * p[36].centroid[0];
@@ -1594,8 +1608,9 @@ pub fn assemble(
                 + (p[36].inertia + (p[36].mass * t1256 + p[36].added_mass * t1256))));
     let bt_37_xx = bt_38_xx
         + (p[36].mass + p[36].added_mass * (trig[36][0] * trig[36][0]));
-    let bt_37_xz = bt_38_xz - p[36].added_mass * (trig[36][0] * trig[36][1]);
+    let bt_37_xz = bt_38_xz - t1242;
     let bt_37_zz = bt_38_zz + t1246;
+    let t1294 = p[35].added_mass * (trig[35][0] * trig[35][1]);
     let t1298 = p[35].mass + p[35].added_mass * (trig[35][1] * trig[35][1]);
     let t1302 = p[35].centroid[0] * p[35].added_mass;
     let t1308 = p[35].centroid[0] * p[35].centroid[0];
@@ -1610,8 +1625,9 @@ pub fn assemble(
                 + (p[35].inertia + (p[35].mass * t1308 + p[35].added_mass * t1308))));
     let bt_36_xx = bt_37_xx
         + (p[35].mass + p[35].added_mass * (trig[35][0] * trig[35][0]));
-    let bt_36_xz = bt_37_xz - p[35].added_mass * (trig[35][0] * trig[35][1]);
+    let bt_36_xz = bt_37_xz - t1294;
     let bt_36_zz = bt_37_zz + t1298;
+    let t1346 = p[34].added_mass * (trig[34][0] * trig[34][1]);
     let t1350 = p[34].mass + p[34].added_mass * (trig[34][1] * trig[34][1]);
     let t1354 = p[34].centroid[0] * p[34].added_mass;
     let t1360 = p[34].centroid[0] * p[34].centroid[0];
@@ -1626,8 +1642,9 @@ pub fn assemble(
                 + (p[34].inertia + (p[34].mass * t1360 + p[34].added_mass * t1360))));
     let bt_35_xx = bt_36_xx
         + (p[34].mass + p[34].added_mass * (trig[34][0] * trig[34][0]));
-    let bt_35_xz = bt_36_xz - p[34].added_mass * (trig[34][0] * trig[34][1]);
+    let bt_35_xz = bt_36_xz - t1346;
     let bt_35_zz = bt_36_zz + t1350;
+    let t1398 = p[33].added_mass * (trig[33][0] * trig[33][1]);
     let t1402 = p[33].mass + p[33].added_mass * (trig[33][1] * trig[33][1]);
     let t1406 = p[33].centroid[0] * p[33].added_mass;
     let t1412 = p[33].centroid[0] * p[33].centroid[0];
@@ -1642,8 +1659,9 @@ pub fn assemble(
                 + (p[33].inertia + (p[33].mass * t1412 + p[33].added_mass * t1412))));
     let bt_34_xx = bt_35_xx
         + (p[33].mass + p[33].added_mass * (trig[33][0] * trig[33][0]));
-    let bt_34_xz = bt_35_xz - p[33].added_mass * (trig[33][0] * trig[33][1]);
+    let bt_34_xz = bt_35_xz - t1398;
     let bt_34_zz = bt_35_zz + t1402;
+    let t1450 = p[32].added_mass * (trig[32][0] * trig[32][1]);
     let t1454 = p[32].mass + p[32].added_mass * (trig[32][1] * trig[32][1]);
     let t1458 = p[32].centroid[0] * p[32].added_mass;
     let t1464 = p[32].centroid[0] * p[32].centroid[0];
@@ -1658,8 +1676,9 @@ pub fn assemble(
                 + (p[32].inertia + (p[32].mass * t1464 + p[32].added_mass * t1464))));
     let bt_33_xx = bt_34_xx
         + (p[32].mass + p[32].added_mass * (trig[32][0] * trig[32][0]));
-    let bt_33_xz = bt_34_xz - p[32].added_mass * (trig[32][0] * trig[32][1]);
+    let bt_33_xz = bt_34_xz - t1450;
     let bt_33_zz = bt_34_zz + t1454;
+    let t1502 = p[31].added_mass * (trig[31][0] * trig[31][1]);
     let t1506 = p[31].mass + p[31].added_mass * (trig[31][1] * trig[31][1]);
     let t1510 = p[31].centroid[0] * p[31].added_mass;
     let t1516 = p[31].centroid[0] * p[31].centroid[0];
@@ -1674,8 +1693,9 @@ pub fn assemble(
                 + (p[31].inertia + (p[31].mass * t1516 + p[31].added_mass * t1516))));
     let bt_32_xx = bt_33_xx
         + (p[31].mass + p[31].added_mass * (trig[31][0] * trig[31][0]));
-    let bt_32_xz = bt_33_xz - p[31].added_mass * (trig[31][0] * trig[31][1]);
+    let bt_32_xz = bt_33_xz - t1502;
     let bt_32_zz = bt_33_zz + t1506;
+    let t1554 = p[30].added_mass * (trig[30][0] * trig[30][1]);
     let t1558 = p[30].mass + p[30].added_mass * (trig[30][1] * trig[30][1]);
     let t1562 = p[30].centroid[0] * p[30].added_mass;
     let t1568 = p[30].centroid[0] * p[30].centroid[0];
@@ -1690,8 +1710,9 @@ pub fn assemble(
                 + (p[30].inertia + (p[30].mass * t1568 + p[30].added_mass * t1568))));
     let bt_31_xx = bt_32_xx
         + (p[30].mass + p[30].added_mass * (trig[30][0] * trig[30][0]));
-    let bt_31_xz = bt_32_xz - p[30].added_mass * (trig[30][0] * trig[30][1]);
+    let bt_31_xz = bt_32_xz - t1554;
     let bt_31_zz = bt_32_zz + t1558;
+    let t1606 = p[29].added_mass * (trig[29][0] * trig[29][1]);
     let t1610 = p[29].mass + p[29].added_mass * (trig[29][1] * trig[29][1]);
     let t1614 = p[29].centroid[0] * p[29].added_mass;
     let t1620 = p[29].centroid[0] * p[29].centroid[0];
@@ -1706,8 +1727,9 @@ pub fn assemble(
                 + (p[29].inertia + (p[29].mass * t1620 + p[29].added_mass * t1620))));
     let bt_30_xx = bt_31_xx
         + (p[29].mass + p[29].added_mass * (trig[29][0] * trig[29][0]));
-    let bt_30_xz = bt_31_xz - p[29].added_mass * (trig[29][0] * trig[29][1]);
+    let bt_30_xz = bt_31_xz - t1606;
     let bt_30_zz = bt_31_zz + t1610;
+    let t1658 = p[28].added_mass * (trig[28][0] * trig[28][1]);
     let t1662 = p[28].mass + p[28].added_mass * (trig[28][1] * trig[28][1]);
     let t1666 = p[28].centroid[0] * p[28].added_mass;
     let t1672 = p[28].centroid[0] * p[28].centroid[0];
@@ -1722,8 +1744,9 @@ pub fn assemble(
                 + (p[28].inertia + (p[28].mass * t1672 + p[28].added_mass * t1672))));
     let bt_29_xx = bt_30_xx
         + (p[28].mass + p[28].added_mass * (trig[28][0] * trig[28][0]));
-    let bt_29_xz = bt_30_xz - p[28].added_mass * (trig[28][0] * trig[28][1]);
+    let bt_29_xz = bt_30_xz - t1658;
     let bt_29_zz = bt_30_zz + t1662;
+    let t1710 = p[27].added_mass * (trig[27][0] * trig[27][1]);
     let t1714 = p[27].mass + p[27].added_mass * (trig[27][1] * trig[27][1]);
     let t1718 = p[27].centroid[0] * p[27].added_mass;
     let t1724 = p[27].centroid[0] * p[27].centroid[0];
@@ -1738,8 +1761,9 @@ pub fn assemble(
                 + (p[27].inertia + (p[27].mass * t1724 + p[27].added_mass * t1724))));
     let bt_28_xx = bt_29_xx
         + (p[27].mass + p[27].added_mass * (trig[27][0] * trig[27][0]));
-    let bt_28_xz = bt_29_xz - p[27].added_mass * (trig[27][0] * trig[27][1]);
+    let bt_28_xz = bt_29_xz - t1710;
     let bt_28_zz = bt_29_zz + t1714;
+    let t1762 = p[26].added_mass * (trig[26][0] * trig[26][1]);
     let t1766 = p[26].mass + p[26].added_mass * (trig[26][1] * trig[26][1]);
     let t1770 = p[26].centroid[0] * p[26].added_mass;
     let t1776 = p[26].centroid[0] * p[26].centroid[0];
@@ -1754,8 +1778,9 @@ pub fn assemble(
                 + (p[26].inertia + (p[26].mass * t1776 + p[26].added_mass * t1776))));
     let bt_27_xx = bt_28_xx
         + (p[26].mass + p[26].added_mass * (trig[26][0] * trig[26][0]));
-    let bt_27_xz = bt_28_xz - p[26].added_mass * (trig[26][0] * trig[26][1]);
+    let bt_27_xz = bt_28_xz - t1762;
     let bt_27_zz = bt_28_zz + t1766;
+    let t1814 = p[25].added_mass * (trig[25][0] * trig[25][1]);
     let t1818 = p[25].mass + p[25].added_mass * (trig[25][1] * trig[25][1]);
     let t1822 = p[25].centroid[0] * p[25].added_mass;
     let t1828 = p[25].centroid[0] * p[25].centroid[0];
@@ -1770,8 +1795,9 @@ pub fn assemble(
                 + (p[25].inertia + (p[25].mass * t1828 + p[25].added_mass * t1828))));
     let bt_26_xx = bt_27_xx
         + (p[25].mass + p[25].added_mass * (trig[25][0] * trig[25][0]));
-    let bt_26_xz = bt_27_xz - p[25].added_mass * (trig[25][0] * trig[25][1]);
+    let bt_26_xz = bt_27_xz - t1814;
     let bt_26_zz = bt_27_zz + t1818;
+    let t1866 = p[24].added_mass * (trig[24][0] * trig[24][1]);
     let t1870 = p[24].mass + p[24].added_mass * (trig[24][1] * trig[24][1]);
     let t1874 = p[24].centroid[0] * p[24].added_mass;
     let t1880 = p[24].centroid[0] * p[24].centroid[0];
@@ -1786,8 +1812,9 @@ pub fn assemble(
                 + (p[24].inertia + (p[24].mass * t1880 + p[24].added_mass * t1880))));
     let bt_25_xx = bt_26_xx
         + (p[24].mass + p[24].added_mass * (trig[24][0] * trig[24][0]));
-    let bt_25_xz = bt_26_xz - p[24].added_mass * (trig[24][0] * trig[24][1]);
+    let bt_25_xz = bt_26_xz - t1866;
     let bt_25_zz = bt_26_zz + t1870;
+    let t1918 = p[23].added_mass * (trig[23][0] * trig[23][1]);
     let t1922 = p[23].mass + p[23].added_mass * (trig[23][1] * trig[23][1]);
     let t1926 = p[23].centroid[0] * p[23].added_mass;
     let t1932 = p[23].centroid[0] * p[23].centroid[0];
@@ -1802,8 +1829,9 @@ pub fn assemble(
                 + (p[23].inertia + (p[23].mass * t1932 + p[23].added_mass * t1932))));
     let bt_24_xx = bt_25_xx
         + (p[23].mass + p[23].added_mass * (trig[23][0] * trig[23][0]));
-    let bt_24_xz = bt_25_xz - p[23].added_mass * (trig[23][0] * trig[23][1]);
+    let bt_24_xz = bt_25_xz - t1918;
     let bt_24_zz = bt_25_zz + t1922;
+    let t1970 = p[22].added_mass * (trig[22][0] * trig[22][1]);
     let t1974 = p[22].mass + p[22].added_mass * (trig[22][1] * trig[22][1]);
     let t1978 = p[22].centroid[0] * p[22].added_mass;
     let t1984 = p[22].centroid[0] * p[22].centroid[0];
@@ -1818,8 +1846,9 @@ pub fn assemble(
                 + (p[22].inertia + (p[22].mass * t1984 + p[22].added_mass * t1984))));
     let bt_23_xx = bt_24_xx
         + (p[22].mass + p[22].added_mass * (trig[22][0] * trig[22][0]));
-    let bt_23_xz = bt_24_xz - p[22].added_mass * (trig[22][0] * trig[22][1]);
+    let bt_23_xz = bt_24_xz - t1970;
     let bt_23_zz = bt_24_zz + t1974;
+    let t2022 = p[21].added_mass * (trig[21][0] * trig[21][1]);
     let t2026 = p[21].mass + p[21].added_mass * (trig[21][1] * trig[21][1]);
     let t2030 = p[21].centroid[0] * p[21].added_mass;
     let t2036 = p[21].centroid[0] * p[21].centroid[0];
@@ -1834,8 +1863,9 @@ pub fn assemble(
                 + (p[21].inertia + (p[21].mass * t2036 + p[21].added_mass * t2036))));
     let bt_22_xx = bt_23_xx
         + (p[21].mass + p[21].added_mass * (trig[21][0] * trig[21][0]));
-    let bt_22_xz = bt_23_xz - p[21].added_mass * (trig[21][0] * trig[21][1]);
+    let bt_22_xz = bt_23_xz - t2022;
     let bt_22_zz = bt_23_zz + t2026;
+    let t2074 = p[20].added_mass * (trig[20][0] * trig[20][1]);
     let t2078 = p[20].mass + p[20].added_mass * (trig[20][1] * trig[20][1]);
     let t2082 = p[20].centroid[0] * p[20].added_mass;
     let t2088 = p[20].centroid[0] * p[20].centroid[0];
@@ -1850,8 +1880,9 @@ pub fn assemble(
                 + (p[20].inertia + (p[20].mass * t2088 + p[20].added_mass * t2088))));
     let bt_21_xx = bt_22_xx
         + (p[20].mass + p[20].added_mass * (trig[20][0] * trig[20][0]));
-    let bt_21_xz = bt_22_xz - p[20].added_mass * (trig[20][0] * trig[20][1]);
+    let bt_21_xz = bt_22_xz - t2074;
     let bt_21_zz = bt_22_zz + t2078;
+    let t2126 = p[19].added_mass * (trig[19][0] * trig[19][1]);
     let t2130 = p[19].mass + p[19].added_mass * (trig[19][1] * trig[19][1]);
     let t2134 = p[19].centroid[0] * p[19].added_mass;
     let t2140 = p[19].centroid[0] * p[19].centroid[0];
@@ -1866,8 +1897,9 @@ pub fn assemble(
                 + (p[19].inertia + (p[19].mass * t2140 + p[19].added_mass * t2140))));
     let bt_20_xx = bt_21_xx
         + (p[19].mass + p[19].added_mass * (trig[19][0] * trig[19][0]));
-    let bt_20_xz = bt_21_xz - p[19].added_mass * (trig[19][0] * trig[19][1]);
+    let bt_20_xz = bt_21_xz - t2126;
     let bt_20_zz = bt_21_zz + t2130;
+    let t2178 = p[18].added_mass * (trig[18][0] * trig[18][1]);
     let t2182 = p[18].mass + p[18].added_mass * (trig[18][1] * trig[18][1]);
     let t2186 = p[18].centroid[0] * p[18].added_mass;
     let t2192 = p[18].centroid[0] * p[18].centroid[0];
@@ -1882,8 +1914,9 @@ pub fn assemble(
                 + (p[18].inertia + (p[18].mass * t2192 + p[18].added_mass * t2192))));
     let bt_19_xx = bt_20_xx
         + (p[18].mass + p[18].added_mass * (trig[18][0] * trig[18][0]));
-    let bt_19_xz = bt_20_xz - p[18].added_mass * (trig[18][0] * trig[18][1]);
+    let bt_19_xz = bt_20_xz - t2178;
     let bt_19_zz = bt_20_zz + t2182;
+    let t2230 = p[17].added_mass * (trig[17][0] * trig[17][1]);
     let t2234 = p[17].mass + p[17].added_mass * (trig[17][1] * trig[17][1]);
     let t2238 = p[17].centroid[0] * p[17].added_mass;
     let t2244 = p[17].centroid[0] * p[17].centroid[0];
@@ -1898,8 +1931,9 @@ pub fn assemble(
                 + (p[17].inertia + (p[17].mass * t2244 + p[17].added_mass * t2244))));
     let bt_18_xx = bt_19_xx
         + (p[17].mass + p[17].added_mass * (trig[17][0] * trig[17][0]));
-    let bt_18_xz = bt_19_xz - p[17].added_mass * (trig[17][0] * trig[17][1]);
+    let bt_18_xz = bt_19_xz - t2230;
     let bt_18_zz = bt_19_zz + t2234;
+    let t2282 = p[16].added_mass * (trig[16][0] * trig[16][1]);
     let t2286 = p[16].mass + p[16].added_mass * (trig[16][1] * trig[16][1]);
     let t2290 = p[16].centroid[0] * p[16].added_mass;
     let t2296 = p[16].centroid[0] * p[16].centroid[0];
@@ -1914,8 +1948,9 @@ pub fn assemble(
                 + (p[16].inertia + (p[16].mass * t2296 + p[16].added_mass * t2296))));
     let bt_17_xx = bt_18_xx
         + (p[16].mass + p[16].added_mass * (trig[16][0] * trig[16][0]));
-    let bt_17_xz = bt_18_xz - p[16].added_mass * (trig[16][0] * trig[16][1]);
+    let bt_17_xz = bt_18_xz - t2282;
     let bt_17_zz = bt_18_zz + t2286;
+    let t2334 = p[15].added_mass * (trig[15][0] * trig[15][1]);
     let t2338 = p[15].mass + p[15].added_mass * (trig[15][1] * trig[15][1]);
     let t2342 = p[15].centroid[0] * p[15].added_mass;
     let t2348 = p[15].centroid[0] * p[15].centroid[0];
@@ -1930,8 +1965,9 @@ pub fn assemble(
                 + (p[15].inertia + (p[15].mass * t2348 + p[15].added_mass * t2348))));
     let bt_16_xx = bt_17_xx
         + (p[15].mass + p[15].added_mass * (trig[15][0] * trig[15][0]));
-    let bt_16_xz = bt_17_xz - p[15].added_mass * (trig[15][0] * trig[15][1]);
+    let bt_16_xz = bt_17_xz - t2334;
     let bt_16_zz = bt_17_zz + t2338;
+    let t2386 = p[14].added_mass * (trig[14][0] * trig[14][1]);
     let t2390 = p[14].mass + p[14].added_mass * (trig[14][1] * trig[14][1]);
     let t2394 = p[14].centroid[0] * p[14].added_mass;
     let t2400 = p[14].centroid[0] * p[14].centroid[0];
@@ -1946,8 +1982,9 @@ pub fn assemble(
                 + (p[14].inertia + (p[14].mass * t2400 + p[14].added_mass * t2400))));
     let bt_15_xx = bt_16_xx
         + (p[14].mass + p[14].added_mass * (trig[14][0] * trig[14][0]));
-    let bt_15_xz = bt_16_xz - p[14].added_mass * (trig[14][0] * trig[14][1]);
+    let bt_15_xz = bt_16_xz - t2386;
     let bt_15_zz = bt_16_zz + t2390;
+    let t2438 = p[13].added_mass * (trig[13][0] * trig[13][1]);
     let t2442 = p[13].mass + p[13].added_mass * (trig[13][1] * trig[13][1]);
     let t2446 = p[13].centroid[0] * p[13].added_mass;
     let t2452 = p[13].centroid[0] * p[13].centroid[0];
@@ -1962,8 +1999,9 @@ pub fn assemble(
                 + (p[13].inertia + (p[13].mass * t2452 + p[13].added_mass * t2452))));
     let bt_14_xx = bt_15_xx
         + (p[13].mass + p[13].added_mass * (trig[13][0] * trig[13][0]));
-    let bt_14_xz = bt_15_xz - p[13].added_mass * (trig[13][0] * trig[13][1]);
+    let bt_14_xz = bt_15_xz - t2438;
     let bt_14_zz = bt_15_zz + t2442;
+    let t2490 = p[12].added_mass * (trig[12][0] * trig[12][1]);
     let t2494 = p[12].mass + p[12].added_mass * (trig[12][1] * trig[12][1]);
     let t2498 = p[12].centroid[0] * p[12].added_mass;
     let t2504 = p[12].centroid[0] * p[12].centroid[0];
@@ -1978,8 +2016,9 @@ pub fn assemble(
                 + (p[12].inertia + (p[12].mass * t2504 + p[12].added_mass * t2504))));
     let bt_13_xx = bt_14_xx
         + (p[12].mass + p[12].added_mass * (trig[12][0] * trig[12][0]));
-    let bt_13_xz = bt_14_xz - p[12].added_mass * (trig[12][0] * trig[12][1]);
+    let bt_13_xz = bt_14_xz - t2490;
     let bt_13_zz = bt_14_zz + t2494;
+    let t2542 = p[11].added_mass * (trig[11][0] * trig[11][1]);
     let t2546 = p[11].mass + p[11].added_mass * (trig[11][1] * trig[11][1]);
     let t2550 = p[11].centroid[0] * p[11].added_mass;
     let t2556 = p[11].centroid[0] * p[11].centroid[0];
@@ -1994,8 +2033,9 @@ pub fn assemble(
                 + (p[11].inertia + (p[11].mass * t2556 + p[11].added_mass * t2556))));
     let bt_12_xx = bt_13_xx
         + (p[11].mass + p[11].added_mass * (trig[11][0] * trig[11][0]));
-    let bt_12_xz = bt_13_xz - p[11].added_mass * (trig[11][0] * trig[11][1]);
+    let bt_12_xz = bt_13_xz - t2542;
     let bt_12_zz = bt_13_zz + t2546;
+    let t2594 = p[10].added_mass * (trig[10][0] * trig[10][1]);
     let t2598 = p[10].mass + p[10].added_mass * (trig[10][1] * trig[10][1]);
     let t2602 = p[10].centroid[0] * p[10].added_mass;
     let t2608 = p[10].centroid[0] * p[10].centroid[0];
@@ -2010,8 +2050,9 @@ pub fn assemble(
                 + (p[10].inertia + (p[10].mass * t2608 + p[10].added_mass * t2608))));
     let bt_11_xx = bt_12_xx
         + (p[10].mass + p[10].added_mass * (trig[10][0] * trig[10][0]));
-    let bt_11_xz = bt_12_xz - p[10].added_mass * (trig[10][0] * trig[10][1]);
+    let bt_11_xz = bt_12_xz - t2594;
     let bt_11_zz = bt_12_zz + t2598;
+    let t2646 = p[9].added_mass * (trig[9][0] * trig[9][1]);
     let t2650 = p[9].mass + p[9].added_mass * (trig[9][1] * trig[9][1]);
     let t2654 = p[9].centroid[0] * p[9].added_mass;
     let t2660 = p[9].centroid[0] * p[9].centroid[0];
@@ -2024,8 +2065,9 @@ pub fn assemble(
         + (t2680 + t2680
             + (j_11 + (p[9].inertia + (p[9].mass * t2660 + p[9].added_mass * t2660))));
     let bt_10_xx = bt_11_xx + (p[9].mass + p[9].added_mass * (trig[9][0] * trig[9][0]));
-    let bt_10_xz = bt_11_xz - p[9].added_mass * (trig[9][0] * trig[9][1]);
+    let bt_10_xz = bt_11_xz - t2646;
     let bt_10_zz = bt_11_zz + t2650;
+    let t2698 = p[8].added_mass * (trig[8][0] * trig[8][1]);
     let t2702 = p[8].mass + p[8].added_mass * (trig[8][1] * trig[8][1]);
     let t2706 = p[8].centroid[0] * p[8].added_mass;
     let t2712 = p[8].centroid[0] * p[8].centroid[0];
@@ -2038,8 +2080,9 @@ pub fn assemble(
         + (t2732 + t2732
             + (j_10 + (p[8].inertia + (p[8].mass * t2712 + p[8].added_mass * t2712))));
     let bt_9_xx = bt_10_xx + (p[8].mass + p[8].added_mass * (trig[8][0] * trig[8][0]));
-    let bt_9_xz = bt_10_xz - p[8].added_mass * (trig[8][0] * trig[8][1]);
+    let bt_9_xz = bt_10_xz - t2698;
     let bt_9_zz = bt_10_zz + t2702;
+    let t2750 = p[7].added_mass * (trig[7][0] * trig[7][1]);
     let t2754 = p[7].mass + p[7].added_mass * (trig[7][1] * trig[7][1]);
     let t2758 = p[7].centroid[0] * p[7].added_mass;
     let t2764 = p[7].centroid[0] * p[7].centroid[0];
@@ -2052,8 +2095,9 @@ pub fn assemble(
         + (t2784 + t2784
             + (j_9 + (p[7].inertia + (p[7].mass * t2764 + p[7].added_mass * t2764))));
     let bt_8_xx = bt_9_xx + (p[7].mass + p[7].added_mass * (trig[7][0] * trig[7][0]));
-    let bt_8_xz = bt_9_xz - p[7].added_mass * (trig[7][0] * trig[7][1]);
+    let bt_8_xz = bt_9_xz - t2750;
     let bt_8_zz = bt_9_zz + t2754;
+    let t2802 = p[6].added_mass * (trig[6][0] * trig[6][1]);
     let t2806 = p[6].mass + p[6].added_mass * (trig[6][1] * trig[6][1]);
     let t2810 = p[6].centroid[0] * p[6].added_mass;
     let t2816 = p[6].centroid[0] * p[6].centroid[0];
@@ -2066,8 +2110,9 @@ pub fn assemble(
         + (t2836 + t2836
             + (j_8 + (p[6].inertia + (p[6].mass * t2816 + p[6].added_mass * t2816))));
     let bt_7_xx = bt_8_xx + (p[6].mass + p[6].added_mass * (trig[6][0] * trig[6][0]));
-    let bt_7_xz = bt_8_xz - p[6].added_mass * (trig[6][0] * trig[6][1]);
+    let bt_7_xz = bt_8_xz - t2802;
     let bt_7_zz = bt_8_zz + t2806;
+    let t2854 = p[5].added_mass * (trig[5][0] * trig[5][1]);
     let t2858 = p[5].mass + p[5].added_mass * (trig[5][1] * trig[5][1]);
     let t2862 = p[5].centroid[0] * p[5].added_mass;
     let t2868 = p[5].centroid[0] * p[5].centroid[0];
@@ -2080,8 +2125,9 @@ pub fn assemble(
         + (t2888 + t2888
             + (j_7 + (p[5].inertia + (p[5].mass * t2868 + p[5].added_mass * t2868))));
     let bt_6_xx = bt_7_xx + (p[5].mass + p[5].added_mass * (trig[5][0] * trig[5][0]));
-    let bt_6_xz = bt_7_xz - p[5].added_mass * (trig[5][0] * trig[5][1]);
+    let bt_6_xz = bt_7_xz - t2854;
     let bt_6_zz = bt_7_zz + t2858;
+    let t2906 = p[4].added_mass * (trig[4][0] * trig[4][1]);
     let t2910 = p[4].mass + p[4].added_mass * (trig[4][1] * trig[4][1]);
     let t2914 = p[4].centroid[0] * p[4].added_mass;
     let t2920 = p[4].centroid[0] * p[4].centroid[0];
@@ -2094,8 +2140,9 @@ pub fn assemble(
         + (t2940 + t2940
             + (j_6 + (p[4].inertia + (p[4].mass * t2920 + p[4].added_mass * t2920))));
     let bt_5_xx = bt_6_xx + (p[4].mass + p[4].added_mass * (trig[4][0] * trig[4][0]));
-    let bt_5_xz = bt_6_xz - p[4].added_mass * (trig[4][0] * trig[4][1]);
+    let bt_5_xz = bt_6_xz - t2906;
     let bt_5_zz = bt_6_zz + t2910;
+    let t2958 = p[3].added_mass * (trig[3][0] * trig[3][1]);
     let t2962 = p[3].mass + p[3].added_mass * (trig[3][1] * trig[3][1]);
     let t2966 = p[3].centroid[0] * p[3].added_mass;
     let t2972 = p[3].centroid[0] * p[3].centroid[0];
@@ -2108,8 +2155,9 @@ pub fn assemble(
         + (t2992 + t2992
             + (j_5 + (p[3].inertia + (p[3].mass * t2972 + p[3].added_mass * t2972))));
     let bt_4_xx = bt_5_xx + (p[3].mass + p[3].added_mass * (trig[3][0] * trig[3][0]));
-    let bt_4_xz = bt_5_xz - p[3].added_mass * (trig[3][0] * trig[3][1]);
+    let bt_4_xz = bt_5_xz - t2958;
     let bt_4_zz = bt_5_zz + t2962;
+    let t3010 = p[2].added_mass * (trig[2][0] * trig[2][1]);
     let t3014 = p[2].mass + p[2].added_mass * (trig[2][1] * trig[2][1]);
     let t3018 = p[2].centroid[0] * p[2].added_mass;
     let t3024 = p[2].centroid[0] * p[2].centroid[0];
@@ -2122,15 +2170,16 @@ pub fn assemble(
         + (t3044 + t3044
             + (j_4 + (p[2].inertia + (p[2].mass * t3024 + p[2].added_mass * t3024))));
     let bt_3_xx = bt_4_xx + (p[2].mass + p[2].added_mass * (trig[2][0] * trig[2][0]));
-    let bt_3_xz = bt_4_xz - p[2].added_mass * (trig[2][0] * trig[2][1]);
+    let bt_3_xz = bt_4_xz - t3010;
     let bt_3_zz = bt_4_zz + t3014;
+    let t3070 = p[1].centroid[0] * p[1].added_mass;
     let t3076 = p[1].centroid[0] * p[1].centroid[0];
+    let t3084 = d_3_x * bt_3_xx - t434 * bt_3_xz;
     let t3088 = d_3_x * bt_3_xz - t434 * bt_3_zz;
-    let sm_2_z = t3088
-        + (sm_3_z
-            + (-(p[1].mass * t431) - trig[1][1] * (p[1].centroid[0] * p[1].added_mass)));
+    let sm_2_x = t3084 + (sm_3_x + (p[1].mass * e_2_x + trig[1][0] * t3070));
+    let sm_2_z = t3088 + (sm_3_z + (-(p[1].mass * t431) - trig[1][1] * t3070));
     let t3096 = d_3_x * sm_3_x - t434 * sm_3_z;
-    let j_2 = d_3_x * (d_3_x * bt_3_xx - t434 * bt_3_xz) - t434 * t3088
+    let j_2 = d_3_x * t3084 - t434 * t3088
         + (t3096 + t3096
             + (j_3 + (p[1].inertia + (p[1].mass * t3076 + p[1].added_mass * t3076))));
     let o_4_x = d_3_x + d_4_x;
@@ -2223,52 +2272,147 @@ pub fn assemble(
     let o_47_z = o_46_z - t698;
     let o_48_x = d_48_x + o_47_x;
     let o_48_z = o_47_z - t704;
+    let a_w_0 = -sm_2_x;
     let k_3 = j_3 + t3096;
+    let a_w_1 = -sm_3_x;
     let k_4 = j_4 + (sm_4_x * o_4_x + sm_4_z * o_4_z);
+    let a_w_2 = -sm_4_x;
     let k_5 = j_5 + (sm_5_x * o_5_x + sm_5_z * o_5_z);
+    let a_w_3 = -sm_5_x;
     let k_6 = j_6 + (sm_6_x * o_6_x + sm_6_z * o_6_z);
+    let a_w_4 = -sm_6_x;
     let k_7 = j_7 + (sm_7_x * o_7_x + sm_7_z * o_7_z);
+    let a_w_5 = -sm_7_x;
     let k_8 = j_8 + (sm_8_x * o_8_x + sm_8_z * o_8_z);
+    let a_w_6 = -sm_8_x;
     let k_9 = j_9 + (sm_9_x * o_9_x + sm_9_z * o_9_z);
+    let a_w_7 = -sm_9_x;
     let k_10 = j_10 + (sm_10_x * o_10_x + sm_10_z * o_10_z);
+    let a_w_8 = -sm_10_x;
     let k_11 = j_11 + (sm_11_x * o_11_x + sm_11_z * o_11_z);
+    let a_w_9 = -sm_11_x;
     let k_12 = j_12 + (sm_12_x * o_12_x + sm_12_z * o_12_z);
+    let a_w_10 = -sm_12_x;
     let k_13 = j_13 + (sm_13_x * o_13_x + sm_13_z * o_13_z);
+    let a_w_11 = -sm_13_x;
     let k_14 = j_14 + (sm_14_x * o_14_x + sm_14_z * o_14_z);
+    let a_w_12 = -sm_14_x;
     let k_15 = j_15 + (sm_15_x * o_15_x + sm_15_z * o_15_z);
+    let a_w_13 = -sm_15_x;
     let k_16 = j_16 + (sm_16_x * o_16_x + sm_16_z * o_16_z);
+    let a_w_14 = -sm_16_x;
     let k_17 = j_17 + (sm_17_x * o_17_x + sm_17_z * o_17_z);
+    let a_w_15 = -sm_17_x;
     let k_18 = j_18 + (sm_18_x * o_18_x + sm_18_z * o_18_z);
+    let a_w_16 = -sm_18_x;
     let k_19 = j_19 + (sm_19_x * o_19_x + sm_19_z * o_19_z);
+    let a_w_17 = -sm_19_x;
     let k_20 = j_20 + (sm_20_x * o_20_x + sm_20_z * o_20_z);
+    let a_w_18 = -sm_20_x;
     let k_21 = j_21 + (sm_21_x * o_21_x + sm_21_z * o_21_z);
+    let a_w_19 = -sm_21_x;
     let k_22 = j_22 + (sm_22_x * o_22_x + sm_22_z * o_22_z);
+    let a_w_20 = -sm_22_x;
     let k_23 = j_23 + (sm_23_x * o_23_x + sm_23_z * o_23_z);
+    let a_w_21 = -sm_23_x;
     let k_24 = j_24 + (sm_24_x * o_24_x + sm_24_z * o_24_z);
+    let a_w_22 = -sm_24_x;
     let k_25 = j_25 + (sm_25_x * o_25_x + sm_25_z * o_25_z);
+    let a_w_23 = -sm_25_x;
     let k_26 = j_26 + (sm_26_x * o_26_x + sm_26_z * o_26_z);
+    let a_w_24 = -sm_26_x;
     let k_27 = j_27 + (sm_27_x * o_27_x + sm_27_z * o_27_z);
+    let a_w_25 = -sm_27_x;
     let k_28 = j_28 + (sm_28_x * o_28_x + sm_28_z * o_28_z);
+    let a_w_26 = -sm_28_x;
     let k_29 = j_29 + (sm_29_x * o_29_x + sm_29_z * o_29_z);
+    let a_w_27 = -sm_29_x;
     let k_30 = j_30 + (sm_30_x * o_30_x + sm_30_z * o_30_z);
+    let a_w_28 = -sm_30_x;
     let k_31 = j_31 + (sm_31_x * o_31_x + sm_31_z * o_31_z);
+    let a_w_29 = -sm_31_x;
     let k_32 = j_32 + (sm_32_x * o_32_x + sm_32_z * o_32_z);
+    let a_w_30 = -sm_32_x;
     let k_33 = j_33 + (sm_33_x * o_33_x + sm_33_z * o_33_z);
+    let a_w_31 = -sm_33_x;
     let k_34 = j_34 + (sm_34_x * o_34_x + sm_34_z * o_34_z);
+    let a_w_32 = -sm_34_x;
     let k_35 = j_35 + (sm_35_x * o_35_x + sm_35_z * o_35_z);
+    let a_w_33 = -sm_35_x;
     let k_36 = j_36 + (sm_36_x * o_36_x + sm_36_z * o_36_z);
+    let a_w_34 = -sm_36_x;
     let k_37 = j_37 + (sm_37_x * o_37_x + sm_37_z * o_37_z);
+    let a_w_35 = -sm_37_x;
     let k_38 = j_38 + (sm_38_x * o_38_x + sm_38_z * o_38_z);
+    let a_w_36 = -sm_38_x;
     let k_39 = j_39 + (sm_39_x * o_39_x + sm_39_z * o_39_z);
+    let a_w_37 = -sm_39_x;
     let k_40 = j_40 + (sm_40_x * o_40_x + sm_40_z * o_40_z);
+    let a_w_38 = -sm_40_x;
     let k_41 = j_41 + (sm_41_x * o_41_x + sm_41_z * o_41_z);
+    let a_w_39 = -sm_41_x;
     let k_42 = j_42 + (sm_42_x * o_42_x + sm_42_z * o_42_z);
+    let a_w_40 = -sm_42_x;
     let k_43 = j_43 + (sm_43_x * o_43_x + sm_43_z * o_43_z);
+    let a_w_41 = -sm_43_x;
     let k_44 = j_44 + (sm_44_x * o_44_x + sm_44_z * o_44_z);
+    let a_w_42 = -sm_44_x;
     let k_45 = j_45 + (sm_45_x * o_45_x + sm_45_z * o_45_z);
+    let a_w_43 = -sm_45_x;
     let k_46 = j_46 + (sm_46_x * o_46_x + sm_46_z * o_46_z);
+    let a_w_44 = -sm_46_x;
     let k_47 = j_47 + (sm_47_x * o_47_x + sm_47_z * o_47_z);
+    let a_w_45 = -sm_47_x;
     let k_48 = j_48 + (sm_48_x * o_48_x + sm_48_z * o_48_z);
+    let a_w_46 = -sm_48_x;
+    let a_w_47 = t730
+        + (t774
+            + (t826
+                + (t878
+                    + (t930
+                        + (t982
+                            + (t1034
+                                + (t1086
+                                    + (t1138
+                                        + (t1190
+                                            + (t1242
+                                                + (t1294
+                                                    + (t1346
+                                                        + (t1398
+                                                            + (t1450
+                                                                + (t1502
+                                                                    + (t1554
+                                                                        + (t1606
+                                                                            + (t1658
+                                                                                + (t1710
+                                                                                    + (t1762
+                                                                                        + (t1814
+                                                                                            + (t1866
+                                                                                                + (t1918
+                                                                                                    + (t1970
+                                                                                                        + (t2022
+                                                                                                            + (t2074
+                                                                                                                + (t2126
+                                                                                                                    + (t2178
+                                                                                                                        + (t2230
+                                                                                                                            + (t2282
+                                                                                                                                + (t2334
+                                                                                                                                    + (t2386
+                                                                                                                                        + (t2438
+                                                                                                                                            + (t2490
+                                                                                                                                                + (t2542
+                                                                                                                                                    + (t2594
+                                                                                                                                                        + (t2646
+                                                                                                                                                            + (t2698
+                                                                                                                                                                + (t2750
+                                                                                                                                                                    + (t2802
+                                                                                                                                                                        + (t2854
+                                                                                                                                                                            + (t2906
+                                                                                                                                                                                + (t2958
+                                                                                                                                                                                    + (t3010
+                                                                                                                                                                                        + p[1].added_mass
+                                                                                                                                                                                            * (trig[1][0]
+                                                                                                                                                                                                * trig[1][1])))))))))))))))))))))))))))))))))))))))))))));
     let a_47_47 = p[47].mass
         + (t734
             + (t778
@@ -2320,375 +2464,375 @@ pub fn assemble(
                                                                                                                                                                                                     + p[1].added_mass
                                                                                                                                                                                                         * (trig[1][1]
                                                                                                                                                                                                             * trig[1][1]))))))))))))))))))))))))))))))))))))))))))))))));
-    let t3426 = u[0] * u[0];
-    let t3427 = e_2_x * t3426;
-    let ac_2_z = t431 * t3426;
-    let t3432 = t434 * t3426;
-    let t3434 = -(d_3_x * t3426);
-    let t3435 = w_3 * w_3;
-    let ac_3_x = t3434 - e_3_x * t3435;
-    let ac_3_z = t3432 + t437 * t3435;
-    let t3444 = t3434 - d_4_x * t3435;
-    let t3445 = t3432 + t440 * t3435;
-    let t3446 = w_4 * w_4;
-    let ac_4_x = t3444 - e_4_x * t3446;
-    let ac_4_z = t3445 + t443 * t3446;
-    let t3455 = t3444 - d_5_x * t3446;
-    let t3456 = t3445 + t446 * t3446;
-    let t3457 = w_5 * w_5;
-    let ac_5_x = t3455 - e_5_x * t3457;
-    let ac_5_z = t3456 + t449 * t3457;
-    let t3466 = t3455 - d_6_x * t3457;
-    let t3467 = t3456 + t452 * t3457;
-    let t3468 = w_6 * w_6;
-    let ac_6_x = t3466 - e_6_x * t3468;
-    let ac_6_z = t3467 + t455 * t3468;
-    let t3477 = t3466 - d_7_x * t3468;
-    let t3478 = t3467 + t458 * t3468;
-    let t3479 = w_7 * w_7;
-    let ac_7_x = t3477 - e_7_x * t3479;
-    let ac_7_z = t3478 + t461 * t3479;
-    let t3488 = t3477 - d_8_x * t3479;
-    let t3489 = t3478 + t464 * t3479;
-    let t3490 = w_8 * w_8;
-    let ac_8_x = t3488 - e_8_x * t3490;
-    let ac_8_z = t3489 + t467 * t3490;
-    let t3499 = t3488 - d_9_x * t3490;
-    let t3500 = t3489 + t470 * t3490;
-    let t3501 = w_9 * w_9;
-    let ac_9_x = t3499 - e_9_x * t3501;
-    let ac_9_z = t3500 + t473 * t3501;
-    let t3510 = t3499 - d_10_x * t3501;
-    let t3511 = t3500 + t476 * t3501;
-    let t3512 = w_10 * w_10;
-    let ac_10_x = t3510 - e_10_x * t3512;
-    let ac_10_z = t3511 + t479 * t3512;
-    let t3521 = t3510 - d_11_x * t3512;
-    let t3522 = t3511 + t482 * t3512;
-    let t3523 = w_11 * w_11;
-    let ac_11_x = t3521 - e_11_x * t3523;
-    let ac_11_z = t3522 + t485 * t3523;
-    let t3532 = t3521 - d_12_x * t3523;
-    let t3533 = t3522 + t488 * t3523;
-    let t3534 = w_12 * w_12;
-    let ac_12_x = t3532 - e_12_x * t3534;
-    let ac_12_z = t3533 + t491 * t3534;
-    let t3543 = t3532 - d_13_x * t3534;
-    let t3544 = t3533 + t494 * t3534;
-    let t3545 = w_13 * w_13;
-    let ac_13_x = t3543 - e_13_x * t3545;
-    let ac_13_z = t3544 + t497 * t3545;
-    let t3554 = t3543 - d_14_x * t3545;
-    let t3555 = t3544 + t500 * t3545;
-    let t3556 = w_14 * w_14;
-    let ac_14_x = t3554 - e_14_x * t3556;
-    let ac_14_z = t3555 + t503 * t3556;
-    let t3565 = t3554 - d_15_x * t3556;
-    let t3566 = t3555 + t506 * t3556;
-    let t3567 = w_15 * w_15;
-    let ac_15_x = t3565 - e_15_x * t3567;
-    let ac_15_z = t3566 + t509 * t3567;
-    let t3576 = t3565 - d_16_x * t3567;
-    let t3577 = t3566 + t512 * t3567;
-    let t3578 = w_16 * w_16;
-    let ac_16_x = t3576 - e_16_x * t3578;
-    let ac_16_z = t3577 + t515 * t3578;
-    let t3587 = t3576 - d_17_x * t3578;
-    let t3588 = t3577 + t518 * t3578;
-    let t3589 = w_17 * w_17;
-    let ac_17_x = t3587 - e_17_x * t3589;
-    let ac_17_z = t3588 + t521 * t3589;
-    let t3598 = t3587 - d_18_x * t3589;
-    let t3599 = t3588 + t524 * t3589;
-    let t3600 = w_18 * w_18;
-    let ac_18_x = t3598 - e_18_x * t3600;
-    let ac_18_z = t3599 + t527 * t3600;
-    let t3609 = t3598 - d_19_x * t3600;
-    let t3610 = t3599 + t530 * t3600;
-    let t3611 = w_19 * w_19;
-    let ac_19_x = t3609 - e_19_x * t3611;
-    let ac_19_z = t3610 + t533 * t3611;
-    let t3620 = t3609 - d_20_x * t3611;
-    let t3621 = t3610 + t536 * t3611;
-    let t3622 = w_20 * w_20;
-    let ac_20_x = t3620 - e_20_x * t3622;
-    let ac_20_z = t3621 + t539 * t3622;
-    let t3631 = t3620 - d_21_x * t3622;
-    let t3632 = t3621 + t542 * t3622;
-    let t3633 = w_21 * w_21;
-    let ac_21_x = t3631 - e_21_x * t3633;
-    let ac_21_z = t3632 + t545 * t3633;
-    let t3642 = t3631 - d_22_x * t3633;
-    let t3643 = t3632 + t548 * t3633;
-    let t3644 = w_22 * w_22;
-    let ac_22_x = t3642 - e_22_x * t3644;
-    let ac_22_z = t3643 + t551 * t3644;
-    let t3653 = t3642 - d_23_x * t3644;
-    let t3654 = t3643 + t554 * t3644;
-    let t3655 = w_23 * w_23;
-    let ac_23_x = t3653 - e_23_x * t3655;
-    let ac_23_z = t3654 + t557 * t3655;
-    let t3664 = t3653 - d_24_x * t3655;
-    let t3665 = t3654 + t560 * t3655;
-    let t3666 = w_24 * w_24;
-    let ac_24_x = t3664 - e_24_x * t3666;
-    let ac_24_z = t3665 + t563 * t3666;
-    let t3675 = t3664 - d_25_x * t3666;
-    let t3676 = t3665 + t566 * t3666;
-    let t3677 = w_25 * w_25;
-    let ac_25_x = t3675 - e_25_x * t3677;
-    let ac_25_z = t3676 + t569 * t3677;
-    let t3686 = t3675 - d_26_x * t3677;
-    let t3687 = t3676 + t572 * t3677;
-    let t3688 = w_26 * w_26;
-    let ac_26_x = t3686 - e_26_x * t3688;
-    let ac_26_z = t3687 + t575 * t3688;
-    let t3697 = t3686 - d_27_x * t3688;
-    let t3698 = t3687 + t578 * t3688;
-    let t3699 = w_27 * w_27;
-    let ac_27_x = t3697 - e_27_x * t3699;
-    let ac_27_z = t3698 + t581 * t3699;
-    let t3708 = t3697 - d_28_x * t3699;
-    let t3709 = t3698 + t584 * t3699;
-    let t3710 = w_28 * w_28;
-    let ac_28_x = t3708 - e_28_x * t3710;
-    let ac_28_z = t3709 + t587 * t3710;
-    let t3719 = t3708 - d_29_x * t3710;
-    let t3720 = t3709 + t590 * t3710;
-    let t3721 = w_29 * w_29;
-    let ac_29_x = t3719 - e_29_x * t3721;
-    let ac_29_z = t3720 + t593 * t3721;
-    let t3730 = t3719 - d_30_x * t3721;
-    let t3731 = t3720 + t596 * t3721;
-    let t3732 = w_30 * w_30;
-    let ac_30_x = t3730 - e_30_x * t3732;
-    let ac_30_z = t3731 + t599 * t3732;
-    let t3741 = t3730 - d_31_x * t3732;
-    let t3742 = t3731 + t602 * t3732;
-    let t3743 = w_31 * w_31;
-    let ac_31_x = t3741 - e_31_x * t3743;
-    let ac_31_z = t3742 + t605 * t3743;
-    let t3752 = t3741 - d_32_x * t3743;
-    let t3753 = t3742 + t608 * t3743;
-    let t3754 = w_32 * w_32;
-    let ac_32_x = t3752 - e_32_x * t3754;
-    let ac_32_z = t3753 + t611 * t3754;
-    let t3763 = t3752 - d_33_x * t3754;
-    let t3764 = t3753 + t614 * t3754;
-    let t3765 = w_33 * w_33;
-    let ac_33_x = t3763 - e_33_x * t3765;
-    let ac_33_z = t3764 + t617 * t3765;
-    let t3774 = t3763 - d_34_x * t3765;
-    let t3775 = t3764 + t620 * t3765;
-    let t3776 = w_34 * w_34;
-    let ac_34_x = t3774 - e_34_x * t3776;
-    let ac_34_z = t3775 + t623 * t3776;
-    let t3785 = t3774 - d_35_x * t3776;
-    let t3786 = t3775 + t626 * t3776;
-    let t3787 = w_35 * w_35;
-    let ac_35_x = t3785 - e_35_x * t3787;
-    let ac_35_z = t3786 + t629 * t3787;
-    let t3796 = t3785 - d_36_x * t3787;
-    let t3797 = t3786 + t632 * t3787;
-    let t3798 = w_36 * w_36;
-    let ac_36_x = t3796 - e_36_x * t3798;
-    let ac_36_z = t3797 + t635 * t3798;
-    let t3807 = t3796 - d_37_x * t3798;
-    let t3808 = t3797 + t638 * t3798;
-    let t3809 = w_37 * w_37;
-    let ac_37_x = t3807 - e_37_x * t3809;
-    let ac_37_z = t3808 + t641 * t3809;
-    let t3818 = t3807 - d_38_x * t3809;
-    let t3819 = t3808 + t644 * t3809;
-    let t3820 = w_38 * w_38;
-    let ac_38_x = t3818 - e_38_x * t3820;
-    let ac_38_z = t3819 + t647 * t3820;
-    let t3829 = t3818 - d_39_x * t3820;
-    let t3830 = t3819 + t650 * t3820;
-    let t3831 = w_39 * w_39;
-    let ac_39_x = t3829 - e_39_x * t3831;
-    let ac_39_z = t3830 + t653 * t3831;
-    let t3840 = t3829 - d_40_x * t3831;
-    let t3841 = t3830 + t656 * t3831;
-    let t3842 = w_40 * w_40;
-    let ac_40_x = t3840 - e_40_x * t3842;
-    let ac_40_z = t3841 + t659 * t3842;
-    let t3851 = t3840 - d_41_x * t3842;
-    let t3852 = t3841 + t662 * t3842;
-    let t3853 = w_41 * w_41;
-    let ac_41_x = t3851 - e_41_x * t3853;
-    let ac_41_z = t3852 + t665 * t3853;
-    let t3862 = t3851 - d_42_x * t3853;
-    let t3863 = t3852 + t668 * t3853;
-    let t3864 = w_42 * w_42;
-    let ac_42_x = t3862 - e_42_x * t3864;
-    let ac_42_z = t3863 + t671 * t3864;
-    let t3873 = t3862 - d_43_x * t3864;
-    let t3874 = t3863 + t674 * t3864;
-    let t3875 = w_43 * w_43;
-    let ac_43_x = t3873 - e_43_x * t3875;
-    let ac_43_z = t3874 + t677 * t3875;
-    let t3884 = t3873 - d_44_x * t3875;
-    let t3885 = t3874 + t680 * t3875;
-    let t3886 = w_44 * w_44;
-    let ac_44_x = t3884 - e_44_x * t3886;
-    let ac_44_z = t3885 + t683 * t3886;
-    let t3895 = t3884 - d_45_x * t3886;
-    let t3896 = t3885 + t686 * t3886;
-    let t3897 = w_45 * w_45;
-    let ac_45_x = t3895 - e_45_x * t3897;
-    let ac_45_z = t3896 + t689 * t3897;
-    let t3906 = t3895 - d_46_x * t3897;
-    let t3907 = t3896 + t692 * t3897;
-    let t3908 = w_46 * w_46;
-    let ac_46_x = t3906 - e_46_x * t3908;
-    let ac_46_z = t3907 + t695 * t3908;
-    let t3917 = t3906 - d_47_x * t3908;
-    let t3918 = t3907 + t698 * t3908;
-    let t3919 = w_47 * w_47;
-    let ac_47_x = t3917 - e_47_x * t3919;
-    let ac_47_z = t3918 + t701 * t3919;
-    let t3930 = w_48 * w_48;
-    let ac_48_x = t3917 - d_48_x * t3919 - e_48_x * t3930;
-    let ac_48_z = t3918 + t704 * t3919 - e_48_z * t3930;
-    let t3948 = p[1].added_mass * (trig[1][0] * ac_2_z - trig[1][1] * t3427);
-    let fe_2_x = loads[1][0] - (trig[1][1] * t3948 - p[1].mass * t3427);
-    let fe_2_z = loads[1][1] - (p[1].mass * ac_2_z + trig[1][0] * t3948);
-    let t3963 = p[2].added_mass * (trig[2][1] * ac_3_x + trig[2][0] * ac_3_z);
-    let fe_3_x = loads[2][0] - (p[2].mass * ac_3_x + trig[2][1] * t3963);
-    let fe_3_z = loads[2][1] - (p[2].mass * ac_3_z + trig[2][0] * t3963);
-    let t3978 = p[3].added_mass * (trig[3][1] * ac_4_x + trig[3][0] * ac_4_z);
-    let fe_4_x = loads[3][0] - (p[3].mass * ac_4_x + trig[3][1] * t3978);
-    let fe_4_z = loads[3][1] - (p[3].mass * ac_4_z + trig[3][0] * t3978);
-    let t3993 = p[4].added_mass * (trig[4][1] * ac_5_x + trig[4][0] * ac_5_z);
-    let fe_5_x = loads[4][0] - (p[4].mass * ac_5_x + trig[4][1] * t3993);
-    let fe_5_z = loads[4][1] - (p[4].mass * ac_5_z + trig[4][0] * t3993);
-    let t4008 = p[5].added_mass * (trig[5][1] * ac_6_x + trig[5][0] * ac_6_z);
-    let fe_6_x = loads[5][0] - (p[5].mass * ac_6_x + trig[5][1] * t4008);
-    let fe_6_z = loads[5][1] - (p[5].mass * ac_6_z + trig[5][0] * t4008);
-    let t4023 = p[6].added_mass * (trig[6][1] * ac_7_x + trig[6][0] * ac_7_z);
-    let fe_7_x = loads[6][0] - (p[6].mass * ac_7_x + trig[6][1] * t4023);
-    let fe_7_z = loads[6][1] - (p[6].mass * ac_7_z + trig[6][0] * t4023);
-    let t4038 = p[7].added_mass * (trig[7][1] * ac_8_x + trig[7][0] * ac_8_z);
-    let fe_8_x = loads[7][0] - (p[7].mass * ac_8_x + trig[7][1] * t4038);
-    let fe_8_z = loads[7][1] - (p[7].mass * ac_8_z + trig[7][0] * t4038);
-    let t4053 = p[8].added_mass * (trig[8][1] * ac_9_x + trig[8][0] * ac_9_z);
-    let fe_9_x = loads[8][0] - (p[8].mass * ac_9_x + trig[8][1] * t4053);
-    let fe_9_z = loads[8][1] - (p[8].mass * ac_9_z + trig[8][0] * t4053);
-    let t4068 = p[9].added_mass * (trig[9][1] * ac_10_x + trig[9][0] * ac_10_z);
-    let fe_10_x = loads[9][0] - (p[9].mass * ac_10_x + trig[9][1] * t4068);
-    let fe_10_z = loads[9][1] - (p[9].mass * ac_10_z + trig[9][0] * t4068);
-    let t4083 = p[10].added_mass * (trig[10][1] * ac_11_x + trig[10][0] * ac_11_z);
-    let fe_11_x = loads[10][0] - (p[10].mass * ac_11_x + trig[10][1] * t4083);
-    let fe_11_z = loads[10][1] - (p[10].mass * ac_11_z + trig[10][0] * t4083);
-    let t4098 = p[11].added_mass * (trig[11][1] * ac_12_x + trig[11][0] * ac_12_z);
-    let fe_12_x = loads[11][0] - (p[11].mass * ac_12_x + trig[11][1] * t4098);
-    let fe_12_z = loads[11][1] - (p[11].mass * ac_12_z + trig[11][0] * t4098);
-    let t4113 = p[12].added_mass * (trig[12][1] * ac_13_x + trig[12][0] * ac_13_z);
-    let fe_13_x = loads[12][0] - (p[12].mass * ac_13_x + trig[12][1] * t4113);
-    let fe_13_z = loads[12][1] - (p[12].mass * ac_13_z + trig[12][0] * t4113);
-    let t4128 = p[13].added_mass * (trig[13][1] * ac_14_x + trig[13][0] * ac_14_z);
-    let fe_14_x = loads[13][0] - (p[13].mass * ac_14_x + trig[13][1] * t4128);
-    let fe_14_z = loads[13][1] - (p[13].mass * ac_14_z + trig[13][0] * t4128);
-    let t4143 = p[14].added_mass * (trig[14][1] * ac_15_x + trig[14][0] * ac_15_z);
-    let fe_15_x = loads[14][0] - (p[14].mass * ac_15_x + trig[14][1] * t4143);
-    let fe_15_z = loads[14][1] - (p[14].mass * ac_15_z + trig[14][0] * t4143);
-    let t4158 = p[15].added_mass * (trig[15][1] * ac_16_x + trig[15][0] * ac_16_z);
-    let fe_16_x = loads[15][0] - (p[15].mass * ac_16_x + trig[15][1] * t4158);
-    let fe_16_z = loads[15][1] - (p[15].mass * ac_16_z + trig[15][0] * t4158);
-    let t4173 = p[16].added_mass * (trig[16][1] * ac_17_x + trig[16][0] * ac_17_z);
-    let fe_17_x = loads[16][0] - (p[16].mass * ac_17_x + trig[16][1] * t4173);
-    let fe_17_z = loads[16][1] - (p[16].mass * ac_17_z + trig[16][0] * t4173);
-    let t4188 = p[17].added_mass * (trig[17][1] * ac_18_x + trig[17][0] * ac_18_z);
-    let fe_18_x = loads[17][0] - (p[17].mass * ac_18_x + trig[17][1] * t4188);
-    let fe_18_z = loads[17][1] - (p[17].mass * ac_18_z + trig[17][0] * t4188);
-    let t4203 = p[18].added_mass * (trig[18][1] * ac_19_x + trig[18][0] * ac_19_z);
-    let fe_19_x = loads[18][0] - (p[18].mass * ac_19_x + trig[18][1] * t4203);
-    let fe_19_z = loads[18][1] - (p[18].mass * ac_19_z + trig[18][0] * t4203);
-    let t4218 = p[19].added_mass * (trig[19][1] * ac_20_x + trig[19][0] * ac_20_z);
-    let fe_20_x = loads[19][0] - (p[19].mass * ac_20_x + trig[19][1] * t4218);
-    let fe_20_z = loads[19][1] - (p[19].mass * ac_20_z + trig[19][0] * t4218);
-    let t4233 = p[20].added_mass * (trig[20][1] * ac_21_x + trig[20][0] * ac_21_z);
-    let fe_21_x = loads[20][0] - (p[20].mass * ac_21_x + trig[20][1] * t4233);
-    let fe_21_z = loads[20][1] - (p[20].mass * ac_21_z + trig[20][0] * t4233);
-    let t4248 = p[21].added_mass * (trig[21][1] * ac_22_x + trig[21][0] * ac_22_z);
-    let fe_22_x = loads[21][0] - (p[21].mass * ac_22_x + trig[21][1] * t4248);
-    let fe_22_z = loads[21][1] - (p[21].mass * ac_22_z + trig[21][0] * t4248);
-    let t4263 = p[22].added_mass * (trig[22][1] * ac_23_x + trig[22][0] * ac_23_z);
-    let fe_23_x = loads[22][0] - (p[22].mass * ac_23_x + trig[22][1] * t4263);
-    let fe_23_z = loads[22][1] - (p[22].mass * ac_23_z + trig[22][0] * t4263);
-    let t4278 = p[23].added_mass * (trig[23][1] * ac_24_x + trig[23][0] * ac_24_z);
-    let fe_24_x = loads[23][0] - (p[23].mass * ac_24_x + trig[23][1] * t4278);
-    let fe_24_z = loads[23][1] - (p[23].mass * ac_24_z + trig[23][0] * t4278);
-    let t4293 = p[24].added_mass * (trig[24][1] * ac_25_x + trig[24][0] * ac_25_z);
-    let fe_25_x = loads[24][0] - (p[24].mass * ac_25_x + trig[24][1] * t4293);
-    let fe_25_z = loads[24][1] - (p[24].mass * ac_25_z + trig[24][0] * t4293);
-    let t4308 = p[25].added_mass * (trig[25][1] * ac_26_x + trig[25][0] * ac_26_z);
-    let fe_26_x = loads[25][0] - (p[25].mass * ac_26_x + trig[25][1] * t4308);
-    let fe_26_z = loads[25][1] - (p[25].mass * ac_26_z + trig[25][0] * t4308);
-    let t4323 = p[26].added_mass * (trig[26][1] * ac_27_x + trig[26][0] * ac_27_z);
-    let fe_27_x = loads[26][0] - (p[26].mass * ac_27_x + trig[26][1] * t4323);
-    let fe_27_z = loads[26][1] - (p[26].mass * ac_27_z + trig[26][0] * t4323);
-    let t4338 = p[27].added_mass * (trig[27][1] * ac_28_x + trig[27][0] * ac_28_z);
-    let fe_28_x = loads[27][0] - (p[27].mass * ac_28_x + trig[27][1] * t4338);
-    let fe_28_z = loads[27][1] - (p[27].mass * ac_28_z + trig[27][0] * t4338);
-    let t4353 = p[28].added_mass * (trig[28][1] * ac_29_x + trig[28][0] * ac_29_z);
-    let fe_29_x = loads[28][0] - (p[28].mass * ac_29_x + trig[28][1] * t4353);
-    let fe_29_z = loads[28][1] - (p[28].mass * ac_29_z + trig[28][0] * t4353);
-    let t4368 = p[29].added_mass * (trig[29][1] * ac_30_x + trig[29][0] * ac_30_z);
-    let fe_30_x = loads[29][0] - (p[29].mass * ac_30_x + trig[29][1] * t4368);
-    let fe_30_z = loads[29][1] - (p[29].mass * ac_30_z + trig[29][0] * t4368);
-    let t4383 = p[30].added_mass * (trig[30][1] * ac_31_x + trig[30][0] * ac_31_z);
-    let fe_31_x = loads[30][0] - (p[30].mass * ac_31_x + trig[30][1] * t4383);
-    let fe_31_z = loads[30][1] - (p[30].mass * ac_31_z + trig[30][0] * t4383);
-    let t4398 = p[31].added_mass * (trig[31][1] * ac_32_x + trig[31][0] * ac_32_z);
-    let fe_32_x = loads[31][0] - (p[31].mass * ac_32_x + trig[31][1] * t4398);
-    let fe_32_z = loads[31][1] - (p[31].mass * ac_32_z + trig[31][0] * t4398);
-    let t4413 = p[32].added_mass * (trig[32][1] * ac_33_x + trig[32][0] * ac_33_z);
-    let fe_33_x = loads[32][0] - (p[32].mass * ac_33_x + trig[32][1] * t4413);
-    let fe_33_z = loads[32][1] - (p[32].mass * ac_33_z + trig[32][0] * t4413);
-    let t4428 = p[33].added_mass * (trig[33][1] * ac_34_x + trig[33][0] * ac_34_z);
-    let fe_34_x = loads[33][0] - (p[33].mass * ac_34_x + trig[33][1] * t4428);
-    let fe_34_z = loads[33][1] - (p[33].mass * ac_34_z + trig[33][0] * t4428);
-    let t4443 = p[34].added_mass * (trig[34][1] * ac_35_x + trig[34][0] * ac_35_z);
-    let fe_35_x = loads[34][0] - (p[34].mass * ac_35_x + trig[34][1] * t4443);
-    let fe_35_z = loads[34][1] - (p[34].mass * ac_35_z + trig[34][0] * t4443);
-    let t4458 = p[35].added_mass * (trig[35][1] * ac_36_x + trig[35][0] * ac_36_z);
-    let fe_36_x = loads[35][0] - (p[35].mass * ac_36_x + trig[35][1] * t4458);
-    let fe_36_z = loads[35][1] - (p[35].mass * ac_36_z + trig[35][0] * t4458);
-    let t4473 = p[36].added_mass * (trig[36][1] * ac_37_x + trig[36][0] * ac_37_z);
-    let fe_37_x = loads[36][0] - (p[36].mass * ac_37_x + trig[36][1] * t4473);
-    let fe_37_z = loads[36][1] - (p[36].mass * ac_37_z + trig[36][0] * t4473);
-    let t4488 = p[37].added_mass * (trig[37][1] * ac_38_x + trig[37][0] * ac_38_z);
-    let fe_38_x = loads[37][0] - (p[37].mass * ac_38_x + trig[37][1] * t4488);
-    let fe_38_z = loads[37][1] - (p[37].mass * ac_38_z + trig[37][0] * t4488);
-    let t4503 = p[38].added_mass * (trig[38][1] * ac_39_x + trig[38][0] * ac_39_z);
-    let fe_39_x = loads[38][0] - (p[38].mass * ac_39_x + trig[38][1] * t4503);
-    let fe_39_z = loads[38][1] - (p[38].mass * ac_39_z + trig[38][0] * t4503);
-    let t4518 = p[39].added_mass * (trig[39][1] * ac_40_x + trig[39][0] * ac_40_z);
-    let fe_40_x = loads[39][0] - (p[39].mass * ac_40_x + trig[39][1] * t4518);
-    let fe_40_z = loads[39][1] - (p[39].mass * ac_40_z + trig[39][0] * t4518);
-    let t4533 = p[40].added_mass * (trig[40][1] * ac_41_x + trig[40][0] * ac_41_z);
-    let fe_41_x = loads[40][0] - (p[40].mass * ac_41_x + trig[40][1] * t4533);
-    let fe_41_z = loads[40][1] - (p[40].mass * ac_41_z + trig[40][0] * t4533);
-    let t4548 = p[41].added_mass * (trig[41][1] * ac_42_x + trig[41][0] * ac_42_z);
-    let fe_42_x = loads[41][0] - (p[41].mass * ac_42_x + trig[41][1] * t4548);
-    let fe_42_z = loads[41][1] - (p[41].mass * ac_42_z + trig[41][0] * t4548);
-    let t4563 = p[42].added_mass * (trig[42][1] * ac_43_x + trig[42][0] * ac_43_z);
-    let fe_43_x = loads[42][0] - (p[42].mass * ac_43_x + trig[42][1] * t4563);
-    let fe_43_z = loads[42][1] - (p[42].mass * ac_43_z + trig[42][0] * t4563);
-    let t4578 = p[43].added_mass * (trig[43][1] * ac_44_x + trig[43][0] * ac_44_z);
-    let fe_44_x = loads[43][0] - (p[43].mass * ac_44_x + trig[43][1] * t4578);
-    let fe_44_z = loads[43][1] - (p[43].mass * ac_44_z + trig[43][0] * t4578);
-    let t4593 = p[44].added_mass * (trig[44][1] * ac_45_x + trig[44][0] * ac_45_z);
-    let fe_45_x = loads[44][0] - (p[44].mass * ac_45_x + trig[44][1] * t4593);
-    let fe_45_z = loads[44][1] - (p[44].mass * ac_45_z + trig[44][0] * t4593);
-    let t4608 = p[45].added_mass * (trig[45][1] * ac_46_x + trig[45][0] * ac_46_z);
-    let fe_46_x = loads[45][0] - (p[45].mass * ac_46_x + trig[45][1] * t4608);
-    let fe_46_z = loads[45][1] - (p[45].mass * ac_46_z + trig[45][0] * t4608);
-    let t4623 = p[46].added_mass * (trig[46][1] * ac_47_x + trig[46][0] * ac_47_z);
-    let fe_47_x = loads[46][0] - (p[46].mass * ac_47_x + trig[46][1] * t4623);
-    let fe_47_z = loads[46][1] - (p[46].mass * ac_47_z + trig[46][0] * t4623);
+    let t3518 = u[0] * u[0];
+    let t3519 = e_2_x * t3518;
+    let ac_2_z = t431 * t3518;
+    let t3524 = t434 * t3518;
+    let t3526 = -(d_3_x * t3518);
+    let t3527 = w_3 * w_3;
+    let ac_3_x = t3526 - e_3_x * t3527;
+    let ac_3_z = t3524 + t437 * t3527;
+    let t3536 = t3526 - d_4_x * t3527;
+    let t3537 = t3524 + t440 * t3527;
+    let t3538 = w_4 * w_4;
+    let ac_4_x = t3536 - e_4_x * t3538;
+    let ac_4_z = t3537 + t443 * t3538;
+    let t3547 = t3536 - d_5_x * t3538;
+    let t3548 = t3537 + t446 * t3538;
+    let t3549 = w_5 * w_5;
+    let ac_5_x = t3547 - e_5_x * t3549;
+    let ac_5_z = t3548 + t449 * t3549;
+    let t3558 = t3547 - d_6_x * t3549;
+    let t3559 = t3548 + t452 * t3549;
+    let t3560 = w_6 * w_6;
+    let ac_6_x = t3558 - e_6_x * t3560;
+    let ac_6_z = t3559 + t455 * t3560;
+    let t3569 = t3558 - d_7_x * t3560;
+    let t3570 = t3559 + t458 * t3560;
+    let t3571 = w_7 * w_7;
+    let ac_7_x = t3569 - e_7_x * t3571;
+    let ac_7_z = t3570 + t461 * t3571;
+    let t3580 = t3569 - d_8_x * t3571;
+    let t3581 = t3570 + t464 * t3571;
+    let t3582 = w_8 * w_8;
+    let ac_8_x = t3580 - e_8_x * t3582;
+    let ac_8_z = t3581 + t467 * t3582;
+    let t3591 = t3580 - d_9_x * t3582;
+    let t3592 = t3581 + t470 * t3582;
+    let t3593 = w_9 * w_9;
+    let ac_9_x = t3591 - e_9_x * t3593;
+    let ac_9_z = t3592 + t473 * t3593;
+    let t3602 = t3591 - d_10_x * t3593;
+    let t3603 = t3592 + t476 * t3593;
+    let t3604 = w_10 * w_10;
+    let ac_10_x = t3602 - e_10_x * t3604;
+    let ac_10_z = t3603 + t479 * t3604;
+    let t3613 = t3602 - d_11_x * t3604;
+    let t3614 = t3603 + t482 * t3604;
+    let t3615 = w_11 * w_11;
+    let ac_11_x = t3613 - e_11_x * t3615;
+    let ac_11_z = t3614 + t485 * t3615;
+    let t3624 = t3613 - d_12_x * t3615;
+    let t3625 = t3614 + t488 * t3615;
+    let t3626 = w_12 * w_12;
+    let ac_12_x = t3624 - e_12_x * t3626;
+    let ac_12_z = t3625 + t491 * t3626;
+    let t3635 = t3624 - d_13_x * t3626;
+    let t3636 = t3625 + t494 * t3626;
+    let t3637 = w_13 * w_13;
+    let ac_13_x = t3635 - e_13_x * t3637;
+    let ac_13_z = t3636 + t497 * t3637;
+    let t3646 = t3635 - d_14_x * t3637;
+    let t3647 = t3636 + t500 * t3637;
+    let t3648 = w_14 * w_14;
+    let ac_14_x = t3646 - e_14_x * t3648;
+    let ac_14_z = t3647 + t503 * t3648;
+    let t3657 = t3646 - d_15_x * t3648;
+    let t3658 = t3647 + t506 * t3648;
+    let t3659 = w_15 * w_15;
+    let ac_15_x = t3657 - e_15_x * t3659;
+    let ac_15_z = t3658 + t509 * t3659;
+    let t3668 = t3657 - d_16_x * t3659;
+    let t3669 = t3658 + t512 * t3659;
+    let t3670 = w_16 * w_16;
+    let ac_16_x = t3668 - e_16_x * t3670;
+    let ac_16_z = t3669 + t515 * t3670;
+    let t3679 = t3668 - d_17_x * t3670;
+    let t3680 = t3669 + t518 * t3670;
+    let t3681 = w_17 * w_17;
+    let ac_17_x = t3679 - e_17_x * t3681;
+    let ac_17_z = t3680 + t521 * t3681;
+    let t3690 = t3679 - d_18_x * t3681;
+    let t3691 = t3680 + t524 * t3681;
+    let t3692 = w_18 * w_18;
+    let ac_18_x = t3690 - e_18_x * t3692;
+    let ac_18_z = t3691 + t527 * t3692;
+    let t3701 = t3690 - d_19_x * t3692;
+    let t3702 = t3691 + t530 * t3692;
+    let t3703 = w_19 * w_19;
+    let ac_19_x = t3701 - e_19_x * t3703;
+    let ac_19_z = t3702 + t533 * t3703;
+    let t3712 = t3701 - d_20_x * t3703;
+    let t3713 = t3702 + t536 * t3703;
+    let t3714 = w_20 * w_20;
+    let ac_20_x = t3712 - e_20_x * t3714;
+    let ac_20_z = t3713 + t539 * t3714;
+    let t3723 = t3712 - d_21_x * t3714;
+    let t3724 = t3713 + t542 * t3714;
+    let t3725 = w_21 * w_21;
+    let ac_21_x = t3723 - e_21_x * t3725;
+    let ac_21_z = t3724 + t545 * t3725;
+    let t3734 = t3723 - d_22_x * t3725;
+    let t3735 = t3724 + t548 * t3725;
+    let t3736 = w_22 * w_22;
+    let ac_22_x = t3734 - e_22_x * t3736;
+    let ac_22_z = t3735 + t551 * t3736;
+    let t3745 = t3734 - d_23_x * t3736;
+    let t3746 = t3735 + t554 * t3736;
+    let t3747 = w_23 * w_23;
+    let ac_23_x = t3745 - e_23_x * t3747;
+    let ac_23_z = t3746 + t557 * t3747;
+    let t3756 = t3745 - d_24_x * t3747;
+    let t3757 = t3746 + t560 * t3747;
+    let t3758 = w_24 * w_24;
+    let ac_24_x = t3756 - e_24_x * t3758;
+    let ac_24_z = t3757 + t563 * t3758;
+    let t3767 = t3756 - d_25_x * t3758;
+    let t3768 = t3757 + t566 * t3758;
+    let t3769 = w_25 * w_25;
+    let ac_25_x = t3767 - e_25_x * t3769;
+    let ac_25_z = t3768 + t569 * t3769;
+    let t3778 = t3767 - d_26_x * t3769;
+    let t3779 = t3768 + t572 * t3769;
+    let t3780 = w_26 * w_26;
+    let ac_26_x = t3778 - e_26_x * t3780;
+    let ac_26_z = t3779 + t575 * t3780;
+    let t3789 = t3778 - d_27_x * t3780;
+    let t3790 = t3779 + t578 * t3780;
+    let t3791 = w_27 * w_27;
+    let ac_27_x = t3789 - e_27_x * t3791;
+    let ac_27_z = t3790 + t581 * t3791;
+    let t3800 = t3789 - d_28_x * t3791;
+    let t3801 = t3790 + t584 * t3791;
+    let t3802 = w_28 * w_28;
+    let ac_28_x = t3800 - e_28_x * t3802;
+    let ac_28_z = t3801 + t587 * t3802;
+    let t3811 = t3800 - d_29_x * t3802;
+    let t3812 = t3801 + t590 * t3802;
+    let t3813 = w_29 * w_29;
+    let ac_29_x = t3811 - e_29_x * t3813;
+    let ac_29_z = t3812 + t593 * t3813;
+    let t3822 = t3811 - d_30_x * t3813;
+    let t3823 = t3812 + t596 * t3813;
+    let t3824 = w_30 * w_30;
+    let ac_30_x = t3822 - e_30_x * t3824;
+    let ac_30_z = t3823 + t599 * t3824;
+    let t3833 = t3822 - d_31_x * t3824;
+    let t3834 = t3823 + t602 * t3824;
+    let t3835 = w_31 * w_31;
+    let ac_31_x = t3833 - e_31_x * t3835;
+    let ac_31_z = t3834 + t605 * t3835;
+    let t3844 = t3833 - d_32_x * t3835;
+    let t3845 = t3834 + t608 * t3835;
+    let t3846 = w_32 * w_32;
+    let ac_32_x = t3844 - e_32_x * t3846;
+    let ac_32_z = t3845 + t611 * t3846;
+    let t3855 = t3844 - d_33_x * t3846;
+    let t3856 = t3845 + t614 * t3846;
+    let t3857 = w_33 * w_33;
+    let ac_33_x = t3855 - e_33_x * t3857;
+    let ac_33_z = t3856 + t617 * t3857;
+    let t3866 = t3855 - d_34_x * t3857;
+    let t3867 = t3856 + t620 * t3857;
+    let t3868 = w_34 * w_34;
+    let ac_34_x = t3866 - e_34_x * t3868;
+    let ac_34_z = t3867 + t623 * t3868;
+    let t3877 = t3866 - d_35_x * t3868;
+    let t3878 = t3867 + t626 * t3868;
+    let t3879 = w_35 * w_35;
+    let ac_35_x = t3877 - e_35_x * t3879;
+    let ac_35_z = t3878 + t629 * t3879;
+    let t3888 = t3877 - d_36_x * t3879;
+    let t3889 = t3878 + t632 * t3879;
+    let t3890 = w_36 * w_36;
+    let ac_36_x = t3888 - e_36_x * t3890;
+    let ac_36_z = t3889 + t635 * t3890;
+    let t3899 = t3888 - d_37_x * t3890;
+    let t3900 = t3889 + t638 * t3890;
+    let t3901 = w_37 * w_37;
+    let ac_37_x = t3899 - e_37_x * t3901;
+    let ac_37_z = t3900 + t641 * t3901;
+    let t3910 = t3899 - d_38_x * t3901;
+    let t3911 = t3900 + t644 * t3901;
+    let t3912 = w_38 * w_38;
+    let ac_38_x = t3910 - e_38_x * t3912;
+    let ac_38_z = t3911 + t647 * t3912;
+    let t3921 = t3910 - d_39_x * t3912;
+    let t3922 = t3911 + t650 * t3912;
+    let t3923 = w_39 * w_39;
+    let ac_39_x = t3921 - e_39_x * t3923;
+    let ac_39_z = t3922 + t653 * t3923;
+    let t3932 = t3921 - d_40_x * t3923;
+    let t3933 = t3922 + t656 * t3923;
+    let t3934 = w_40 * w_40;
+    let ac_40_x = t3932 - e_40_x * t3934;
+    let ac_40_z = t3933 + t659 * t3934;
+    let t3943 = t3932 - d_41_x * t3934;
+    let t3944 = t3933 + t662 * t3934;
+    let t3945 = w_41 * w_41;
+    let ac_41_x = t3943 - e_41_x * t3945;
+    let ac_41_z = t3944 + t665 * t3945;
+    let t3954 = t3943 - d_42_x * t3945;
+    let t3955 = t3944 + t668 * t3945;
+    let t3956 = w_42 * w_42;
+    let ac_42_x = t3954 - e_42_x * t3956;
+    let ac_42_z = t3955 + t671 * t3956;
+    let t3965 = t3954 - d_43_x * t3956;
+    let t3966 = t3955 + t674 * t3956;
+    let t3967 = w_43 * w_43;
+    let ac_43_x = t3965 - e_43_x * t3967;
+    let ac_43_z = t3966 + t677 * t3967;
+    let t3976 = t3965 - d_44_x * t3967;
+    let t3977 = t3966 + t680 * t3967;
+    let t3978 = w_44 * w_44;
+    let ac_44_x = t3976 - e_44_x * t3978;
+    let ac_44_z = t3977 + t683 * t3978;
+    let t3987 = t3976 - d_45_x * t3978;
+    let t3988 = t3977 + t686 * t3978;
+    let t3989 = w_45 * w_45;
+    let ac_45_x = t3987 - e_45_x * t3989;
+    let ac_45_z = t3988 + t689 * t3989;
+    let t3998 = t3987 - d_46_x * t3989;
+    let t3999 = t3988 + t692 * t3989;
+    let t4000 = w_46 * w_46;
+    let ac_46_x = t3998 - e_46_x * t4000;
+    let ac_46_z = t3999 + t695 * t4000;
+    let t4009 = t3998 - d_47_x * t4000;
+    let t4010 = t3999 + t698 * t4000;
+    let t4011 = w_47 * w_47;
+    let ac_47_x = t4009 - e_47_x * t4011;
+    let ac_47_z = t4010 + t701 * t4011;
+    let t4022 = w_48 * w_48;
+    let ac_48_x = t4009 - d_48_x * t4011 - e_48_x * t4022;
+    let ac_48_z = t4010 + t704 * t4011 - e_48_z * t4022;
+    let t4040 = p[1].added_mass * (trig[1][0] * ac_2_z - trig[1][1] * t3519);
+    let fe_2_x = loads[1][0] - (trig[1][1] * t4040 - p[1].mass * t3519);
+    let fe_2_z = loads[1][1] - (p[1].mass * ac_2_z + trig[1][0] * t4040);
+    let t4055 = p[2].added_mass * (trig[2][1] * ac_3_x + trig[2][0] * ac_3_z);
+    let fe_3_x = loads[2][0] - (p[2].mass * ac_3_x + trig[2][1] * t4055);
+    let fe_3_z = loads[2][1] - (p[2].mass * ac_3_z + trig[2][0] * t4055);
+    let t4070 = p[3].added_mass * (trig[3][1] * ac_4_x + trig[3][0] * ac_4_z);
+    let fe_4_x = loads[3][0] - (p[3].mass * ac_4_x + trig[3][1] * t4070);
+    let fe_4_z = loads[3][1] - (p[3].mass * ac_4_z + trig[3][0] * t4070);
+    let t4085 = p[4].added_mass * (trig[4][1] * ac_5_x + trig[4][0] * ac_5_z);
+    let fe_5_x = loads[4][0] - (p[4].mass * ac_5_x + trig[4][1] * t4085);
+    let fe_5_z = loads[4][1] - (p[4].mass * ac_5_z + trig[4][0] * t4085);
+    let t4100 = p[5].added_mass * (trig[5][1] * ac_6_x + trig[5][0] * ac_6_z);
+    let fe_6_x = loads[5][0] - (p[5].mass * ac_6_x + trig[5][1] * t4100);
+    let fe_6_z = loads[5][1] - (p[5].mass * ac_6_z + trig[5][0] * t4100);
+    let t4115 = p[6].added_mass * (trig[6][1] * ac_7_x + trig[6][0] * ac_7_z);
+    let fe_7_x = loads[6][0] - (p[6].mass * ac_7_x + trig[6][1] * t4115);
+    let fe_7_z = loads[6][1] - (p[6].mass * ac_7_z + trig[6][0] * t4115);
+    let t4130 = p[7].added_mass * (trig[7][1] * ac_8_x + trig[7][0] * ac_8_z);
+    let fe_8_x = loads[7][0] - (p[7].mass * ac_8_x + trig[7][1] * t4130);
+    let fe_8_z = loads[7][1] - (p[7].mass * ac_8_z + trig[7][0] * t4130);
+    let t4145 = p[8].added_mass * (trig[8][1] * ac_9_x + trig[8][0] * ac_9_z);
+    let fe_9_x = loads[8][0] - (p[8].mass * ac_9_x + trig[8][1] * t4145);
+    let fe_9_z = loads[8][1] - (p[8].mass * ac_9_z + trig[8][0] * t4145);
+    let t4160 = p[9].added_mass * (trig[9][1] * ac_10_x + trig[9][0] * ac_10_z);
+    let fe_10_x = loads[9][0] - (p[9].mass * ac_10_x + trig[9][1] * t4160);
+    let fe_10_z = loads[9][1] - (p[9].mass * ac_10_z + trig[9][0] * t4160);
+    let t4175 = p[10].added_mass * (trig[10][1] * ac_11_x + trig[10][0] * ac_11_z);
+    let fe_11_x = loads[10][0] - (p[10].mass * ac_11_x + trig[10][1] * t4175);
+    let fe_11_z = loads[10][1] - (p[10].mass * ac_11_z + trig[10][0] * t4175);
+    let t4190 = p[11].added_mass * (trig[11][1] * ac_12_x + trig[11][0] * ac_12_z);
+    let fe_12_x = loads[11][0] - (p[11].mass * ac_12_x + trig[11][1] * t4190);
+    let fe_12_z = loads[11][1] - (p[11].mass * ac_12_z + trig[11][0] * t4190);
+    let t4205 = p[12].added_mass * (trig[12][1] * ac_13_x + trig[12][0] * ac_13_z);
+    let fe_13_x = loads[12][0] - (p[12].mass * ac_13_x + trig[12][1] * t4205);
+    let fe_13_z = loads[12][1] - (p[12].mass * ac_13_z + trig[12][0] * t4205);
+    let t4220 = p[13].added_mass * (trig[13][1] * ac_14_x + trig[13][0] * ac_14_z);
+    let fe_14_x = loads[13][0] - (p[13].mass * ac_14_x + trig[13][1] * t4220);
+    let fe_14_z = loads[13][1] - (p[13].mass * ac_14_z + trig[13][0] * t4220);
+    let t4235 = p[14].added_mass * (trig[14][1] * ac_15_x + trig[14][0] * ac_15_z);
+    let fe_15_x = loads[14][0] - (p[14].mass * ac_15_x + trig[14][1] * t4235);
+    let fe_15_z = loads[14][1] - (p[14].mass * ac_15_z + trig[14][0] * t4235);
+    let t4250 = p[15].added_mass * (trig[15][1] * ac_16_x + trig[15][0] * ac_16_z);
+    let fe_16_x = loads[15][0] - (p[15].mass * ac_16_x + trig[15][1] * t4250);
+    let fe_16_z = loads[15][1] - (p[15].mass * ac_16_z + trig[15][0] * t4250);
+    let t4265 = p[16].added_mass * (trig[16][1] * ac_17_x + trig[16][0] * ac_17_z);
+    let fe_17_x = loads[16][0] - (p[16].mass * ac_17_x + trig[16][1] * t4265);
+    let fe_17_z = loads[16][1] - (p[16].mass * ac_17_z + trig[16][0] * t4265);
+    let t4280 = p[17].added_mass * (trig[17][1] * ac_18_x + trig[17][0] * ac_18_z);
+    let fe_18_x = loads[17][0] - (p[17].mass * ac_18_x + trig[17][1] * t4280);
+    let fe_18_z = loads[17][1] - (p[17].mass * ac_18_z + trig[17][0] * t4280);
+    let t4295 = p[18].added_mass * (trig[18][1] * ac_19_x + trig[18][0] * ac_19_z);
+    let fe_19_x = loads[18][0] - (p[18].mass * ac_19_x + trig[18][1] * t4295);
+    let fe_19_z = loads[18][1] - (p[18].mass * ac_19_z + trig[18][0] * t4295);
+    let t4310 = p[19].added_mass * (trig[19][1] * ac_20_x + trig[19][0] * ac_20_z);
+    let fe_20_x = loads[19][0] - (p[19].mass * ac_20_x + trig[19][1] * t4310);
+    let fe_20_z = loads[19][1] - (p[19].mass * ac_20_z + trig[19][0] * t4310);
+    let t4325 = p[20].added_mass * (trig[20][1] * ac_21_x + trig[20][0] * ac_21_z);
+    let fe_21_x = loads[20][0] - (p[20].mass * ac_21_x + trig[20][1] * t4325);
+    let fe_21_z = loads[20][1] - (p[20].mass * ac_21_z + trig[20][0] * t4325);
+    let t4340 = p[21].added_mass * (trig[21][1] * ac_22_x + trig[21][0] * ac_22_z);
+    let fe_22_x = loads[21][0] - (p[21].mass * ac_22_x + trig[21][1] * t4340);
+    let fe_22_z = loads[21][1] - (p[21].mass * ac_22_z + trig[21][0] * t4340);
+    let t4355 = p[22].added_mass * (trig[22][1] * ac_23_x + trig[22][0] * ac_23_z);
+    let fe_23_x = loads[22][0] - (p[22].mass * ac_23_x + trig[22][1] * t4355);
+    let fe_23_z = loads[22][1] - (p[22].mass * ac_23_z + trig[22][0] * t4355);
+    let t4370 = p[23].added_mass * (trig[23][1] * ac_24_x + trig[23][0] * ac_24_z);
+    let fe_24_x = loads[23][0] - (p[23].mass * ac_24_x + trig[23][1] * t4370);
+    let fe_24_z = loads[23][1] - (p[23].mass * ac_24_z + trig[23][0] * t4370);
+    let t4385 = p[24].added_mass * (trig[24][1] * ac_25_x + trig[24][0] * ac_25_z);
+    let fe_25_x = loads[24][0] - (p[24].mass * ac_25_x + trig[24][1] * t4385);
+    let fe_25_z = loads[24][1] - (p[24].mass * ac_25_z + trig[24][0] * t4385);
+    let t4400 = p[25].added_mass * (trig[25][1] * ac_26_x + trig[25][0] * ac_26_z);
+    let fe_26_x = loads[25][0] - (p[25].mass * ac_26_x + trig[25][1] * t4400);
+    let fe_26_z = loads[25][1] - (p[25].mass * ac_26_z + trig[25][0] * t4400);
+    let t4415 = p[26].added_mass * (trig[26][1] * ac_27_x + trig[26][0] * ac_27_z);
+    let fe_27_x = loads[26][0] - (p[26].mass * ac_27_x + trig[26][1] * t4415);
+    let fe_27_z = loads[26][1] - (p[26].mass * ac_27_z + trig[26][0] * t4415);
+    let t4430 = p[27].added_mass * (trig[27][1] * ac_28_x + trig[27][0] * ac_28_z);
+    let fe_28_x = loads[27][0] - (p[27].mass * ac_28_x + trig[27][1] * t4430);
+    let fe_28_z = loads[27][1] - (p[27].mass * ac_28_z + trig[27][0] * t4430);
+    let t4445 = p[28].added_mass * (trig[28][1] * ac_29_x + trig[28][0] * ac_29_z);
+    let fe_29_x = loads[28][0] - (p[28].mass * ac_29_x + trig[28][1] * t4445);
+    let fe_29_z = loads[28][1] - (p[28].mass * ac_29_z + trig[28][0] * t4445);
+    let t4460 = p[29].added_mass * (trig[29][1] * ac_30_x + trig[29][0] * ac_30_z);
+    let fe_30_x = loads[29][0] - (p[29].mass * ac_30_x + trig[29][1] * t4460);
+    let fe_30_z = loads[29][1] - (p[29].mass * ac_30_z + trig[29][0] * t4460);
+    let t4475 = p[30].added_mass * (trig[30][1] * ac_31_x + trig[30][0] * ac_31_z);
+    let fe_31_x = loads[30][0] - (p[30].mass * ac_31_x + trig[30][1] * t4475);
+    let fe_31_z = loads[30][1] - (p[30].mass * ac_31_z + trig[30][0] * t4475);
+    let t4490 = p[31].added_mass * (trig[31][1] * ac_32_x + trig[31][0] * ac_32_z);
+    let fe_32_x = loads[31][0] - (p[31].mass * ac_32_x + trig[31][1] * t4490);
+    let fe_32_z = loads[31][1] - (p[31].mass * ac_32_z + trig[31][0] * t4490);
+    let t4505 = p[32].added_mass * (trig[32][1] * ac_33_x + trig[32][0] * ac_33_z);
+    let fe_33_x = loads[32][0] - (p[32].mass * ac_33_x + trig[32][1] * t4505);
+    let fe_33_z = loads[32][1] - (p[32].mass * ac_33_z + trig[32][0] * t4505);
+    let t4520 = p[33].added_mass * (trig[33][1] * ac_34_x + trig[33][0] * ac_34_z);
+    let fe_34_x = loads[33][0] - (p[33].mass * ac_34_x + trig[33][1] * t4520);
+    let fe_34_z = loads[33][1] - (p[33].mass * ac_34_z + trig[33][0] * t4520);
+    let t4535 = p[34].added_mass * (trig[34][1] * ac_35_x + trig[34][0] * ac_35_z);
+    let fe_35_x = loads[34][0] - (p[34].mass * ac_35_x + trig[34][1] * t4535);
+    let fe_35_z = loads[34][1] - (p[34].mass * ac_35_z + trig[34][0] * t4535);
+    let t4550 = p[35].added_mass * (trig[35][1] * ac_36_x + trig[35][0] * ac_36_z);
+    let fe_36_x = loads[35][0] - (p[35].mass * ac_36_x + trig[35][1] * t4550);
+    let fe_36_z = loads[35][1] - (p[35].mass * ac_36_z + trig[35][0] * t4550);
+    let t4565 = p[36].added_mass * (trig[36][1] * ac_37_x + trig[36][0] * ac_37_z);
+    let fe_37_x = loads[36][0] - (p[36].mass * ac_37_x + trig[36][1] * t4565);
+    let fe_37_z = loads[36][1] - (p[36].mass * ac_37_z + trig[36][0] * t4565);
+    let t4580 = p[37].added_mass * (trig[37][1] * ac_38_x + trig[37][0] * ac_38_z);
+    let fe_38_x = loads[37][0] - (p[37].mass * ac_38_x + trig[37][1] * t4580);
+    let fe_38_z = loads[37][1] - (p[37].mass * ac_38_z + trig[37][0] * t4580);
+    let t4595 = p[38].added_mass * (trig[38][1] * ac_39_x + trig[38][0] * ac_39_z);
+    let fe_39_x = loads[38][0] - (p[38].mass * ac_39_x + trig[38][1] * t4595);
+    let fe_39_z = loads[38][1] - (p[38].mass * ac_39_z + trig[38][0] * t4595);
+    let t4610 = p[39].added_mass * (trig[39][1] * ac_40_x + trig[39][0] * ac_40_z);
+    let fe_40_x = loads[39][0] - (p[39].mass * ac_40_x + trig[39][1] * t4610);
+    let fe_40_z = loads[39][1] - (p[39].mass * ac_40_z + trig[39][0] * t4610);
+    let t4625 = p[40].added_mass * (trig[40][1] * ac_41_x + trig[40][0] * ac_41_z);
+    let fe_41_x = loads[40][0] - (p[40].mass * ac_41_x + trig[40][1] * t4625);
+    let fe_41_z = loads[40][1] - (p[40].mass * ac_41_z + trig[40][0] * t4625);
+    let t4640 = p[41].added_mass * (trig[41][1] * ac_42_x + trig[41][0] * ac_42_z);
+    let fe_42_x = loads[41][0] - (p[41].mass * ac_42_x + trig[41][1] * t4640);
+    let fe_42_z = loads[41][1] - (p[41].mass * ac_42_z + trig[41][0] * t4640);
+    let t4655 = p[42].added_mass * (trig[42][1] * ac_43_x + trig[42][0] * ac_43_z);
+    let fe_43_x = loads[42][0] - (p[42].mass * ac_43_x + trig[42][1] * t4655);
+    let fe_43_z = loads[42][1] - (p[42].mass * ac_43_z + trig[42][0] * t4655);
+    let t4670 = p[43].added_mass * (trig[43][1] * ac_44_x + trig[43][0] * ac_44_z);
+    let fe_44_x = loads[43][0] - (p[43].mass * ac_44_x + trig[43][1] * t4670);
+    let fe_44_z = loads[43][1] - (p[43].mass * ac_44_z + trig[43][0] * t4670);
+    let t4685 = p[44].added_mass * (trig[44][1] * ac_45_x + trig[44][0] * ac_45_z);
+    let fe_45_x = loads[44][0] - (p[44].mass * ac_45_x + trig[44][1] * t4685);
+    let fe_45_z = loads[44][1] - (p[44].mass * ac_45_z + trig[44][0] * t4685);
+    let t4700 = p[45].added_mass * (trig[45][1] * ac_46_x + trig[45][0] * ac_46_z);
+    let fe_46_x = loads[45][0] - (p[45].mass * ac_46_x + trig[45][1] * t4700);
+    let fe_46_z = loads[45][1] - (p[45].mass * ac_46_z + trig[45][0] * t4700);
+    let t4715 = p[46].added_mass * (trig[46][1] * ac_47_x + trig[46][0] * ac_47_z);
+    let fe_47_x = loads[46][0] - (p[46].mass * ac_47_x + trig[46][1] * t4715);
+    let fe_47_z = loads[46][1] - (p[46].mass * ac_47_z + trig[46][0] * t4715);
     let fe_48_x = loads[47][0] - p[47].mass * ac_48_x;
     let fe_48_z = loads[47][1] - p[47].mass * ac_48_z;
     let f_46 = loads[47][2] + (e_48_z * fe_48_x - e_48_x * fe_48_z);
@@ -2921,232 +3065,282 @@ pub fn assemble(
         + (-(t431 * fe_2_x) - e_2_x * fe_2_z
             + (f_1 + (-(t434 * g_3_x) - d_3_x * g_3_z)));
     let g_2_x = fe_2_x + g_3_x;
+    let g_2_z = fe_2_z + g_3_z;
     let g_1_x = loads[0][0] + g_2_x;
+    let g_1_z = loads[0][1] + g_2_z;
+    heave[0] = a_w_0;
     o_rel[1][0] = d_3_x;
     o_rel[1][1] = d_3_z;
+    heave[1] = a_w_1;
     k_col[2] = k_4;
     s_col[2][0] = sm_4_x;
     s_col[2][1] = sm_4_z;
     o_rel[2][0] = o_4_x;
     o_rel[2][1] = o_4_z;
+    heave[2] = a_w_2;
     k_col[3] = k_5;
     s_col[3][0] = sm_5_x;
     s_col[3][1] = sm_5_z;
     o_rel[3][0] = o_5_x;
     o_rel[3][1] = o_5_z;
+    heave[3] = a_w_3;
     k_col[4] = k_6;
     s_col[4][0] = sm_6_x;
     s_col[4][1] = sm_6_z;
     o_rel[4][0] = o_6_x;
     o_rel[4][1] = o_6_z;
+    heave[4] = a_w_4;
     k_col[5] = k_7;
     s_col[5][0] = sm_7_x;
     s_col[5][1] = sm_7_z;
     o_rel[5][0] = o_7_x;
     o_rel[5][1] = o_7_z;
+    heave[5] = a_w_5;
     k_col[6] = k_8;
     s_col[6][0] = sm_8_x;
     s_col[6][1] = sm_8_z;
     o_rel[6][0] = o_8_x;
     o_rel[6][1] = o_8_z;
+    heave[6] = a_w_6;
     k_col[7] = k_9;
     s_col[7][0] = sm_9_x;
     s_col[7][1] = sm_9_z;
     o_rel[7][0] = o_9_x;
     o_rel[7][1] = o_9_z;
+    heave[7] = a_w_7;
     k_col[8] = k_10;
     s_col[8][0] = sm_10_x;
     s_col[8][1] = sm_10_z;
     o_rel[8][0] = o_10_x;
     o_rel[8][1] = o_10_z;
+    heave[8] = a_w_8;
     k_col[9] = k_11;
     s_col[9][0] = sm_11_x;
     s_col[9][1] = sm_11_z;
     o_rel[9][0] = o_11_x;
     o_rel[9][1] = o_11_z;
+    heave[9] = a_w_9;
     k_col[10] = k_12;
     s_col[10][0] = sm_12_x;
     s_col[10][1] = sm_12_z;
     o_rel[10][0] = o_12_x;
     o_rel[10][1] = o_12_z;
+    heave[10] = a_w_10;
     k_col[11] = k_13;
     s_col[11][0] = sm_13_x;
     s_col[11][1] = sm_13_z;
     o_rel[11][0] = o_13_x;
     o_rel[11][1] = o_13_z;
+    heave[11] = a_w_11;
     k_col[12] = k_14;
     s_col[12][0] = sm_14_x;
     s_col[12][1] = sm_14_z;
     o_rel[12][0] = o_14_x;
     o_rel[12][1] = o_14_z;
+    heave[12] = a_w_12;
     k_col[13] = k_15;
     s_col[13][0] = sm_15_x;
     s_col[13][1] = sm_15_z;
     o_rel[13][0] = o_15_x;
     o_rel[13][1] = o_15_z;
+    heave[13] = a_w_13;
     k_col[14] = k_16;
     s_col[14][0] = sm_16_x;
     s_col[14][1] = sm_16_z;
     o_rel[14][0] = o_16_x;
     o_rel[14][1] = o_16_z;
+    heave[14] = a_w_14;
     k_col[15] = k_17;
     s_col[15][0] = sm_17_x;
     s_col[15][1] = sm_17_z;
     o_rel[15][0] = o_17_x;
     o_rel[15][1] = o_17_z;
+    heave[15] = a_w_15;
     k_col[16] = k_18;
     s_col[16][0] = sm_18_x;
     s_col[16][1] = sm_18_z;
     o_rel[16][0] = o_18_x;
     o_rel[16][1] = o_18_z;
+    heave[16] = a_w_16;
     k_col[17] = k_19;
     s_col[17][0] = sm_19_x;
     s_col[17][1] = sm_19_z;
     o_rel[17][0] = o_19_x;
     o_rel[17][1] = o_19_z;
+    heave[17] = a_w_17;
     k_col[18] = k_20;
     s_col[18][0] = sm_20_x;
     s_col[18][1] = sm_20_z;
     o_rel[18][0] = o_20_x;
     o_rel[18][1] = o_20_z;
+    heave[18] = a_w_18;
     k_col[19] = k_21;
     s_col[19][0] = sm_21_x;
     s_col[19][1] = sm_21_z;
     o_rel[19][0] = o_21_x;
     o_rel[19][1] = o_21_z;
+    heave[19] = a_w_19;
     k_col[20] = k_22;
     s_col[20][0] = sm_22_x;
     s_col[20][1] = sm_22_z;
     o_rel[20][0] = o_22_x;
     o_rel[20][1] = o_22_z;
+    heave[20] = a_w_20;
     k_col[21] = k_23;
     s_col[21][0] = sm_23_x;
     s_col[21][1] = sm_23_z;
     o_rel[21][0] = o_23_x;
     o_rel[21][1] = o_23_z;
+    heave[21] = a_w_21;
     k_col[22] = k_24;
     s_col[22][0] = sm_24_x;
     s_col[22][1] = sm_24_z;
     o_rel[22][0] = o_24_x;
     o_rel[22][1] = o_24_z;
+    heave[22] = a_w_22;
     k_col[23] = k_25;
     s_col[23][0] = sm_25_x;
     s_col[23][1] = sm_25_z;
     o_rel[23][0] = o_25_x;
     o_rel[23][1] = o_25_z;
+    heave[23] = a_w_23;
     k_col[24] = k_26;
     s_col[24][0] = sm_26_x;
     s_col[24][1] = sm_26_z;
     o_rel[24][0] = o_26_x;
     o_rel[24][1] = o_26_z;
+    heave[24] = a_w_24;
     k_col[25] = k_27;
     s_col[25][0] = sm_27_x;
     s_col[25][1] = sm_27_z;
     o_rel[25][0] = o_27_x;
     o_rel[25][1] = o_27_z;
+    heave[25] = a_w_25;
     k_col[26] = k_28;
     s_col[26][0] = sm_28_x;
     s_col[26][1] = sm_28_z;
     o_rel[26][0] = o_28_x;
     o_rel[26][1] = o_28_z;
+    heave[26] = a_w_26;
     k_col[27] = k_29;
     s_col[27][0] = sm_29_x;
     s_col[27][1] = sm_29_z;
     o_rel[27][0] = o_29_x;
     o_rel[27][1] = o_29_z;
+    heave[27] = a_w_27;
     k_col[28] = k_30;
     s_col[28][0] = sm_30_x;
     s_col[28][1] = sm_30_z;
     o_rel[28][0] = o_30_x;
     o_rel[28][1] = o_30_z;
+    heave[28] = a_w_28;
     k_col[29] = k_31;
     s_col[29][0] = sm_31_x;
     s_col[29][1] = sm_31_z;
     o_rel[29][0] = o_31_x;
     o_rel[29][1] = o_31_z;
+    heave[29] = a_w_29;
     k_col[30] = k_32;
     s_col[30][0] = sm_32_x;
     s_col[30][1] = sm_32_z;
     o_rel[30][0] = o_32_x;
     o_rel[30][1] = o_32_z;
+    heave[30] = a_w_30;
     k_col[31] = k_33;
     s_col[31][0] = sm_33_x;
     s_col[31][1] = sm_33_z;
     o_rel[31][0] = o_33_x;
     o_rel[31][1] = o_33_z;
+    heave[31] = a_w_31;
     k_col[32] = k_34;
     s_col[32][0] = sm_34_x;
     s_col[32][1] = sm_34_z;
     o_rel[32][0] = o_34_x;
     o_rel[32][1] = o_34_z;
+    heave[32] = a_w_32;
     k_col[33] = k_35;
     s_col[33][0] = sm_35_x;
     s_col[33][1] = sm_35_z;
     o_rel[33][0] = o_35_x;
     o_rel[33][1] = o_35_z;
+    heave[33] = a_w_33;
     k_col[34] = k_36;
     s_col[34][0] = sm_36_x;
     s_col[34][1] = sm_36_z;
     o_rel[34][0] = o_36_x;
     o_rel[34][1] = o_36_z;
+    heave[34] = a_w_34;
     k_col[35] = k_37;
     s_col[35][0] = sm_37_x;
     s_col[35][1] = sm_37_z;
     o_rel[35][0] = o_37_x;
     o_rel[35][1] = o_37_z;
+    heave[35] = a_w_35;
     k_col[36] = k_38;
     s_col[36][0] = sm_38_x;
     s_col[36][1] = sm_38_z;
     o_rel[36][0] = o_38_x;
     o_rel[36][1] = o_38_z;
+    heave[36] = a_w_36;
     k_col[37] = k_39;
     s_col[37][0] = sm_39_x;
     s_col[37][1] = sm_39_z;
     o_rel[37][0] = o_39_x;
     o_rel[37][1] = o_39_z;
+    heave[37] = a_w_37;
     k_col[38] = k_40;
     s_col[38][0] = sm_40_x;
     s_col[38][1] = sm_40_z;
     o_rel[38][0] = o_40_x;
     o_rel[38][1] = o_40_z;
+    heave[38] = a_w_38;
     k_col[39] = k_41;
     s_col[39][0] = sm_41_x;
     s_col[39][1] = sm_41_z;
     o_rel[39][0] = o_41_x;
     o_rel[39][1] = o_41_z;
+    heave[39] = a_w_39;
     k_col[40] = k_42;
     s_col[40][0] = sm_42_x;
     s_col[40][1] = sm_42_z;
     o_rel[40][0] = o_42_x;
     o_rel[40][1] = o_42_z;
+    heave[40] = a_w_40;
     k_col[41] = k_43;
     s_col[41][0] = sm_43_x;
     s_col[41][1] = sm_43_z;
     o_rel[41][0] = o_43_x;
     o_rel[41][1] = o_43_z;
+    heave[41] = a_w_41;
     k_col[42] = k_44;
     s_col[42][0] = sm_44_x;
     s_col[42][1] = sm_44_z;
     o_rel[42][0] = o_44_x;
     o_rel[42][1] = o_44_z;
+    heave[42] = a_w_42;
     k_col[43] = k_45;
     s_col[43][0] = sm_45_x;
     s_col[43][1] = sm_45_z;
     o_rel[43][0] = o_45_x;
     o_rel[43][1] = o_45_z;
+    heave[43] = a_w_43;
     k_col[44] = k_46;
     s_col[44][0] = sm_46_x;
     s_col[44][1] = sm_46_z;
     o_rel[44][0] = o_46_x;
     o_rel[44][1] = o_46_z;
+    heave[44] = a_w_44;
     k_col[45] = k_47;
     s_col[45][0] = sm_47_x;
     s_col[45][1] = sm_47_z;
     o_rel[45][0] = o_47_x;
     o_rel[45][1] = o_47_z;
+    heave[45] = a_w_45;
     k_col[46] = k_48;
     s_col[46][0] = sm_48_x;
     s_col[46][1] = sm_48_z;
+    heave[46] = a_w_46;
+    heave[47] = a_w_47;
     m[0] = j_2;
     m[1] = k_3;
     m[48] = k_3;
@@ -3429,6 +3623,7 @@ pub fn assemble(
     f[45] = f_45;
     f[46] = f_46;
     f[47] = g_1_x;
+    heave[48] = g_1_z;
     for l in 2..47 {
         let (k, s) = (k_col[l], s_col[l]);
         for j in 1..l {
@@ -4109,13 +4304,18 @@ pub fn accelerations(
 }
 /// ẍ of Eq. 27 with the anchor free (all N speeds), by the O(N) articulated-body recursion
 /// on the Kane quantities of Eqs. 15–17 and 22–23: inward over the hinges, then outward.
+///
+/// The anchor slides with friction −`friction`·N along x (`friction` = μ times the direction
+/// of sliding, 0 for none), N the seabed's normal force taken implicitly (Eq. 37). Returns
+/// `[N, 1 + friction·∂N/∂F_x]`: the second is positive for a well-posed sliding problem.
 pub fn solve_free(
     p: &[crate::BodyParams],
     u: &[f64],
     trig: &[[f64; 2]],
     loads: &[[f64; 3]],
+    friction: f64,
     qdd: &mut [f64],
-) {
+) -> [f64; 2] {
     let p: &[crate::BodyParams; 48] = p.try_into().expect("p must have 48 entries");
     let u: &[f64; 48] = u.try_into().expect("u must have 48 entries");
     let trig: &[[f64; 2]; 48] = trig.try_into().expect("trig must have 48 entries");
@@ -5678,213 +5878,220 @@ pub fn solve_free(
     let t5536 = d_3_x * t5535;
     let t5537 = t434 * t5535;
     let t5544 = pa_3_x - pa_3_m * t5522 + (t5528 * t5537 - t5527 * t5536);
+    let t5549 = pa_3_z - pa_3_m * t5523 + (t5529 * t5537 - t5528 * t5536);
     let t5554 = -(t434 * t5527) - d_3_x * t5528;
+    let t5559 = -(t434 * t5528) - d_3_x * t5529;
     let t5570 = p[1].centroid[0] * p[1].centroid[0];
-    let ia_2_00 = -(t434 * t5554) - d_3_x * (-(t434 * t5528) - d_3_x * t5529)
+    let t5575 = p[1].mass * e_2_x;
+    let t5576 = p[1].mass * t431;
+    let t5579 = p[1].centroid[0] * p[1].added_mass;
+    let t5598 = p[1].added_mass * (trig[1][1] * e_2_x - trig[1][0] * t431);
+    let ia_2_00 = -(t434 * t5554) - d_3_x * t5559
         + (p[1].inertia + (p[1].mass * t5570 + p[1].added_mass * t5570));
-    let ia_2_01 = t5554
-        + (-(p[1].mass * t431) - trig[1][1] * (p[1].centroid[0] * p[1].added_mass));
+    let ia_2_01 = t5554 + (-t5576 - trig[1][1] * t5579);
+    let ia_2_02 = t5559 - (t5575 + trig[1][0] * t5579);
     let ia_2_11 = t5527 + (p[1].mass + p[1].added_mass * (trig[1][1] * trig[1][1]));
-    let pa_2_m = -(t434 * t5544)
-        - d_3_x * (pa_3_z - pa_3_m * t5523 + (t5529 * t5537 - t5528 * t5536))
+    let ia_2_12 = t5528 + p[1].added_mass * (trig[1][0] * trig[1][1]);
+    let pa_2_m = -(t434 * t5544) - d_3_x * t5549
         - (loads[1][2] + (-(t431 * loads[1][0]) - e_2_x * loads[1][1]));
-    let pa_2_x = t5544
-        + (-(t5535
-            * (p[1].mass * e_2_x
-                + trig[1][1]
-                    * (p[1].added_mass * (trig[1][1] * e_2_x - trig[1][0] * t431))))
-            - loads[1][0]);
+    let pa_2_x = t5544 + (-(t5535 * (t5575 + trig[1][1] * t5598)) - loads[1][0]);
+    let pa_2_z = t5549 + (-(t5535 * (trig[1][0] * t5598 - t5576)) - loads[1][1]);
     let inv_2 = 1.0 / ia_2_00;
     let t5625 = ia_2_01 * inv_2;
+    let ia_1_12 = ia_2_12 - ia_2_02 * t5625;
     let ia_1_11 = p[0].mass + (ia_2_11 - ia_2_01 * t5625);
     let pa_1_x = pa_2_x - pa_2_m * t5625 - loads[0][0];
-    let t5677 = pa_1_x / ia_1_11;
-    let s_dd = -t5677;
-    let t5682 = inv_2 * (pa_2_m - ia_2_01 * t5677);
-    let alpha_2 = -t5682;
-    let ao_3_x = t434 * t5682 - t5677 - t5536;
-    let ao_3_z = t5537 + d_3_x * t5682;
-    let t5693 = inv_3 * (pa_3_m + (ia_3_01 * ao_3_x + ia_3_02 * ao_3_z));
-    let qdd_1 = t5682 - t5693;
-    let ao_4_x = ao_3_x + t440 * t5693 - t5433;
-    let ao_4_z = t5434 + (ao_3_z + d_4_x * t5693);
-    let t5706 = inv_4 * (pa_4_m + (ia_4_01 * ao_4_x + ia_4_02 * ao_4_z));
-    let qdd_2 = t5693 - t5706;
-    let ao_5_x = ao_4_x + t446 * t5706 - t5330;
-    let ao_5_z = t5331 + (ao_4_z + d_5_x * t5706);
-    let t5719 = inv_5 * (pa_5_m + (ia_5_01 * ao_5_x + ia_5_02 * ao_5_z));
-    let qdd_3 = t5706 - t5719;
-    let ao_6_x = ao_5_x + t452 * t5719 - t5227;
-    let ao_6_z = t5228 + (ao_5_z + d_6_x * t5719);
-    let t5732 = inv_6 * (pa_6_m + (ia_6_01 * ao_6_x + ia_6_02 * ao_6_z));
-    let qdd_4 = t5719 - t5732;
-    let ao_7_x = ao_6_x + t458 * t5732 - t5124;
-    let ao_7_z = t5125 + (ao_6_z + d_7_x * t5732);
-    let t5745 = inv_7 * (pa_7_m + (ia_7_01 * ao_7_x + ia_7_02 * ao_7_z));
-    let qdd_5 = t5732 - t5745;
-    let ao_8_x = ao_7_x + t464 * t5745 - t5021;
-    let ao_8_z = t5022 + (ao_7_z + d_8_x * t5745);
-    let t5758 = inv_8 * (pa_8_m + (ia_8_01 * ao_8_x + ia_8_02 * ao_8_z));
-    let qdd_6 = t5745 - t5758;
-    let ao_9_x = ao_8_x + t470 * t5758 - t4918;
-    let ao_9_z = t4919 + (ao_8_z + d_9_x * t5758);
-    let t5771 = inv_9 * (pa_9_m + (ia_9_01 * ao_9_x + ia_9_02 * ao_9_z));
-    let qdd_7 = t5758 - t5771;
-    let ao_10_x = ao_9_x + t476 * t5771 - t4815;
-    let ao_10_z = t4816 + (ao_9_z + d_10_x * t5771);
-    let t5784 = inv_10 * (pa_10_m + (ia_10_01 * ao_10_x + ia_10_02 * ao_10_z));
-    let qdd_8 = t5771 - t5784;
-    let ao_11_x = ao_10_x + t482 * t5784 - t4712;
-    let ao_11_z = t4713 + (ao_10_z + d_11_x * t5784);
-    let t5797 = inv_11 * (pa_11_m + (ia_11_01 * ao_11_x + ia_11_02 * ao_11_z));
-    let qdd_9 = t5784 - t5797;
-    let ao_12_x = ao_11_x + t488 * t5797 - t4609;
-    let ao_12_z = t4610 + (ao_11_z + d_12_x * t5797);
-    let t5810 = inv_12 * (pa_12_m + (ia_12_01 * ao_12_x + ia_12_02 * ao_12_z));
-    let qdd_10 = t5797 - t5810;
-    let ao_13_x = ao_12_x + t494 * t5810 - t4506;
-    let ao_13_z = t4507 + (ao_12_z + d_13_x * t5810);
-    let t5823 = inv_13 * (pa_13_m + (ia_13_01 * ao_13_x + ia_13_02 * ao_13_z));
-    let qdd_11 = t5810 - t5823;
-    let ao_14_x = ao_13_x + t500 * t5823 - t4403;
-    let ao_14_z = t4404 + (ao_13_z + d_14_x * t5823);
-    let t5836 = inv_14 * (pa_14_m + (ia_14_01 * ao_14_x + ia_14_02 * ao_14_z));
-    let qdd_12 = t5823 - t5836;
-    let ao_15_x = ao_14_x + t506 * t5836 - t4300;
-    let ao_15_z = t4301 + (ao_14_z + d_15_x * t5836);
-    let t5849 = inv_15 * (pa_15_m + (ia_15_01 * ao_15_x + ia_15_02 * ao_15_z));
-    let qdd_13 = t5836 - t5849;
-    let ao_16_x = ao_15_x + t512 * t5849 - t4197;
-    let ao_16_z = t4198 + (ao_15_z + d_16_x * t5849);
-    let t5862 = inv_16 * (pa_16_m + (ia_16_01 * ao_16_x + ia_16_02 * ao_16_z));
-    let qdd_14 = t5849 - t5862;
-    let ao_17_x = ao_16_x + t518 * t5862 - t4094;
-    let ao_17_z = t4095 + (ao_16_z + d_17_x * t5862);
-    let t5875 = inv_17 * (pa_17_m + (ia_17_01 * ao_17_x + ia_17_02 * ao_17_z));
-    let qdd_15 = t5862 - t5875;
-    let ao_18_x = ao_17_x + t524 * t5875 - t3991;
-    let ao_18_z = t3992 + (ao_17_z + d_18_x * t5875);
-    let t5888 = inv_18 * (pa_18_m + (ia_18_01 * ao_18_x + ia_18_02 * ao_18_z));
-    let qdd_16 = t5875 - t5888;
-    let ao_19_x = ao_18_x + t530 * t5888 - t3888;
-    let ao_19_z = t3889 + (ao_18_z + d_19_x * t5888);
-    let t5901 = inv_19 * (pa_19_m + (ia_19_01 * ao_19_x + ia_19_02 * ao_19_z));
-    let qdd_17 = t5888 - t5901;
-    let ao_20_x = ao_19_x + t536 * t5901 - t3785;
-    let ao_20_z = t3786 + (ao_19_z + d_20_x * t5901);
-    let t5914 = inv_20 * (pa_20_m + (ia_20_01 * ao_20_x + ia_20_02 * ao_20_z));
-    let qdd_18 = t5901 - t5914;
-    let ao_21_x = ao_20_x + t542 * t5914 - t3682;
-    let ao_21_z = t3683 + (ao_20_z + d_21_x * t5914);
-    let t5927 = inv_21 * (pa_21_m + (ia_21_01 * ao_21_x + ia_21_02 * ao_21_z));
-    let qdd_19 = t5914 - t5927;
-    let ao_22_x = ao_21_x + t548 * t5927 - t3579;
-    let ao_22_z = t3580 + (ao_21_z + d_22_x * t5927);
-    let t5940 = inv_22 * (pa_22_m + (ia_22_01 * ao_22_x + ia_22_02 * ao_22_z));
-    let qdd_20 = t5927 - t5940;
-    let ao_23_x = ao_22_x + t554 * t5940 - t3476;
-    let ao_23_z = t3477 + (ao_22_z + d_23_x * t5940);
-    let t5953 = inv_23 * (pa_23_m + (ia_23_01 * ao_23_x + ia_23_02 * ao_23_z));
-    let qdd_21 = t5940 - t5953;
-    let ao_24_x = ao_23_x + t560 * t5953 - t3373;
-    let ao_24_z = t3374 + (ao_23_z + d_24_x * t5953);
-    let t5966 = inv_24 * (pa_24_m + (ia_24_01 * ao_24_x + ia_24_02 * ao_24_z));
-    let qdd_22 = t5953 - t5966;
-    let ao_25_x = ao_24_x + t566 * t5966 - t3270;
-    let ao_25_z = t3271 + (ao_24_z + d_25_x * t5966);
-    let t5979 = inv_25 * (pa_25_m + (ia_25_01 * ao_25_x + ia_25_02 * ao_25_z));
-    let qdd_23 = t5966 - t5979;
-    let ao_26_x = ao_25_x + t572 * t5979 - t3167;
-    let ao_26_z = t3168 + (ao_25_z + d_26_x * t5979);
-    let t5992 = inv_26 * (pa_26_m + (ia_26_01 * ao_26_x + ia_26_02 * ao_26_z));
-    let qdd_24 = t5979 - t5992;
-    let ao_27_x = ao_26_x + t578 * t5992 - t3064;
-    let ao_27_z = t3065 + (ao_26_z + d_27_x * t5992);
-    let t6005 = inv_27 * (pa_27_m + (ia_27_01 * ao_27_x + ia_27_02 * ao_27_z));
-    let qdd_25 = t5992 - t6005;
-    let ao_28_x = ao_27_x + t584 * t6005 - t2961;
-    let ao_28_z = t2962 + (ao_27_z + d_28_x * t6005);
-    let t6018 = inv_28 * (pa_28_m + (ia_28_01 * ao_28_x + ia_28_02 * ao_28_z));
-    let qdd_26 = t6005 - t6018;
-    let ao_29_x = ao_28_x + t590 * t6018 - t2858;
-    let ao_29_z = t2859 + (ao_28_z + d_29_x * t6018);
-    let t6031 = inv_29 * (pa_29_m + (ia_29_01 * ao_29_x + ia_29_02 * ao_29_z));
-    let qdd_27 = t6018 - t6031;
-    let ao_30_x = ao_29_x + t596 * t6031 - t2755;
-    let ao_30_z = t2756 + (ao_29_z + d_30_x * t6031);
-    let t6044 = inv_30 * (pa_30_m + (ia_30_01 * ao_30_x + ia_30_02 * ao_30_z));
-    let qdd_28 = t6031 - t6044;
-    let ao_31_x = ao_30_x + t602 * t6044 - t2652;
-    let ao_31_z = t2653 + (ao_30_z + d_31_x * t6044);
-    let t6057 = inv_31 * (pa_31_m + (ia_31_01 * ao_31_x + ia_31_02 * ao_31_z));
-    let qdd_29 = t6044 - t6057;
-    let ao_32_x = ao_31_x + t608 * t6057 - t2549;
-    let ao_32_z = t2550 + (ao_31_z + d_32_x * t6057);
-    let t6070 = inv_32 * (pa_32_m + (ia_32_01 * ao_32_x + ia_32_02 * ao_32_z));
-    let qdd_30 = t6057 - t6070;
-    let ao_33_x = ao_32_x + t614 * t6070 - t2446;
-    let ao_33_z = t2447 + (ao_32_z + d_33_x * t6070);
-    let t6083 = inv_33 * (pa_33_m + (ia_33_01 * ao_33_x + ia_33_02 * ao_33_z));
-    let qdd_31 = t6070 - t6083;
-    let ao_34_x = ao_33_x + t620 * t6083 - t2343;
-    let ao_34_z = t2344 + (ao_33_z + d_34_x * t6083);
-    let t6096 = inv_34 * (pa_34_m + (ia_34_01 * ao_34_x + ia_34_02 * ao_34_z));
-    let qdd_32 = t6083 - t6096;
-    let ao_35_x = ao_34_x + t626 * t6096 - t2240;
-    let ao_35_z = t2241 + (ao_34_z + d_35_x * t6096);
-    let t6109 = inv_35 * (pa_35_m + (ia_35_01 * ao_35_x + ia_35_02 * ao_35_z));
-    let qdd_33 = t6096 - t6109;
-    let ao_36_x = ao_35_x + t632 * t6109 - t2137;
-    let ao_36_z = t2138 + (ao_35_z + d_36_x * t6109);
-    let t6122 = inv_36 * (pa_36_m + (ia_36_01 * ao_36_x + ia_36_02 * ao_36_z));
-    let qdd_34 = t6109 - t6122;
-    let ao_37_x = ao_36_x + t638 * t6122 - t2034;
-    let ao_37_z = t2035 + (ao_36_z + d_37_x * t6122);
-    let t6135 = inv_37 * (pa_37_m + (ia_37_01 * ao_37_x + ia_37_02 * ao_37_z));
-    let qdd_35 = t6122 - t6135;
-    let ao_38_x = ao_37_x + t644 * t6135 - t1931;
-    let ao_38_z = t1932 + (ao_37_z + d_38_x * t6135);
-    let t6148 = inv_38 * (pa_38_m + (ia_38_01 * ao_38_x + ia_38_02 * ao_38_z));
-    let qdd_36 = t6135 - t6148;
-    let ao_39_x = ao_38_x + t650 * t6148 - t1828;
-    let ao_39_z = t1829 + (ao_38_z + d_39_x * t6148);
-    let t6161 = inv_39 * (pa_39_m + (ia_39_01 * ao_39_x + ia_39_02 * ao_39_z));
-    let qdd_37 = t6148 - t6161;
-    let ao_40_x = ao_39_x + t656 * t6161 - t1725;
-    let ao_40_z = t1726 + (ao_39_z + d_40_x * t6161);
-    let t6174 = inv_40 * (pa_40_m + (ia_40_01 * ao_40_x + ia_40_02 * ao_40_z));
-    let qdd_38 = t6161 - t6174;
-    let ao_41_x = ao_40_x + t662 * t6174 - t1622;
-    let ao_41_z = t1623 + (ao_40_z + d_41_x * t6174);
-    let t6187 = inv_41 * (pa_41_m + (ia_41_01 * ao_41_x + ia_41_02 * ao_41_z));
-    let qdd_39 = t6174 - t6187;
-    let ao_42_x = ao_41_x + t668 * t6187 - t1519;
-    let ao_42_z = t1520 + (ao_41_z + d_42_x * t6187);
-    let t6200 = inv_42 * (pa_42_m + (ia_42_01 * ao_42_x + ia_42_02 * ao_42_z));
-    let qdd_40 = t6187 - t6200;
-    let ao_43_x = ao_42_x + t674 * t6200 - t1416;
-    let ao_43_z = t1417 + (ao_42_z + d_43_x * t6200);
-    let t6213 = inv_43 * (pa_43_m + (ia_43_01 * ao_43_x + ia_43_02 * ao_43_z));
-    let qdd_41 = t6200 - t6213;
-    let ao_44_x = ao_43_x + t680 * t6213 - t1313;
-    let ao_44_z = t1314 + (ao_43_z + d_44_x * t6213);
-    let t6226 = inv_44 * (pa_44_m + (ia_44_01 * ao_44_x + ia_44_02 * ao_44_z));
-    let qdd_42 = t6213 - t6226;
-    let ao_45_x = ao_44_x + t686 * t6226 - t1210;
-    let ao_45_z = t1211 + (ao_44_z + d_45_x * t6226);
-    let t6239 = inv_45 * (pa_45_m + (ia_45_01 * ao_45_x + ia_45_02 * ao_45_z));
-    let qdd_43 = t6226 - t6239;
-    let ao_46_x = ao_45_x + t692 * t6239 - t1107;
-    let ao_46_z = t1108 + (ao_45_z + d_46_x * t6239);
-    let t6252 = inv_46 * (pa_46_m + (ia_46_01 * ao_46_x + ia_46_02 * ao_46_z));
-    let qdd_44 = t6239 - t6252;
-    let ao_47_x = ao_46_x + t698 * t6252 - t1004;
-    let ao_47_z = t1005 + (ao_46_z + d_47_x * t6252);
-    let t6265 = inv_47 * (pa_47_m + (ia_47_01 * ao_47_x + ia_47_02 * ao_47_z));
-    let qdd_45 = t6252 - t6265;
-    let ao_48_x = ao_47_x + t704 * t6265 - t901;
-    let ao_48_z = t902 + (ao_47_z + d_48_x * t6265);
-    let qdd_46 = t6265 - inv_48 * (ia_48_01 * ao_48_x - t861 * ao_48_z - t880);
+    let pa_1_z = pa_2_z - pa_2_m * (ia_2_02 * inv_2) - loads[0][1];
+    let t5679 = ia_1_11 + ia_1_12 * friction;
+    let t5682 = (pa_1_x + pa_1_z * friction) / t5679;
+    let s_dd = -t5682;
+    let normal_force = pa_1_z - ia_1_12 * t5682;
+    let friction_factor = t5679 / ia_1_11;
+    let t5691 = inv_2 * (pa_2_m - ia_2_01 * t5682);
+    let alpha_2 = -t5691;
+    let ao_3_x = t434 * t5691 - t5682 - t5536;
+    let ao_3_z = t5537 + d_3_x * t5691;
+    let t5702 = inv_3 * (pa_3_m + (ia_3_01 * ao_3_x + ia_3_02 * ao_3_z));
+    let qdd_1 = t5691 - t5702;
+    let ao_4_x = ao_3_x + t440 * t5702 - t5433;
+    let ao_4_z = t5434 + (ao_3_z + d_4_x * t5702);
+    let t5715 = inv_4 * (pa_4_m + (ia_4_01 * ao_4_x + ia_4_02 * ao_4_z));
+    let qdd_2 = t5702 - t5715;
+    let ao_5_x = ao_4_x + t446 * t5715 - t5330;
+    let ao_5_z = t5331 + (ao_4_z + d_5_x * t5715);
+    let t5728 = inv_5 * (pa_5_m + (ia_5_01 * ao_5_x + ia_5_02 * ao_5_z));
+    let qdd_3 = t5715 - t5728;
+    let ao_6_x = ao_5_x + t452 * t5728 - t5227;
+    let ao_6_z = t5228 + (ao_5_z + d_6_x * t5728);
+    let t5741 = inv_6 * (pa_6_m + (ia_6_01 * ao_6_x + ia_6_02 * ao_6_z));
+    let qdd_4 = t5728 - t5741;
+    let ao_7_x = ao_6_x + t458 * t5741 - t5124;
+    let ao_7_z = t5125 + (ao_6_z + d_7_x * t5741);
+    let t5754 = inv_7 * (pa_7_m + (ia_7_01 * ao_7_x + ia_7_02 * ao_7_z));
+    let qdd_5 = t5741 - t5754;
+    let ao_8_x = ao_7_x + t464 * t5754 - t5021;
+    let ao_8_z = t5022 + (ao_7_z + d_8_x * t5754);
+    let t5767 = inv_8 * (pa_8_m + (ia_8_01 * ao_8_x + ia_8_02 * ao_8_z));
+    let qdd_6 = t5754 - t5767;
+    let ao_9_x = ao_8_x + t470 * t5767 - t4918;
+    let ao_9_z = t4919 + (ao_8_z + d_9_x * t5767);
+    let t5780 = inv_9 * (pa_9_m + (ia_9_01 * ao_9_x + ia_9_02 * ao_9_z));
+    let qdd_7 = t5767 - t5780;
+    let ao_10_x = ao_9_x + t476 * t5780 - t4815;
+    let ao_10_z = t4816 + (ao_9_z + d_10_x * t5780);
+    let t5793 = inv_10 * (pa_10_m + (ia_10_01 * ao_10_x + ia_10_02 * ao_10_z));
+    let qdd_8 = t5780 - t5793;
+    let ao_11_x = ao_10_x + t482 * t5793 - t4712;
+    let ao_11_z = t4713 + (ao_10_z + d_11_x * t5793);
+    let t5806 = inv_11 * (pa_11_m + (ia_11_01 * ao_11_x + ia_11_02 * ao_11_z));
+    let qdd_9 = t5793 - t5806;
+    let ao_12_x = ao_11_x + t488 * t5806 - t4609;
+    let ao_12_z = t4610 + (ao_11_z + d_12_x * t5806);
+    let t5819 = inv_12 * (pa_12_m + (ia_12_01 * ao_12_x + ia_12_02 * ao_12_z));
+    let qdd_10 = t5806 - t5819;
+    let ao_13_x = ao_12_x + t494 * t5819 - t4506;
+    let ao_13_z = t4507 + (ao_12_z + d_13_x * t5819);
+    let t5832 = inv_13 * (pa_13_m + (ia_13_01 * ao_13_x + ia_13_02 * ao_13_z));
+    let qdd_11 = t5819 - t5832;
+    let ao_14_x = ao_13_x + t500 * t5832 - t4403;
+    let ao_14_z = t4404 + (ao_13_z + d_14_x * t5832);
+    let t5845 = inv_14 * (pa_14_m + (ia_14_01 * ao_14_x + ia_14_02 * ao_14_z));
+    let qdd_12 = t5832 - t5845;
+    let ao_15_x = ao_14_x + t506 * t5845 - t4300;
+    let ao_15_z = t4301 + (ao_14_z + d_15_x * t5845);
+    let t5858 = inv_15 * (pa_15_m + (ia_15_01 * ao_15_x + ia_15_02 * ao_15_z));
+    let qdd_13 = t5845 - t5858;
+    let ao_16_x = ao_15_x + t512 * t5858 - t4197;
+    let ao_16_z = t4198 + (ao_15_z + d_16_x * t5858);
+    let t5871 = inv_16 * (pa_16_m + (ia_16_01 * ao_16_x + ia_16_02 * ao_16_z));
+    let qdd_14 = t5858 - t5871;
+    let ao_17_x = ao_16_x + t518 * t5871 - t4094;
+    let ao_17_z = t4095 + (ao_16_z + d_17_x * t5871);
+    let t5884 = inv_17 * (pa_17_m + (ia_17_01 * ao_17_x + ia_17_02 * ao_17_z));
+    let qdd_15 = t5871 - t5884;
+    let ao_18_x = ao_17_x + t524 * t5884 - t3991;
+    let ao_18_z = t3992 + (ao_17_z + d_18_x * t5884);
+    let t5897 = inv_18 * (pa_18_m + (ia_18_01 * ao_18_x + ia_18_02 * ao_18_z));
+    let qdd_16 = t5884 - t5897;
+    let ao_19_x = ao_18_x + t530 * t5897 - t3888;
+    let ao_19_z = t3889 + (ao_18_z + d_19_x * t5897);
+    let t5910 = inv_19 * (pa_19_m + (ia_19_01 * ao_19_x + ia_19_02 * ao_19_z));
+    let qdd_17 = t5897 - t5910;
+    let ao_20_x = ao_19_x + t536 * t5910 - t3785;
+    let ao_20_z = t3786 + (ao_19_z + d_20_x * t5910);
+    let t5923 = inv_20 * (pa_20_m + (ia_20_01 * ao_20_x + ia_20_02 * ao_20_z));
+    let qdd_18 = t5910 - t5923;
+    let ao_21_x = ao_20_x + t542 * t5923 - t3682;
+    let ao_21_z = t3683 + (ao_20_z + d_21_x * t5923);
+    let t5936 = inv_21 * (pa_21_m + (ia_21_01 * ao_21_x + ia_21_02 * ao_21_z));
+    let qdd_19 = t5923 - t5936;
+    let ao_22_x = ao_21_x + t548 * t5936 - t3579;
+    let ao_22_z = t3580 + (ao_21_z + d_22_x * t5936);
+    let t5949 = inv_22 * (pa_22_m + (ia_22_01 * ao_22_x + ia_22_02 * ao_22_z));
+    let qdd_20 = t5936 - t5949;
+    let ao_23_x = ao_22_x + t554 * t5949 - t3476;
+    let ao_23_z = t3477 + (ao_22_z + d_23_x * t5949);
+    let t5962 = inv_23 * (pa_23_m + (ia_23_01 * ao_23_x + ia_23_02 * ao_23_z));
+    let qdd_21 = t5949 - t5962;
+    let ao_24_x = ao_23_x + t560 * t5962 - t3373;
+    let ao_24_z = t3374 + (ao_23_z + d_24_x * t5962);
+    let t5975 = inv_24 * (pa_24_m + (ia_24_01 * ao_24_x + ia_24_02 * ao_24_z));
+    let qdd_22 = t5962 - t5975;
+    let ao_25_x = ao_24_x + t566 * t5975 - t3270;
+    let ao_25_z = t3271 + (ao_24_z + d_25_x * t5975);
+    let t5988 = inv_25 * (pa_25_m + (ia_25_01 * ao_25_x + ia_25_02 * ao_25_z));
+    let qdd_23 = t5975 - t5988;
+    let ao_26_x = ao_25_x + t572 * t5988 - t3167;
+    let ao_26_z = t3168 + (ao_25_z + d_26_x * t5988);
+    let t6001 = inv_26 * (pa_26_m + (ia_26_01 * ao_26_x + ia_26_02 * ao_26_z));
+    let qdd_24 = t5988 - t6001;
+    let ao_27_x = ao_26_x + t578 * t6001 - t3064;
+    let ao_27_z = t3065 + (ao_26_z + d_27_x * t6001);
+    let t6014 = inv_27 * (pa_27_m + (ia_27_01 * ao_27_x + ia_27_02 * ao_27_z));
+    let qdd_25 = t6001 - t6014;
+    let ao_28_x = ao_27_x + t584 * t6014 - t2961;
+    let ao_28_z = t2962 + (ao_27_z + d_28_x * t6014);
+    let t6027 = inv_28 * (pa_28_m + (ia_28_01 * ao_28_x + ia_28_02 * ao_28_z));
+    let qdd_26 = t6014 - t6027;
+    let ao_29_x = ao_28_x + t590 * t6027 - t2858;
+    let ao_29_z = t2859 + (ao_28_z + d_29_x * t6027);
+    let t6040 = inv_29 * (pa_29_m + (ia_29_01 * ao_29_x + ia_29_02 * ao_29_z));
+    let qdd_27 = t6027 - t6040;
+    let ao_30_x = ao_29_x + t596 * t6040 - t2755;
+    let ao_30_z = t2756 + (ao_29_z + d_30_x * t6040);
+    let t6053 = inv_30 * (pa_30_m + (ia_30_01 * ao_30_x + ia_30_02 * ao_30_z));
+    let qdd_28 = t6040 - t6053;
+    let ao_31_x = ao_30_x + t602 * t6053 - t2652;
+    let ao_31_z = t2653 + (ao_30_z + d_31_x * t6053);
+    let t6066 = inv_31 * (pa_31_m + (ia_31_01 * ao_31_x + ia_31_02 * ao_31_z));
+    let qdd_29 = t6053 - t6066;
+    let ao_32_x = ao_31_x + t608 * t6066 - t2549;
+    let ao_32_z = t2550 + (ao_31_z + d_32_x * t6066);
+    let t6079 = inv_32 * (pa_32_m + (ia_32_01 * ao_32_x + ia_32_02 * ao_32_z));
+    let qdd_30 = t6066 - t6079;
+    let ao_33_x = ao_32_x + t614 * t6079 - t2446;
+    let ao_33_z = t2447 + (ao_32_z + d_33_x * t6079);
+    let t6092 = inv_33 * (pa_33_m + (ia_33_01 * ao_33_x + ia_33_02 * ao_33_z));
+    let qdd_31 = t6079 - t6092;
+    let ao_34_x = ao_33_x + t620 * t6092 - t2343;
+    let ao_34_z = t2344 + (ao_33_z + d_34_x * t6092);
+    let t6105 = inv_34 * (pa_34_m + (ia_34_01 * ao_34_x + ia_34_02 * ao_34_z));
+    let qdd_32 = t6092 - t6105;
+    let ao_35_x = ao_34_x + t626 * t6105 - t2240;
+    let ao_35_z = t2241 + (ao_34_z + d_35_x * t6105);
+    let t6118 = inv_35 * (pa_35_m + (ia_35_01 * ao_35_x + ia_35_02 * ao_35_z));
+    let qdd_33 = t6105 - t6118;
+    let ao_36_x = ao_35_x + t632 * t6118 - t2137;
+    let ao_36_z = t2138 + (ao_35_z + d_36_x * t6118);
+    let t6131 = inv_36 * (pa_36_m + (ia_36_01 * ao_36_x + ia_36_02 * ao_36_z));
+    let qdd_34 = t6118 - t6131;
+    let ao_37_x = ao_36_x + t638 * t6131 - t2034;
+    let ao_37_z = t2035 + (ao_36_z + d_37_x * t6131);
+    let t6144 = inv_37 * (pa_37_m + (ia_37_01 * ao_37_x + ia_37_02 * ao_37_z));
+    let qdd_35 = t6131 - t6144;
+    let ao_38_x = ao_37_x + t644 * t6144 - t1931;
+    let ao_38_z = t1932 + (ao_37_z + d_38_x * t6144);
+    let t6157 = inv_38 * (pa_38_m + (ia_38_01 * ao_38_x + ia_38_02 * ao_38_z));
+    let qdd_36 = t6144 - t6157;
+    let ao_39_x = ao_38_x + t650 * t6157 - t1828;
+    let ao_39_z = t1829 + (ao_38_z + d_39_x * t6157);
+    let t6170 = inv_39 * (pa_39_m + (ia_39_01 * ao_39_x + ia_39_02 * ao_39_z));
+    let qdd_37 = t6157 - t6170;
+    let ao_40_x = ao_39_x + t656 * t6170 - t1725;
+    let ao_40_z = t1726 + (ao_39_z + d_40_x * t6170);
+    let t6183 = inv_40 * (pa_40_m + (ia_40_01 * ao_40_x + ia_40_02 * ao_40_z));
+    let qdd_38 = t6170 - t6183;
+    let ao_41_x = ao_40_x + t662 * t6183 - t1622;
+    let ao_41_z = t1623 + (ao_40_z + d_41_x * t6183);
+    let t6196 = inv_41 * (pa_41_m + (ia_41_01 * ao_41_x + ia_41_02 * ao_41_z));
+    let qdd_39 = t6183 - t6196;
+    let ao_42_x = ao_41_x + t668 * t6196 - t1519;
+    let ao_42_z = t1520 + (ao_41_z + d_42_x * t6196);
+    let t6209 = inv_42 * (pa_42_m + (ia_42_01 * ao_42_x + ia_42_02 * ao_42_z));
+    let qdd_40 = t6196 - t6209;
+    let ao_43_x = ao_42_x + t674 * t6209 - t1416;
+    let ao_43_z = t1417 + (ao_42_z + d_43_x * t6209);
+    let t6222 = inv_43 * (pa_43_m + (ia_43_01 * ao_43_x + ia_43_02 * ao_43_z));
+    let qdd_41 = t6209 - t6222;
+    let ao_44_x = ao_43_x + t680 * t6222 - t1313;
+    let ao_44_z = t1314 + (ao_43_z + d_44_x * t6222);
+    let t6235 = inv_44 * (pa_44_m + (ia_44_01 * ao_44_x + ia_44_02 * ao_44_z));
+    let qdd_42 = t6222 - t6235;
+    let ao_45_x = ao_44_x + t686 * t6235 - t1210;
+    let ao_45_z = t1211 + (ao_44_z + d_45_x * t6235);
+    let t6248 = inv_45 * (pa_45_m + (ia_45_01 * ao_45_x + ia_45_02 * ao_45_z));
+    let qdd_43 = t6235 - t6248;
+    let ao_46_x = ao_45_x + t692 * t6248 - t1107;
+    let ao_46_z = t1108 + (ao_45_z + d_46_x * t6248);
+    let t6261 = inv_46 * (pa_46_m + (ia_46_01 * ao_46_x + ia_46_02 * ao_46_z));
+    let qdd_44 = t6248 - t6261;
+    let ao_47_x = ao_46_x + t698 * t6261 - t1004;
+    let ao_47_z = t1005 + (ao_46_z + d_47_x * t6261);
+    let t6274 = inv_47 * (pa_47_m + (ia_47_01 * ao_47_x + ia_47_02 * ao_47_z));
+    let qdd_45 = t6261 - t6274;
+    let ao_48_x = ao_47_x + t704 * t6274 - t901;
+    let ao_48_z = t902 + (ao_47_z + d_48_x * t6274);
+    let qdd_46 = t6274 - inv_48 * (ia_48_01 * ao_48_x - t861 * ao_48_z - t880);
     qdd[0] = alpha_2;
     qdd[1] = qdd_1;
     qdd[2] = qdd_2;
@@ -5933,16 +6140,18 @@ pub fn solve_free(
     qdd[45] = qdd_45;
     qdd[46] = qdd_46;
     qdd[47] = s_dd;
+    [normal_force, friction_factor]
 }
 /// ẍ of Eq. 27 with the anchor stuck (ẍ_{3N+1} = 0), by the O(N) recursion; returns the
-/// anchor's holding force F^C_{3N+1} = a_{3N+1,p} ẍ_p − f_{3N+1} (Eq. 50), N along +x.
+/// anchor's holding force F^C_{3N+1} = a_{3N+1,p} ẍ_p − f_{3N+1} (Eq. 50), N along +x, and
+/// the seabed's normal force on it (Eq. 37), N along +z.
 pub fn solve_stuck(
     p: &[crate::BodyParams],
     u: &[f64],
     trig: &[[f64; 2]],
     loads: &[[f64; 3]],
     qdd: &mut [f64],
-) -> f64 {
+) -> [f64; 2] {
     let p: &[crate::BodyParams; 48] = p.try_into().expect("p must have 48 entries");
     let u: &[f64; 48] = u.try_into().expect("u must have 48 entries");
     let trig: &[[f64; 2]; 48] = trig.try_into().expect("trig must have 48 entries");
@@ -7505,23 +7714,25 @@ pub fn solve_stuck(
     let t5536 = d_3_x * t5535;
     let t5537 = t434 * t5535;
     let t5544 = pa_3_x - pa_3_m * t5522 + (t5528 * t5537 - t5527 * t5536);
+    let t5549 = pa_3_z - pa_3_m * t5523 + (t5529 * t5537 - t5528 * t5536);
     let t5554 = -(t434 * t5527) - d_3_x * t5528;
+    let t5559 = -(t434 * t5528) - d_3_x * t5529;
     let t5570 = p[1].centroid[0] * p[1].centroid[0];
-    let ia_2_00 = -(t434 * t5554) - d_3_x * (-(t434 * t5528) - d_3_x * t5529)
+    let t5575 = p[1].mass * e_2_x;
+    let t5576 = p[1].mass * t431;
+    let t5579 = p[1].centroid[0] * p[1].added_mass;
+    let t5598 = p[1].added_mass * (trig[1][1] * e_2_x - trig[1][0] * t431);
+    let ia_2_00 = -(t434 * t5554) - d_3_x * t5559
         + (p[1].inertia + (p[1].mass * t5570 + p[1].added_mass * t5570));
-    let ia_2_01 = t5554
-        + (-(p[1].mass * t431) - trig[1][1] * (p[1].centroid[0] * p[1].added_mass));
-    let pa_2_m = -(t434 * t5544)
-        - d_3_x * (pa_3_z - pa_3_m * t5523 + (t5529 * t5537 - t5528 * t5536))
+    let ia_2_01 = t5554 + (-t5576 - trig[1][1] * t5579);
+    let ia_2_02 = t5559 - (t5575 + trig[1][0] * t5579);
+    let pa_2_m = -(t434 * t5544) - d_3_x * t5549
         - (loads[1][2] + (-(t431 * loads[1][0]) - e_2_x * loads[1][1]));
-    let pa_2_x = t5544
-        + (-(t5535
-            * (p[1].mass * e_2_x
-                + trig[1][1]
-                    * (p[1].added_mass * (trig[1][1] * e_2_x - trig[1][0] * t431))))
-            - loads[1][0]);
+    let pa_2_x = t5544 + (-(t5535 * (t5575 + trig[1][1] * t5598)) - loads[1][0]);
+    let pa_2_z = t5549 + (-(t5535 * (trig[1][0] * t5598 - t5576)) - loads[1][1]);
     let inv_2 = 1.0 / ia_2_00;
     let pa_1_x = pa_2_x - pa_2_m * (ia_2_01 * inv_2) - loads[0][0];
+    let pa_1_z = pa_2_z - pa_2_m * (ia_2_02 * inv_2) - loads[0][1];
     let t5677 = pa_2_m * inv_2;
     let alpha_2 = -t5677;
     let ao_3_x = t434 * t5677 - t5536;
@@ -7755,5 +7966,5 @@ pub fn solve_stuck(
     qdd[45] = qdd_45;
     qdd[46] = qdd_46;
     qdd[47] = 0.0;
-    pa_1_x
+    [pa_1_x, pa_1_z]
 }

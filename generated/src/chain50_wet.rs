@@ -1217,7 +1217,9 @@ pub fn kinematics(
 ///
 /// `m` receives a_lp (Eq. 26), row-major and symmetric; `f` receives f_l (Eq. 25) with the
 /// per-body loads `[F_x, F_z, T_y]` at the centroids projected by the partial velocities
-/// (Eqs. 15, 23). Reads the rotation table written by [`kinematics`].
+/// (Eqs. 15, 23). `heave` receives the row of the anchor's constrained heave speed:
+/// a_{w,p} for the N speeds, then f_w, so that the seabed's normal force on the anchor is
+/// N = a_{w,p} ẍ_p − f_w (Eqs. 37, 50). Reads the rotation table written by [`kinematics`].
 pub fn assemble(
     p: &[crate::BodyParams],
     u: &[f64],
@@ -1225,6 +1227,7 @@ pub fn assemble(
     loads: &[[f64; 3]],
     m: &mut [f64],
     f: &mut [f64],
+    heave: &mut [f64],
 ) {
     let p: &[crate::BodyParams; 50] = p.try_into().expect("p must have 50 entries");
     let u: &[f64; 50] = u.try_into().expect("u must have 50 entries");
@@ -1232,6 +1235,7 @@ pub fn assemble(
     let loads: &[[f64; 3]; 50] = loads.try_into().expect("loads must have 50 entries");
     let m: &mut [f64; 2500] = m.try_into().expect("m must have 2500 entries");
     let f: &mut [f64; 50] = f.try_into().expect("f must have 50 entries");
+    let heave: &mut [f64; 51] = heave.try_into().expect("heave must have 51 entries");
     let mut k_col = [0.0f64; 49];
     let mut s_col = [[0.0f64; 2]; 49];
     let mut o_rel = [[0.0f64; 2]; 49];
@@ -1499,6 +1503,7 @@ pub fn assemble(
     let bt_49_xx = p[49].mass
         + (p[48].mass + p[48].added_mass * (trig[48][0] * trig[48][0]));
     let bt_49_zz = p[49].mass + t764;
+    let t804 = p[47].added_mass * (trig[47][0] * trig[47][1]);
     let t808 = p[47].mass + p[47].added_mass * (trig[47][1] * trig[47][1]);
     let t812 = p[47].centroid[0] * p[47].added_mass;
     let t818 = p[47].centroid[0] * p[47].centroid[0];
@@ -1512,8 +1517,9 @@ pub fn assemble(
             + (j_49 + (p[47].inertia + (p[47].mass * t818 + p[47].added_mass * t818))));
     let bt_48_xx = bt_49_xx
         + (p[47].mass + p[47].added_mass * (trig[47][0] * trig[47][0]));
-    let bt_48_xz = -(p[47].added_mass * (trig[47][0] * trig[47][1])) - t760;
+    let bt_48_xz = -t804 - t760;
     let bt_48_zz = bt_49_zz + t808;
+    let t856 = p[46].added_mass * (trig[46][0] * trig[46][1]);
     let t860 = p[46].mass + p[46].added_mass * (trig[46][1] * trig[46][1]);
     let t864 = p[46].centroid[0] * p[46].added_mass;
     let t870 = p[46].centroid[0] * p[46].centroid[0];
@@ -1527,8 +1533,9 @@ pub fn assemble(
             + (j_48 + (p[46].inertia + (p[46].mass * t870 + p[46].added_mass * t870))));
     let bt_47_xx = bt_48_xx
         + (p[46].mass + p[46].added_mass * (trig[46][0] * trig[46][0]));
-    let bt_47_xz = bt_48_xz - p[46].added_mass * (trig[46][0] * trig[46][1]);
+    let bt_47_xz = bt_48_xz - t856;
     let bt_47_zz = bt_48_zz + t860;
+    let t908 = p[45].added_mass * (trig[45][0] * trig[45][1]);
     let t912 = p[45].mass + p[45].added_mass * (trig[45][1] * trig[45][1]);
     let t916 = p[45].centroid[0] * p[45].added_mass;
     let t922 = p[45].centroid[0] * p[45].centroid[0];
@@ -1542,8 +1549,9 @@ pub fn assemble(
             + (j_47 + (p[45].inertia + (p[45].mass * t922 + p[45].added_mass * t922))));
     let bt_46_xx = bt_47_xx
         + (p[45].mass + p[45].added_mass * (trig[45][0] * trig[45][0]));
-    let bt_46_xz = bt_47_xz - p[45].added_mass * (trig[45][0] * trig[45][1]);
+    let bt_46_xz = bt_47_xz - t908;
     let bt_46_zz = bt_47_zz + t912;
+    let t960 = p[44].added_mass * (trig[44][0] * trig[44][1]);
     let t964 = p[44].mass + p[44].added_mass * (trig[44][1] * trig[44][1]);
     let t968 = p[44].centroid[0] * p[44].added_mass;
     let t974 = p[44].centroid[0] * p[44].centroid[0];
@@ -1557,8 +1565,9 @@ pub fn assemble(
             + (j_46 + (p[44].inertia + (p[44].mass * t974 + p[44].added_mass * t974))));
     let bt_45_xx = bt_46_xx
         + (p[44].mass + p[44].added_mass * (trig[44][0] * trig[44][0]));
-    let bt_45_xz = bt_46_xz - p[44].added_mass * (trig[44][0] * trig[44][1]);
+    let bt_45_xz = bt_46_xz - t960;
     let bt_45_zz = bt_46_zz + t964;
+    let t1012 = p[43].added_mass * (trig[43][0] * trig[43][1]);
     let t1016 = p[43].mass + p[43].added_mass * (trig[43][1] * trig[43][1]);
     let t1020 = p[43].centroid[0] * p[43].added_mass;
     let t1026 = p[43].centroid[0] * p[43].centroid[0];
@@ -1573,8 +1582,9 @@ pub fn assemble(
                 + (p[43].inertia + (p[43].mass * t1026 + p[43].added_mass * t1026))));
     let bt_44_xx = bt_45_xx
         + (p[43].mass + p[43].added_mass * (trig[43][0] * trig[43][0]));
-    let bt_44_xz = bt_45_xz - p[43].added_mass * (trig[43][0] * trig[43][1]);
+    let bt_44_xz = bt_45_xz - t1012;
     let bt_44_zz = bt_45_zz + t1016;
+    let t1064 = p[42].added_mass * (trig[42][0] * trig[42][1]);
     let t1068 = p[42].mass + p[42].added_mass * (trig[42][1] * trig[42][1]);
     let t1072 = p[42].centroid[0] * p[42].added_mass;
     let t1078 = p[42].centroid[0] * p[42].centroid[0];
@@ -1589,8 +1599,9 @@ pub fn assemble(
                 + (p[42].inertia + (p[42].mass * t1078 + p[42].added_mass * t1078))));
     let bt_43_xx = bt_44_xx
         + (p[42].mass + p[42].added_mass * (trig[42][0] * trig[42][0]));
-    let bt_43_xz = bt_44_xz - p[42].added_mass * (trig[42][0] * trig[42][1]);
+    let bt_43_xz = bt_44_xz - t1064;
     let bt_43_zz = bt_44_zz + t1068;
+    let t1116 = p[41].added_mass * (trig[41][0] * trig[41][1]);
     let t1120 = p[41].mass + p[41].added_mass * (trig[41][1] * trig[41][1]);
     let t1124 = p[41].centroid[0] * p[41].added_mass;
     let t1130 = p[41].centroid[0] * p[41].centroid[0];
@@ -1605,8 +1616,9 @@ pub fn assemble(
                 + (p[41].inertia + (p[41].mass * t1130 + p[41].added_mass * t1130))));
     let bt_42_xx = bt_43_xx
         + (p[41].mass + p[41].added_mass * (trig[41][0] * trig[41][0]));
-    let bt_42_xz = bt_43_xz - p[41].added_mass * (trig[41][0] * trig[41][1]);
+    let bt_42_xz = bt_43_xz - t1116;
     let bt_42_zz = bt_43_zz + t1120;
+    let t1168 = p[40].added_mass * (trig[40][0] * trig[40][1]);
     let t1172 = p[40].mass + p[40].added_mass * (trig[40][1] * trig[40][1]);
     let t1176 = p[40].centroid[0] * p[40].added_mass;
     let t1182 = p[40].centroid[0] * p[40].centroid[0];
@@ -1621,8 +1633,9 @@ pub fn assemble(
                 + (p[40].inertia + (p[40].mass * t1182 + p[40].added_mass * t1182))));
     let bt_41_xx = bt_42_xx
         + (p[40].mass + p[40].added_mass * (trig[40][0] * trig[40][0]));
-    let bt_41_xz = bt_42_xz - p[40].added_mass * (trig[40][0] * trig[40][1]);
+    let bt_41_xz = bt_42_xz - t1168;
     let bt_41_zz = bt_42_zz + t1172;
+    let t1220 = p[39].added_mass * (trig[39][0] * trig[39][1]);
     let t1224 = p[39].mass + p[39].added_mass * (trig[39][1] * trig[39][1]);
     let t1228 = p[39].centroid[0] * p[39].added_mass;
     let t1234 = p[39].centroid[0] * p[39].centroid[0];
@@ -1637,8 +1650,9 @@ pub fn assemble(
                 + (p[39].inertia + (p[39].mass * t1234 + p[39].added_mass * t1234))));
     let bt_40_xx = bt_41_xx
         + (p[39].mass + p[39].added_mass * (trig[39][0] * trig[39][0]));
-    let bt_40_xz = bt_41_xz - p[39].added_mass * (trig[39][0] * trig[39][1]);
+    let bt_40_xz = bt_41_xz - t1220;
     let bt_40_zz = bt_41_zz + t1224;
+    let t1272 = p[38].added_mass * (trig[38][0] * trig[38][1]);
     let t1276 = p[38].mass + p[38].added_mass * (trig[38][1] * trig[38][1]);
     let t1280 = p[38].centroid[0] * p[38].added_mass;
     let t1286 = p[38].centroid[0] * p[38].centroid[0];
@@ -1653,8 +1667,9 @@ pub fn assemble(
                 + (p[38].inertia + (p[38].mass * t1286 + p[38].added_mass * t1286))));
     let bt_39_xx = bt_40_xx
         + (p[38].mass + p[38].added_mass * (trig[38][0] * trig[38][0]));
-    let bt_39_xz = bt_40_xz - p[38].added_mass * (trig[38][0] * trig[38][1]);
+    let bt_39_xz = bt_40_xz - t1272;
     let bt_39_zz = bt_40_zz + t1276;
+    let t1324 = p[37].added_mass * (trig[37][0] * trig[37][1]);
     let t1328 = p[37].mass + p[37].added_mass * (trig[37][1] * trig[37][1]);
     let t1332 = p[37].centroid[0] * p[37].added_mass;
     let t1338 = p[37].centroid[0] * p[37].centroid[0];
@@ -1669,8 +1684,9 @@ pub fn assemble(
                 + (p[37].inertia + (p[37].mass * t1338 + p[37].added_mass * t1338))));
     let bt_38_xx = bt_39_xx
         + (p[37].mass + p[37].added_mass * (trig[37][0] * trig[37][0]));
-    let bt_38_xz = bt_39_xz - p[37].added_mass * (trig[37][0] * trig[37][1]);
+    let bt_38_xz = bt_39_xz - t1324;
     let bt_38_zz = bt_39_zz + t1328;
+    let t1376 = p[36].added_mass * (trig[36][0] * trig[36][1]);
     let t1380 = p[36].mass + p[36].added_mass * (trig[36][1] * trig[36][1]);
     let t1384 = p[36].centroid[0] * p[36].added_mass;
     let t1390 = p[36].centroid[0] * p[36].centroid[0];
@@ -1685,8 +1701,9 @@ pub fn assemble(
                 + (p[36].inertia + (p[36].mass * t1390 + p[36].added_mass * t1390))));
     let bt_37_xx = bt_38_xx
         + (p[36].mass + p[36].added_mass * (trig[36][0] * trig[36][0]));
-    let bt_37_xz = bt_38_xz - p[36].added_mass * (trig[36][0] * trig[36][1]);
+    let bt_37_xz = bt_38_xz - t1376;
     let bt_37_zz = bt_38_zz + t1380;
+    let t1428 = p[35].added_mass * (trig[35][0] * trig[35][1]);
     let t1432 = p[35].mass + p[35].added_mass * (trig[35][1] * trig[35][1]);
     let t1436 = p[35].centroid[0] * p[35].added_mass;
     let t1442 = p[35].centroid[0] * p[35].centroid[0];
@@ -1701,8 +1718,9 @@ pub fn assemble(
                 + (p[35].inertia + (p[35].mass * t1442 + p[35].added_mass * t1442))));
     let bt_36_xx = bt_37_xx
         + (p[35].mass + p[35].added_mass * (trig[35][0] * trig[35][0]));
-    let bt_36_xz = bt_37_xz - p[35].added_mass * (trig[35][0] * trig[35][1]);
+    let bt_36_xz = bt_37_xz - t1428;
     let bt_36_zz = bt_37_zz + t1432;
+    let t1480 = p[34].added_mass * (trig[34][0] * trig[34][1]);
     let t1484 = p[34].mass + p[34].added_mass * (trig[34][1] * trig[34][1]);
     let t1488 = p[34].centroid[0] * p[34].added_mass;
     let t1494 = p[34].centroid[0] * p[34].centroid[0];
@@ -1717,8 +1735,9 @@ pub fn assemble(
                 + (p[34].inertia + (p[34].mass * t1494 + p[34].added_mass * t1494))));
     let bt_35_xx = bt_36_xx
         + (p[34].mass + p[34].added_mass * (trig[34][0] * trig[34][0]));
-    let bt_35_xz = bt_36_xz - p[34].added_mass * (trig[34][0] * trig[34][1]);
+    let bt_35_xz = bt_36_xz - t1480;
     let bt_35_zz = bt_36_zz + t1484;
+    let t1532 = p[33].added_mass * (trig[33][0] * trig[33][1]);
     let t1536 = p[33].mass + p[33].added_mass * (trig[33][1] * trig[33][1]);
     let t1540 = p[33].centroid[0] * p[33].added_mass;
     let t1546 = p[33].centroid[0] * p[33].centroid[0];
@@ -1733,8 +1752,9 @@ pub fn assemble(
                 + (p[33].inertia + (p[33].mass * t1546 + p[33].added_mass * t1546))));
     let bt_34_xx = bt_35_xx
         + (p[33].mass + p[33].added_mass * (trig[33][0] * trig[33][0]));
-    let bt_34_xz = bt_35_xz - p[33].added_mass * (trig[33][0] * trig[33][1]);
+    let bt_34_xz = bt_35_xz - t1532;
     let bt_34_zz = bt_35_zz + t1536;
+    let t1584 = p[32].added_mass * (trig[32][0] * trig[32][1]);
     let t1588 = p[32].mass + p[32].added_mass * (trig[32][1] * trig[32][1]);
     let t1592 = p[32].centroid[0] * p[32].added_mass;
     let t1598 = p[32].centroid[0] * p[32].centroid[0];
@@ -1749,8 +1769,9 @@ pub fn assemble(
                 + (p[32].inertia + (p[32].mass * t1598 + p[32].added_mass * t1598))));
     let bt_33_xx = bt_34_xx
         + (p[32].mass + p[32].added_mass * (trig[32][0] * trig[32][0]));
-    let bt_33_xz = bt_34_xz - p[32].added_mass * (trig[32][0] * trig[32][1]);
+    let bt_33_xz = bt_34_xz - t1584;
     let bt_33_zz = bt_34_zz + t1588;
+    let t1636 = p[31].added_mass * (trig[31][0] * trig[31][1]);
     let t1640 = p[31].mass + p[31].added_mass * (trig[31][1] * trig[31][1]);
     let t1644 = p[31].centroid[0] * p[31].added_mass;
     let t1650 = p[31].centroid[0] * p[31].centroid[0];
@@ -1765,8 +1786,9 @@ pub fn assemble(
                 + (p[31].inertia + (p[31].mass * t1650 + p[31].added_mass * t1650))));
     let bt_32_xx = bt_33_xx
         + (p[31].mass + p[31].added_mass * (trig[31][0] * trig[31][0]));
-    let bt_32_xz = bt_33_xz - p[31].added_mass * (trig[31][0] * trig[31][1]);
+    let bt_32_xz = bt_33_xz - t1636;
     let bt_32_zz = bt_33_zz + t1640;
+    let t1688 = p[30].added_mass * (trig[30][0] * trig[30][1]);
     let t1692 = p[30].mass + p[30].added_mass * (trig[30][1] * trig[30][1]);
     let t1696 = p[30].centroid[0] * p[30].added_mass;
     let t1702 = p[30].centroid[0] * p[30].centroid[0];
@@ -1781,8 +1803,9 @@ pub fn assemble(
                 + (p[30].inertia + (p[30].mass * t1702 + p[30].added_mass * t1702))));
     let bt_31_xx = bt_32_xx
         + (p[30].mass + p[30].added_mass * (trig[30][0] * trig[30][0]));
-    let bt_31_xz = bt_32_xz - p[30].added_mass * (trig[30][0] * trig[30][1]);
+    let bt_31_xz = bt_32_xz - t1688;
     let bt_31_zz = bt_32_zz + t1692;
+    let t1740 = p[29].added_mass * (trig[29][0] * trig[29][1]);
     let t1744 = p[29].mass + p[29].added_mass * (trig[29][1] * trig[29][1]);
     let t1748 = p[29].centroid[0] * p[29].added_mass;
     let t1754 = p[29].centroid[0] * p[29].centroid[0];
@@ -1797,8 +1820,9 @@ pub fn assemble(
                 + (p[29].inertia + (p[29].mass * t1754 + p[29].added_mass * t1754))));
     let bt_30_xx = bt_31_xx
         + (p[29].mass + p[29].added_mass * (trig[29][0] * trig[29][0]));
-    let bt_30_xz = bt_31_xz - p[29].added_mass * (trig[29][0] * trig[29][1]);
+    let bt_30_xz = bt_31_xz - t1740;
     let bt_30_zz = bt_31_zz + t1744;
+    let t1792 = p[28].added_mass * (trig[28][0] * trig[28][1]);
     let t1796 = p[28].mass + p[28].added_mass * (trig[28][1] * trig[28][1]);
     let t1800 = p[28].centroid[0] * p[28].added_mass;
     let t1806 = p[28].centroid[0] * p[28].centroid[0];
@@ -1813,8 +1837,9 @@ pub fn assemble(
                 + (p[28].inertia + (p[28].mass * t1806 + p[28].added_mass * t1806))));
     let bt_29_xx = bt_30_xx
         + (p[28].mass + p[28].added_mass * (trig[28][0] * trig[28][0]));
-    let bt_29_xz = bt_30_xz - p[28].added_mass * (trig[28][0] * trig[28][1]);
+    let bt_29_xz = bt_30_xz - t1792;
     let bt_29_zz = bt_30_zz + t1796;
+    let t1844 = p[27].added_mass * (trig[27][0] * trig[27][1]);
     let t1848 = p[27].mass + p[27].added_mass * (trig[27][1] * trig[27][1]);
     let t1852 = p[27].centroid[0] * p[27].added_mass;
     let t1858 = p[27].centroid[0] * p[27].centroid[0];
@@ -1829,8 +1854,9 @@ pub fn assemble(
                 + (p[27].inertia + (p[27].mass * t1858 + p[27].added_mass * t1858))));
     let bt_28_xx = bt_29_xx
         + (p[27].mass + p[27].added_mass * (trig[27][0] * trig[27][0]));
-    let bt_28_xz = bt_29_xz - p[27].added_mass * (trig[27][0] * trig[27][1]);
+    let bt_28_xz = bt_29_xz - t1844;
     let bt_28_zz = bt_29_zz + t1848;
+    let t1896 = p[26].added_mass * (trig[26][0] * trig[26][1]);
     let t1900 = p[26].mass + p[26].added_mass * (trig[26][1] * trig[26][1]);
     let t1904 = p[26].centroid[0] * p[26].added_mass;
     let t1910 = p[26].centroid[0] * p[26].centroid[0];
@@ -1845,8 +1871,9 @@ pub fn assemble(
                 + (p[26].inertia + (p[26].mass * t1910 + p[26].added_mass * t1910))));
     let bt_27_xx = bt_28_xx
         + (p[26].mass + p[26].added_mass * (trig[26][0] * trig[26][0]));
-    let bt_27_xz = bt_28_xz - p[26].added_mass * (trig[26][0] * trig[26][1]);
+    let bt_27_xz = bt_28_xz - t1896;
     let bt_27_zz = bt_28_zz + t1900;
+    let t1948 = p[25].added_mass * (trig[25][0] * trig[25][1]);
     let t1952 = p[25].mass + p[25].added_mass * (trig[25][1] * trig[25][1]);
     let t1956 = p[25].centroid[0] * p[25].added_mass;
     let t1962 = p[25].centroid[0] * p[25].centroid[0];
@@ -1861,8 +1888,9 @@ pub fn assemble(
                 + (p[25].inertia + (p[25].mass * t1962 + p[25].added_mass * t1962))));
     let bt_26_xx = bt_27_xx
         + (p[25].mass + p[25].added_mass * (trig[25][0] * trig[25][0]));
-    let bt_26_xz = bt_27_xz - p[25].added_mass * (trig[25][0] * trig[25][1]);
+    let bt_26_xz = bt_27_xz - t1948;
     let bt_26_zz = bt_27_zz + t1952;
+    let t2000 = p[24].added_mass * (trig[24][0] * trig[24][1]);
     let t2004 = p[24].mass + p[24].added_mass * (trig[24][1] * trig[24][1]);
     let t2008 = p[24].centroid[0] * p[24].added_mass;
     let t2014 = p[24].centroid[0] * p[24].centroid[0];
@@ -1877,8 +1905,9 @@ pub fn assemble(
                 + (p[24].inertia + (p[24].mass * t2014 + p[24].added_mass * t2014))));
     let bt_25_xx = bt_26_xx
         + (p[24].mass + p[24].added_mass * (trig[24][0] * trig[24][0]));
-    let bt_25_xz = bt_26_xz - p[24].added_mass * (trig[24][0] * trig[24][1]);
+    let bt_25_xz = bt_26_xz - t2000;
     let bt_25_zz = bt_26_zz + t2004;
+    let t2052 = p[23].added_mass * (trig[23][0] * trig[23][1]);
     let t2056 = p[23].mass + p[23].added_mass * (trig[23][1] * trig[23][1]);
     let t2060 = p[23].centroid[0] * p[23].added_mass;
     let t2066 = p[23].centroid[0] * p[23].centroid[0];
@@ -1893,8 +1922,9 @@ pub fn assemble(
                 + (p[23].inertia + (p[23].mass * t2066 + p[23].added_mass * t2066))));
     let bt_24_xx = bt_25_xx
         + (p[23].mass + p[23].added_mass * (trig[23][0] * trig[23][0]));
-    let bt_24_xz = bt_25_xz - p[23].added_mass * (trig[23][0] * trig[23][1]);
+    let bt_24_xz = bt_25_xz - t2052;
     let bt_24_zz = bt_25_zz + t2056;
+    let t2104 = p[22].added_mass * (trig[22][0] * trig[22][1]);
     let t2108 = p[22].mass + p[22].added_mass * (trig[22][1] * trig[22][1]);
     let t2112 = p[22].centroid[0] * p[22].added_mass;
     let t2118 = p[22].centroid[0] * p[22].centroid[0];
@@ -1909,8 +1939,9 @@ pub fn assemble(
                 + (p[22].inertia + (p[22].mass * t2118 + p[22].added_mass * t2118))));
     let bt_23_xx = bt_24_xx
         + (p[22].mass + p[22].added_mass * (trig[22][0] * trig[22][0]));
-    let bt_23_xz = bt_24_xz - p[22].added_mass * (trig[22][0] * trig[22][1]);
+    let bt_23_xz = bt_24_xz - t2104;
     let bt_23_zz = bt_24_zz + t2108;
+    let t2156 = p[21].added_mass * (trig[21][0] * trig[21][1]);
     let t2160 = p[21].mass + p[21].added_mass * (trig[21][1] * trig[21][1]);
     let t2164 = p[21].centroid[0] * p[21].added_mass;
     let t2170 = p[21].centroid[0] * p[21].centroid[0];
@@ -1925,8 +1956,9 @@ pub fn assemble(
                 + (p[21].inertia + (p[21].mass * t2170 + p[21].added_mass * t2170))));
     let bt_22_xx = bt_23_xx
         + (p[21].mass + p[21].added_mass * (trig[21][0] * trig[21][0]));
-    let bt_22_xz = bt_23_xz - p[21].added_mass * (trig[21][0] * trig[21][1]);
+    let bt_22_xz = bt_23_xz - t2156;
     let bt_22_zz = bt_23_zz + t2160;
+    let t2208 = p[20].added_mass * (trig[20][0] * trig[20][1]);
     let t2212 = p[20].mass + p[20].added_mass * (trig[20][1] * trig[20][1]);
     let t2216 = p[20].centroid[0] * p[20].added_mass;
     let t2222 = p[20].centroid[0] * p[20].centroid[0];
@@ -1941,8 +1973,9 @@ pub fn assemble(
                 + (p[20].inertia + (p[20].mass * t2222 + p[20].added_mass * t2222))));
     let bt_21_xx = bt_22_xx
         + (p[20].mass + p[20].added_mass * (trig[20][0] * trig[20][0]));
-    let bt_21_xz = bt_22_xz - p[20].added_mass * (trig[20][0] * trig[20][1]);
+    let bt_21_xz = bt_22_xz - t2208;
     let bt_21_zz = bt_22_zz + t2212;
+    let t2260 = p[19].added_mass * (trig[19][0] * trig[19][1]);
     let t2264 = p[19].mass + p[19].added_mass * (trig[19][1] * trig[19][1]);
     let t2268 = p[19].centroid[0] * p[19].added_mass;
     let t2274 = p[19].centroid[0] * p[19].centroid[0];
@@ -1957,8 +1990,9 @@ pub fn assemble(
                 + (p[19].inertia + (p[19].mass * t2274 + p[19].added_mass * t2274))));
     let bt_20_xx = bt_21_xx
         + (p[19].mass + p[19].added_mass * (trig[19][0] * trig[19][0]));
-    let bt_20_xz = bt_21_xz - p[19].added_mass * (trig[19][0] * trig[19][1]);
+    let bt_20_xz = bt_21_xz - t2260;
     let bt_20_zz = bt_21_zz + t2264;
+    let t2312 = p[18].added_mass * (trig[18][0] * trig[18][1]);
     let t2316 = p[18].mass + p[18].added_mass * (trig[18][1] * trig[18][1]);
     let t2320 = p[18].centroid[0] * p[18].added_mass;
     let t2326 = p[18].centroid[0] * p[18].centroid[0];
@@ -1973,8 +2007,9 @@ pub fn assemble(
                 + (p[18].inertia + (p[18].mass * t2326 + p[18].added_mass * t2326))));
     let bt_19_xx = bt_20_xx
         + (p[18].mass + p[18].added_mass * (trig[18][0] * trig[18][0]));
-    let bt_19_xz = bt_20_xz - p[18].added_mass * (trig[18][0] * trig[18][1]);
+    let bt_19_xz = bt_20_xz - t2312;
     let bt_19_zz = bt_20_zz + t2316;
+    let t2364 = p[17].added_mass * (trig[17][0] * trig[17][1]);
     let t2368 = p[17].mass + p[17].added_mass * (trig[17][1] * trig[17][1]);
     let t2372 = p[17].centroid[0] * p[17].added_mass;
     let t2378 = p[17].centroid[0] * p[17].centroid[0];
@@ -1989,8 +2024,9 @@ pub fn assemble(
                 + (p[17].inertia + (p[17].mass * t2378 + p[17].added_mass * t2378))));
     let bt_18_xx = bt_19_xx
         + (p[17].mass + p[17].added_mass * (trig[17][0] * trig[17][0]));
-    let bt_18_xz = bt_19_xz - p[17].added_mass * (trig[17][0] * trig[17][1]);
+    let bt_18_xz = bt_19_xz - t2364;
     let bt_18_zz = bt_19_zz + t2368;
+    let t2416 = p[16].added_mass * (trig[16][0] * trig[16][1]);
     let t2420 = p[16].mass + p[16].added_mass * (trig[16][1] * trig[16][1]);
     let t2424 = p[16].centroid[0] * p[16].added_mass;
     let t2430 = p[16].centroid[0] * p[16].centroid[0];
@@ -2005,8 +2041,9 @@ pub fn assemble(
                 + (p[16].inertia + (p[16].mass * t2430 + p[16].added_mass * t2430))));
     let bt_17_xx = bt_18_xx
         + (p[16].mass + p[16].added_mass * (trig[16][0] * trig[16][0]));
-    let bt_17_xz = bt_18_xz - p[16].added_mass * (trig[16][0] * trig[16][1]);
+    let bt_17_xz = bt_18_xz - t2416;
     let bt_17_zz = bt_18_zz + t2420;
+    let t2468 = p[15].added_mass * (trig[15][0] * trig[15][1]);
     let t2472 = p[15].mass + p[15].added_mass * (trig[15][1] * trig[15][1]);
     let t2476 = p[15].centroid[0] * p[15].added_mass;
     let t2482 = p[15].centroid[0] * p[15].centroid[0];
@@ -2021,8 +2058,9 @@ pub fn assemble(
                 + (p[15].inertia + (p[15].mass * t2482 + p[15].added_mass * t2482))));
     let bt_16_xx = bt_17_xx
         + (p[15].mass + p[15].added_mass * (trig[15][0] * trig[15][0]));
-    let bt_16_xz = bt_17_xz - p[15].added_mass * (trig[15][0] * trig[15][1]);
+    let bt_16_xz = bt_17_xz - t2468;
     let bt_16_zz = bt_17_zz + t2472;
+    let t2520 = p[14].added_mass * (trig[14][0] * trig[14][1]);
     let t2524 = p[14].mass + p[14].added_mass * (trig[14][1] * trig[14][1]);
     let t2528 = p[14].centroid[0] * p[14].added_mass;
     let t2534 = p[14].centroid[0] * p[14].centroid[0];
@@ -2037,8 +2075,9 @@ pub fn assemble(
                 + (p[14].inertia + (p[14].mass * t2534 + p[14].added_mass * t2534))));
     let bt_15_xx = bt_16_xx
         + (p[14].mass + p[14].added_mass * (trig[14][0] * trig[14][0]));
-    let bt_15_xz = bt_16_xz - p[14].added_mass * (trig[14][0] * trig[14][1]);
+    let bt_15_xz = bt_16_xz - t2520;
     let bt_15_zz = bt_16_zz + t2524;
+    let t2572 = p[13].added_mass * (trig[13][0] * trig[13][1]);
     let t2576 = p[13].mass + p[13].added_mass * (trig[13][1] * trig[13][1]);
     let t2580 = p[13].centroid[0] * p[13].added_mass;
     let t2586 = p[13].centroid[0] * p[13].centroid[0];
@@ -2053,8 +2092,9 @@ pub fn assemble(
                 + (p[13].inertia + (p[13].mass * t2586 + p[13].added_mass * t2586))));
     let bt_14_xx = bt_15_xx
         + (p[13].mass + p[13].added_mass * (trig[13][0] * trig[13][0]));
-    let bt_14_xz = bt_15_xz - p[13].added_mass * (trig[13][0] * trig[13][1]);
+    let bt_14_xz = bt_15_xz - t2572;
     let bt_14_zz = bt_15_zz + t2576;
+    let t2624 = p[12].added_mass * (trig[12][0] * trig[12][1]);
     let t2628 = p[12].mass + p[12].added_mass * (trig[12][1] * trig[12][1]);
     let t2632 = p[12].centroid[0] * p[12].added_mass;
     let t2638 = p[12].centroid[0] * p[12].centroid[0];
@@ -2069,8 +2109,9 @@ pub fn assemble(
                 + (p[12].inertia + (p[12].mass * t2638 + p[12].added_mass * t2638))));
     let bt_13_xx = bt_14_xx
         + (p[12].mass + p[12].added_mass * (trig[12][0] * trig[12][0]));
-    let bt_13_xz = bt_14_xz - p[12].added_mass * (trig[12][0] * trig[12][1]);
+    let bt_13_xz = bt_14_xz - t2624;
     let bt_13_zz = bt_14_zz + t2628;
+    let t2676 = p[11].added_mass * (trig[11][0] * trig[11][1]);
     let t2680 = p[11].mass + p[11].added_mass * (trig[11][1] * trig[11][1]);
     let t2684 = p[11].centroid[0] * p[11].added_mass;
     let t2690 = p[11].centroid[0] * p[11].centroid[0];
@@ -2085,8 +2126,9 @@ pub fn assemble(
                 + (p[11].inertia + (p[11].mass * t2690 + p[11].added_mass * t2690))));
     let bt_12_xx = bt_13_xx
         + (p[11].mass + p[11].added_mass * (trig[11][0] * trig[11][0]));
-    let bt_12_xz = bt_13_xz - p[11].added_mass * (trig[11][0] * trig[11][1]);
+    let bt_12_xz = bt_13_xz - t2676;
     let bt_12_zz = bt_13_zz + t2680;
+    let t2728 = p[10].added_mass * (trig[10][0] * trig[10][1]);
     let t2732 = p[10].mass + p[10].added_mass * (trig[10][1] * trig[10][1]);
     let t2736 = p[10].centroid[0] * p[10].added_mass;
     let t2742 = p[10].centroid[0] * p[10].centroid[0];
@@ -2101,8 +2143,9 @@ pub fn assemble(
                 + (p[10].inertia + (p[10].mass * t2742 + p[10].added_mass * t2742))));
     let bt_11_xx = bt_12_xx
         + (p[10].mass + p[10].added_mass * (trig[10][0] * trig[10][0]));
-    let bt_11_xz = bt_12_xz - p[10].added_mass * (trig[10][0] * trig[10][1]);
+    let bt_11_xz = bt_12_xz - t2728;
     let bt_11_zz = bt_12_zz + t2732;
+    let t2780 = p[9].added_mass * (trig[9][0] * trig[9][1]);
     let t2784 = p[9].mass + p[9].added_mass * (trig[9][1] * trig[9][1]);
     let t2788 = p[9].centroid[0] * p[9].added_mass;
     let t2794 = p[9].centroid[0] * p[9].centroid[0];
@@ -2115,8 +2158,9 @@ pub fn assemble(
         + (t2814 + t2814
             + (j_11 + (p[9].inertia + (p[9].mass * t2794 + p[9].added_mass * t2794))));
     let bt_10_xx = bt_11_xx + (p[9].mass + p[9].added_mass * (trig[9][0] * trig[9][0]));
-    let bt_10_xz = bt_11_xz - p[9].added_mass * (trig[9][0] * trig[9][1]);
+    let bt_10_xz = bt_11_xz - t2780;
     let bt_10_zz = bt_11_zz + t2784;
+    let t2832 = p[8].added_mass * (trig[8][0] * trig[8][1]);
     let t2836 = p[8].mass + p[8].added_mass * (trig[8][1] * trig[8][1]);
     let t2840 = p[8].centroid[0] * p[8].added_mass;
     let t2846 = p[8].centroid[0] * p[8].centroid[0];
@@ -2129,8 +2173,9 @@ pub fn assemble(
         + (t2866 + t2866
             + (j_10 + (p[8].inertia + (p[8].mass * t2846 + p[8].added_mass * t2846))));
     let bt_9_xx = bt_10_xx + (p[8].mass + p[8].added_mass * (trig[8][0] * trig[8][0]));
-    let bt_9_xz = bt_10_xz - p[8].added_mass * (trig[8][0] * trig[8][1]);
+    let bt_9_xz = bt_10_xz - t2832;
     let bt_9_zz = bt_10_zz + t2836;
+    let t2884 = p[7].added_mass * (trig[7][0] * trig[7][1]);
     let t2888 = p[7].mass + p[7].added_mass * (trig[7][1] * trig[7][1]);
     let t2892 = p[7].centroid[0] * p[7].added_mass;
     let t2898 = p[7].centroid[0] * p[7].centroid[0];
@@ -2143,8 +2188,9 @@ pub fn assemble(
         + (t2918 + t2918
             + (j_9 + (p[7].inertia + (p[7].mass * t2898 + p[7].added_mass * t2898))));
     let bt_8_xx = bt_9_xx + (p[7].mass + p[7].added_mass * (trig[7][0] * trig[7][0]));
-    let bt_8_xz = bt_9_xz - p[7].added_mass * (trig[7][0] * trig[7][1]);
+    let bt_8_xz = bt_9_xz - t2884;
     let bt_8_zz = bt_9_zz + t2888;
+    let t2936 = p[6].added_mass * (trig[6][0] * trig[6][1]);
     let t2940 = p[6].mass + p[6].added_mass * (trig[6][1] * trig[6][1]);
     let t2944 = p[6].centroid[0] * p[6].added_mass;
     let t2950 = p[6].centroid[0] * p[6].centroid[0];
@@ -2157,8 +2203,9 @@ pub fn assemble(
         + (t2970 + t2970
             + (j_8 + (p[6].inertia + (p[6].mass * t2950 + p[6].added_mass * t2950))));
     let bt_7_xx = bt_8_xx + (p[6].mass + p[6].added_mass * (trig[6][0] * trig[6][0]));
-    let bt_7_xz = bt_8_xz - p[6].added_mass * (trig[6][0] * trig[6][1]);
+    let bt_7_xz = bt_8_xz - t2936;
     let bt_7_zz = bt_8_zz + t2940;
+    let t2988 = p[5].added_mass * (trig[5][0] * trig[5][1]);
     let t2992 = p[5].mass + p[5].added_mass * (trig[5][1] * trig[5][1]);
     let t2996 = p[5].centroid[0] * p[5].added_mass;
     let t3002 = p[5].centroid[0] * p[5].centroid[0];
@@ -2171,8 +2218,9 @@ pub fn assemble(
         + (t3022 + t3022
             + (j_7 + (p[5].inertia + (p[5].mass * t3002 + p[5].added_mass * t3002))));
     let bt_6_xx = bt_7_xx + (p[5].mass + p[5].added_mass * (trig[5][0] * trig[5][0]));
-    let bt_6_xz = bt_7_xz - p[5].added_mass * (trig[5][0] * trig[5][1]);
+    let bt_6_xz = bt_7_xz - t2988;
     let bt_6_zz = bt_7_zz + t2992;
+    let t3040 = p[4].added_mass * (trig[4][0] * trig[4][1]);
     let t3044 = p[4].mass + p[4].added_mass * (trig[4][1] * trig[4][1]);
     let t3048 = p[4].centroid[0] * p[4].added_mass;
     let t3054 = p[4].centroid[0] * p[4].centroid[0];
@@ -2185,8 +2233,9 @@ pub fn assemble(
         + (t3074 + t3074
             + (j_6 + (p[4].inertia + (p[4].mass * t3054 + p[4].added_mass * t3054))));
     let bt_5_xx = bt_6_xx + (p[4].mass + p[4].added_mass * (trig[4][0] * trig[4][0]));
-    let bt_5_xz = bt_6_xz - p[4].added_mass * (trig[4][0] * trig[4][1]);
+    let bt_5_xz = bt_6_xz - t3040;
     let bt_5_zz = bt_6_zz + t3044;
+    let t3092 = p[3].added_mass * (trig[3][0] * trig[3][1]);
     let t3096 = p[3].mass + p[3].added_mass * (trig[3][1] * trig[3][1]);
     let t3100 = p[3].centroid[0] * p[3].added_mass;
     let t3106 = p[3].centroid[0] * p[3].centroid[0];
@@ -2199,8 +2248,9 @@ pub fn assemble(
         + (t3126 + t3126
             + (j_5 + (p[3].inertia + (p[3].mass * t3106 + p[3].added_mass * t3106))));
     let bt_4_xx = bt_5_xx + (p[3].mass + p[3].added_mass * (trig[3][0] * trig[3][0]));
-    let bt_4_xz = bt_5_xz - p[3].added_mass * (trig[3][0] * trig[3][1]);
+    let bt_4_xz = bt_5_xz - t3092;
     let bt_4_zz = bt_5_zz + t3096;
+    let t3144 = p[2].added_mass * (trig[2][0] * trig[2][1]);
     let t3148 = p[2].mass + p[2].added_mass * (trig[2][1] * trig[2][1]);
     let t3152 = p[2].centroid[0] * p[2].added_mass;
     let t3158 = p[2].centroid[0] * p[2].centroid[0];
@@ -2213,15 +2263,16 @@ pub fn assemble(
         + (t3178 + t3178
             + (j_4 + (p[2].inertia + (p[2].mass * t3158 + p[2].added_mass * t3158))));
     let bt_3_xx = bt_4_xx + (p[2].mass + p[2].added_mass * (trig[2][0] * trig[2][0]));
-    let bt_3_xz = bt_4_xz - p[2].added_mass * (trig[2][0] * trig[2][1]);
+    let bt_3_xz = bt_4_xz - t3144;
     let bt_3_zz = bt_4_zz + t3148;
+    let t3204 = p[1].centroid[0] * p[1].added_mass;
     let t3210 = p[1].centroid[0] * p[1].centroid[0];
+    let t3218 = d_3_x * bt_3_xx - t452 * bt_3_xz;
     let t3222 = d_3_x * bt_3_xz - t452 * bt_3_zz;
-    let sm_2_z = t3222
-        + (sm_3_z
-            + (-(p[1].mass * t449) - trig[1][1] * (p[1].centroid[0] * p[1].added_mass)));
+    let sm_2_x = t3218 + (sm_3_x + (p[1].mass * e_2_x + trig[1][0] * t3204));
+    let sm_2_z = t3222 + (sm_3_z + (-(p[1].mass * t449) - trig[1][1] * t3204));
     let t3230 = d_3_x * sm_3_x - t452 * sm_3_z;
-    let j_2 = d_3_x * (d_3_x * bt_3_xx - t452 * bt_3_xz) - t452 * t3222
+    let j_2 = d_3_x * t3218 - t452 * t3222
         + (t3230 + t3230
             + (j_3 + (p[1].inertia + (p[1].mass * t3210 + p[1].added_mass * t3210))));
     let o_4_x = d_3_x + d_4_x;
@@ -2318,54 +2369,153 @@ pub fn assemble(
     let o_49_z = o_48_z - t728;
     let o_50_x = d_50_x + o_49_x;
     let o_50_z = o_49_z - t734;
+    let a_w_0 = -sm_2_x;
     let k_3 = j_3 + t3230;
+    let a_w_1 = -sm_3_x;
     let k_4 = j_4 + (sm_4_x * o_4_x + sm_4_z * o_4_z);
+    let a_w_2 = -sm_4_x;
     let k_5 = j_5 + (sm_5_x * o_5_x + sm_5_z * o_5_z);
+    let a_w_3 = -sm_5_x;
     let k_6 = j_6 + (sm_6_x * o_6_x + sm_6_z * o_6_z);
+    let a_w_4 = -sm_6_x;
     let k_7 = j_7 + (sm_7_x * o_7_x + sm_7_z * o_7_z);
+    let a_w_5 = -sm_7_x;
     let k_8 = j_8 + (sm_8_x * o_8_x + sm_8_z * o_8_z);
+    let a_w_6 = -sm_8_x;
     let k_9 = j_9 + (sm_9_x * o_9_x + sm_9_z * o_9_z);
+    let a_w_7 = -sm_9_x;
     let k_10 = j_10 + (sm_10_x * o_10_x + sm_10_z * o_10_z);
+    let a_w_8 = -sm_10_x;
     let k_11 = j_11 + (sm_11_x * o_11_x + sm_11_z * o_11_z);
+    let a_w_9 = -sm_11_x;
     let k_12 = j_12 + (sm_12_x * o_12_x + sm_12_z * o_12_z);
+    let a_w_10 = -sm_12_x;
     let k_13 = j_13 + (sm_13_x * o_13_x + sm_13_z * o_13_z);
+    let a_w_11 = -sm_13_x;
     let k_14 = j_14 + (sm_14_x * o_14_x + sm_14_z * o_14_z);
+    let a_w_12 = -sm_14_x;
     let k_15 = j_15 + (sm_15_x * o_15_x + sm_15_z * o_15_z);
+    let a_w_13 = -sm_15_x;
     let k_16 = j_16 + (sm_16_x * o_16_x + sm_16_z * o_16_z);
+    let a_w_14 = -sm_16_x;
     let k_17 = j_17 + (sm_17_x * o_17_x + sm_17_z * o_17_z);
+    let a_w_15 = -sm_17_x;
     let k_18 = j_18 + (sm_18_x * o_18_x + sm_18_z * o_18_z);
+    let a_w_16 = -sm_18_x;
     let k_19 = j_19 + (sm_19_x * o_19_x + sm_19_z * o_19_z);
+    let a_w_17 = -sm_19_x;
     let k_20 = j_20 + (sm_20_x * o_20_x + sm_20_z * o_20_z);
+    let a_w_18 = -sm_20_x;
     let k_21 = j_21 + (sm_21_x * o_21_x + sm_21_z * o_21_z);
+    let a_w_19 = -sm_21_x;
     let k_22 = j_22 + (sm_22_x * o_22_x + sm_22_z * o_22_z);
+    let a_w_20 = -sm_22_x;
     let k_23 = j_23 + (sm_23_x * o_23_x + sm_23_z * o_23_z);
+    let a_w_21 = -sm_23_x;
     let k_24 = j_24 + (sm_24_x * o_24_x + sm_24_z * o_24_z);
+    let a_w_22 = -sm_24_x;
     let k_25 = j_25 + (sm_25_x * o_25_x + sm_25_z * o_25_z);
+    let a_w_23 = -sm_25_x;
     let k_26 = j_26 + (sm_26_x * o_26_x + sm_26_z * o_26_z);
+    let a_w_24 = -sm_26_x;
     let k_27 = j_27 + (sm_27_x * o_27_x + sm_27_z * o_27_z);
+    let a_w_25 = -sm_27_x;
     let k_28 = j_28 + (sm_28_x * o_28_x + sm_28_z * o_28_z);
+    let a_w_26 = -sm_28_x;
     let k_29 = j_29 + (sm_29_x * o_29_x + sm_29_z * o_29_z);
+    let a_w_27 = -sm_29_x;
     let k_30 = j_30 + (sm_30_x * o_30_x + sm_30_z * o_30_z);
+    let a_w_28 = -sm_30_x;
     let k_31 = j_31 + (sm_31_x * o_31_x + sm_31_z * o_31_z);
+    let a_w_29 = -sm_31_x;
     let k_32 = j_32 + (sm_32_x * o_32_x + sm_32_z * o_32_z);
+    let a_w_30 = -sm_32_x;
     let k_33 = j_33 + (sm_33_x * o_33_x + sm_33_z * o_33_z);
+    let a_w_31 = -sm_33_x;
     let k_34 = j_34 + (sm_34_x * o_34_x + sm_34_z * o_34_z);
+    let a_w_32 = -sm_34_x;
     let k_35 = j_35 + (sm_35_x * o_35_x + sm_35_z * o_35_z);
+    let a_w_33 = -sm_35_x;
     let k_36 = j_36 + (sm_36_x * o_36_x + sm_36_z * o_36_z);
+    let a_w_34 = -sm_36_x;
     let k_37 = j_37 + (sm_37_x * o_37_x + sm_37_z * o_37_z);
+    let a_w_35 = -sm_37_x;
     let k_38 = j_38 + (sm_38_x * o_38_x + sm_38_z * o_38_z);
+    let a_w_36 = -sm_38_x;
     let k_39 = j_39 + (sm_39_x * o_39_x + sm_39_z * o_39_z);
+    let a_w_37 = -sm_39_x;
     let k_40 = j_40 + (sm_40_x * o_40_x + sm_40_z * o_40_z);
+    let a_w_38 = -sm_40_x;
     let k_41 = j_41 + (sm_41_x * o_41_x + sm_41_z * o_41_z);
+    let a_w_39 = -sm_41_x;
     let k_42 = j_42 + (sm_42_x * o_42_x + sm_42_z * o_42_z);
+    let a_w_40 = -sm_42_x;
     let k_43 = j_43 + (sm_43_x * o_43_x + sm_43_z * o_43_z);
+    let a_w_41 = -sm_43_x;
     let k_44 = j_44 + (sm_44_x * o_44_x + sm_44_z * o_44_z);
+    let a_w_42 = -sm_44_x;
     let k_45 = j_45 + (sm_45_x * o_45_x + sm_45_z * o_45_z);
+    let a_w_43 = -sm_45_x;
     let k_46 = j_46 + (sm_46_x * o_46_x + sm_46_z * o_46_z);
+    let a_w_44 = -sm_46_x;
     let k_47 = j_47 + (sm_47_x * o_47_x + sm_47_z * o_47_z);
+    let a_w_45 = -sm_47_x;
     let k_48 = j_48 + (sm_48_x * o_48_x + sm_48_z * o_48_z);
+    let a_w_46 = -sm_48_x;
     let k_49 = j_49 + (sm_49_x * o_49_x + sm_49_z * o_49_z);
+    let a_w_47 = -sm_49_x;
     let k_50 = j_50 + (sm_50_x * o_50_x + sm_50_z * o_50_z);
+    let a_w_48 = -sm_50_x;
+    let a_w_49 = t760
+        + (t804
+            + (t856
+                + (t908
+                    + (t960
+                        + (t1012
+                            + (t1064
+                                + (t1116
+                                    + (t1168
+                                        + (t1220
+                                            + (t1272
+                                                + (t1324
+                                                    + (t1376
+                                                        + (t1428
+                                                            + (t1480
+                                                                + (t1532
+                                                                    + (t1584
+                                                                        + (t1636
+                                                                            + (t1688
+                                                                                + (t1740
+                                                                                    + (t1792
+                                                                                        + (t1844
+                                                                                            + (t1896
+                                                                                                + (t1948
+                                                                                                    + (t2000
+                                                                                                        + (t2052
+                                                                                                            + (t2104
+                                                                                                                + (t2156
+                                                                                                                    + (t2208
+                                                                                                                        + (t2260
+                                                                                                                            + (t2312
+                                                                                                                                + (t2364
+                                                                                                                                    + (t2416
+                                                                                                                                        + (t2468
+                                                                                                                                            + (t2520
+                                                                                                                                                + (t2572
+                                                                                                                                                    + (t2624
+                                                                                                                                                        + (t2676
+                                                                                                                                                            + (t2728
+                                                                                                                                                                + (t2780
+                                                                                                                                                                    + (t2832
+                                                                                                                                                                        + (t2884
+                                                                                                                                                                            + (t2936
+                                                                                                                                                                                + (t2988
+                                                                                                                                                                                    + (t3040
+                                                                                                                                                                                        + (t3092
+                                                                                                                                                                                            + (t3144
+                                                                                                                                                                                                + p[1].added_mass
+                                                                                                                                                                                                    * (trig[1][0]
+                                                                                                                                                                                                        * trig[1][1])))))))))))))))))))))))))))))))))))))))))))))));
     let a_49_49 = p[49].mass
         + (t764
             + (t808
@@ -2419,391 +2569,391 @@ pub fn assemble(
                                                                                                                                                                                                             + p[1].added_mass
                                                                                                                                                                                                                 * (trig[1][1]
                                                                                                                                                                                                                     * trig[1][1]))))))))))))))))))))))))))))))))))))))))))))))))));
-    let t3574 = u[0] * u[0];
-    let t3575 = e_2_x * t3574;
-    let ac_2_z = t449 * t3574;
-    let t3580 = t452 * t3574;
-    let t3582 = -(d_3_x * t3574);
-    let t3583 = w_3 * w_3;
-    let ac_3_x = t3582 - e_3_x * t3583;
-    let ac_3_z = t3580 + t455 * t3583;
-    let t3592 = t3582 - d_4_x * t3583;
-    let t3593 = t3580 + t458 * t3583;
-    let t3594 = w_4 * w_4;
-    let ac_4_x = t3592 - e_4_x * t3594;
-    let ac_4_z = t3593 + t461 * t3594;
-    let t3603 = t3592 - d_5_x * t3594;
-    let t3604 = t3593 + t464 * t3594;
-    let t3605 = w_5 * w_5;
-    let ac_5_x = t3603 - e_5_x * t3605;
-    let ac_5_z = t3604 + t467 * t3605;
-    let t3614 = t3603 - d_6_x * t3605;
-    let t3615 = t3604 + t470 * t3605;
-    let t3616 = w_6 * w_6;
-    let ac_6_x = t3614 - e_6_x * t3616;
-    let ac_6_z = t3615 + t473 * t3616;
-    let t3625 = t3614 - d_7_x * t3616;
-    let t3626 = t3615 + t476 * t3616;
-    let t3627 = w_7 * w_7;
-    let ac_7_x = t3625 - e_7_x * t3627;
-    let ac_7_z = t3626 + t479 * t3627;
-    let t3636 = t3625 - d_8_x * t3627;
-    let t3637 = t3626 + t482 * t3627;
-    let t3638 = w_8 * w_8;
-    let ac_8_x = t3636 - e_8_x * t3638;
-    let ac_8_z = t3637 + t485 * t3638;
-    let t3647 = t3636 - d_9_x * t3638;
-    let t3648 = t3637 + t488 * t3638;
-    let t3649 = w_9 * w_9;
-    let ac_9_x = t3647 - e_9_x * t3649;
-    let ac_9_z = t3648 + t491 * t3649;
-    let t3658 = t3647 - d_10_x * t3649;
-    let t3659 = t3648 + t494 * t3649;
-    let t3660 = w_10 * w_10;
-    let ac_10_x = t3658 - e_10_x * t3660;
-    let ac_10_z = t3659 + t497 * t3660;
-    let t3669 = t3658 - d_11_x * t3660;
-    let t3670 = t3659 + t500 * t3660;
-    let t3671 = w_11 * w_11;
-    let ac_11_x = t3669 - e_11_x * t3671;
-    let ac_11_z = t3670 + t503 * t3671;
-    let t3680 = t3669 - d_12_x * t3671;
-    let t3681 = t3670 + t506 * t3671;
-    let t3682 = w_12 * w_12;
-    let ac_12_x = t3680 - e_12_x * t3682;
-    let ac_12_z = t3681 + t509 * t3682;
-    let t3691 = t3680 - d_13_x * t3682;
-    let t3692 = t3681 + t512 * t3682;
-    let t3693 = w_13 * w_13;
-    let ac_13_x = t3691 - e_13_x * t3693;
-    let ac_13_z = t3692 + t515 * t3693;
-    let t3702 = t3691 - d_14_x * t3693;
-    let t3703 = t3692 + t518 * t3693;
-    let t3704 = w_14 * w_14;
-    let ac_14_x = t3702 - e_14_x * t3704;
-    let ac_14_z = t3703 + t521 * t3704;
-    let t3713 = t3702 - d_15_x * t3704;
-    let t3714 = t3703 + t524 * t3704;
-    let t3715 = w_15 * w_15;
-    let ac_15_x = t3713 - e_15_x * t3715;
-    let ac_15_z = t3714 + t527 * t3715;
-    let t3724 = t3713 - d_16_x * t3715;
-    let t3725 = t3714 + t530 * t3715;
-    let t3726 = w_16 * w_16;
-    let ac_16_x = t3724 - e_16_x * t3726;
-    let ac_16_z = t3725 + t533 * t3726;
-    let t3735 = t3724 - d_17_x * t3726;
-    let t3736 = t3725 + t536 * t3726;
-    let t3737 = w_17 * w_17;
-    let ac_17_x = t3735 - e_17_x * t3737;
-    let ac_17_z = t3736 + t539 * t3737;
-    let t3746 = t3735 - d_18_x * t3737;
-    let t3747 = t3736 + t542 * t3737;
-    let t3748 = w_18 * w_18;
-    let ac_18_x = t3746 - e_18_x * t3748;
-    let ac_18_z = t3747 + t545 * t3748;
-    let t3757 = t3746 - d_19_x * t3748;
-    let t3758 = t3747 + t548 * t3748;
-    let t3759 = w_19 * w_19;
-    let ac_19_x = t3757 - e_19_x * t3759;
-    let ac_19_z = t3758 + t551 * t3759;
-    let t3768 = t3757 - d_20_x * t3759;
-    let t3769 = t3758 + t554 * t3759;
-    let t3770 = w_20 * w_20;
-    let ac_20_x = t3768 - e_20_x * t3770;
-    let ac_20_z = t3769 + t557 * t3770;
-    let t3779 = t3768 - d_21_x * t3770;
-    let t3780 = t3769 + t560 * t3770;
-    let t3781 = w_21 * w_21;
-    let ac_21_x = t3779 - e_21_x * t3781;
-    let ac_21_z = t3780 + t563 * t3781;
-    let t3790 = t3779 - d_22_x * t3781;
-    let t3791 = t3780 + t566 * t3781;
-    let t3792 = w_22 * w_22;
-    let ac_22_x = t3790 - e_22_x * t3792;
-    let ac_22_z = t3791 + t569 * t3792;
-    let t3801 = t3790 - d_23_x * t3792;
-    let t3802 = t3791 + t572 * t3792;
-    let t3803 = w_23 * w_23;
-    let ac_23_x = t3801 - e_23_x * t3803;
-    let ac_23_z = t3802 + t575 * t3803;
-    let t3812 = t3801 - d_24_x * t3803;
-    let t3813 = t3802 + t578 * t3803;
-    let t3814 = w_24 * w_24;
-    let ac_24_x = t3812 - e_24_x * t3814;
-    let ac_24_z = t3813 + t581 * t3814;
-    let t3823 = t3812 - d_25_x * t3814;
-    let t3824 = t3813 + t584 * t3814;
-    let t3825 = w_25 * w_25;
-    let ac_25_x = t3823 - e_25_x * t3825;
-    let ac_25_z = t3824 + t587 * t3825;
-    let t3834 = t3823 - d_26_x * t3825;
-    let t3835 = t3824 + t590 * t3825;
-    let t3836 = w_26 * w_26;
-    let ac_26_x = t3834 - e_26_x * t3836;
-    let ac_26_z = t3835 + t593 * t3836;
-    let t3845 = t3834 - d_27_x * t3836;
-    let t3846 = t3835 + t596 * t3836;
-    let t3847 = w_27 * w_27;
-    let ac_27_x = t3845 - e_27_x * t3847;
-    let ac_27_z = t3846 + t599 * t3847;
-    let t3856 = t3845 - d_28_x * t3847;
-    let t3857 = t3846 + t602 * t3847;
-    let t3858 = w_28 * w_28;
-    let ac_28_x = t3856 - e_28_x * t3858;
-    let ac_28_z = t3857 + t605 * t3858;
-    let t3867 = t3856 - d_29_x * t3858;
-    let t3868 = t3857 + t608 * t3858;
-    let t3869 = w_29 * w_29;
-    let ac_29_x = t3867 - e_29_x * t3869;
-    let ac_29_z = t3868 + t611 * t3869;
-    let t3878 = t3867 - d_30_x * t3869;
-    let t3879 = t3868 + t614 * t3869;
-    let t3880 = w_30 * w_30;
-    let ac_30_x = t3878 - e_30_x * t3880;
-    let ac_30_z = t3879 + t617 * t3880;
-    let t3889 = t3878 - d_31_x * t3880;
-    let t3890 = t3879 + t620 * t3880;
-    let t3891 = w_31 * w_31;
-    let ac_31_x = t3889 - e_31_x * t3891;
-    let ac_31_z = t3890 + t623 * t3891;
-    let t3900 = t3889 - d_32_x * t3891;
-    let t3901 = t3890 + t626 * t3891;
-    let t3902 = w_32 * w_32;
-    let ac_32_x = t3900 - e_32_x * t3902;
-    let ac_32_z = t3901 + t629 * t3902;
-    let t3911 = t3900 - d_33_x * t3902;
-    let t3912 = t3901 + t632 * t3902;
-    let t3913 = w_33 * w_33;
-    let ac_33_x = t3911 - e_33_x * t3913;
-    let ac_33_z = t3912 + t635 * t3913;
-    let t3922 = t3911 - d_34_x * t3913;
-    let t3923 = t3912 + t638 * t3913;
-    let t3924 = w_34 * w_34;
-    let ac_34_x = t3922 - e_34_x * t3924;
-    let ac_34_z = t3923 + t641 * t3924;
-    let t3933 = t3922 - d_35_x * t3924;
-    let t3934 = t3923 + t644 * t3924;
-    let t3935 = w_35 * w_35;
-    let ac_35_x = t3933 - e_35_x * t3935;
-    let ac_35_z = t3934 + t647 * t3935;
-    let t3944 = t3933 - d_36_x * t3935;
-    let t3945 = t3934 + t650 * t3935;
-    let t3946 = w_36 * w_36;
-    let ac_36_x = t3944 - e_36_x * t3946;
-    let ac_36_z = t3945 + t653 * t3946;
-    let t3955 = t3944 - d_37_x * t3946;
-    let t3956 = t3945 + t656 * t3946;
-    let t3957 = w_37 * w_37;
-    let ac_37_x = t3955 - e_37_x * t3957;
-    let ac_37_z = t3956 + t659 * t3957;
-    let t3966 = t3955 - d_38_x * t3957;
-    let t3967 = t3956 + t662 * t3957;
-    let t3968 = w_38 * w_38;
-    let ac_38_x = t3966 - e_38_x * t3968;
-    let ac_38_z = t3967 + t665 * t3968;
-    let t3977 = t3966 - d_39_x * t3968;
-    let t3978 = t3967 + t668 * t3968;
-    let t3979 = w_39 * w_39;
-    let ac_39_x = t3977 - e_39_x * t3979;
-    let ac_39_z = t3978 + t671 * t3979;
-    let t3988 = t3977 - d_40_x * t3979;
-    let t3989 = t3978 + t674 * t3979;
-    let t3990 = w_40 * w_40;
-    let ac_40_x = t3988 - e_40_x * t3990;
-    let ac_40_z = t3989 + t677 * t3990;
-    let t3999 = t3988 - d_41_x * t3990;
-    let t4000 = t3989 + t680 * t3990;
-    let t4001 = w_41 * w_41;
-    let ac_41_x = t3999 - e_41_x * t4001;
-    let ac_41_z = t4000 + t683 * t4001;
-    let t4010 = t3999 - d_42_x * t4001;
-    let t4011 = t4000 + t686 * t4001;
-    let t4012 = w_42 * w_42;
-    let ac_42_x = t4010 - e_42_x * t4012;
-    let ac_42_z = t4011 + t689 * t4012;
-    let t4021 = t4010 - d_43_x * t4012;
-    let t4022 = t4011 + t692 * t4012;
-    let t4023 = w_43 * w_43;
-    let ac_43_x = t4021 - e_43_x * t4023;
-    let ac_43_z = t4022 + t695 * t4023;
-    let t4032 = t4021 - d_44_x * t4023;
-    let t4033 = t4022 + t698 * t4023;
-    let t4034 = w_44 * w_44;
-    let ac_44_x = t4032 - e_44_x * t4034;
-    let ac_44_z = t4033 + t701 * t4034;
-    let t4043 = t4032 - d_45_x * t4034;
-    let t4044 = t4033 + t704 * t4034;
-    let t4045 = w_45 * w_45;
-    let ac_45_x = t4043 - e_45_x * t4045;
-    let ac_45_z = t4044 + t707 * t4045;
-    let t4054 = t4043 - d_46_x * t4045;
-    let t4055 = t4044 + t710 * t4045;
-    let t4056 = w_46 * w_46;
-    let ac_46_x = t4054 - e_46_x * t4056;
-    let ac_46_z = t4055 + t713 * t4056;
-    let t4065 = t4054 - d_47_x * t4056;
-    let t4066 = t4055 + t716 * t4056;
-    let t4067 = w_47 * w_47;
-    let ac_47_x = t4065 - e_47_x * t4067;
-    let ac_47_z = t4066 + t719 * t4067;
-    let t4076 = t4065 - d_48_x * t4067;
-    let t4077 = t4066 + t722 * t4067;
-    let t4078 = w_48 * w_48;
-    let ac_48_x = t4076 - e_48_x * t4078;
-    let ac_48_z = t4077 + t725 * t4078;
-    let t4087 = t4076 - d_49_x * t4078;
-    let t4088 = t4077 + t728 * t4078;
-    let t4089 = w_49 * w_49;
-    let ac_49_x = t4087 - e_49_x * t4089;
-    let ac_49_z = t4088 + t731 * t4089;
-    let t4100 = w_50 * w_50;
-    let ac_50_x = t4087 - d_50_x * t4089 - e_50_x * t4100;
-    let ac_50_z = t4088 + t734 * t4089 - e_50_z * t4100;
-    let t4118 = p[1].added_mass * (trig[1][0] * ac_2_z - trig[1][1] * t3575);
-    let fe_2_x = loads[1][0] - (trig[1][1] * t4118 - p[1].mass * t3575);
-    let fe_2_z = loads[1][1] - (p[1].mass * ac_2_z + trig[1][0] * t4118);
-    let t4133 = p[2].added_mass * (trig[2][1] * ac_3_x + trig[2][0] * ac_3_z);
-    let fe_3_x = loads[2][0] - (p[2].mass * ac_3_x + trig[2][1] * t4133);
-    let fe_3_z = loads[2][1] - (p[2].mass * ac_3_z + trig[2][0] * t4133);
-    let t4148 = p[3].added_mass * (trig[3][1] * ac_4_x + trig[3][0] * ac_4_z);
-    let fe_4_x = loads[3][0] - (p[3].mass * ac_4_x + trig[3][1] * t4148);
-    let fe_4_z = loads[3][1] - (p[3].mass * ac_4_z + trig[3][0] * t4148);
-    let t4163 = p[4].added_mass * (trig[4][1] * ac_5_x + trig[4][0] * ac_5_z);
-    let fe_5_x = loads[4][0] - (p[4].mass * ac_5_x + trig[4][1] * t4163);
-    let fe_5_z = loads[4][1] - (p[4].mass * ac_5_z + trig[4][0] * t4163);
-    let t4178 = p[5].added_mass * (trig[5][1] * ac_6_x + trig[5][0] * ac_6_z);
-    let fe_6_x = loads[5][0] - (p[5].mass * ac_6_x + trig[5][1] * t4178);
-    let fe_6_z = loads[5][1] - (p[5].mass * ac_6_z + trig[5][0] * t4178);
-    let t4193 = p[6].added_mass * (trig[6][1] * ac_7_x + trig[6][0] * ac_7_z);
-    let fe_7_x = loads[6][0] - (p[6].mass * ac_7_x + trig[6][1] * t4193);
-    let fe_7_z = loads[6][1] - (p[6].mass * ac_7_z + trig[6][0] * t4193);
-    let t4208 = p[7].added_mass * (trig[7][1] * ac_8_x + trig[7][0] * ac_8_z);
-    let fe_8_x = loads[7][0] - (p[7].mass * ac_8_x + trig[7][1] * t4208);
-    let fe_8_z = loads[7][1] - (p[7].mass * ac_8_z + trig[7][0] * t4208);
-    let t4223 = p[8].added_mass * (trig[8][1] * ac_9_x + trig[8][0] * ac_9_z);
-    let fe_9_x = loads[8][0] - (p[8].mass * ac_9_x + trig[8][1] * t4223);
-    let fe_9_z = loads[8][1] - (p[8].mass * ac_9_z + trig[8][0] * t4223);
-    let t4238 = p[9].added_mass * (trig[9][1] * ac_10_x + trig[9][0] * ac_10_z);
-    let fe_10_x = loads[9][0] - (p[9].mass * ac_10_x + trig[9][1] * t4238);
-    let fe_10_z = loads[9][1] - (p[9].mass * ac_10_z + trig[9][0] * t4238);
-    let t4253 = p[10].added_mass * (trig[10][1] * ac_11_x + trig[10][0] * ac_11_z);
-    let fe_11_x = loads[10][0] - (p[10].mass * ac_11_x + trig[10][1] * t4253);
-    let fe_11_z = loads[10][1] - (p[10].mass * ac_11_z + trig[10][0] * t4253);
-    let t4268 = p[11].added_mass * (trig[11][1] * ac_12_x + trig[11][0] * ac_12_z);
-    let fe_12_x = loads[11][0] - (p[11].mass * ac_12_x + trig[11][1] * t4268);
-    let fe_12_z = loads[11][1] - (p[11].mass * ac_12_z + trig[11][0] * t4268);
-    let t4283 = p[12].added_mass * (trig[12][1] * ac_13_x + trig[12][0] * ac_13_z);
-    let fe_13_x = loads[12][0] - (p[12].mass * ac_13_x + trig[12][1] * t4283);
-    let fe_13_z = loads[12][1] - (p[12].mass * ac_13_z + trig[12][0] * t4283);
-    let t4298 = p[13].added_mass * (trig[13][1] * ac_14_x + trig[13][0] * ac_14_z);
-    let fe_14_x = loads[13][0] - (p[13].mass * ac_14_x + trig[13][1] * t4298);
-    let fe_14_z = loads[13][1] - (p[13].mass * ac_14_z + trig[13][0] * t4298);
-    let t4313 = p[14].added_mass * (trig[14][1] * ac_15_x + trig[14][0] * ac_15_z);
-    let fe_15_x = loads[14][0] - (p[14].mass * ac_15_x + trig[14][1] * t4313);
-    let fe_15_z = loads[14][1] - (p[14].mass * ac_15_z + trig[14][0] * t4313);
-    let t4328 = p[15].added_mass * (trig[15][1] * ac_16_x + trig[15][0] * ac_16_z);
-    let fe_16_x = loads[15][0] - (p[15].mass * ac_16_x + trig[15][1] * t4328);
-    let fe_16_z = loads[15][1] - (p[15].mass * ac_16_z + trig[15][0] * t4328);
-    let t4343 = p[16].added_mass * (trig[16][1] * ac_17_x + trig[16][0] * ac_17_z);
-    let fe_17_x = loads[16][0] - (p[16].mass * ac_17_x + trig[16][1] * t4343);
-    let fe_17_z = loads[16][1] - (p[16].mass * ac_17_z + trig[16][0] * t4343);
-    let t4358 = p[17].added_mass * (trig[17][1] * ac_18_x + trig[17][0] * ac_18_z);
-    let fe_18_x = loads[17][0] - (p[17].mass * ac_18_x + trig[17][1] * t4358);
-    let fe_18_z = loads[17][1] - (p[17].mass * ac_18_z + trig[17][0] * t4358);
-    let t4373 = p[18].added_mass * (trig[18][1] * ac_19_x + trig[18][0] * ac_19_z);
-    let fe_19_x = loads[18][0] - (p[18].mass * ac_19_x + trig[18][1] * t4373);
-    let fe_19_z = loads[18][1] - (p[18].mass * ac_19_z + trig[18][0] * t4373);
-    let t4388 = p[19].added_mass * (trig[19][1] * ac_20_x + trig[19][0] * ac_20_z);
-    let fe_20_x = loads[19][0] - (p[19].mass * ac_20_x + trig[19][1] * t4388);
-    let fe_20_z = loads[19][1] - (p[19].mass * ac_20_z + trig[19][0] * t4388);
-    let t4403 = p[20].added_mass * (trig[20][1] * ac_21_x + trig[20][0] * ac_21_z);
-    let fe_21_x = loads[20][0] - (p[20].mass * ac_21_x + trig[20][1] * t4403);
-    let fe_21_z = loads[20][1] - (p[20].mass * ac_21_z + trig[20][0] * t4403);
-    let t4418 = p[21].added_mass * (trig[21][1] * ac_22_x + trig[21][0] * ac_22_z);
-    let fe_22_x = loads[21][0] - (p[21].mass * ac_22_x + trig[21][1] * t4418);
-    let fe_22_z = loads[21][1] - (p[21].mass * ac_22_z + trig[21][0] * t4418);
-    let t4433 = p[22].added_mass * (trig[22][1] * ac_23_x + trig[22][0] * ac_23_z);
-    let fe_23_x = loads[22][0] - (p[22].mass * ac_23_x + trig[22][1] * t4433);
-    let fe_23_z = loads[22][1] - (p[22].mass * ac_23_z + trig[22][0] * t4433);
-    let t4448 = p[23].added_mass * (trig[23][1] * ac_24_x + trig[23][0] * ac_24_z);
-    let fe_24_x = loads[23][0] - (p[23].mass * ac_24_x + trig[23][1] * t4448);
-    let fe_24_z = loads[23][1] - (p[23].mass * ac_24_z + trig[23][0] * t4448);
-    let t4463 = p[24].added_mass * (trig[24][1] * ac_25_x + trig[24][0] * ac_25_z);
-    let fe_25_x = loads[24][0] - (p[24].mass * ac_25_x + trig[24][1] * t4463);
-    let fe_25_z = loads[24][1] - (p[24].mass * ac_25_z + trig[24][0] * t4463);
-    let t4478 = p[25].added_mass * (trig[25][1] * ac_26_x + trig[25][0] * ac_26_z);
-    let fe_26_x = loads[25][0] - (p[25].mass * ac_26_x + trig[25][1] * t4478);
-    let fe_26_z = loads[25][1] - (p[25].mass * ac_26_z + trig[25][0] * t4478);
-    let t4493 = p[26].added_mass * (trig[26][1] * ac_27_x + trig[26][0] * ac_27_z);
-    let fe_27_x = loads[26][0] - (p[26].mass * ac_27_x + trig[26][1] * t4493);
-    let fe_27_z = loads[26][1] - (p[26].mass * ac_27_z + trig[26][0] * t4493);
-    let t4508 = p[27].added_mass * (trig[27][1] * ac_28_x + trig[27][0] * ac_28_z);
-    let fe_28_x = loads[27][0] - (p[27].mass * ac_28_x + trig[27][1] * t4508);
-    let fe_28_z = loads[27][1] - (p[27].mass * ac_28_z + trig[27][0] * t4508);
-    let t4523 = p[28].added_mass * (trig[28][1] * ac_29_x + trig[28][0] * ac_29_z);
-    let fe_29_x = loads[28][0] - (p[28].mass * ac_29_x + trig[28][1] * t4523);
-    let fe_29_z = loads[28][1] - (p[28].mass * ac_29_z + trig[28][0] * t4523);
-    let t4538 = p[29].added_mass * (trig[29][1] * ac_30_x + trig[29][0] * ac_30_z);
-    let fe_30_x = loads[29][0] - (p[29].mass * ac_30_x + trig[29][1] * t4538);
-    let fe_30_z = loads[29][1] - (p[29].mass * ac_30_z + trig[29][0] * t4538);
-    let t4553 = p[30].added_mass * (trig[30][1] * ac_31_x + trig[30][0] * ac_31_z);
-    let fe_31_x = loads[30][0] - (p[30].mass * ac_31_x + trig[30][1] * t4553);
-    let fe_31_z = loads[30][1] - (p[30].mass * ac_31_z + trig[30][0] * t4553);
-    let t4568 = p[31].added_mass * (trig[31][1] * ac_32_x + trig[31][0] * ac_32_z);
-    let fe_32_x = loads[31][0] - (p[31].mass * ac_32_x + trig[31][1] * t4568);
-    let fe_32_z = loads[31][1] - (p[31].mass * ac_32_z + trig[31][0] * t4568);
-    let t4583 = p[32].added_mass * (trig[32][1] * ac_33_x + trig[32][0] * ac_33_z);
-    let fe_33_x = loads[32][0] - (p[32].mass * ac_33_x + trig[32][1] * t4583);
-    let fe_33_z = loads[32][1] - (p[32].mass * ac_33_z + trig[32][0] * t4583);
-    let t4598 = p[33].added_mass * (trig[33][1] * ac_34_x + trig[33][0] * ac_34_z);
-    let fe_34_x = loads[33][0] - (p[33].mass * ac_34_x + trig[33][1] * t4598);
-    let fe_34_z = loads[33][1] - (p[33].mass * ac_34_z + trig[33][0] * t4598);
-    let t4613 = p[34].added_mass * (trig[34][1] * ac_35_x + trig[34][0] * ac_35_z);
-    let fe_35_x = loads[34][0] - (p[34].mass * ac_35_x + trig[34][1] * t4613);
-    let fe_35_z = loads[34][1] - (p[34].mass * ac_35_z + trig[34][0] * t4613);
-    let t4628 = p[35].added_mass * (trig[35][1] * ac_36_x + trig[35][0] * ac_36_z);
-    let fe_36_x = loads[35][0] - (p[35].mass * ac_36_x + trig[35][1] * t4628);
-    let fe_36_z = loads[35][1] - (p[35].mass * ac_36_z + trig[35][0] * t4628);
-    let t4643 = p[36].added_mass * (trig[36][1] * ac_37_x + trig[36][0] * ac_37_z);
-    let fe_37_x = loads[36][0] - (p[36].mass * ac_37_x + trig[36][1] * t4643);
-    let fe_37_z = loads[36][1] - (p[36].mass * ac_37_z + trig[36][0] * t4643);
-    let t4658 = p[37].added_mass * (trig[37][1] * ac_38_x + trig[37][0] * ac_38_z);
-    let fe_38_x = loads[37][0] - (p[37].mass * ac_38_x + trig[37][1] * t4658);
-    let fe_38_z = loads[37][1] - (p[37].mass * ac_38_z + trig[37][0] * t4658);
-    let t4673 = p[38].added_mass * (trig[38][1] * ac_39_x + trig[38][0] * ac_39_z);
-    let fe_39_x = loads[38][0] - (p[38].mass * ac_39_x + trig[38][1] * t4673);
-    let fe_39_z = loads[38][1] - (p[38].mass * ac_39_z + trig[38][0] * t4673);
-    let t4688 = p[39].added_mass * (trig[39][1] * ac_40_x + trig[39][0] * ac_40_z);
-    let fe_40_x = loads[39][0] - (p[39].mass * ac_40_x + trig[39][1] * t4688);
-    let fe_40_z = loads[39][1] - (p[39].mass * ac_40_z + trig[39][0] * t4688);
-    let t4703 = p[40].added_mass * (trig[40][1] * ac_41_x + trig[40][0] * ac_41_z);
-    let fe_41_x = loads[40][0] - (p[40].mass * ac_41_x + trig[40][1] * t4703);
-    let fe_41_z = loads[40][1] - (p[40].mass * ac_41_z + trig[40][0] * t4703);
-    let t4718 = p[41].added_mass * (trig[41][1] * ac_42_x + trig[41][0] * ac_42_z);
-    let fe_42_x = loads[41][0] - (p[41].mass * ac_42_x + trig[41][1] * t4718);
-    let fe_42_z = loads[41][1] - (p[41].mass * ac_42_z + trig[41][0] * t4718);
-    let t4733 = p[42].added_mass * (trig[42][1] * ac_43_x + trig[42][0] * ac_43_z);
-    let fe_43_x = loads[42][0] - (p[42].mass * ac_43_x + trig[42][1] * t4733);
-    let fe_43_z = loads[42][1] - (p[42].mass * ac_43_z + trig[42][0] * t4733);
-    let t4748 = p[43].added_mass * (trig[43][1] * ac_44_x + trig[43][0] * ac_44_z);
-    let fe_44_x = loads[43][0] - (p[43].mass * ac_44_x + trig[43][1] * t4748);
-    let fe_44_z = loads[43][1] - (p[43].mass * ac_44_z + trig[43][0] * t4748);
-    let t4763 = p[44].added_mass * (trig[44][1] * ac_45_x + trig[44][0] * ac_45_z);
-    let fe_45_x = loads[44][0] - (p[44].mass * ac_45_x + trig[44][1] * t4763);
-    let fe_45_z = loads[44][1] - (p[44].mass * ac_45_z + trig[44][0] * t4763);
-    let t4778 = p[45].added_mass * (trig[45][1] * ac_46_x + trig[45][0] * ac_46_z);
-    let fe_46_x = loads[45][0] - (p[45].mass * ac_46_x + trig[45][1] * t4778);
-    let fe_46_z = loads[45][1] - (p[45].mass * ac_46_z + trig[45][0] * t4778);
-    let t4793 = p[46].added_mass * (trig[46][1] * ac_47_x + trig[46][0] * ac_47_z);
-    let fe_47_x = loads[46][0] - (p[46].mass * ac_47_x + trig[46][1] * t4793);
-    let fe_47_z = loads[46][1] - (p[46].mass * ac_47_z + trig[46][0] * t4793);
-    let t4808 = p[47].added_mass * (trig[47][1] * ac_48_x + trig[47][0] * ac_48_z);
-    let fe_48_x = loads[47][0] - (p[47].mass * ac_48_x + trig[47][1] * t4808);
-    let fe_48_z = loads[47][1] - (p[47].mass * ac_48_z + trig[47][0] * t4808);
-    let t4823 = p[48].added_mass * (trig[48][1] * ac_49_x + trig[48][0] * ac_49_z);
-    let fe_49_x = loads[48][0] - (p[48].mass * ac_49_x + trig[48][1] * t4823);
-    let fe_49_z = loads[48][1] - (p[48].mass * ac_49_z + trig[48][0] * t4823);
+    let t3670 = u[0] * u[0];
+    let t3671 = e_2_x * t3670;
+    let ac_2_z = t449 * t3670;
+    let t3676 = t452 * t3670;
+    let t3678 = -(d_3_x * t3670);
+    let t3679 = w_3 * w_3;
+    let ac_3_x = t3678 - e_3_x * t3679;
+    let ac_3_z = t3676 + t455 * t3679;
+    let t3688 = t3678 - d_4_x * t3679;
+    let t3689 = t3676 + t458 * t3679;
+    let t3690 = w_4 * w_4;
+    let ac_4_x = t3688 - e_4_x * t3690;
+    let ac_4_z = t3689 + t461 * t3690;
+    let t3699 = t3688 - d_5_x * t3690;
+    let t3700 = t3689 + t464 * t3690;
+    let t3701 = w_5 * w_5;
+    let ac_5_x = t3699 - e_5_x * t3701;
+    let ac_5_z = t3700 + t467 * t3701;
+    let t3710 = t3699 - d_6_x * t3701;
+    let t3711 = t3700 + t470 * t3701;
+    let t3712 = w_6 * w_6;
+    let ac_6_x = t3710 - e_6_x * t3712;
+    let ac_6_z = t3711 + t473 * t3712;
+    let t3721 = t3710 - d_7_x * t3712;
+    let t3722 = t3711 + t476 * t3712;
+    let t3723 = w_7 * w_7;
+    let ac_7_x = t3721 - e_7_x * t3723;
+    let ac_7_z = t3722 + t479 * t3723;
+    let t3732 = t3721 - d_8_x * t3723;
+    let t3733 = t3722 + t482 * t3723;
+    let t3734 = w_8 * w_8;
+    let ac_8_x = t3732 - e_8_x * t3734;
+    let ac_8_z = t3733 + t485 * t3734;
+    let t3743 = t3732 - d_9_x * t3734;
+    let t3744 = t3733 + t488 * t3734;
+    let t3745 = w_9 * w_9;
+    let ac_9_x = t3743 - e_9_x * t3745;
+    let ac_9_z = t3744 + t491 * t3745;
+    let t3754 = t3743 - d_10_x * t3745;
+    let t3755 = t3744 + t494 * t3745;
+    let t3756 = w_10 * w_10;
+    let ac_10_x = t3754 - e_10_x * t3756;
+    let ac_10_z = t3755 + t497 * t3756;
+    let t3765 = t3754 - d_11_x * t3756;
+    let t3766 = t3755 + t500 * t3756;
+    let t3767 = w_11 * w_11;
+    let ac_11_x = t3765 - e_11_x * t3767;
+    let ac_11_z = t3766 + t503 * t3767;
+    let t3776 = t3765 - d_12_x * t3767;
+    let t3777 = t3766 + t506 * t3767;
+    let t3778 = w_12 * w_12;
+    let ac_12_x = t3776 - e_12_x * t3778;
+    let ac_12_z = t3777 + t509 * t3778;
+    let t3787 = t3776 - d_13_x * t3778;
+    let t3788 = t3777 + t512 * t3778;
+    let t3789 = w_13 * w_13;
+    let ac_13_x = t3787 - e_13_x * t3789;
+    let ac_13_z = t3788 + t515 * t3789;
+    let t3798 = t3787 - d_14_x * t3789;
+    let t3799 = t3788 + t518 * t3789;
+    let t3800 = w_14 * w_14;
+    let ac_14_x = t3798 - e_14_x * t3800;
+    let ac_14_z = t3799 + t521 * t3800;
+    let t3809 = t3798 - d_15_x * t3800;
+    let t3810 = t3799 + t524 * t3800;
+    let t3811 = w_15 * w_15;
+    let ac_15_x = t3809 - e_15_x * t3811;
+    let ac_15_z = t3810 + t527 * t3811;
+    let t3820 = t3809 - d_16_x * t3811;
+    let t3821 = t3810 + t530 * t3811;
+    let t3822 = w_16 * w_16;
+    let ac_16_x = t3820 - e_16_x * t3822;
+    let ac_16_z = t3821 + t533 * t3822;
+    let t3831 = t3820 - d_17_x * t3822;
+    let t3832 = t3821 + t536 * t3822;
+    let t3833 = w_17 * w_17;
+    let ac_17_x = t3831 - e_17_x * t3833;
+    let ac_17_z = t3832 + t539 * t3833;
+    let t3842 = t3831 - d_18_x * t3833;
+    let t3843 = t3832 + t542 * t3833;
+    let t3844 = w_18 * w_18;
+    let ac_18_x = t3842 - e_18_x * t3844;
+    let ac_18_z = t3843 + t545 * t3844;
+    let t3853 = t3842 - d_19_x * t3844;
+    let t3854 = t3843 + t548 * t3844;
+    let t3855 = w_19 * w_19;
+    let ac_19_x = t3853 - e_19_x * t3855;
+    let ac_19_z = t3854 + t551 * t3855;
+    let t3864 = t3853 - d_20_x * t3855;
+    let t3865 = t3854 + t554 * t3855;
+    let t3866 = w_20 * w_20;
+    let ac_20_x = t3864 - e_20_x * t3866;
+    let ac_20_z = t3865 + t557 * t3866;
+    let t3875 = t3864 - d_21_x * t3866;
+    let t3876 = t3865 + t560 * t3866;
+    let t3877 = w_21 * w_21;
+    let ac_21_x = t3875 - e_21_x * t3877;
+    let ac_21_z = t3876 + t563 * t3877;
+    let t3886 = t3875 - d_22_x * t3877;
+    let t3887 = t3876 + t566 * t3877;
+    let t3888 = w_22 * w_22;
+    let ac_22_x = t3886 - e_22_x * t3888;
+    let ac_22_z = t3887 + t569 * t3888;
+    let t3897 = t3886 - d_23_x * t3888;
+    let t3898 = t3887 + t572 * t3888;
+    let t3899 = w_23 * w_23;
+    let ac_23_x = t3897 - e_23_x * t3899;
+    let ac_23_z = t3898 + t575 * t3899;
+    let t3908 = t3897 - d_24_x * t3899;
+    let t3909 = t3898 + t578 * t3899;
+    let t3910 = w_24 * w_24;
+    let ac_24_x = t3908 - e_24_x * t3910;
+    let ac_24_z = t3909 + t581 * t3910;
+    let t3919 = t3908 - d_25_x * t3910;
+    let t3920 = t3909 + t584 * t3910;
+    let t3921 = w_25 * w_25;
+    let ac_25_x = t3919 - e_25_x * t3921;
+    let ac_25_z = t3920 + t587 * t3921;
+    let t3930 = t3919 - d_26_x * t3921;
+    let t3931 = t3920 + t590 * t3921;
+    let t3932 = w_26 * w_26;
+    let ac_26_x = t3930 - e_26_x * t3932;
+    let ac_26_z = t3931 + t593 * t3932;
+    let t3941 = t3930 - d_27_x * t3932;
+    let t3942 = t3931 + t596 * t3932;
+    let t3943 = w_27 * w_27;
+    let ac_27_x = t3941 - e_27_x * t3943;
+    let ac_27_z = t3942 + t599 * t3943;
+    let t3952 = t3941 - d_28_x * t3943;
+    let t3953 = t3942 + t602 * t3943;
+    let t3954 = w_28 * w_28;
+    let ac_28_x = t3952 - e_28_x * t3954;
+    let ac_28_z = t3953 + t605 * t3954;
+    let t3963 = t3952 - d_29_x * t3954;
+    let t3964 = t3953 + t608 * t3954;
+    let t3965 = w_29 * w_29;
+    let ac_29_x = t3963 - e_29_x * t3965;
+    let ac_29_z = t3964 + t611 * t3965;
+    let t3974 = t3963 - d_30_x * t3965;
+    let t3975 = t3964 + t614 * t3965;
+    let t3976 = w_30 * w_30;
+    let ac_30_x = t3974 - e_30_x * t3976;
+    let ac_30_z = t3975 + t617 * t3976;
+    let t3985 = t3974 - d_31_x * t3976;
+    let t3986 = t3975 + t620 * t3976;
+    let t3987 = w_31 * w_31;
+    let ac_31_x = t3985 - e_31_x * t3987;
+    let ac_31_z = t3986 + t623 * t3987;
+    let t3996 = t3985 - d_32_x * t3987;
+    let t3997 = t3986 + t626 * t3987;
+    let t3998 = w_32 * w_32;
+    let ac_32_x = t3996 - e_32_x * t3998;
+    let ac_32_z = t3997 + t629 * t3998;
+    let t4007 = t3996 - d_33_x * t3998;
+    let t4008 = t3997 + t632 * t3998;
+    let t4009 = w_33 * w_33;
+    let ac_33_x = t4007 - e_33_x * t4009;
+    let ac_33_z = t4008 + t635 * t4009;
+    let t4018 = t4007 - d_34_x * t4009;
+    let t4019 = t4008 + t638 * t4009;
+    let t4020 = w_34 * w_34;
+    let ac_34_x = t4018 - e_34_x * t4020;
+    let ac_34_z = t4019 + t641 * t4020;
+    let t4029 = t4018 - d_35_x * t4020;
+    let t4030 = t4019 + t644 * t4020;
+    let t4031 = w_35 * w_35;
+    let ac_35_x = t4029 - e_35_x * t4031;
+    let ac_35_z = t4030 + t647 * t4031;
+    let t4040 = t4029 - d_36_x * t4031;
+    let t4041 = t4030 + t650 * t4031;
+    let t4042 = w_36 * w_36;
+    let ac_36_x = t4040 - e_36_x * t4042;
+    let ac_36_z = t4041 + t653 * t4042;
+    let t4051 = t4040 - d_37_x * t4042;
+    let t4052 = t4041 + t656 * t4042;
+    let t4053 = w_37 * w_37;
+    let ac_37_x = t4051 - e_37_x * t4053;
+    let ac_37_z = t4052 + t659 * t4053;
+    let t4062 = t4051 - d_38_x * t4053;
+    let t4063 = t4052 + t662 * t4053;
+    let t4064 = w_38 * w_38;
+    let ac_38_x = t4062 - e_38_x * t4064;
+    let ac_38_z = t4063 + t665 * t4064;
+    let t4073 = t4062 - d_39_x * t4064;
+    let t4074 = t4063 + t668 * t4064;
+    let t4075 = w_39 * w_39;
+    let ac_39_x = t4073 - e_39_x * t4075;
+    let ac_39_z = t4074 + t671 * t4075;
+    let t4084 = t4073 - d_40_x * t4075;
+    let t4085 = t4074 + t674 * t4075;
+    let t4086 = w_40 * w_40;
+    let ac_40_x = t4084 - e_40_x * t4086;
+    let ac_40_z = t4085 + t677 * t4086;
+    let t4095 = t4084 - d_41_x * t4086;
+    let t4096 = t4085 + t680 * t4086;
+    let t4097 = w_41 * w_41;
+    let ac_41_x = t4095 - e_41_x * t4097;
+    let ac_41_z = t4096 + t683 * t4097;
+    let t4106 = t4095 - d_42_x * t4097;
+    let t4107 = t4096 + t686 * t4097;
+    let t4108 = w_42 * w_42;
+    let ac_42_x = t4106 - e_42_x * t4108;
+    let ac_42_z = t4107 + t689 * t4108;
+    let t4117 = t4106 - d_43_x * t4108;
+    let t4118 = t4107 + t692 * t4108;
+    let t4119 = w_43 * w_43;
+    let ac_43_x = t4117 - e_43_x * t4119;
+    let ac_43_z = t4118 + t695 * t4119;
+    let t4128 = t4117 - d_44_x * t4119;
+    let t4129 = t4118 + t698 * t4119;
+    let t4130 = w_44 * w_44;
+    let ac_44_x = t4128 - e_44_x * t4130;
+    let ac_44_z = t4129 + t701 * t4130;
+    let t4139 = t4128 - d_45_x * t4130;
+    let t4140 = t4129 + t704 * t4130;
+    let t4141 = w_45 * w_45;
+    let ac_45_x = t4139 - e_45_x * t4141;
+    let ac_45_z = t4140 + t707 * t4141;
+    let t4150 = t4139 - d_46_x * t4141;
+    let t4151 = t4140 + t710 * t4141;
+    let t4152 = w_46 * w_46;
+    let ac_46_x = t4150 - e_46_x * t4152;
+    let ac_46_z = t4151 + t713 * t4152;
+    let t4161 = t4150 - d_47_x * t4152;
+    let t4162 = t4151 + t716 * t4152;
+    let t4163 = w_47 * w_47;
+    let ac_47_x = t4161 - e_47_x * t4163;
+    let ac_47_z = t4162 + t719 * t4163;
+    let t4172 = t4161 - d_48_x * t4163;
+    let t4173 = t4162 + t722 * t4163;
+    let t4174 = w_48 * w_48;
+    let ac_48_x = t4172 - e_48_x * t4174;
+    let ac_48_z = t4173 + t725 * t4174;
+    let t4183 = t4172 - d_49_x * t4174;
+    let t4184 = t4173 + t728 * t4174;
+    let t4185 = w_49 * w_49;
+    let ac_49_x = t4183 - e_49_x * t4185;
+    let ac_49_z = t4184 + t731 * t4185;
+    let t4196 = w_50 * w_50;
+    let ac_50_x = t4183 - d_50_x * t4185 - e_50_x * t4196;
+    let ac_50_z = t4184 + t734 * t4185 - e_50_z * t4196;
+    let t4214 = p[1].added_mass * (trig[1][0] * ac_2_z - trig[1][1] * t3671);
+    let fe_2_x = loads[1][0] - (trig[1][1] * t4214 - p[1].mass * t3671);
+    let fe_2_z = loads[1][1] - (p[1].mass * ac_2_z + trig[1][0] * t4214);
+    let t4229 = p[2].added_mass * (trig[2][1] * ac_3_x + trig[2][0] * ac_3_z);
+    let fe_3_x = loads[2][0] - (p[2].mass * ac_3_x + trig[2][1] * t4229);
+    let fe_3_z = loads[2][1] - (p[2].mass * ac_3_z + trig[2][0] * t4229);
+    let t4244 = p[3].added_mass * (trig[3][1] * ac_4_x + trig[3][0] * ac_4_z);
+    let fe_4_x = loads[3][0] - (p[3].mass * ac_4_x + trig[3][1] * t4244);
+    let fe_4_z = loads[3][1] - (p[3].mass * ac_4_z + trig[3][0] * t4244);
+    let t4259 = p[4].added_mass * (trig[4][1] * ac_5_x + trig[4][0] * ac_5_z);
+    let fe_5_x = loads[4][0] - (p[4].mass * ac_5_x + trig[4][1] * t4259);
+    let fe_5_z = loads[4][1] - (p[4].mass * ac_5_z + trig[4][0] * t4259);
+    let t4274 = p[5].added_mass * (trig[5][1] * ac_6_x + trig[5][0] * ac_6_z);
+    let fe_6_x = loads[5][0] - (p[5].mass * ac_6_x + trig[5][1] * t4274);
+    let fe_6_z = loads[5][1] - (p[5].mass * ac_6_z + trig[5][0] * t4274);
+    let t4289 = p[6].added_mass * (trig[6][1] * ac_7_x + trig[6][0] * ac_7_z);
+    let fe_7_x = loads[6][0] - (p[6].mass * ac_7_x + trig[6][1] * t4289);
+    let fe_7_z = loads[6][1] - (p[6].mass * ac_7_z + trig[6][0] * t4289);
+    let t4304 = p[7].added_mass * (trig[7][1] * ac_8_x + trig[7][0] * ac_8_z);
+    let fe_8_x = loads[7][0] - (p[7].mass * ac_8_x + trig[7][1] * t4304);
+    let fe_8_z = loads[7][1] - (p[7].mass * ac_8_z + trig[7][0] * t4304);
+    let t4319 = p[8].added_mass * (trig[8][1] * ac_9_x + trig[8][0] * ac_9_z);
+    let fe_9_x = loads[8][0] - (p[8].mass * ac_9_x + trig[8][1] * t4319);
+    let fe_9_z = loads[8][1] - (p[8].mass * ac_9_z + trig[8][0] * t4319);
+    let t4334 = p[9].added_mass * (trig[9][1] * ac_10_x + trig[9][0] * ac_10_z);
+    let fe_10_x = loads[9][0] - (p[9].mass * ac_10_x + trig[9][1] * t4334);
+    let fe_10_z = loads[9][1] - (p[9].mass * ac_10_z + trig[9][0] * t4334);
+    let t4349 = p[10].added_mass * (trig[10][1] * ac_11_x + trig[10][0] * ac_11_z);
+    let fe_11_x = loads[10][0] - (p[10].mass * ac_11_x + trig[10][1] * t4349);
+    let fe_11_z = loads[10][1] - (p[10].mass * ac_11_z + trig[10][0] * t4349);
+    let t4364 = p[11].added_mass * (trig[11][1] * ac_12_x + trig[11][0] * ac_12_z);
+    let fe_12_x = loads[11][0] - (p[11].mass * ac_12_x + trig[11][1] * t4364);
+    let fe_12_z = loads[11][1] - (p[11].mass * ac_12_z + trig[11][0] * t4364);
+    let t4379 = p[12].added_mass * (trig[12][1] * ac_13_x + trig[12][0] * ac_13_z);
+    let fe_13_x = loads[12][0] - (p[12].mass * ac_13_x + trig[12][1] * t4379);
+    let fe_13_z = loads[12][1] - (p[12].mass * ac_13_z + trig[12][0] * t4379);
+    let t4394 = p[13].added_mass * (trig[13][1] * ac_14_x + trig[13][0] * ac_14_z);
+    let fe_14_x = loads[13][0] - (p[13].mass * ac_14_x + trig[13][1] * t4394);
+    let fe_14_z = loads[13][1] - (p[13].mass * ac_14_z + trig[13][0] * t4394);
+    let t4409 = p[14].added_mass * (trig[14][1] * ac_15_x + trig[14][0] * ac_15_z);
+    let fe_15_x = loads[14][0] - (p[14].mass * ac_15_x + trig[14][1] * t4409);
+    let fe_15_z = loads[14][1] - (p[14].mass * ac_15_z + trig[14][0] * t4409);
+    let t4424 = p[15].added_mass * (trig[15][1] * ac_16_x + trig[15][0] * ac_16_z);
+    let fe_16_x = loads[15][0] - (p[15].mass * ac_16_x + trig[15][1] * t4424);
+    let fe_16_z = loads[15][1] - (p[15].mass * ac_16_z + trig[15][0] * t4424);
+    let t4439 = p[16].added_mass * (trig[16][1] * ac_17_x + trig[16][0] * ac_17_z);
+    let fe_17_x = loads[16][0] - (p[16].mass * ac_17_x + trig[16][1] * t4439);
+    let fe_17_z = loads[16][1] - (p[16].mass * ac_17_z + trig[16][0] * t4439);
+    let t4454 = p[17].added_mass * (trig[17][1] * ac_18_x + trig[17][0] * ac_18_z);
+    let fe_18_x = loads[17][0] - (p[17].mass * ac_18_x + trig[17][1] * t4454);
+    let fe_18_z = loads[17][1] - (p[17].mass * ac_18_z + trig[17][0] * t4454);
+    let t4469 = p[18].added_mass * (trig[18][1] * ac_19_x + trig[18][0] * ac_19_z);
+    let fe_19_x = loads[18][0] - (p[18].mass * ac_19_x + trig[18][1] * t4469);
+    let fe_19_z = loads[18][1] - (p[18].mass * ac_19_z + trig[18][0] * t4469);
+    let t4484 = p[19].added_mass * (trig[19][1] * ac_20_x + trig[19][0] * ac_20_z);
+    let fe_20_x = loads[19][0] - (p[19].mass * ac_20_x + trig[19][1] * t4484);
+    let fe_20_z = loads[19][1] - (p[19].mass * ac_20_z + trig[19][0] * t4484);
+    let t4499 = p[20].added_mass * (trig[20][1] * ac_21_x + trig[20][0] * ac_21_z);
+    let fe_21_x = loads[20][0] - (p[20].mass * ac_21_x + trig[20][1] * t4499);
+    let fe_21_z = loads[20][1] - (p[20].mass * ac_21_z + trig[20][0] * t4499);
+    let t4514 = p[21].added_mass * (trig[21][1] * ac_22_x + trig[21][0] * ac_22_z);
+    let fe_22_x = loads[21][0] - (p[21].mass * ac_22_x + trig[21][1] * t4514);
+    let fe_22_z = loads[21][1] - (p[21].mass * ac_22_z + trig[21][0] * t4514);
+    let t4529 = p[22].added_mass * (trig[22][1] * ac_23_x + trig[22][0] * ac_23_z);
+    let fe_23_x = loads[22][0] - (p[22].mass * ac_23_x + trig[22][1] * t4529);
+    let fe_23_z = loads[22][1] - (p[22].mass * ac_23_z + trig[22][0] * t4529);
+    let t4544 = p[23].added_mass * (trig[23][1] * ac_24_x + trig[23][0] * ac_24_z);
+    let fe_24_x = loads[23][0] - (p[23].mass * ac_24_x + trig[23][1] * t4544);
+    let fe_24_z = loads[23][1] - (p[23].mass * ac_24_z + trig[23][0] * t4544);
+    let t4559 = p[24].added_mass * (trig[24][1] * ac_25_x + trig[24][0] * ac_25_z);
+    let fe_25_x = loads[24][0] - (p[24].mass * ac_25_x + trig[24][1] * t4559);
+    let fe_25_z = loads[24][1] - (p[24].mass * ac_25_z + trig[24][0] * t4559);
+    let t4574 = p[25].added_mass * (trig[25][1] * ac_26_x + trig[25][0] * ac_26_z);
+    let fe_26_x = loads[25][0] - (p[25].mass * ac_26_x + trig[25][1] * t4574);
+    let fe_26_z = loads[25][1] - (p[25].mass * ac_26_z + trig[25][0] * t4574);
+    let t4589 = p[26].added_mass * (trig[26][1] * ac_27_x + trig[26][0] * ac_27_z);
+    let fe_27_x = loads[26][0] - (p[26].mass * ac_27_x + trig[26][1] * t4589);
+    let fe_27_z = loads[26][1] - (p[26].mass * ac_27_z + trig[26][0] * t4589);
+    let t4604 = p[27].added_mass * (trig[27][1] * ac_28_x + trig[27][0] * ac_28_z);
+    let fe_28_x = loads[27][0] - (p[27].mass * ac_28_x + trig[27][1] * t4604);
+    let fe_28_z = loads[27][1] - (p[27].mass * ac_28_z + trig[27][0] * t4604);
+    let t4619 = p[28].added_mass * (trig[28][1] * ac_29_x + trig[28][0] * ac_29_z);
+    let fe_29_x = loads[28][0] - (p[28].mass * ac_29_x + trig[28][1] * t4619);
+    let fe_29_z = loads[28][1] - (p[28].mass * ac_29_z + trig[28][0] * t4619);
+    let t4634 = p[29].added_mass * (trig[29][1] * ac_30_x + trig[29][0] * ac_30_z);
+    let fe_30_x = loads[29][0] - (p[29].mass * ac_30_x + trig[29][1] * t4634);
+    let fe_30_z = loads[29][1] - (p[29].mass * ac_30_z + trig[29][0] * t4634);
+    let t4649 = p[30].added_mass * (trig[30][1] * ac_31_x + trig[30][0] * ac_31_z);
+    let fe_31_x = loads[30][0] - (p[30].mass * ac_31_x + trig[30][1] * t4649);
+    let fe_31_z = loads[30][1] - (p[30].mass * ac_31_z + trig[30][0] * t4649);
+    let t4664 = p[31].added_mass * (trig[31][1] * ac_32_x + trig[31][0] * ac_32_z);
+    let fe_32_x = loads[31][0] - (p[31].mass * ac_32_x + trig[31][1] * t4664);
+    let fe_32_z = loads[31][1] - (p[31].mass * ac_32_z + trig[31][0] * t4664);
+    let t4679 = p[32].added_mass * (trig[32][1] * ac_33_x + trig[32][0] * ac_33_z);
+    let fe_33_x = loads[32][0] - (p[32].mass * ac_33_x + trig[32][1] * t4679);
+    let fe_33_z = loads[32][1] - (p[32].mass * ac_33_z + trig[32][0] * t4679);
+    let t4694 = p[33].added_mass * (trig[33][1] * ac_34_x + trig[33][0] * ac_34_z);
+    let fe_34_x = loads[33][0] - (p[33].mass * ac_34_x + trig[33][1] * t4694);
+    let fe_34_z = loads[33][1] - (p[33].mass * ac_34_z + trig[33][0] * t4694);
+    let t4709 = p[34].added_mass * (trig[34][1] * ac_35_x + trig[34][0] * ac_35_z);
+    let fe_35_x = loads[34][0] - (p[34].mass * ac_35_x + trig[34][1] * t4709);
+    let fe_35_z = loads[34][1] - (p[34].mass * ac_35_z + trig[34][0] * t4709);
+    let t4724 = p[35].added_mass * (trig[35][1] * ac_36_x + trig[35][0] * ac_36_z);
+    let fe_36_x = loads[35][0] - (p[35].mass * ac_36_x + trig[35][1] * t4724);
+    let fe_36_z = loads[35][1] - (p[35].mass * ac_36_z + trig[35][0] * t4724);
+    let t4739 = p[36].added_mass * (trig[36][1] * ac_37_x + trig[36][0] * ac_37_z);
+    let fe_37_x = loads[36][0] - (p[36].mass * ac_37_x + trig[36][1] * t4739);
+    let fe_37_z = loads[36][1] - (p[36].mass * ac_37_z + trig[36][0] * t4739);
+    let t4754 = p[37].added_mass * (trig[37][1] * ac_38_x + trig[37][0] * ac_38_z);
+    let fe_38_x = loads[37][0] - (p[37].mass * ac_38_x + trig[37][1] * t4754);
+    let fe_38_z = loads[37][1] - (p[37].mass * ac_38_z + trig[37][0] * t4754);
+    let t4769 = p[38].added_mass * (trig[38][1] * ac_39_x + trig[38][0] * ac_39_z);
+    let fe_39_x = loads[38][0] - (p[38].mass * ac_39_x + trig[38][1] * t4769);
+    let fe_39_z = loads[38][1] - (p[38].mass * ac_39_z + trig[38][0] * t4769);
+    let t4784 = p[39].added_mass * (trig[39][1] * ac_40_x + trig[39][0] * ac_40_z);
+    let fe_40_x = loads[39][0] - (p[39].mass * ac_40_x + trig[39][1] * t4784);
+    let fe_40_z = loads[39][1] - (p[39].mass * ac_40_z + trig[39][0] * t4784);
+    let t4799 = p[40].added_mass * (trig[40][1] * ac_41_x + trig[40][0] * ac_41_z);
+    let fe_41_x = loads[40][0] - (p[40].mass * ac_41_x + trig[40][1] * t4799);
+    let fe_41_z = loads[40][1] - (p[40].mass * ac_41_z + trig[40][0] * t4799);
+    let t4814 = p[41].added_mass * (trig[41][1] * ac_42_x + trig[41][0] * ac_42_z);
+    let fe_42_x = loads[41][0] - (p[41].mass * ac_42_x + trig[41][1] * t4814);
+    let fe_42_z = loads[41][1] - (p[41].mass * ac_42_z + trig[41][0] * t4814);
+    let t4829 = p[42].added_mass * (trig[42][1] * ac_43_x + trig[42][0] * ac_43_z);
+    let fe_43_x = loads[42][0] - (p[42].mass * ac_43_x + trig[42][1] * t4829);
+    let fe_43_z = loads[42][1] - (p[42].mass * ac_43_z + trig[42][0] * t4829);
+    let t4844 = p[43].added_mass * (trig[43][1] * ac_44_x + trig[43][0] * ac_44_z);
+    let fe_44_x = loads[43][0] - (p[43].mass * ac_44_x + trig[43][1] * t4844);
+    let fe_44_z = loads[43][1] - (p[43].mass * ac_44_z + trig[43][0] * t4844);
+    let t4859 = p[44].added_mass * (trig[44][1] * ac_45_x + trig[44][0] * ac_45_z);
+    let fe_45_x = loads[44][0] - (p[44].mass * ac_45_x + trig[44][1] * t4859);
+    let fe_45_z = loads[44][1] - (p[44].mass * ac_45_z + trig[44][0] * t4859);
+    let t4874 = p[45].added_mass * (trig[45][1] * ac_46_x + trig[45][0] * ac_46_z);
+    let fe_46_x = loads[45][0] - (p[45].mass * ac_46_x + trig[45][1] * t4874);
+    let fe_46_z = loads[45][1] - (p[45].mass * ac_46_z + trig[45][0] * t4874);
+    let t4889 = p[46].added_mass * (trig[46][1] * ac_47_x + trig[46][0] * ac_47_z);
+    let fe_47_x = loads[46][0] - (p[46].mass * ac_47_x + trig[46][1] * t4889);
+    let fe_47_z = loads[46][1] - (p[46].mass * ac_47_z + trig[46][0] * t4889);
+    let t4904 = p[47].added_mass * (trig[47][1] * ac_48_x + trig[47][0] * ac_48_z);
+    let fe_48_x = loads[47][0] - (p[47].mass * ac_48_x + trig[47][1] * t4904);
+    let fe_48_z = loads[47][1] - (p[47].mass * ac_48_z + trig[47][0] * t4904);
+    let t4919 = p[48].added_mass * (trig[48][1] * ac_49_x + trig[48][0] * ac_49_z);
+    let fe_49_x = loads[48][0] - (p[48].mass * ac_49_x + trig[48][1] * t4919);
+    let fe_49_z = loads[48][1] - (p[48].mass * ac_49_z + trig[48][0] * t4919);
     let fe_50_x = loads[49][0] - p[49].mass * ac_50_x;
     let fe_50_z = loads[49][1] - p[49].mass * ac_50_z;
     let f_48 = loads[49][2] + (e_50_z * fe_50_x - e_50_x * fe_50_z);
@@ -3046,242 +3196,294 @@ pub fn assemble(
         + (-(t449 * fe_2_x) - e_2_x * fe_2_z
             + (f_1 + (-(t452 * g_3_x) - d_3_x * g_3_z)));
     let g_2_x = fe_2_x + g_3_x;
+    let g_2_z = fe_2_z + g_3_z;
     let g_1_x = loads[0][0] + g_2_x;
+    let g_1_z = loads[0][1] + g_2_z;
+    heave[0] = a_w_0;
     o_rel[1][0] = d_3_x;
     o_rel[1][1] = d_3_z;
+    heave[1] = a_w_1;
     k_col[2] = k_4;
     s_col[2][0] = sm_4_x;
     s_col[2][1] = sm_4_z;
     o_rel[2][0] = o_4_x;
     o_rel[2][1] = o_4_z;
+    heave[2] = a_w_2;
     k_col[3] = k_5;
     s_col[3][0] = sm_5_x;
     s_col[3][1] = sm_5_z;
     o_rel[3][0] = o_5_x;
     o_rel[3][1] = o_5_z;
+    heave[3] = a_w_3;
     k_col[4] = k_6;
     s_col[4][0] = sm_6_x;
     s_col[4][1] = sm_6_z;
     o_rel[4][0] = o_6_x;
     o_rel[4][1] = o_6_z;
+    heave[4] = a_w_4;
     k_col[5] = k_7;
     s_col[5][0] = sm_7_x;
     s_col[5][1] = sm_7_z;
     o_rel[5][0] = o_7_x;
     o_rel[5][1] = o_7_z;
+    heave[5] = a_w_5;
     k_col[6] = k_8;
     s_col[6][0] = sm_8_x;
     s_col[6][1] = sm_8_z;
     o_rel[6][0] = o_8_x;
     o_rel[6][1] = o_8_z;
+    heave[6] = a_w_6;
     k_col[7] = k_9;
     s_col[7][0] = sm_9_x;
     s_col[7][1] = sm_9_z;
     o_rel[7][0] = o_9_x;
     o_rel[7][1] = o_9_z;
+    heave[7] = a_w_7;
     k_col[8] = k_10;
     s_col[8][0] = sm_10_x;
     s_col[8][1] = sm_10_z;
     o_rel[8][0] = o_10_x;
     o_rel[8][1] = o_10_z;
+    heave[8] = a_w_8;
     k_col[9] = k_11;
     s_col[9][0] = sm_11_x;
     s_col[9][1] = sm_11_z;
     o_rel[9][0] = o_11_x;
     o_rel[9][1] = o_11_z;
+    heave[9] = a_w_9;
     k_col[10] = k_12;
     s_col[10][0] = sm_12_x;
     s_col[10][1] = sm_12_z;
     o_rel[10][0] = o_12_x;
     o_rel[10][1] = o_12_z;
+    heave[10] = a_w_10;
     k_col[11] = k_13;
     s_col[11][0] = sm_13_x;
     s_col[11][1] = sm_13_z;
     o_rel[11][0] = o_13_x;
     o_rel[11][1] = o_13_z;
+    heave[11] = a_w_11;
     k_col[12] = k_14;
     s_col[12][0] = sm_14_x;
     s_col[12][1] = sm_14_z;
     o_rel[12][0] = o_14_x;
     o_rel[12][1] = o_14_z;
+    heave[12] = a_w_12;
     k_col[13] = k_15;
     s_col[13][0] = sm_15_x;
     s_col[13][1] = sm_15_z;
     o_rel[13][0] = o_15_x;
     o_rel[13][1] = o_15_z;
+    heave[13] = a_w_13;
     k_col[14] = k_16;
     s_col[14][0] = sm_16_x;
     s_col[14][1] = sm_16_z;
     o_rel[14][0] = o_16_x;
     o_rel[14][1] = o_16_z;
+    heave[14] = a_w_14;
     k_col[15] = k_17;
     s_col[15][0] = sm_17_x;
     s_col[15][1] = sm_17_z;
     o_rel[15][0] = o_17_x;
     o_rel[15][1] = o_17_z;
+    heave[15] = a_w_15;
     k_col[16] = k_18;
     s_col[16][0] = sm_18_x;
     s_col[16][1] = sm_18_z;
     o_rel[16][0] = o_18_x;
     o_rel[16][1] = o_18_z;
+    heave[16] = a_w_16;
     k_col[17] = k_19;
     s_col[17][0] = sm_19_x;
     s_col[17][1] = sm_19_z;
     o_rel[17][0] = o_19_x;
     o_rel[17][1] = o_19_z;
+    heave[17] = a_w_17;
     k_col[18] = k_20;
     s_col[18][0] = sm_20_x;
     s_col[18][1] = sm_20_z;
     o_rel[18][0] = o_20_x;
     o_rel[18][1] = o_20_z;
+    heave[18] = a_w_18;
     k_col[19] = k_21;
     s_col[19][0] = sm_21_x;
     s_col[19][1] = sm_21_z;
     o_rel[19][0] = o_21_x;
     o_rel[19][1] = o_21_z;
+    heave[19] = a_w_19;
     k_col[20] = k_22;
     s_col[20][0] = sm_22_x;
     s_col[20][1] = sm_22_z;
     o_rel[20][0] = o_22_x;
     o_rel[20][1] = o_22_z;
+    heave[20] = a_w_20;
     k_col[21] = k_23;
     s_col[21][0] = sm_23_x;
     s_col[21][1] = sm_23_z;
     o_rel[21][0] = o_23_x;
     o_rel[21][1] = o_23_z;
+    heave[21] = a_w_21;
     k_col[22] = k_24;
     s_col[22][0] = sm_24_x;
     s_col[22][1] = sm_24_z;
     o_rel[22][0] = o_24_x;
     o_rel[22][1] = o_24_z;
+    heave[22] = a_w_22;
     k_col[23] = k_25;
     s_col[23][0] = sm_25_x;
     s_col[23][1] = sm_25_z;
     o_rel[23][0] = o_25_x;
     o_rel[23][1] = o_25_z;
+    heave[23] = a_w_23;
     k_col[24] = k_26;
     s_col[24][0] = sm_26_x;
     s_col[24][1] = sm_26_z;
     o_rel[24][0] = o_26_x;
     o_rel[24][1] = o_26_z;
+    heave[24] = a_w_24;
     k_col[25] = k_27;
     s_col[25][0] = sm_27_x;
     s_col[25][1] = sm_27_z;
     o_rel[25][0] = o_27_x;
     o_rel[25][1] = o_27_z;
+    heave[25] = a_w_25;
     k_col[26] = k_28;
     s_col[26][0] = sm_28_x;
     s_col[26][1] = sm_28_z;
     o_rel[26][0] = o_28_x;
     o_rel[26][1] = o_28_z;
+    heave[26] = a_w_26;
     k_col[27] = k_29;
     s_col[27][0] = sm_29_x;
     s_col[27][1] = sm_29_z;
     o_rel[27][0] = o_29_x;
     o_rel[27][1] = o_29_z;
+    heave[27] = a_w_27;
     k_col[28] = k_30;
     s_col[28][0] = sm_30_x;
     s_col[28][1] = sm_30_z;
     o_rel[28][0] = o_30_x;
     o_rel[28][1] = o_30_z;
+    heave[28] = a_w_28;
     k_col[29] = k_31;
     s_col[29][0] = sm_31_x;
     s_col[29][1] = sm_31_z;
     o_rel[29][0] = o_31_x;
     o_rel[29][1] = o_31_z;
+    heave[29] = a_w_29;
     k_col[30] = k_32;
     s_col[30][0] = sm_32_x;
     s_col[30][1] = sm_32_z;
     o_rel[30][0] = o_32_x;
     o_rel[30][1] = o_32_z;
+    heave[30] = a_w_30;
     k_col[31] = k_33;
     s_col[31][0] = sm_33_x;
     s_col[31][1] = sm_33_z;
     o_rel[31][0] = o_33_x;
     o_rel[31][1] = o_33_z;
+    heave[31] = a_w_31;
     k_col[32] = k_34;
     s_col[32][0] = sm_34_x;
     s_col[32][1] = sm_34_z;
     o_rel[32][0] = o_34_x;
     o_rel[32][1] = o_34_z;
+    heave[32] = a_w_32;
     k_col[33] = k_35;
     s_col[33][0] = sm_35_x;
     s_col[33][1] = sm_35_z;
     o_rel[33][0] = o_35_x;
     o_rel[33][1] = o_35_z;
+    heave[33] = a_w_33;
     k_col[34] = k_36;
     s_col[34][0] = sm_36_x;
     s_col[34][1] = sm_36_z;
     o_rel[34][0] = o_36_x;
     o_rel[34][1] = o_36_z;
+    heave[34] = a_w_34;
     k_col[35] = k_37;
     s_col[35][0] = sm_37_x;
     s_col[35][1] = sm_37_z;
     o_rel[35][0] = o_37_x;
     o_rel[35][1] = o_37_z;
+    heave[35] = a_w_35;
     k_col[36] = k_38;
     s_col[36][0] = sm_38_x;
     s_col[36][1] = sm_38_z;
     o_rel[36][0] = o_38_x;
     o_rel[36][1] = o_38_z;
+    heave[36] = a_w_36;
     k_col[37] = k_39;
     s_col[37][0] = sm_39_x;
     s_col[37][1] = sm_39_z;
     o_rel[37][0] = o_39_x;
     o_rel[37][1] = o_39_z;
+    heave[37] = a_w_37;
     k_col[38] = k_40;
     s_col[38][0] = sm_40_x;
     s_col[38][1] = sm_40_z;
     o_rel[38][0] = o_40_x;
     o_rel[38][1] = o_40_z;
+    heave[38] = a_w_38;
     k_col[39] = k_41;
     s_col[39][0] = sm_41_x;
     s_col[39][1] = sm_41_z;
     o_rel[39][0] = o_41_x;
     o_rel[39][1] = o_41_z;
+    heave[39] = a_w_39;
     k_col[40] = k_42;
     s_col[40][0] = sm_42_x;
     s_col[40][1] = sm_42_z;
     o_rel[40][0] = o_42_x;
     o_rel[40][1] = o_42_z;
+    heave[40] = a_w_40;
     k_col[41] = k_43;
     s_col[41][0] = sm_43_x;
     s_col[41][1] = sm_43_z;
     o_rel[41][0] = o_43_x;
     o_rel[41][1] = o_43_z;
+    heave[41] = a_w_41;
     k_col[42] = k_44;
     s_col[42][0] = sm_44_x;
     s_col[42][1] = sm_44_z;
     o_rel[42][0] = o_44_x;
     o_rel[42][1] = o_44_z;
+    heave[42] = a_w_42;
     k_col[43] = k_45;
     s_col[43][0] = sm_45_x;
     s_col[43][1] = sm_45_z;
     o_rel[43][0] = o_45_x;
     o_rel[43][1] = o_45_z;
+    heave[43] = a_w_43;
     k_col[44] = k_46;
     s_col[44][0] = sm_46_x;
     s_col[44][1] = sm_46_z;
     o_rel[44][0] = o_46_x;
     o_rel[44][1] = o_46_z;
+    heave[44] = a_w_44;
     k_col[45] = k_47;
     s_col[45][0] = sm_47_x;
     s_col[45][1] = sm_47_z;
     o_rel[45][0] = o_47_x;
     o_rel[45][1] = o_47_z;
+    heave[45] = a_w_45;
     k_col[46] = k_48;
     s_col[46][0] = sm_48_x;
     s_col[46][1] = sm_48_z;
     o_rel[46][0] = o_48_x;
     o_rel[46][1] = o_48_z;
+    heave[46] = a_w_46;
     k_col[47] = k_49;
     s_col[47][0] = sm_49_x;
     s_col[47][1] = sm_49_z;
     o_rel[47][0] = o_49_x;
     o_rel[47][1] = o_49_z;
+    heave[47] = a_w_47;
     k_col[48] = k_50;
     s_col[48][0] = sm_50_x;
     s_col[48][1] = sm_50_z;
+    heave[48] = a_w_48;
+    heave[49] = a_w_49;
     m[0] = j_2;
     m[1] = k_3;
     m[50] = k_3;
@@ -3576,6 +3778,7 @@ pub fn assemble(
     f[47] = f_47;
     f[48] = f_48;
     f[49] = g_1_x;
+    heave[50] = g_1_z;
     for l in 2..49 {
         let (k, s) = (k_col[l], s_col[l]);
         for j in 1..l {
@@ -4284,13 +4487,18 @@ pub fn accelerations(
 }
 /// ẍ of Eq. 27 with the anchor free (all N speeds), by the O(N) articulated-body recursion
 /// on the Kane quantities of Eqs. 15–17 and 22–23: inward over the hinges, then outward.
+///
+/// The anchor slides with friction −`friction`·N along x (`friction` = μ times the direction
+/// of sliding, 0 for none), N the seabed's normal force taken implicitly (Eq. 37). Returns
+/// `[N, 1 + friction·∂N/∂F_x]`: the second is positive for a well-posed sliding problem.
 pub fn solve_free(
     p: &[crate::BodyParams],
     u: &[f64],
     trig: &[[f64; 2]],
     loads: &[[f64; 3]],
+    friction: f64,
     qdd: &mut [f64],
-) {
+) -> [f64; 2] {
     let p: &[crate::BodyParams; 50] = p.try_into().expect("p must have 50 entries");
     let u: &[f64; 50] = u.try_into().expect("u must have 50 entries");
     let trig: &[[f64; 2]; 50] = trig.try_into().expect("trig must have 50 entries");
@@ -5921,221 +6129,228 @@ pub fn solve_free(
     let t5778 = d_3_x * t5777;
     let t5779 = t452 * t5777;
     let t5786 = pa_3_x - pa_3_m * t5764 + (t5770 * t5779 - t5769 * t5778);
+    let t5791 = pa_3_z - pa_3_m * t5765 + (t5771 * t5779 - t5770 * t5778);
     let t5796 = -(t452 * t5769) - d_3_x * t5770;
+    let t5801 = -(t452 * t5770) - d_3_x * t5771;
     let t5812 = p[1].centroid[0] * p[1].centroid[0];
-    let ia_2_00 = -(t452 * t5796) - d_3_x * (-(t452 * t5770) - d_3_x * t5771)
+    let t5817 = p[1].mass * e_2_x;
+    let t5818 = p[1].mass * t449;
+    let t5821 = p[1].centroid[0] * p[1].added_mass;
+    let t5840 = p[1].added_mass * (trig[1][1] * e_2_x - trig[1][0] * t449);
+    let ia_2_00 = -(t452 * t5796) - d_3_x * t5801
         + (p[1].inertia + (p[1].mass * t5812 + p[1].added_mass * t5812));
-    let ia_2_01 = t5796
-        + (-(p[1].mass * t449) - trig[1][1] * (p[1].centroid[0] * p[1].added_mass));
+    let ia_2_01 = t5796 + (-t5818 - trig[1][1] * t5821);
+    let ia_2_02 = t5801 - (t5817 + trig[1][0] * t5821);
     let ia_2_11 = t5769 + (p[1].mass + p[1].added_mass * (trig[1][1] * trig[1][1]));
-    let pa_2_m = -(t452 * t5786)
-        - d_3_x * (pa_3_z - pa_3_m * t5765 + (t5771 * t5779 - t5770 * t5778))
+    let ia_2_12 = t5770 + p[1].added_mass * (trig[1][0] * trig[1][1]);
+    let pa_2_m = -(t452 * t5786) - d_3_x * t5791
         - (loads[1][2] + (-(t449 * loads[1][0]) - e_2_x * loads[1][1]));
-    let pa_2_x = t5786
-        + (-(t5777
-            * (p[1].mass * e_2_x
-                + trig[1][1]
-                    * (p[1].added_mass * (trig[1][1] * e_2_x - trig[1][0] * t449))))
-            - loads[1][0]);
+    let pa_2_x = t5786 + (-(t5777 * (t5817 + trig[1][1] * t5840)) - loads[1][0]);
+    let pa_2_z = t5791 + (-(t5777 * (trig[1][0] * t5840 - t5818)) - loads[1][1]);
     let inv_2 = 1.0 / ia_2_00;
     let t5867 = ia_2_01 * inv_2;
+    let ia_1_12 = ia_2_12 - ia_2_02 * t5867;
     let ia_1_11 = p[0].mass + (ia_2_11 - ia_2_01 * t5867);
     let pa_1_x = pa_2_x - pa_2_m * t5867 - loads[0][0];
-    let t5919 = pa_1_x / ia_1_11;
-    let s_dd = -t5919;
-    let t5924 = inv_2 * (pa_2_m - ia_2_01 * t5919);
-    let alpha_2 = -t5924;
-    let ao_3_x = t452 * t5924 - t5919 - t5778;
-    let ao_3_z = t5779 + d_3_x * t5924;
-    let t5935 = inv_3 * (pa_3_m + (ia_3_01 * ao_3_x + ia_3_02 * ao_3_z));
-    let qdd_1 = t5924 - t5935;
-    let ao_4_x = ao_3_x + t458 * t5935 - t5675;
-    let ao_4_z = t5676 + (ao_3_z + d_4_x * t5935);
-    let t5948 = inv_4 * (pa_4_m + (ia_4_01 * ao_4_x + ia_4_02 * ao_4_z));
-    let qdd_2 = t5935 - t5948;
-    let ao_5_x = ao_4_x + t464 * t5948 - t5572;
-    let ao_5_z = t5573 + (ao_4_z + d_5_x * t5948);
-    let t5961 = inv_5 * (pa_5_m + (ia_5_01 * ao_5_x + ia_5_02 * ao_5_z));
-    let qdd_3 = t5948 - t5961;
-    let ao_6_x = ao_5_x + t470 * t5961 - t5469;
-    let ao_6_z = t5470 + (ao_5_z + d_6_x * t5961);
-    let t5974 = inv_6 * (pa_6_m + (ia_6_01 * ao_6_x + ia_6_02 * ao_6_z));
-    let qdd_4 = t5961 - t5974;
-    let ao_7_x = ao_6_x + t476 * t5974 - t5366;
-    let ao_7_z = t5367 + (ao_6_z + d_7_x * t5974);
-    let t5987 = inv_7 * (pa_7_m + (ia_7_01 * ao_7_x + ia_7_02 * ao_7_z));
-    let qdd_5 = t5974 - t5987;
-    let ao_8_x = ao_7_x + t482 * t5987 - t5263;
-    let ao_8_z = t5264 + (ao_7_z + d_8_x * t5987);
-    let t6000 = inv_8 * (pa_8_m + (ia_8_01 * ao_8_x + ia_8_02 * ao_8_z));
-    let qdd_6 = t5987 - t6000;
-    let ao_9_x = ao_8_x + t488 * t6000 - t5160;
-    let ao_9_z = t5161 + (ao_8_z + d_9_x * t6000);
-    let t6013 = inv_9 * (pa_9_m + (ia_9_01 * ao_9_x + ia_9_02 * ao_9_z));
-    let qdd_7 = t6000 - t6013;
-    let ao_10_x = ao_9_x + t494 * t6013 - t5057;
-    let ao_10_z = t5058 + (ao_9_z + d_10_x * t6013);
-    let t6026 = inv_10 * (pa_10_m + (ia_10_01 * ao_10_x + ia_10_02 * ao_10_z));
-    let qdd_8 = t6013 - t6026;
-    let ao_11_x = ao_10_x + t500 * t6026 - t4954;
-    let ao_11_z = t4955 + (ao_10_z + d_11_x * t6026);
-    let t6039 = inv_11 * (pa_11_m + (ia_11_01 * ao_11_x + ia_11_02 * ao_11_z));
-    let qdd_9 = t6026 - t6039;
-    let ao_12_x = ao_11_x + t506 * t6039 - t4851;
-    let ao_12_z = t4852 + (ao_11_z + d_12_x * t6039);
-    let t6052 = inv_12 * (pa_12_m + (ia_12_01 * ao_12_x + ia_12_02 * ao_12_z));
-    let qdd_10 = t6039 - t6052;
-    let ao_13_x = ao_12_x + t512 * t6052 - t4748;
-    let ao_13_z = t4749 + (ao_12_z + d_13_x * t6052);
-    let t6065 = inv_13 * (pa_13_m + (ia_13_01 * ao_13_x + ia_13_02 * ao_13_z));
-    let qdd_11 = t6052 - t6065;
-    let ao_14_x = ao_13_x + t518 * t6065 - t4645;
-    let ao_14_z = t4646 + (ao_13_z + d_14_x * t6065);
-    let t6078 = inv_14 * (pa_14_m + (ia_14_01 * ao_14_x + ia_14_02 * ao_14_z));
-    let qdd_12 = t6065 - t6078;
-    let ao_15_x = ao_14_x + t524 * t6078 - t4542;
-    let ao_15_z = t4543 + (ao_14_z + d_15_x * t6078);
-    let t6091 = inv_15 * (pa_15_m + (ia_15_01 * ao_15_x + ia_15_02 * ao_15_z));
-    let qdd_13 = t6078 - t6091;
-    let ao_16_x = ao_15_x + t530 * t6091 - t4439;
-    let ao_16_z = t4440 + (ao_15_z + d_16_x * t6091);
-    let t6104 = inv_16 * (pa_16_m + (ia_16_01 * ao_16_x + ia_16_02 * ao_16_z));
-    let qdd_14 = t6091 - t6104;
-    let ao_17_x = ao_16_x + t536 * t6104 - t4336;
-    let ao_17_z = t4337 + (ao_16_z + d_17_x * t6104);
-    let t6117 = inv_17 * (pa_17_m + (ia_17_01 * ao_17_x + ia_17_02 * ao_17_z));
-    let qdd_15 = t6104 - t6117;
-    let ao_18_x = ao_17_x + t542 * t6117 - t4233;
-    let ao_18_z = t4234 + (ao_17_z + d_18_x * t6117);
-    let t6130 = inv_18 * (pa_18_m + (ia_18_01 * ao_18_x + ia_18_02 * ao_18_z));
-    let qdd_16 = t6117 - t6130;
-    let ao_19_x = ao_18_x + t548 * t6130 - t4130;
-    let ao_19_z = t4131 + (ao_18_z + d_19_x * t6130);
-    let t6143 = inv_19 * (pa_19_m + (ia_19_01 * ao_19_x + ia_19_02 * ao_19_z));
-    let qdd_17 = t6130 - t6143;
-    let ao_20_x = ao_19_x + t554 * t6143 - t4027;
-    let ao_20_z = t4028 + (ao_19_z + d_20_x * t6143);
-    let t6156 = inv_20 * (pa_20_m + (ia_20_01 * ao_20_x + ia_20_02 * ao_20_z));
-    let qdd_18 = t6143 - t6156;
-    let ao_21_x = ao_20_x + t560 * t6156 - t3924;
-    let ao_21_z = t3925 + (ao_20_z + d_21_x * t6156);
-    let t6169 = inv_21 * (pa_21_m + (ia_21_01 * ao_21_x + ia_21_02 * ao_21_z));
-    let qdd_19 = t6156 - t6169;
-    let ao_22_x = ao_21_x + t566 * t6169 - t3821;
-    let ao_22_z = t3822 + (ao_21_z + d_22_x * t6169);
-    let t6182 = inv_22 * (pa_22_m + (ia_22_01 * ao_22_x + ia_22_02 * ao_22_z));
-    let qdd_20 = t6169 - t6182;
-    let ao_23_x = ao_22_x + t572 * t6182 - t3718;
-    let ao_23_z = t3719 + (ao_22_z + d_23_x * t6182);
-    let t6195 = inv_23 * (pa_23_m + (ia_23_01 * ao_23_x + ia_23_02 * ao_23_z));
-    let qdd_21 = t6182 - t6195;
-    let ao_24_x = ao_23_x + t578 * t6195 - t3615;
-    let ao_24_z = t3616 + (ao_23_z + d_24_x * t6195);
-    let t6208 = inv_24 * (pa_24_m + (ia_24_01 * ao_24_x + ia_24_02 * ao_24_z));
-    let qdd_22 = t6195 - t6208;
-    let ao_25_x = ao_24_x + t584 * t6208 - t3512;
-    let ao_25_z = t3513 + (ao_24_z + d_25_x * t6208);
-    let t6221 = inv_25 * (pa_25_m + (ia_25_01 * ao_25_x + ia_25_02 * ao_25_z));
-    let qdd_23 = t6208 - t6221;
-    let ao_26_x = ao_25_x + t590 * t6221 - t3409;
-    let ao_26_z = t3410 + (ao_25_z + d_26_x * t6221);
-    let t6234 = inv_26 * (pa_26_m + (ia_26_01 * ao_26_x + ia_26_02 * ao_26_z));
-    let qdd_24 = t6221 - t6234;
-    let ao_27_x = ao_26_x + t596 * t6234 - t3306;
-    let ao_27_z = t3307 + (ao_26_z + d_27_x * t6234);
-    let t6247 = inv_27 * (pa_27_m + (ia_27_01 * ao_27_x + ia_27_02 * ao_27_z));
-    let qdd_25 = t6234 - t6247;
-    let ao_28_x = ao_27_x + t602 * t6247 - t3203;
-    let ao_28_z = t3204 + (ao_27_z + d_28_x * t6247);
-    let t6260 = inv_28 * (pa_28_m + (ia_28_01 * ao_28_x + ia_28_02 * ao_28_z));
-    let qdd_26 = t6247 - t6260;
-    let ao_29_x = ao_28_x + t608 * t6260 - t3100;
-    let ao_29_z = t3101 + (ao_28_z + d_29_x * t6260);
-    let t6273 = inv_29 * (pa_29_m + (ia_29_01 * ao_29_x + ia_29_02 * ao_29_z));
-    let qdd_27 = t6260 - t6273;
-    let ao_30_x = ao_29_x + t614 * t6273 - t2997;
-    let ao_30_z = t2998 + (ao_29_z + d_30_x * t6273);
-    let t6286 = inv_30 * (pa_30_m + (ia_30_01 * ao_30_x + ia_30_02 * ao_30_z));
-    let qdd_28 = t6273 - t6286;
-    let ao_31_x = ao_30_x + t620 * t6286 - t2894;
-    let ao_31_z = t2895 + (ao_30_z + d_31_x * t6286);
-    let t6299 = inv_31 * (pa_31_m + (ia_31_01 * ao_31_x + ia_31_02 * ao_31_z));
-    let qdd_29 = t6286 - t6299;
-    let ao_32_x = ao_31_x + t626 * t6299 - t2791;
-    let ao_32_z = t2792 + (ao_31_z + d_32_x * t6299);
-    let t6312 = inv_32 * (pa_32_m + (ia_32_01 * ao_32_x + ia_32_02 * ao_32_z));
-    let qdd_30 = t6299 - t6312;
-    let ao_33_x = ao_32_x + t632 * t6312 - t2688;
-    let ao_33_z = t2689 + (ao_32_z + d_33_x * t6312);
-    let t6325 = inv_33 * (pa_33_m + (ia_33_01 * ao_33_x + ia_33_02 * ao_33_z));
-    let qdd_31 = t6312 - t6325;
-    let ao_34_x = ao_33_x + t638 * t6325 - t2585;
-    let ao_34_z = t2586 + (ao_33_z + d_34_x * t6325);
-    let t6338 = inv_34 * (pa_34_m + (ia_34_01 * ao_34_x + ia_34_02 * ao_34_z));
-    let qdd_32 = t6325 - t6338;
-    let ao_35_x = ao_34_x + t644 * t6338 - t2482;
-    let ao_35_z = t2483 + (ao_34_z + d_35_x * t6338);
-    let t6351 = inv_35 * (pa_35_m + (ia_35_01 * ao_35_x + ia_35_02 * ao_35_z));
-    let qdd_33 = t6338 - t6351;
-    let ao_36_x = ao_35_x + t650 * t6351 - t2379;
-    let ao_36_z = t2380 + (ao_35_z + d_36_x * t6351);
-    let t6364 = inv_36 * (pa_36_m + (ia_36_01 * ao_36_x + ia_36_02 * ao_36_z));
-    let qdd_34 = t6351 - t6364;
-    let ao_37_x = ao_36_x + t656 * t6364 - t2276;
-    let ao_37_z = t2277 + (ao_36_z + d_37_x * t6364);
-    let t6377 = inv_37 * (pa_37_m + (ia_37_01 * ao_37_x + ia_37_02 * ao_37_z));
-    let qdd_35 = t6364 - t6377;
-    let ao_38_x = ao_37_x + t662 * t6377 - t2173;
-    let ao_38_z = t2174 + (ao_37_z + d_38_x * t6377);
-    let t6390 = inv_38 * (pa_38_m + (ia_38_01 * ao_38_x + ia_38_02 * ao_38_z));
-    let qdd_36 = t6377 - t6390;
-    let ao_39_x = ao_38_x + t668 * t6390 - t2070;
-    let ao_39_z = t2071 + (ao_38_z + d_39_x * t6390);
-    let t6403 = inv_39 * (pa_39_m + (ia_39_01 * ao_39_x + ia_39_02 * ao_39_z));
-    let qdd_37 = t6390 - t6403;
-    let ao_40_x = ao_39_x + t674 * t6403 - t1967;
-    let ao_40_z = t1968 + (ao_39_z + d_40_x * t6403);
-    let t6416 = inv_40 * (pa_40_m + (ia_40_01 * ao_40_x + ia_40_02 * ao_40_z));
-    let qdd_38 = t6403 - t6416;
-    let ao_41_x = ao_40_x + t680 * t6416 - t1864;
-    let ao_41_z = t1865 + (ao_40_z + d_41_x * t6416);
-    let t6429 = inv_41 * (pa_41_m + (ia_41_01 * ao_41_x + ia_41_02 * ao_41_z));
-    let qdd_39 = t6416 - t6429;
-    let ao_42_x = ao_41_x + t686 * t6429 - t1761;
-    let ao_42_z = t1762 + (ao_41_z + d_42_x * t6429);
-    let t6442 = inv_42 * (pa_42_m + (ia_42_01 * ao_42_x + ia_42_02 * ao_42_z));
-    let qdd_40 = t6429 - t6442;
-    let ao_43_x = ao_42_x + t692 * t6442 - t1658;
-    let ao_43_z = t1659 + (ao_42_z + d_43_x * t6442);
-    let t6455 = inv_43 * (pa_43_m + (ia_43_01 * ao_43_x + ia_43_02 * ao_43_z));
-    let qdd_41 = t6442 - t6455;
-    let ao_44_x = ao_43_x + t698 * t6455 - t1555;
-    let ao_44_z = t1556 + (ao_43_z + d_44_x * t6455);
-    let t6468 = inv_44 * (pa_44_m + (ia_44_01 * ao_44_x + ia_44_02 * ao_44_z));
-    let qdd_42 = t6455 - t6468;
-    let ao_45_x = ao_44_x + t704 * t6468 - t1452;
-    let ao_45_z = t1453 + (ao_44_z + d_45_x * t6468);
-    let t6481 = inv_45 * (pa_45_m + (ia_45_01 * ao_45_x + ia_45_02 * ao_45_z));
-    let qdd_43 = t6468 - t6481;
-    let ao_46_x = ao_45_x + t710 * t6481 - t1349;
-    let ao_46_z = t1350 + (ao_45_z + d_46_x * t6481);
-    let t6494 = inv_46 * (pa_46_m + (ia_46_01 * ao_46_x + ia_46_02 * ao_46_z));
-    let qdd_44 = t6481 - t6494;
-    let ao_47_x = ao_46_x + t716 * t6494 - t1246;
-    let ao_47_z = t1247 + (ao_46_z + d_47_x * t6494);
-    let t6507 = inv_47 * (pa_47_m + (ia_47_01 * ao_47_x + ia_47_02 * ao_47_z));
-    let qdd_45 = t6494 - t6507;
-    let ao_48_x = ao_47_x + t722 * t6507 - t1143;
-    let ao_48_z = t1144 + (ao_47_z + d_48_x * t6507);
-    let t6520 = inv_48 * (pa_48_m + (ia_48_01 * ao_48_x + ia_48_02 * ao_48_z));
-    let qdd_46 = t6507 - t6520;
-    let ao_49_x = ao_48_x + t728 * t6520 - t1040;
-    let ao_49_z = t1041 + (ao_48_z + d_49_x * t6520);
-    let t6533 = inv_49 * (pa_49_m + (ia_49_01 * ao_49_x + ia_49_02 * ao_49_z));
-    let qdd_47 = t6520 - t6533;
-    let ao_50_x = ao_49_x + t734 * t6533 - t937;
-    let ao_50_z = t938 + (ao_49_z + d_50_x * t6533);
-    let qdd_48 = t6533 - inv_50 * (ia_50_01 * ao_50_x - t897 * ao_50_z - t916);
+    let pa_1_z = pa_2_z - pa_2_m * (ia_2_02 * inv_2) - loads[0][1];
+    let t5921 = ia_1_11 + ia_1_12 * friction;
+    let t5924 = (pa_1_x + pa_1_z * friction) / t5921;
+    let s_dd = -t5924;
+    let normal_force = pa_1_z - ia_1_12 * t5924;
+    let friction_factor = t5921 / ia_1_11;
+    let t5933 = inv_2 * (pa_2_m - ia_2_01 * t5924);
+    let alpha_2 = -t5933;
+    let ao_3_x = t452 * t5933 - t5924 - t5778;
+    let ao_3_z = t5779 + d_3_x * t5933;
+    let t5944 = inv_3 * (pa_3_m + (ia_3_01 * ao_3_x + ia_3_02 * ao_3_z));
+    let qdd_1 = t5933 - t5944;
+    let ao_4_x = ao_3_x + t458 * t5944 - t5675;
+    let ao_4_z = t5676 + (ao_3_z + d_4_x * t5944);
+    let t5957 = inv_4 * (pa_4_m + (ia_4_01 * ao_4_x + ia_4_02 * ao_4_z));
+    let qdd_2 = t5944 - t5957;
+    let ao_5_x = ao_4_x + t464 * t5957 - t5572;
+    let ao_5_z = t5573 + (ao_4_z + d_5_x * t5957);
+    let t5970 = inv_5 * (pa_5_m + (ia_5_01 * ao_5_x + ia_5_02 * ao_5_z));
+    let qdd_3 = t5957 - t5970;
+    let ao_6_x = ao_5_x + t470 * t5970 - t5469;
+    let ao_6_z = t5470 + (ao_5_z + d_6_x * t5970);
+    let t5983 = inv_6 * (pa_6_m + (ia_6_01 * ao_6_x + ia_6_02 * ao_6_z));
+    let qdd_4 = t5970 - t5983;
+    let ao_7_x = ao_6_x + t476 * t5983 - t5366;
+    let ao_7_z = t5367 + (ao_6_z + d_7_x * t5983);
+    let t5996 = inv_7 * (pa_7_m + (ia_7_01 * ao_7_x + ia_7_02 * ao_7_z));
+    let qdd_5 = t5983 - t5996;
+    let ao_8_x = ao_7_x + t482 * t5996 - t5263;
+    let ao_8_z = t5264 + (ao_7_z + d_8_x * t5996);
+    let t6009 = inv_8 * (pa_8_m + (ia_8_01 * ao_8_x + ia_8_02 * ao_8_z));
+    let qdd_6 = t5996 - t6009;
+    let ao_9_x = ao_8_x + t488 * t6009 - t5160;
+    let ao_9_z = t5161 + (ao_8_z + d_9_x * t6009);
+    let t6022 = inv_9 * (pa_9_m + (ia_9_01 * ao_9_x + ia_9_02 * ao_9_z));
+    let qdd_7 = t6009 - t6022;
+    let ao_10_x = ao_9_x + t494 * t6022 - t5057;
+    let ao_10_z = t5058 + (ao_9_z + d_10_x * t6022);
+    let t6035 = inv_10 * (pa_10_m + (ia_10_01 * ao_10_x + ia_10_02 * ao_10_z));
+    let qdd_8 = t6022 - t6035;
+    let ao_11_x = ao_10_x + t500 * t6035 - t4954;
+    let ao_11_z = t4955 + (ao_10_z + d_11_x * t6035);
+    let t6048 = inv_11 * (pa_11_m + (ia_11_01 * ao_11_x + ia_11_02 * ao_11_z));
+    let qdd_9 = t6035 - t6048;
+    let ao_12_x = ao_11_x + t506 * t6048 - t4851;
+    let ao_12_z = t4852 + (ao_11_z + d_12_x * t6048);
+    let t6061 = inv_12 * (pa_12_m + (ia_12_01 * ao_12_x + ia_12_02 * ao_12_z));
+    let qdd_10 = t6048 - t6061;
+    let ao_13_x = ao_12_x + t512 * t6061 - t4748;
+    let ao_13_z = t4749 + (ao_12_z + d_13_x * t6061);
+    let t6074 = inv_13 * (pa_13_m + (ia_13_01 * ao_13_x + ia_13_02 * ao_13_z));
+    let qdd_11 = t6061 - t6074;
+    let ao_14_x = ao_13_x + t518 * t6074 - t4645;
+    let ao_14_z = t4646 + (ao_13_z + d_14_x * t6074);
+    let t6087 = inv_14 * (pa_14_m + (ia_14_01 * ao_14_x + ia_14_02 * ao_14_z));
+    let qdd_12 = t6074 - t6087;
+    let ao_15_x = ao_14_x + t524 * t6087 - t4542;
+    let ao_15_z = t4543 + (ao_14_z + d_15_x * t6087);
+    let t6100 = inv_15 * (pa_15_m + (ia_15_01 * ao_15_x + ia_15_02 * ao_15_z));
+    let qdd_13 = t6087 - t6100;
+    let ao_16_x = ao_15_x + t530 * t6100 - t4439;
+    let ao_16_z = t4440 + (ao_15_z + d_16_x * t6100);
+    let t6113 = inv_16 * (pa_16_m + (ia_16_01 * ao_16_x + ia_16_02 * ao_16_z));
+    let qdd_14 = t6100 - t6113;
+    let ao_17_x = ao_16_x + t536 * t6113 - t4336;
+    let ao_17_z = t4337 + (ao_16_z + d_17_x * t6113);
+    let t6126 = inv_17 * (pa_17_m + (ia_17_01 * ao_17_x + ia_17_02 * ao_17_z));
+    let qdd_15 = t6113 - t6126;
+    let ao_18_x = ao_17_x + t542 * t6126 - t4233;
+    let ao_18_z = t4234 + (ao_17_z + d_18_x * t6126);
+    let t6139 = inv_18 * (pa_18_m + (ia_18_01 * ao_18_x + ia_18_02 * ao_18_z));
+    let qdd_16 = t6126 - t6139;
+    let ao_19_x = ao_18_x + t548 * t6139 - t4130;
+    let ao_19_z = t4131 + (ao_18_z + d_19_x * t6139);
+    let t6152 = inv_19 * (pa_19_m + (ia_19_01 * ao_19_x + ia_19_02 * ao_19_z));
+    let qdd_17 = t6139 - t6152;
+    let ao_20_x = ao_19_x + t554 * t6152 - t4027;
+    let ao_20_z = t4028 + (ao_19_z + d_20_x * t6152);
+    let t6165 = inv_20 * (pa_20_m + (ia_20_01 * ao_20_x + ia_20_02 * ao_20_z));
+    let qdd_18 = t6152 - t6165;
+    let ao_21_x = ao_20_x + t560 * t6165 - t3924;
+    let ao_21_z = t3925 + (ao_20_z + d_21_x * t6165);
+    let t6178 = inv_21 * (pa_21_m + (ia_21_01 * ao_21_x + ia_21_02 * ao_21_z));
+    let qdd_19 = t6165 - t6178;
+    let ao_22_x = ao_21_x + t566 * t6178 - t3821;
+    let ao_22_z = t3822 + (ao_21_z + d_22_x * t6178);
+    let t6191 = inv_22 * (pa_22_m + (ia_22_01 * ao_22_x + ia_22_02 * ao_22_z));
+    let qdd_20 = t6178 - t6191;
+    let ao_23_x = ao_22_x + t572 * t6191 - t3718;
+    let ao_23_z = t3719 + (ao_22_z + d_23_x * t6191);
+    let t6204 = inv_23 * (pa_23_m + (ia_23_01 * ao_23_x + ia_23_02 * ao_23_z));
+    let qdd_21 = t6191 - t6204;
+    let ao_24_x = ao_23_x + t578 * t6204 - t3615;
+    let ao_24_z = t3616 + (ao_23_z + d_24_x * t6204);
+    let t6217 = inv_24 * (pa_24_m + (ia_24_01 * ao_24_x + ia_24_02 * ao_24_z));
+    let qdd_22 = t6204 - t6217;
+    let ao_25_x = ao_24_x + t584 * t6217 - t3512;
+    let ao_25_z = t3513 + (ao_24_z + d_25_x * t6217);
+    let t6230 = inv_25 * (pa_25_m + (ia_25_01 * ao_25_x + ia_25_02 * ao_25_z));
+    let qdd_23 = t6217 - t6230;
+    let ao_26_x = ao_25_x + t590 * t6230 - t3409;
+    let ao_26_z = t3410 + (ao_25_z + d_26_x * t6230);
+    let t6243 = inv_26 * (pa_26_m + (ia_26_01 * ao_26_x + ia_26_02 * ao_26_z));
+    let qdd_24 = t6230 - t6243;
+    let ao_27_x = ao_26_x + t596 * t6243 - t3306;
+    let ao_27_z = t3307 + (ao_26_z + d_27_x * t6243);
+    let t6256 = inv_27 * (pa_27_m + (ia_27_01 * ao_27_x + ia_27_02 * ao_27_z));
+    let qdd_25 = t6243 - t6256;
+    let ao_28_x = ao_27_x + t602 * t6256 - t3203;
+    let ao_28_z = t3204 + (ao_27_z + d_28_x * t6256);
+    let t6269 = inv_28 * (pa_28_m + (ia_28_01 * ao_28_x + ia_28_02 * ao_28_z));
+    let qdd_26 = t6256 - t6269;
+    let ao_29_x = ao_28_x + t608 * t6269 - t3100;
+    let ao_29_z = t3101 + (ao_28_z + d_29_x * t6269);
+    let t6282 = inv_29 * (pa_29_m + (ia_29_01 * ao_29_x + ia_29_02 * ao_29_z));
+    let qdd_27 = t6269 - t6282;
+    let ao_30_x = ao_29_x + t614 * t6282 - t2997;
+    let ao_30_z = t2998 + (ao_29_z + d_30_x * t6282);
+    let t6295 = inv_30 * (pa_30_m + (ia_30_01 * ao_30_x + ia_30_02 * ao_30_z));
+    let qdd_28 = t6282 - t6295;
+    let ao_31_x = ao_30_x + t620 * t6295 - t2894;
+    let ao_31_z = t2895 + (ao_30_z + d_31_x * t6295);
+    let t6308 = inv_31 * (pa_31_m + (ia_31_01 * ao_31_x + ia_31_02 * ao_31_z));
+    let qdd_29 = t6295 - t6308;
+    let ao_32_x = ao_31_x + t626 * t6308 - t2791;
+    let ao_32_z = t2792 + (ao_31_z + d_32_x * t6308);
+    let t6321 = inv_32 * (pa_32_m + (ia_32_01 * ao_32_x + ia_32_02 * ao_32_z));
+    let qdd_30 = t6308 - t6321;
+    let ao_33_x = ao_32_x + t632 * t6321 - t2688;
+    let ao_33_z = t2689 + (ao_32_z + d_33_x * t6321);
+    let t6334 = inv_33 * (pa_33_m + (ia_33_01 * ao_33_x + ia_33_02 * ao_33_z));
+    let qdd_31 = t6321 - t6334;
+    let ao_34_x = ao_33_x + t638 * t6334 - t2585;
+    let ao_34_z = t2586 + (ao_33_z + d_34_x * t6334);
+    let t6347 = inv_34 * (pa_34_m + (ia_34_01 * ao_34_x + ia_34_02 * ao_34_z));
+    let qdd_32 = t6334 - t6347;
+    let ao_35_x = ao_34_x + t644 * t6347 - t2482;
+    let ao_35_z = t2483 + (ao_34_z + d_35_x * t6347);
+    let t6360 = inv_35 * (pa_35_m + (ia_35_01 * ao_35_x + ia_35_02 * ao_35_z));
+    let qdd_33 = t6347 - t6360;
+    let ao_36_x = ao_35_x + t650 * t6360 - t2379;
+    let ao_36_z = t2380 + (ao_35_z + d_36_x * t6360);
+    let t6373 = inv_36 * (pa_36_m + (ia_36_01 * ao_36_x + ia_36_02 * ao_36_z));
+    let qdd_34 = t6360 - t6373;
+    let ao_37_x = ao_36_x + t656 * t6373 - t2276;
+    let ao_37_z = t2277 + (ao_36_z + d_37_x * t6373);
+    let t6386 = inv_37 * (pa_37_m + (ia_37_01 * ao_37_x + ia_37_02 * ao_37_z));
+    let qdd_35 = t6373 - t6386;
+    let ao_38_x = ao_37_x + t662 * t6386 - t2173;
+    let ao_38_z = t2174 + (ao_37_z + d_38_x * t6386);
+    let t6399 = inv_38 * (pa_38_m + (ia_38_01 * ao_38_x + ia_38_02 * ao_38_z));
+    let qdd_36 = t6386 - t6399;
+    let ao_39_x = ao_38_x + t668 * t6399 - t2070;
+    let ao_39_z = t2071 + (ao_38_z + d_39_x * t6399);
+    let t6412 = inv_39 * (pa_39_m + (ia_39_01 * ao_39_x + ia_39_02 * ao_39_z));
+    let qdd_37 = t6399 - t6412;
+    let ao_40_x = ao_39_x + t674 * t6412 - t1967;
+    let ao_40_z = t1968 + (ao_39_z + d_40_x * t6412);
+    let t6425 = inv_40 * (pa_40_m + (ia_40_01 * ao_40_x + ia_40_02 * ao_40_z));
+    let qdd_38 = t6412 - t6425;
+    let ao_41_x = ao_40_x + t680 * t6425 - t1864;
+    let ao_41_z = t1865 + (ao_40_z + d_41_x * t6425);
+    let t6438 = inv_41 * (pa_41_m + (ia_41_01 * ao_41_x + ia_41_02 * ao_41_z));
+    let qdd_39 = t6425 - t6438;
+    let ao_42_x = ao_41_x + t686 * t6438 - t1761;
+    let ao_42_z = t1762 + (ao_41_z + d_42_x * t6438);
+    let t6451 = inv_42 * (pa_42_m + (ia_42_01 * ao_42_x + ia_42_02 * ao_42_z));
+    let qdd_40 = t6438 - t6451;
+    let ao_43_x = ao_42_x + t692 * t6451 - t1658;
+    let ao_43_z = t1659 + (ao_42_z + d_43_x * t6451);
+    let t6464 = inv_43 * (pa_43_m + (ia_43_01 * ao_43_x + ia_43_02 * ao_43_z));
+    let qdd_41 = t6451 - t6464;
+    let ao_44_x = ao_43_x + t698 * t6464 - t1555;
+    let ao_44_z = t1556 + (ao_43_z + d_44_x * t6464);
+    let t6477 = inv_44 * (pa_44_m + (ia_44_01 * ao_44_x + ia_44_02 * ao_44_z));
+    let qdd_42 = t6464 - t6477;
+    let ao_45_x = ao_44_x + t704 * t6477 - t1452;
+    let ao_45_z = t1453 + (ao_44_z + d_45_x * t6477);
+    let t6490 = inv_45 * (pa_45_m + (ia_45_01 * ao_45_x + ia_45_02 * ao_45_z));
+    let qdd_43 = t6477 - t6490;
+    let ao_46_x = ao_45_x + t710 * t6490 - t1349;
+    let ao_46_z = t1350 + (ao_45_z + d_46_x * t6490);
+    let t6503 = inv_46 * (pa_46_m + (ia_46_01 * ao_46_x + ia_46_02 * ao_46_z));
+    let qdd_44 = t6490 - t6503;
+    let ao_47_x = ao_46_x + t716 * t6503 - t1246;
+    let ao_47_z = t1247 + (ao_46_z + d_47_x * t6503);
+    let t6516 = inv_47 * (pa_47_m + (ia_47_01 * ao_47_x + ia_47_02 * ao_47_z));
+    let qdd_45 = t6503 - t6516;
+    let ao_48_x = ao_47_x + t722 * t6516 - t1143;
+    let ao_48_z = t1144 + (ao_47_z + d_48_x * t6516);
+    let t6529 = inv_48 * (pa_48_m + (ia_48_01 * ao_48_x + ia_48_02 * ao_48_z));
+    let qdd_46 = t6516 - t6529;
+    let ao_49_x = ao_48_x + t728 * t6529 - t1040;
+    let ao_49_z = t1041 + (ao_48_z + d_49_x * t6529);
+    let t6542 = inv_49 * (pa_49_m + (ia_49_01 * ao_49_x + ia_49_02 * ao_49_z));
+    let qdd_47 = t6529 - t6542;
+    let ao_50_x = ao_49_x + t734 * t6542 - t937;
+    let ao_50_z = t938 + (ao_49_z + d_50_x * t6542);
+    let qdd_48 = t6542 - inv_50 * (ia_50_01 * ao_50_x - t897 * ao_50_z - t916);
     qdd[0] = alpha_2;
     qdd[1] = qdd_1;
     qdd[2] = qdd_2;
@@ -6186,16 +6401,18 @@ pub fn solve_free(
     qdd[47] = qdd_47;
     qdd[48] = qdd_48;
     qdd[49] = s_dd;
+    [normal_force, friction_factor]
 }
 /// ẍ of Eq. 27 with the anchor stuck (ẍ_{3N+1} = 0), by the O(N) recursion; returns the
-/// anchor's holding force F^C_{3N+1} = a_{3N+1,p} ẍ_p − f_{3N+1} (Eq. 50), N along +x.
+/// anchor's holding force F^C_{3N+1} = a_{3N+1,p} ẍ_p − f_{3N+1} (Eq. 50), N along +x, and
+/// the seabed's normal force on it (Eq. 37), N along +z.
 pub fn solve_stuck(
     p: &[crate::BodyParams],
     u: &[f64],
     trig: &[[f64; 2]],
     loads: &[[f64; 3]],
     qdd: &mut [f64],
-) -> f64 {
+) -> [f64; 2] {
     let p: &[crate::BodyParams; 50] = p.try_into().expect("p must have 50 entries");
     let u: &[f64; 50] = u.try_into().expect("u must have 50 entries");
     let trig: &[[f64; 2]; 50] = trig.try_into().expect("trig must have 50 entries");
@@ -7826,23 +8043,25 @@ pub fn solve_stuck(
     let t5778 = d_3_x * t5777;
     let t5779 = t452 * t5777;
     let t5786 = pa_3_x - pa_3_m * t5764 + (t5770 * t5779 - t5769 * t5778);
+    let t5791 = pa_3_z - pa_3_m * t5765 + (t5771 * t5779 - t5770 * t5778);
     let t5796 = -(t452 * t5769) - d_3_x * t5770;
+    let t5801 = -(t452 * t5770) - d_3_x * t5771;
     let t5812 = p[1].centroid[0] * p[1].centroid[0];
-    let ia_2_00 = -(t452 * t5796) - d_3_x * (-(t452 * t5770) - d_3_x * t5771)
+    let t5817 = p[1].mass * e_2_x;
+    let t5818 = p[1].mass * t449;
+    let t5821 = p[1].centroid[0] * p[1].added_mass;
+    let t5840 = p[1].added_mass * (trig[1][1] * e_2_x - trig[1][0] * t449);
+    let ia_2_00 = -(t452 * t5796) - d_3_x * t5801
         + (p[1].inertia + (p[1].mass * t5812 + p[1].added_mass * t5812));
-    let ia_2_01 = t5796
-        + (-(p[1].mass * t449) - trig[1][1] * (p[1].centroid[0] * p[1].added_mass));
-    let pa_2_m = -(t452 * t5786)
-        - d_3_x * (pa_3_z - pa_3_m * t5765 + (t5771 * t5779 - t5770 * t5778))
+    let ia_2_01 = t5796 + (-t5818 - trig[1][1] * t5821);
+    let ia_2_02 = t5801 - (t5817 + trig[1][0] * t5821);
+    let pa_2_m = -(t452 * t5786) - d_3_x * t5791
         - (loads[1][2] + (-(t449 * loads[1][0]) - e_2_x * loads[1][1]));
-    let pa_2_x = t5786
-        + (-(t5777
-            * (p[1].mass * e_2_x
-                + trig[1][1]
-                    * (p[1].added_mass * (trig[1][1] * e_2_x - trig[1][0] * t449))))
-            - loads[1][0]);
+    let pa_2_x = t5786 + (-(t5777 * (t5817 + trig[1][1] * t5840)) - loads[1][0]);
+    let pa_2_z = t5791 + (-(t5777 * (trig[1][0] * t5840 - t5818)) - loads[1][1]);
     let inv_2 = 1.0 / ia_2_00;
     let pa_1_x = pa_2_x - pa_2_m * (ia_2_01 * inv_2) - loads[0][0];
+    let pa_1_z = pa_2_z - pa_2_m * (ia_2_02 * inv_2) - loads[0][1];
     let t5919 = pa_2_m * inv_2;
     let alpha_2 = -t5919;
     let ao_3_x = t452 * t5919 - t5778;
@@ -8086,5 +8305,5 @@ pub fn solve_stuck(
     qdd[47] = qdd_47;
     qdd[48] = qdd_48;
     qdd[49] = 0.0;
-    pa_1_x
+    [pa_1_x, pa_1_z]
 }

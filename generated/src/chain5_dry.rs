@@ -137,7 +137,9 @@ pub fn kinematics(
 ///
 /// `m` receives a_lp (Eq. 26), row-major and symmetric; `f` receives f_l (Eq. 25) with the
 /// per-body loads `[F_x, F_z, T_y]` at the centroids projected by the partial velocities
-/// (Eqs. 15, 23). Reads the rotation table written by [`kinematics`].
+/// (Eqs. 15, 23). `heave` receives the row of the anchor's constrained heave speed:
+/// a_{w,p} for the N speeds, then f_w, so that the seabed's normal force on the anchor is
+/// N = a_{w,p} ẍ_p − f_w (Eqs. 37, 50). Reads the rotation table written by [`kinematics`].
 pub fn assemble(
     p: &[crate::BodyParams],
     u: &[f64],
@@ -145,6 +147,7 @@ pub fn assemble(
     loads: &[[f64; 3]],
     m: &mut [f64],
     f: &mut [f64],
+    heave: &mut [f64],
 ) {
     let p: &[crate::BodyParams; 5] = p.try_into().expect("p must have 5 entries");
     let u: &[f64; 5] = u.try_into().expect("u must have 5 entries");
@@ -152,6 +155,7 @@ pub fn assemble(
     let loads: &[[f64; 3]; 5] = loads.try_into().expect("loads must have 5 entries");
     let m: &mut [f64; 25] = m.try_into().expect("m must have 25 entries");
     let f: &mut [f64; 5] = f.try_into().expect("f must have 5 entries");
+    let heave: &mut [f64; 6] = heave.try_into().expect("heave must have 6 entries");
     let mut k_col = [0.0f64; 4];
     let mut s_col = [[0.0f64; 2]; 4];
     let mut o_rel = [[0.0f64; 2]; 4];
@@ -195,6 +199,7 @@ pub fn assemble(
             + (j_4
                 + (p[2].inertia + p[2].mass * (p[2].centroid[0] * p[2].centroid[0]))));
     let bt_3_xx = p[2].mass + bt_4_xx;
+    let sm_2_x = d_3_x * bt_3_xx + (sm_3_x + p[1].mass * e_2_x);
     let sm_2_z = sm_3_z - p[1].mass * t41 - t44 * bt_3_xx;
     let t155 = d_3_x * sm_3_x - t44 * sm_3_z;
     let j_2 = bt_3_xx * (p[2].joint[0] * p[2].joint[0])
@@ -205,26 +210,30 @@ pub fn assemble(
     let o_4_z = d_3_z - t50;
     let o_5_x = d_5_x + o_4_x;
     let o_5_z = o_4_z - t56;
+    let a_w_0 = -sm_2_x;
     let k_3 = j_3 + t155;
+    let a_w_1 = -sm_3_x;
     let k_4 = j_4 + (sm_4_x * o_4_x + sm_4_z * o_4_z);
+    let a_w_2 = -sm_4_x;
     let k_5 = j_5 + (sm_5_x * o_5_x + sm_5_z * o_5_z);
+    let a_w_3 = -sm_5_x;
     let a_4_4 = p[4].mass + (p[3].mass + (p[2].mass + (p[0].mass + p[1].mass)));
-    let t180 = u[0] * u[0];
-    let ac_2_z = t41 * t180;
-    let t186 = t44 * t180;
-    let t188 = -(d_3_x * t180);
-    let t189 = w_3 * w_3;
-    let ac_3_x = t188 - e_3_x * t189;
-    let ac_3_z = t186 + t47 * t189;
-    let t198 = t188 - d_4_x * t189;
-    let t199 = t186 + t50 * t189;
-    let t200 = w_4 * w_4;
-    let ac_4_x = t198 - e_4_x * t200;
-    let ac_4_z = t199 + t53 * t200;
-    let t211 = w_5 * w_5;
-    let ac_5_x = t198 - d_5_x * t200 - e_5_x * t211;
-    let ac_5_z = t199 + t56 * t200 - e_5_z * t211;
-    let fe_2_x = loads[1][0] + p[1].mass * (e_2_x * t180);
+    let t184 = u[0] * u[0];
+    let ac_2_z = t41 * t184;
+    let t190 = t44 * t184;
+    let t192 = -(d_3_x * t184);
+    let t193 = w_3 * w_3;
+    let ac_3_x = t192 - e_3_x * t193;
+    let ac_3_z = t190 + t47 * t193;
+    let t202 = t192 - d_4_x * t193;
+    let t203 = t190 + t50 * t193;
+    let t204 = w_4 * w_4;
+    let ac_4_x = t202 - e_4_x * t204;
+    let ac_4_z = t203 + t53 * t204;
+    let t215 = w_5 * w_5;
+    let ac_5_x = t202 - d_5_x * t204 - e_5_x * t215;
+    let ac_5_z = t203 + t56 * t204 - e_5_z * t215;
+    let fe_2_x = loads[1][0] + p[1].mass * (e_2_x * t184);
     let fe_2_z = loads[1][1] - p[1].mass * ac_2_z;
     let fe_3_x = loads[2][0] - p[2].mass * ac_3_x;
     let fe_3_z = loads[2][1] - p[2].mass * ac_3_z;
@@ -245,17 +254,24 @@ pub fn assemble(
     let f_0 = loads[1][2]
         + (-(t41 * fe_2_x) - e_2_x * fe_2_z + (f_1 + (-(t44 * g_3_x) - d_3_x * g_3_z)));
     let g_2_x = fe_2_x + g_3_x;
+    let g_2_z = fe_2_z + g_3_z;
     let g_1_x = loads[0][0] + g_2_x;
+    let g_1_z = loads[0][1] + g_2_z;
+    heave[0] = a_w_0;
     o_rel[1][0] = d_3_x;
     o_rel[1][1] = d_3_z;
+    heave[1] = a_w_1;
     k_col[2] = k_4;
     s_col[2][0] = sm_4_x;
     s_col[2][1] = sm_4_z;
     o_rel[2][0] = o_4_x;
     o_rel[2][1] = o_4_z;
+    heave[2] = a_w_2;
     k_col[3] = k_5;
     s_col[3][0] = sm_5_x;
     s_col[3][1] = sm_5_z;
+    heave[3] = a_w_3;
+    heave[4] = 0.0;
     m[0] = j_2;
     m[1] = k_3;
     m[5] = k_3;
@@ -280,6 +296,7 @@ pub fn assemble(
     f[2] = f_2;
     f[3] = f_3;
     f[4] = g_1_x;
+    heave[5] = g_1_z;
     for l in 2..4 {
         let (k, s) = (k_col[l], s_col[l]);
         for j in 1..l {
@@ -358,13 +375,18 @@ pub fn accelerations(
 }
 /// ẍ of Eq. 27 with the anchor free (all N speeds), by the O(N) articulated-body recursion
 /// on the Kane quantities of Eqs. 15–17 and 22–23: inward over the hinges, then outward.
+///
+/// The anchor slides with friction −`friction`·N along x (`friction` = μ times the direction
+/// of sliding, 0 for none), N the seabed's normal force taken implicitly (Eq. 37). Returns
+/// `[N, 1 + friction·∂N/∂F_x]`: the second is positive for a well-posed sliding problem.
 pub fn solve_free(
     p: &[crate::BodyParams],
     u: &[f64],
     trig: &[[f64; 2]],
     loads: &[[f64; 3]],
+    friction: f64,
     qdd: &mut [f64],
-) {
+) -> [f64; 2] {
     let p: &[crate::BodyParams; 5] = p.try_into().expect("p must have 5 entries");
     let u: &[f64; 5] = u.try_into().expect("u must have 5 entries");
     let trig: &[[f64; 2]; 5] = trig.try_into().expect("trig must have 5 entries");
@@ -457,49 +479,61 @@ pub fn solve_free(
     let t292 = d_3_x * t291;
     let t293 = t44 * t291;
     let t300 = pa_3_x - pa_3_m * t278 + (ia_2_12 * t293 - t283 * t292);
+    let t305 = pa_3_z - pa_3_m * t279 + (t285 * t293 - ia_2_12 * t292);
     let t310 = -(t44 * t283) - d_3_x * ia_2_12;
-    let ia_2_00 = -(t44 * t310) - d_3_x * (-(t44 * ia_2_12) - d_3_x * t285)
+    let t315 = -(t44 * ia_2_12) - d_3_x * t285;
+    let t329 = p[1].mass * e_2_x;
+    let t330 = p[1].mass * t41;
+    let ia_2_00 = -(t44 * t310) - d_3_x * t315
         + (p[1].inertia + p[1].mass * (p[1].centroid[0] * p[1].centroid[0]));
-    let ia_2_01 = t310 - p[1].mass * t41;
+    let ia_2_01 = t310 - t330;
+    let ia_2_02 = t315 - t329;
     let ia_2_11 = p[1].mass + t283;
-    let pa_2_m = -(t44 * t300)
-        - d_3_x * (pa_3_z - pa_3_m * t279 + (t285 * t293 - ia_2_12 * t292))
+    let pa_2_m = -(t44 * t300) - d_3_x * t305
         - (loads[1][2] + (-(t41 * loads[1][0]) - e_2_x * loads[1][1]));
-    let pa_2_x = t300 + (-(t291 * (p[1].mass * e_2_x)) - loads[1][0]);
+    let pa_2_x = t300 + (-(t291 * t329) - loads[1][0]);
+    let pa_2_z = t305 + (t291 * t330 - loads[1][1]);
     let inv_2 = 1.0 / ia_2_00;
     let t362 = ia_2_01 * inv_2;
+    let ia_1_12 = ia_2_12 - ia_2_02 * t362;
     let ia_1_11 = p[0].mass + (ia_2_11 - ia_2_01 * t362);
     let pa_1_x = pa_2_x - pa_2_m * t362 - loads[0][0];
-    let t414 = pa_1_x / ia_1_11;
-    let s_dd = -t414;
-    let t419 = inv_2 * (pa_2_m - ia_2_01 * t414);
-    let alpha_2 = -t419;
-    let ao_3_x = t44 * t419 - t414 - t292;
-    let ao_3_z = t293 + d_3_x * t419;
-    let t430 = inv_3 * (pa_3_m + (ia_3_01 * ao_3_x + ia_3_02 * ao_3_z));
-    let qdd_1 = t419 - t430;
-    let ao_4_x = ao_3_x + t50 * t430 - t208;
-    let ao_4_z = t209 + (ao_3_z + d_4_x * t430);
-    let t443 = inv_4 * (pa_4_m + (ia_4_01 * ao_4_x + ia_4_02 * ao_4_z));
-    let qdd_2 = t430 - t443;
-    let ao_5_x = ao_4_x + t56 * t443 - t124;
-    let ao_5_z = t125 + (ao_4_z + d_5_x * t443);
-    let qdd_3 = t443 - inv_5 * (ia_5_01 * ao_5_x - t84 * ao_5_z - t103);
+    let pa_1_z = pa_2_z - pa_2_m * (ia_2_02 * inv_2) - loads[0][1];
+    let t416 = ia_1_11 + ia_1_12 * friction;
+    let t419 = (pa_1_x + pa_1_z * friction) / t416;
+    let s_dd = -t419;
+    let normal_force = pa_1_z - ia_1_12 * t419;
+    let friction_factor = t416 / ia_1_11;
+    let t428 = inv_2 * (pa_2_m - ia_2_01 * t419);
+    let alpha_2 = -t428;
+    let ao_3_x = t44 * t428 - t419 - t292;
+    let ao_3_z = t293 + d_3_x * t428;
+    let t439 = inv_3 * (pa_3_m + (ia_3_01 * ao_3_x + ia_3_02 * ao_3_z));
+    let qdd_1 = t428 - t439;
+    let ao_4_x = ao_3_x + t50 * t439 - t208;
+    let ao_4_z = t209 + (ao_3_z + d_4_x * t439);
+    let t452 = inv_4 * (pa_4_m + (ia_4_01 * ao_4_x + ia_4_02 * ao_4_z));
+    let qdd_2 = t439 - t452;
+    let ao_5_x = ao_4_x + t56 * t452 - t124;
+    let ao_5_z = t125 + (ao_4_z + d_5_x * t452);
+    let qdd_3 = t452 - inv_5 * (ia_5_01 * ao_5_x - t84 * ao_5_z - t103);
     qdd[0] = alpha_2;
     qdd[1] = qdd_1;
     qdd[2] = qdd_2;
     qdd[3] = qdd_3;
     qdd[4] = s_dd;
+    [normal_force, friction_factor]
 }
 /// ẍ of Eq. 27 with the anchor stuck (ẍ_{3N+1} = 0), by the O(N) recursion; returns the
-/// anchor's holding force F^C_{3N+1} = a_{3N+1,p} ẍ_p − f_{3N+1} (Eq. 50), N along +x.
+/// anchor's holding force F^C_{3N+1} = a_{3N+1,p} ẍ_p − f_{3N+1} (Eq. 50), N along +x, and
+/// the seabed's normal force on it (Eq. 37), N along +z.
 pub fn solve_stuck(
     p: &[crate::BodyParams],
     u: &[f64],
     trig: &[[f64; 2]],
     loads: &[[f64; 3]],
     qdd: &mut [f64],
-) -> f64 {
+) -> [f64; 2] {
     let p: &[crate::BodyParams; 5] = p.try_into().expect("p must have 5 entries");
     let u: &[f64; 5] = u.try_into().expect("u must have 5 entries");
     let trig: &[[f64; 2]; 5] = trig.try_into().expect("trig must have 5 entries");
@@ -592,16 +626,22 @@ pub fn solve_stuck(
     let t292 = d_3_x * t291;
     let t293 = t44 * t291;
     let t300 = pa_3_x - pa_3_m * t278 + (ia_2_12 * t293 - t283 * t292);
+    let t305 = pa_3_z - pa_3_m * t279 + (t285 * t293 - ia_2_12 * t292);
     let t310 = -(t44 * t283) - d_3_x * ia_2_12;
-    let ia_2_00 = -(t44 * t310) - d_3_x * (-(t44 * ia_2_12) - d_3_x * t285)
+    let t315 = -(t44 * ia_2_12) - d_3_x * t285;
+    let t329 = p[1].mass * e_2_x;
+    let t330 = p[1].mass * t41;
+    let ia_2_00 = -(t44 * t310) - d_3_x * t315
         + (p[1].inertia + p[1].mass * (p[1].centroid[0] * p[1].centroid[0]));
-    let ia_2_01 = t310 - p[1].mass * t41;
-    let pa_2_m = -(t44 * t300)
-        - d_3_x * (pa_3_z - pa_3_m * t279 + (t285 * t293 - ia_2_12 * t292))
+    let ia_2_01 = t310 - t330;
+    let ia_2_02 = t315 - t329;
+    let pa_2_m = -(t44 * t300) - d_3_x * t305
         - (loads[1][2] + (-(t41 * loads[1][0]) - e_2_x * loads[1][1]));
-    let pa_2_x = t300 + (-(t291 * (p[1].mass * e_2_x)) - loads[1][0]);
+    let pa_2_x = t300 + (-(t291 * t329) - loads[1][0]);
+    let pa_2_z = t305 + (t291 * t330 - loads[1][1]);
     let inv_2 = 1.0 / ia_2_00;
     let pa_1_x = pa_2_x - pa_2_m * (ia_2_01 * inv_2) - loads[0][0];
+    let pa_1_z = pa_2_z - pa_2_m * (ia_2_02 * inv_2) - loads[0][1];
     let t414 = pa_2_m * inv_2;
     let alpha_2 = -t414;
     let ao_3_x = t44 * t414 - t292;
@@ -620,5 +660,5 @@ pub fn solve_stuck(
     qdd[2] = qdd_2;
     qdd[3] = qdd_3;
     qdd[4] = 0.0;
-    pa_1_x
+    [pa_1_x, pa_1_z]
 }

@@ -137,7 +137,9 @@ pub fn kinematics(
 ///
 /// `m` receives a_lp (Eq. 26), row-major and symmetric; `f` receives f_l (Eq. 25) with the
 /// per-body loads `[F_x, F_z, T_y]` at the centroids projected by the partial velocities
-/// (Eqs. 15, 23). Reads the rotation table written by [`kinematics`].
+/// (Eqs. 15, 23). `heave` receives the row of the anchor's constrained heave speed:
+/// a_{w,p} for the N speeds, then f_w, so that the seabed's normal force on the anchor is
+/// N = a_{w,p} ẍ_p − f_w (Eqs. 37, 50). Reads the rotation table written by [`kinematics`].
 pub fn assemble(
     p: &[crate::BodyParams],
     u: &[f64],
@@ -145,6 +147,7 @@ pub fn assemble(
     loads: &[[f64; 3]],
     m: &mut [f64],
     f: &mut [f64],
+    heave: &mut [f64],
 ) {
     let p: &[crate::BodyParams; 5] = p.try_into().expect("p must have 5 entries");
     let u: &[f64; 5] = u.try_into().expect("u must have 5 entries");
@@ -152,6 +155,7 @@ pub fn assemble(
     let loads: &[[f64; 3]; 5] = loads.try_into().expect("loads must have 5 entries");
     let m: &mut [f64; 25] = m.try_into().expect("m must have 25 entries");
     let f: &mut [f64; 5] = f.try_into().expect("f must have 5 entries");
+    let heave: &mut [f64; 6] = heave.try_into().expect("heave must have 6 entries");
     let mut k_col = [0.0f64; 4];
     let mut s_col = [[0.0f64; 2]; 4];
     let mut o_rel = [[0.0f64; 2]; 4];
@@ -191,6 +195,7 @@ pub fn assemble(
             + (j_5 + (p[3].inertia + (p[3].mass * t99 + p[3].added_mass * t99))));
     let bt_4_xx = p[4].mass + (p[3].mass + p[3].added_mass * (trig[3][0] * trig[3][0]));
     let bt_4_zz = p[4].mass + t89;
+    let t129 = p[2].added_mass * (trig[2][0] * trig[2][1]);
     let t133 = p[2].mass + p[2].added_mass * (trig[2][1] * trig[2][1]);
     let t137 = p[2].centroid[0] * p[2].added_mass;
     let t143 = p[2].centroid[0] * p[2].centroid[0];
@@ -203,54 +208,60 @@ pub fn assemble(
         + (t163 + t163
             + (j_4 + (p[2].inertia + (p[2].mass * t143 + p[2].added_mass * t143))));
     let bt_3_xx = bt_4_xx + (p[2].mass + p[2].added_mass * (trig[2][0] * trig[2][0]));
-    let bt_3_xz = -(p[2].added_mass * (trig[2][0] * trig[2][1])) - t85;
+    let bt_3_xz = -t129 - t85;
     let bt_3_zz = bt_4_zz + t133;
+    let t189 = p[1].centroid[0] * p[1].added_mass;
     let t195 = p[1].centroid[0] * p[1].centroid[0];
+    let t203 = d_3_x * bt_3_xx - t47 * bt_3_xz;
     let t207 = d_3_x * bt_3_xz - t47 * bt_3_zz;
-    let sm_2_z = t207
-        + (sm_3_z
-            + (-(p[1].mass * t44) - trig[1][1] * (p[1].centroid[0] * p[1].added_mass)));
+    let sm_2_x = t203 + (sm_3_x + (p[1].mass * e_2_x + trig[1][0] * t189));
+    let sm_2_z = t207 + (sm_3_z + (-(p[1].mass * t44) - trig[1][1] * t189));
     let t215 = d_3_x * sm_3_x - t47 * sm_3_z;
-    let j_2 = d_3_x * (d_3_x * bt_3_xx - t47 * bt_3_xz) - t47 * t207
+    let j_2 = d_3_x * t203 - t47 * t207
         + (t215 + t215
             + (j_3 + (p[1].inertia + (p[1].mass * t195 + p[1].added_mass * t195))));
     let o_4_x = d_3_x + d_4_x;
     let o_4_z = d_3_z - t53;
     let o_5_x = d_5_x + o_4_x;
     let o_5_z = o_4_z - t59;
+    let a_w_0 = -sm_2_x;
     let k_3 = j_3 + t215;
+    let a_w_1 = -sm_3_x;
     let k_4 = j_4 + (sm_4_x * o_4_x + sm_4_z * o_4_z);
+    let a_w_2 = -sm_4_x;
     let k_5 = j_5 + (sm_5_x * o_5_x + sm_5_z * o_5_z);
+    let a_w_3 = -sm_5_x;
+    let a_w_4 = t85 + (t129 + p[1].added_mass * (trig[1][0] * trig[1][1]));
     let a_4_4 = p[4].mass
         + (t89
             + (t133
                 + (p[0].mass
                     + (p[1].mass + p[1].added_mass * (trig[1][1] * trig[1][1])))));
-    let t244 = u[0] * u[0];
-    let t245 = e_2_x * t244;
-    let ac_2_z = t44 * t244;
-    let t250 = t47 * t244;
-    let t252 = -(d_3_x * t244);
-    let t253 = w_3 * w_3;
-    let ac_3_x = t252 - e_3_x * t253;
-    let ac_3_z = t250 + t50 * t253;
-    let t262 = t252 - d_4_x * t253;
-    let t263 = t250 + t53 * t253;
-    let t264 = w_4 * w_4;
-    let ac_4_x = t262 - e_4_x * t264;
-    let ac_4_z = t263 + t56 * t264;
-    let t275 = w_5 * w_5;
-    let ac_5_x = t262 - d_5_x * t264 - e_5_x * t275;
-    let ac_5_z = t263 + t59 * t264 - e_5_z * t275;
-    let t293 = p[1].added_mass * (trig[1][0] * ac_2_z - trig[1][1] * t245);
-    let fe_2_x = loads[1][0] - (trig[1][1] * t293 - p[1].mass * t245);
-    let fe_2_z = loads[1][1] - (p[1].mass * ac_2_z + trig[1][0] * t293);
-    let t308 = p[2].added_mass * (trig[2][1] * ac_3_x + trig[2][0] * ac_3_z);
-    let fe_3_x = loads[2][0] - (p[2].mass * ac_3_x + trig[2][1] * t308);
-    let fe_3_z = loads[2][1] - (p[2].mass * ac_3_z + trig[2][0] * t308);
-    let t323 = p[3].added_mass * (trig[3][1] * ac_4_x + trig[3][0] * ac_4_z);
-    let fe_4_x = loads[3][0] - (p[3].mass * ac_4_x + trig[3][1] * t323);
-    let fe_4_z = loads[3][1] - (p[3].mass * ac_4_z + trig[3][0] * t323);
+    let t250 = u[0] * u[0];
+    let t251 = e_2_x * t250;
+    let ac_2_z = t44 * t250;
+    let t256 = t47 * t250;
+    let t258 = -(d_3_x * t250);
+    let t259 = w_3 * w_3;
+    let ac_3_x = t258 - e_3_x * t259;
+    let ac_3_z = t256 + t50 * t259;
+    let t268 = t258 - d_4_x * t259;
+    let t269 = t256 + t53 * t259;
+    let t270 = w_4 * w_4;
+    let ac_4_x = t268 - e_4_x * t270;
+    let ac_4_z = t269 + t56 * t270;
+    let t281 = w_5 * w_5;
+    let ac_5_x = t268 - d_5_x * t270 - e_5_x * t281;
+    let ac_5_z = t269 + t59 * t270 - e_5_z * t281;
+    let t299 = p[1].added_mass * (trig[1][0] * ac_2_z - trig[1][1] * t251);
+    let fe_2_x = loads[1][0] - (trig[1][1] * t299 - p[1].mass * t251);
+    let fe_2_z = loads[1][1] - (p[1].mass * ac_2_z + trig[1][0] * t299);
+    let t314 = p[2].added_mass * (trig[2][1] * ac_3_x + trig[2][0] * ac_3_z);
+    let fe_3_x = loads[2][0] - (p[2].mass * ac_3_x + trig[2][1] * t314);
+    let fe_3_z = loads[2][1] - (p[2].mass * ac_3_z + trig[2][0] * t314);
+    let t329 = p[3].added_mass * (trig[3][1] * ac_4_x + trig[3][0] * ac_4_z);
+    let fe_4_x = loads[3][0] - (p[3].mass * ac_4_x + trig[3][1] * t329);
+    let fe_4_z = loads[3][1] - (p[3].mass * ac_4_z + trig[3][0] * t329);
     let fe_5_x = loads[4][0] - p[4].mass * ac_5_x;
     let fe_5_z = loads[4][1] - p[4].mass * ac_5_z;
     let f_3 = loads[4][2] + (e_5_z * fe_5_x - e_5_x * fe_5_z);
@@ -266,17 +277,24 @@ pub fn assemble(
     let f_0 = loads[1][2]
         + (-(t44 * fe_2_x) - e_2_x * fe_2_z + (f_1 + (-(t47 * g_3_x) - d_3_x * g_3_z)));
     let g_2_x = fe_2_x + g_3_x;
+    let g_2_z = fe_2_z + g_3_z;
     let g_1_x = loads[0][0] + g_2_x;
+    let g_1_z = loads[0][1] + g_2_z;
+    heave[0] = a_w_0;
     o_rel[1][0] = d_3_x;
     o_rel[1][1] = d_3_z;
+    heave[1] = a_w_1;
     k_col[2] = k_4;
     s_col[2][0] = sm_4_x;
     s_col[2][1] = sm_4_z;
     o_rel[2][0] = o_4_x;
     o_rel[2][1] = o_4_z;
+    heave[2] = a_w_2;
     k_col[3] = k_5;
     s_col[3][0] = sm_5_x;
     s_col[3][1] = sm_5_z;
+    heave[3] = a_w_3;
+    heave[4] = a_w_4;
     m[0] = j_2;
     m[1] = k_3;
     m[5] = k_3;
@@ -301,6 +319,7 @@ pub fn assemble(
     f[2] = f_2;
     f[3] = f_3;
     f[4] = g_1_x;
+    heave[5] = g_1_z;
     for l in 2..4 {
         let (k, s) = (k_col[l], s_col[l]);
         for j in 1..l {
@@ -379,13 +398,18 @@ pub fn accelerations(
 }
 /// ẍ of Eq. 27 with the anchor free (all N speeds), by the O(N) articulated-body recursion
 /// on the Kane quantities of Eqs. 15–17 and 22–23: inward over the hinges, then outward.
+///
+/// The anchor slides with friction −`friction`·N along x (`friction` = μ times the direction
+/// of sliding, 0 for none), N the seabed's normal force taken implicitly (Eq. 37). Returns
+/// `[N, 1 + friction·∂N/∂F_x]`: the second is positive for a well-posed sliding problem.
 pub fn solve_free(
     p: &[crate::BodyParams],
     u: &[f64],
     trig: &[[f64; 2]],
     loads: &[[f64; 3]],
+    friction: f64,
     qdd: &mut [f64],
-) {
+) -> [f64; 2] {
     let p: &[crate::BodyParams; 5] = p.try_into().expect("p must have 5 entries");
     let u: &[f64; 5] = u.try_into().expect("u must have 5 entries");
     let trig: &[[f64; 2]; 5] = trig.try_into().expect("trig must have 5 entries");
@@ -486,56 +510,65 @@ pub fn solve_free(
     let t333 = d_3_x * t332;
     let t334 = t47 * t332;
     let t341 = pa_3_x - pa_3_m * t319 + (t325 * t334 - t324 * t333);
+    let t346 = pa_3_z - pa_3_m * t320 + (t326 * t334 - t325 * t333);
     let t351 = -(t47 * t324) - d_3_x * t325;
+    let t356 = -(t47 * t325) - d_3_x * t326;
     let t367 = p[1].centroid[0] * p[1].centroid[0];
-    let ia_2_00 = -(t47 * t351) - d_3_x * (-(t47 * t325) - d_3_x * t326)
+    let t372 = p[1].mass * e_2_x;
+    let t373 = p[1].mass * t44;
+    let t376 = p[1].centroid[0] * p[1].added_mass;
+    let t395 = p[1].added_mass * (trig[1][1] * e_2_x - trig[1][0] * t44);
+    let ia_2_00 = -(t47 * t351) - d_3_x * t356
         + (p[1].inertia + (p[1].mass * t367 + p[1].added_mass * t367));
-    let ia_2_01 = t351
-        + (-(p[1].mass * t44) - trig[1][1] * (p[1].centroid[0] * p[1].added_mass));
+    let ia_2_01 = t351 + (-t373 - trig[1][1] * t376);
+    let ia_2_02 = t356 - (t372 + trig[1][0] * t376);
     let ia_2_11 = t324 + (p[1].mass + p[1].added_mass * (trig[1][1] * trig[1][1]));
-    let pa_2_m = -(t47 * t341)
-        - d_3_x * (pa_3_z - pa_3_m * t320 + (t326 * t334 - t325 * t333))
+    let ia_2_12 = t325 + p[1].added_mass * (trig[1][0] * trig[1][1]);
+    let pa_2_m = -(t47 * t341) - d_3_x * t346
         - (loads[1][2] + (-(t44 * loads[1][0]) - e_2_x * loads[1][1]));
-    let pa_2_x = t341
-        + (-(t332
-            * (p[1].mass * e_2_x
-                + trig[1][1]
-                    * (p[1].added_mass * (trig[1][1] * e_2_x - trig[1][0] * t44))))
-            - loads[1][0]);
+    let pa_2_x = t341 + (-(t332 * (t372 + trig[1][1] * t395)) - loads[1][0]);
+    let pa_2_z = t346 + (-(t332 * (trig[1][0] * t395 - t373)) - loads[1][1]);
     let inv_2 = 1.0 / ia_2_00;
     let t422 = ia_2_01 * inv_2;
+    let ia_1_12 = ia_2_12 - ia_2_02 * t422;
     let ia_1_11 = p[0].mass + (ia_2_11 - ia_2_01 * t422);
     let pa_1_x = pa_2_x - pa_2_m * t422 - loads[0][0];
-    let t474 = pa_1_x / ia_1_11;
-    let s_dd = -t474;
-    let t479 = inv_2 * (pa_2_m - ia_2_01 * t474);
-    let alpha_2 = -t479;
-    let ao_3_x = t47 * t479 - t474 - t333;
-    let ao_3_z = t334 + d_3_x * t479;
-    let t490 = inv_3 * (pa_3_m + (ia_3_01 * ao_3_x + ia_3_02 * ao_3_z));
-    let qdd_1 = t479 - t490;
-    let ao_4_x = ao_3_x + t53 * t490 - t230;
-    let ao_4_z = t231 + (ao_3_z + d_4_x * t490);
-    let t503 = inv_4 * (pa_4_m + (ia_4_01 * ao_4_x + ia_4_02 * ao_4_z));
-    let qdd_2 = t490 - t503;
-    let ao_5_x = ao_4_x + t59 * t503 - t127;
-    let ao_5_z = t128 + (ao_4_z + d_5_x * t503);
-    let qdd_3 = t503 - inv_5 * (ia_5_01 * ao_5_x - t87 * ao_5_z - t106);
+    let pa_1_z = pa_2_z - pa_2_m * (ia_2_02 * inv_2) - loads[0][1];
+    let t476 = ia_1_11 + ia_1_12 * friction;
+    let t479 = (pa_1_x + pa_1_z * friction) / t476;
+    let s_dd = -t479;
+    let normal_force = pa_1_z - ia_1_12 * t479;
+    let friction_factor = t476 / ia_1_11;
+    let t488 = inv_2 * (pa_2_m - ia_2_01 * t479);
+    let alpha_2 = -t488;
+    let ao_3_x = t47 * t488 - t479 - t333;
+    let ao_3_z = t334 + d_3_x * t488;
+    let t499 = inv_3 * (pa_3_m + (ia_3_01 * ao_3_x + ia_3_02 * ao_3_z));
+    let qdd_1 = t488 - t499;
+    let ao_4_x = ao_3_x + t53 * t499 - t230;
+    let ao_4_z = t231 + (ao_3_z + d_4_x * t499);
+    let t512 = inv_4 * (pa_4_m + (ia_4_01 * ao_4_x + ia_4_02 * ao_4_z));
+    let qdd_2 = t499 - t512;
+    let ao_5_x = ao_4_x + t59 * t512 - t127;
+    let ao_5_z = t128 + (ao_4_z + d_5_x * t512);
+    let qdd_3 = t512 - inv_5 * (ia_5_01 * ao_5_x - t87 * ao_5_z - t106);
     qdd[0] = alpha_2;
     qdd[1] = qdd_1;
     qdd[2] = qdd_2;
     qdd[3] = qdd_3;
     qdd[4] = s_dd;
+    [normal_force, friction_factor]
 }
 /// ẍ of Eq. 27 with the anchor stuck (ẍ_{3N+1} = 0), by the O(N) recursion; returns the
-/// anchor's holding force F^C_{3N+1} = a_{3N+1,p} ẍ_p − f_{3N+1} (Eq. 50), N along +x.
+/// anchor's holding force F^C_{3N+1} = a_{3N+1,p} ẍ_p − f_{3N+1} (Eq. 50), N along +x, and
+/// the seabed's normal force on it (Eq. 37), N along +z.
 pub fn solve_stuck(
     p: &[crate::BodyParams],
     u: &[f64],
     trig: &[[f64; 2]],
     loads: &[[f64; 3]],
     qdd: &mut [f64],
-) -> f64 {
+) -> [f64; 2] {
     let p: &[crate::BodyParams; 5] = p.try_into().expect("p must have 5 entries");
     let u: &[f64; 5] = u.try_into().expect("u must have 5 entries");
     let trig: &[[f64; 2]; 5] = trig.try_into().expect("trig must have 5 entries");
@@ -636,23 +669,25 @@ pub fn solve_stuck(
     let t333 = d_3_x * t332;
     let t334 = t47 * t332;
     let t341 = pa_3_x - pa_3_m * t319 + (t325 * t334 - t324 * t333);
+    let t346 = pa_3_z - pa_3_m * t320 + (t326 * t334 - t325 * t333);
     let t351 = -(t47 * t324) - d_3_x * t325;
+    let t356 = -(t47 * t325) - d_3_x * t326;
     let t367 = p[1].centroid[0] * p[1].centroid[0];
-    let ia_2_00 = -(t47 * t351) - d_3_x * (-(t47 * t325) - d_3_x * t326)
+    let t372 = p[1].mass * e_2_x;
+    let t373 = p[1].mass * t44;
+    let t376 = p[1].centroid[0] * p[1].added_mass;
+    let t395 = p[1].added_mass * (trig[1][1] * e_2_x - trig[1][0] * t44);
+    let ia_2_00 = -(t47 * t351) - d_3_x * t356
         + (p[1].inertia + (p[1].mass * t367 + p[1].added_mass * t367));
-    let ia_2_01 = t351
-        + (-(p[1].mass * t44) - trig[1][1] * (p[1].centroid[0] * p[1].added_mass));
-    let pa_2_m = -(t47 * t341)
-        - d_3_x * (pa_3_z - pa_3_m * t320 + (t326 * t334 - t325 * t333))
+    let ia_2_01 = t351 + (-t373 - trig[1][1] * t376);
+    let ia_2_02 = t356 - (t372 + trig[1][0] * t376);
+    let pa_2_m = -(t47 * t341) - d_3_x * t346
         - (loads[1][2] + (-(t44 * loads[1][0]) - e_2_x * loads[1][1]));
-    let pa_2_x = t341
-        + (-(t332
-            * (p[1].mass * e_2_x
-                + trig[1][1]
-                    * (p[1].added_mass * (trig[1][1] * e_2_x - trig[1][0] * t44))))
-            - loads[1][0]);
+    let pa_2_x = t341 + (-(t332 * (t372 + trig[1][1] * t395)) - loads[1][0]);
+    let pa_2_z = t346 + (-(t332 * (trig[1][0] * t395 - t373)) - loads[1][1]);
     let inv_2 = 1.0 / ia_2_00;
     let pa_1_x = pa_2_x - pa_2_m * (ia_2_01 * inv_2) - loads[0][0];
+    let pa_1_z = pa_2_z - pa_2_m * (ia_2_02 * inv_2) - loads[0][1];
     let t474 = pa_2_m * inv_2;
     let alpha_2 = -t474;
     let ao_3_x = t47 * t474 - t333;
@@ -671,5 +706,5 @@ pub fn solve_stuck(
     qdd[2] = qdd_2;
     qdd[3] = qdd_3;
     qdd[4] = 0.0;
-    pa_1_x
+    [pa_1_x, pa_1_z]
 }

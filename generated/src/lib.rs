@@ -40,14 +40,15 @@ pub struct BodyParams {
 
 /// Body states and the rotation table: `(p, q, u, trig, bodies)`.
 pub type KinematicsFn = fn(&[BodyParams], &[f64], &[f64], &mut [[f64; 2]], &mut [[f64; 6]]);
-/// a_lp and f_l: `(p, u, trig, loads, m, f)`.
-pub type AssembleFn = fn(&[BodyParams], &[f64], &[[f64; 2]], &[[f64; 3]], &mut [f64], &mut [f64]);
+/// a_lp, f_l and the anchor's heave row: `(p, u, trig, loads, m, f, heave)`.
+pub type AssembleFn = fn(&[BodyParams], &[f64], &[[f64; 2]], &[[f64; 3]], &mut [f64], &mut [f64], &mut [f64]);
 /// Body accelerations: `(p, u, trig, qdd, acc)`.
 pub type AccelerationsFn = fn(&[BodyParams], &[f64], &[[f64; 2]], &[f64], &mut [[f64; 3]]);
-/// O(N) solve with the anchor free: `(p, u, trig, loads, qdd)`.
-pub type SolveFreeFn = fn(&[BodyParams], &[f64], &[[f64; 2]], &[[f64; 3]], &mut [f64]);
-/// O(N) solve with the anchor stuck, returning the holding force (Eq. 50).
-pub type SolveStuckFn = fn(&[BodyParams], &[f64], &[[f64; 2]], &[[f64; 3]], &mut [f64]) -> f64;
+/// O(N) solve with the anchor free and sliding friction μ·direction: `(p, u, trig, loads,
+/// friction, qdd)`, returning the normal force (Eq. 37) and the friction factor.
+pub type SolveFreeFn = fn(&[BodyParams], &[f64], &[[f64; 2]], &[[f64; 3]], f64, &mut [f64]) -> [f64; 2];
+/// O(N) solve with the anchor stuck, returning the holding and normal forces (Eqs. 50, 37).
+pub type SolveStuckFn = fn(&[BodyParams], &[f64], &[[f64; 2]], &[[f64; 3]], &mut [f64]) -> [f64; 2];
 
 /// One generated variant's entry points.
 #[derive(Clone, Copy, Debug)]

@@ -7,10 +7,9 @@
 //! largest position error of any body at the common output times (the trajectory error).
 //! Wall times are medians of repeated runs.
 //!
-//! The anchor's sliding friction uses the normal force of the last observation (the paper's
-//! lag, see docs/model-choices.md), so the model itself moves with the observation interval
-//! (dt for RK4, `solver.dt` for the adaptive methods) by a first-order amount: about 1e-4 s
-//! in case 1's stopping time. Errors below that floor are not integration errors.
+//! The anchor's sliding friction takes the normal force implicitly (docs/model-choices.md),
+//! so every method integrates the same equations whatever its step or observation interval,
+//! and the errors below are integration errors.
 
 use std::path::{Path, PathBuf};
 

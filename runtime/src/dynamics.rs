@@ -1,10 +1,15 @@
 //! The equations of motion as a first-order system: y = (q, u, W), ẏ = (u, ü, P) with ü
 //! from a_lp ü_p = f_l (Eq. 27), q̇ = u (Eqs. 28, 29 integrate to this for the angles) and
 //! P the power of each work term of the energy balance (Eqs. 66–69).
+//!
+//! The anchor is held (its surge is no speed) or slides in a known direction with the
+//! friction −μ N of Eq. 37, N the normal force of the same evaluation: the kernel's solve
+//! takes it implicitly, so the right-hand side is a function of (q, u) alone.
 
+use crate::forces::anchor::AnchorForces;
 use crate::forces::{Forces, WORK_TERMS};
 use crate::integrate::{OdeSystem, RhsError};
-use crate::kernel::{AnchorDof, Assembly, BodyState, Kernel, Load, LoadModel};
+use crate::kernel::{AnchorDof, AnchorReaction, Assembly, BodyState, Kernel, Load, LoadModel};
 
 /// Number of work accumulators at the end of the state.
 pub const WORK_COUNT: usize = WORK_TERMS.len();
@@ -12,12 +17,17 @@ pub const WORK_COUNT: usize = WORK_TERMS.len();
 /// Kernel + loads + the anchor's state: the right-hand side the integrators see.
 pub struct Dynamics {
     kernel: Box<dyn Kernel>,
-    /// The loads; the run sets the anchor's sliding friction here.
     pub forces: Forces,
     anchor: AnchorDof,
+    /// Direction of sliding (+1 toward the ship, −1 away, 0 for no friction) while free.
+    direction: f64,
     assembly: Assembly,
     evaluations: u64,
     loads: Vec<Load>,
+    /// The seabed's reaction and the sliding friction force (N, along +x) of the last
+    /// evaluation.
+    reaction: AnchorReaction,
+    friction: f64,
 }
 
 /// The forces seen by the kernel, keeping a copy of the loads they returned.
@@ -37,7 +47,17 @@ impl LoadModel for Recording<'_> {
 impl Dynamics {
     pub fn new(kernel: Box<dyn Kernel>, forces: Forces, anchor: AnchorDof) -> Self {
         let n = kernel.body_count();
-        Dynamics { kernel, forces, anchor, assembly: Assembly::new(n), evaluations: 0, loads: vec![Load::default(); n] }
+        Dynamics {
+            kernel,
+            forces,
+            anchor,
+            direction: 0.0,
+            assembly: Assembly::new(n),
+            evaluations: 0,
+            loads: vec![Load::default(); n],
+            reaction: AnchorReaction::default(),
+            friction: 0.0,
+        }
     }
 
     /// N.
@@ -53,9 +73,22 @@ impl Dynamics {
         self.anchor
     }
 
-    /// Switches the anchor between held and sliding.
-    pub fn set_anchor(&mut self, anchor: AnchorDof) {
-        self.anchor = anchor;
+    /// Holds the anchor (its surge is no speed; static friction holds it).
+    pub fn hold_anchor(&mut self) {
+        self.anchor = AnchorDof::Stuck;
+        self.direction = 0.0;
+    }
+
+    /// Frees the anchor to slide in `direction` (+1 toward the ship, −1 away) against the
+    /// friction −μ N, or without friction for `direction` = 0.
+    pub fn slide_anchor(&mut self, direction: f64) {
+        self.anchor = AnchorDof::Free;
+        self.direction = direction;
+    }
+
+    /// The direction of sliding (0 while held or frictionless).
+    pub fn sliding_direction(&self) -> f64 {
+        self.direction
     }
 
     /// Right-hand-side evaluations so far.
@@ -68,9 +101,15 @@ impl Dynamics {
         &self.assembly
     }
 
-    /// The applied loads of the last evaluation, per body.
+    /// The applied loads of the last evaluation, per body, the anchor's sliding friction
+    /// included.
     pub fn loads(&self) -> &[Load] {
         &self.loads
+    }
+
+    /// The seabed's reaction on the anchor at the last evaluation.
+    pub fn reaction(&self) -> AnchorReaction {
+        self.reaction
     }
 
     /// Number of active speeds: N (anchor free) or N − 1 (stuck).
@@ -82,11 +121,27 @@ impl Dynamics {
     }
 
     /// Generalised accelerations at (q, u) by the kernel's solve; a stuck anchor's entry is
-    /// zero. Returns the anchor's holding force (see [`Kernel::solve`]).
-    pub fn accelerations(&mut self, q: &[f64], u: &[f64], qdd: &mut [f64]) -> Result<f64, RhsError> {
+    /// zero. Returns the seabed's reaction on the anchor (see [`Kernel::solve`]).
+    ///
+    /// A sliding anchor's friction is −μ N with N from this solve. Should N come out
+    /// negative (the chain lifting the anchor), friction would pull the anchor along:
+    /// the solve is repeated without friction (the model has no lift-off).
+    pub fn accelerations(&mut self, q: &[f64], u: &[f64], qdd: &mut [f64]) -> Result<AnchorReaction, RhsError> {
         self.evaluations += 1;
+        let k = match self.anchor {
+            AnchorDof::Free => self.forces.anchor.friction_factor(self.direction),
+            AnchorDof::Stuck => 0.0,
+        };
         let mut model = Recording { forces: &mut self.forces, loads: &mut self.loads };
-        self.kernel.solve(q, u, self.anchor, &mut model, &mut self.assembly, qdd)
+        let mut reaction = self.kernel.solve(q, u, self.anchor, k, &mut model, &mut self.assembly, qdd)?;
+        if k != 0.0 && reaction.normal < 0.0 {
+            let mut model = Recording { forces: &mut self.forces, loads: &mut self.loads };
+            reaction = self.kernel.solve(q, u, self.anchor, 0.0, &mut model, &mut self.assembly, qdd)?;
+        }
+        self.friction = AnchorForces::sliding_friction(k, reaction.normal);
+        self.loads[0].fx += self.friction;
+        self.reaction = reaction;
+        Ok(reaction)
     }
 
     /// a_lp and f_l at (q, u) with this system's loads, whatever path `accelerations` takes
@@ -113,6 +168,8 @@ impl OdeSystem for Dynamics {
         }
         self.accelerations(q, u, du)?;
         dw.copy_from_slice(&self.forces.power());
+        // The sliding friction's power (Eq. 68), known only after the solve.
+        dw[2] += self.friction * u[n - 1];
         Ok(())
     }
 }

@@ -15,7 +15,10 @@ use kanestop_generated::BodyParams;
 
 use crate::chain::Chain;
 use crate::integrate::RhsError;
-use crate::kernel::{solve_assembled, AnchorDof, Assembly, BodyAcceleration, BodyState, Kernel, Load, LoadModel};
+use crate::kernel::{
+    check_friction_factor, solve_assembled, AnchorDof, AnchorReaction, Assembly, BodyAcceleration, BodyState, Kernel,
+    Load, LoadModel,
+};
 
 /// How [`GeneratedKernel`] solves for the generalised accelerations.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -53,6 +56,8 @@ pub struct GeneratedKernel {
     loads: Vec<Load>,
     load_array: Vec<[f64; 3]>,
     acc: Vec<[f64; 3]>,
+    /// a_{w,p} and f_w from `assemble`.
+    heave: Vec<f64>,
 }
 
 impl GeneratedKernel {
@@ -109,6 +114,7 @@ impl GeneratedKernel {
             loads: vec![Load::default(); n],
             load_array: vec![[0.0; 3]; n],
             acc: vec![[0.0; 3]; n],
+            heave: vec![0.0; n + 1],
         })
     }
 
@@ -165,7 +171,11 @@ impl Kernel for GeneratedKernel {
             &self.load_array,
             out.mass.as_mut_slice(),
             out.rhs.as_mut_slice(),
+            &mut self.heave,
         );
+        let n = self.heave.len() - 1;
+        out.heave.copy_from_slice(&self.heave[..n]);
+        out.heave_rhs = self.heave[n];
     }
 
     fn accelerations(&mut self, q: &[f64], u: &[f64], qdd: &[f64], out: &mut [BodyAcceleration]) {
@@ -181,30 +191,36 @@ impl Kernel for GeneratedKernel {
         q: &[f64],
         u: &[f64],
         anchor: AnchorDof,
+        friction: f64,
         model: &mut dyn LoadModel,
         scratch: &mut Assembly,
         qdd: &mut [f64],
-    ) -> Result<f64, RhsError> {
+    ) -> Result<AnchorReaction, RhsError> {
         if self.solve_path == SolvePath::Assembled {
             self.assemble(q, u, model, scratch);
-            return solve_assembled(scratch, anchor, qdd);
+            return solve_assembled(scratch, anchor, friction, qdd);
         }
         self.states(q, u, &mut scratch.bodies);
         self.loads(model, &scratch.bodies);
-        let force = match anchor {
+        let reaction = match anchor {
             AnchorDof::Free => {
-                (self.kernel.solve_free)(&self.params, u, &self.trig, &self.load_array, qdd);
-                0.0
+                let [normal, factor] =
+                    (self.kernel.solve_free)(&self.params, u, &self.trig, &self.load_array, friction, qdd);
+                check_friction_factor(factor)?;
+                AnchorReaction { holding: 0.0, normal }
             }
-            AnchorDof::Stuck => (self.kernel.solve_stuck)(&self.params, u, &self.trig, &self.load_array, qdd),
+            AnchorDof::Stuck => {
+                let [holding, normal] = (self.kernel.solve_stuck)(&self.params, u, &self.trig, &self.load_array, qdd);
+                AnchorReaction { holding, normal }
+            }
         };
-        if !force.is_finite() || qdd.iter().any(|x| !x.is_finite()) {
+        if !reaction.holding.is_finite() || !reaction.normal.is_finite() || qdd.iter().any(|x| !x.is_finite()) {
             return Err(RhsError(
                 "the generated recursive solve produced a non-finite acceleration (non-finite state or \
                  degenerate chain)"
                     .into(),
             ));
         }
-        Ok(force)
+        Ok(reaction)
     }
 }

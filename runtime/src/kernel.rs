@@ -65,6 +65,12 @@ pub struct Assembly {
     pub mass: DMatrix<f64>,
     /// f_l (Eq. 25), N entries.
     pub rhs: DVector<f64>,
+    /// a_{w,p}: the row of the anchor's heave speed w = ẋ_{3N+3} over the N speeds. The
+    /// heave is always constrained; its row gives the seabed's normal force on the anchor,
+    /// N = a_{w,p} ẍ_p − f_w (Eq. 50 for the vertical, Eq. 37).
+    pub heave: DVector<f64>,
+    /// f_w, N.
+    pub heave_rhs: f64,
     /// Every body's state, B_1 first.
     pub bodies: Vec<BodyState>,
 }
@@ -72,8 +78,26 @@ pub struct Assembly {
 impl Assembly {
     /// Storage for a chain of `n` bodies.
     pub fn new(n: usize) -> Self {
-        Assembly { mass: DMatrix::zeros(n, n), rhs: DVector::zeros(n), bodies: vec![BodyState::default(); n] }
+        Assembly {
+            mass: DMatrix::zeros(n, n),
+            rhs: DVector::zeros(n),
+            heave: DVector::zeros(n),
+            heave_rhs: 0.0,
+            bodies: vec![BodyState::default(); n],
+        }
     }
+}
+
+/// The seabed's reaction on the anchor after a solve.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct AnchorReaction {
+    /// With the anchor stuck, the horizontal force (N, along +x) the seabed must supply to
+    /// keep it in place, F^C_{3N+1} = a_{3N+1,p} ẍ_p − f_{3N+1} (Eq. 50); 0 while it slides
+    /// (the sliding friction is an applied force then).
+    pub holding: f64,
+    /// The normal force N (N, along +z), a_{w,p} ẍ_p − f_w (Eq. 37). Negative when the
+    /// chain would lift the anchor.
+    pub normal: f64,
 }
 
 /// Accelerations of one body (Eq. 17), inertial components.
@@ -109,29 +133,41 @@ pub trait Kernel {
     fn accelerations(&mut self, q: &[f64], u: &[f64], qdd: &[f64], out: &mut [BodyAcceleration]);
 
     /// Generalised accelerations at (q, u) over the speeds `anchor` leaves active; a stuck
-    /// anchor's entry of `qdd` is 0. Returns the anchor's holding force: with the anchor
-    /// stuck, the horizontal force (N, along +x) the seabed must supply to keep it in place,
-    /// F^C_{3N+1} = a_{3N+1,p} ẍ_p − f_{3N+1} (Eq. 50); 0 with the anchor free.
+    /// anchor's entry of `qdd` is 0. A sliding anchor feels the friction force −`friction`·N
+    /// along x, with `friction` = μ times the direction of sliding (0: none) and N the
+    /// normal force of this very solve (implicit, Eq. 37; the paper lags it by one step).
+    /// Returns the seabed's reaction.
     ///
     /// `scratch.bodies` holds the body states of (q, u) afterwards. The default assembles
-    /// a_lp and f_l and solves the active block by Cholesky; kernels with a recursive
-    /// O(N) solve override it.
+    /// a_lp, f_l and the heave row and solves the active block by Cholesky; kernels with a
+    /// recursive O(N) solve override it.
+    #[allow(clippy::too_many_arguments)]
     fn solve(
         &mut self,
         q: &[f64],
         u: &[f64],
         anchor: AnchorDof,
+        friction: f64,
         model: &mut dyn LoadModel,
         scratch: &mut Assembly,
         qdd: &mut [f64],
-    ) -> Result<f64, RhsError> {
+    ) -> Result<AnchorReaction, RhsError> {
         self.assemble(q, u, model, scratch);
-        solve_assembled(scratch, anchor, qdd)
+        solve_assembled(scratch, anchor, friction, qdd)
     }
 }
 
 /// Solves an assembled system over the active speeds (see [`Kernel::solve`]).
-pub fn solve_assembled(asm: &Assembly, anchor: AnchorDof, qdd: &mut [f64]) -> Result<f64, RhsError> {
+///
+/// With the anchor sliding, the friction F = −k N enters f_s and N = N_0 + c F is itself
+/// linear in F (c = a_w M⁻¹ e_s), so F follows from one scalar equation (Sherman–Morrison on
+/// the Cholesky factor): N = N_0 / (1 + k c), ẍ = M⁻¹ f + F M⁻¹ e_s.
+pub fn solve_assembled(
+    asm: &Assembly,
+    anchor: AnchorDof,
+    friction: f64,
+    qdd: &mut [f64],
+) -> Result<AnchorReaction, RhsError> {
     let n = asm.rhs.len();
     let m = match anchor {
         AnchorDof::Free => n,
@@ -141,11 +177,37 @@ pub fn solve_assembled(asm: &Assembly, anchor: AnchorDof, qdd: &mut [f64]) -> Re
     let chol = a.cholesky().ok_or_else(|| {
         RhsError("the mass matrix a_lp is not positive definite (non-finite state or degenerate chain)".into())
     })?;
-    let x = chol.solve(&asm.rhs.rows(0, m).into_owned());
+    let mut x = chol.solve(&asm.rhs.rows(0, m).into_owned());
+    let heave = asm.heave.rows(0, m);
+    let mut normal = heave.dot(&x) - asm.heave_rhs;
+    if anchor == AnchorDof::Free && friction != 0.0 {
+        let mut e = DVector::zeros(m);
+        e[m - 1] = 1.0;
+        let g = chol.solve(&e);
+        let factor = 1.0 + friction * heave.dot(&g);
+        check_friction_factor(factor)?;
+        normal /= factor;
+        x += g * (-friction * normal);
+    }
     qdd[..m].copy_from_slice(x.as_slice());
     qdd[m..].iter_mut().for_each(|v| *v = 0.0);
-    Ok(match anchor {
+    let holding = match anchor {
         AnchorDof::Free => 0.0,
         AnchorDof::Stuck => asm.mass.row(n - 1).columns(0, m).dot(&x.transpose()) - asm.rhs[n - 1],
-    })
+    };
+    Ok(AnchorReaction { holding, normal })
+}
+
+/// Refuses a sliding problem that friction makes ill-posed: 1 + k ∂N/∂F ≤ 0 means the
+/// friction's own effect on the normal force outgrows it (Painlevé's paradox).
+pub fn check_friction_factor(factor: f64) -> Result<(), RhsError> {
+    if !(factor <= 0.0) {
+        Ok(()) // NaN is left to the caller's finiteness check
+    } else {
+        Err(RhsError(format!(
+            "the anchor's sliding friction is ill-posed (1 + μ ∂N/∂F = {factor:.3e} ≤ 0, Painlevé's paradox): \
+             the chain's pull on the anchor grows the normal force faster than friction resists; \
+             lower environment.seabed_friction"
+        )))
+    }
 }

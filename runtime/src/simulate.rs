@@ -7,9 +7,9 @@
 //! on re-integrated partial steps, not merely detected at the next step:
 //!
 //! - the anchor's stick–slip switch (discussion after Eq. 26 and Eq. 37): held until the
-//!   holding force exceeds μN, then sliding with friction −μN (N from the last accepted step,
-//!   as the paper does) until its velocity returns to zero, where it is held again if the
-//!   pull is below μN;
+//!   holding force exceeds μN, then sliding with friction −μN (N implicit, from the same
+//!   solve; the paper lags it by one step, see docs/model-choices.md) until its velocity
+//!   returns to zero, where it is held again if the pull is below μN;
 //! - the ship stopping: the first zero of its surge velocity.
 //!
 //! Every step is checked for non-finite values and energy runaway (relative drift of the
@@ -195,8 +195,6 @@ struct Runner<'a> {
     model: &'a Model,
     dynamics: Dynamics,
     integrator: Box<dyn Integrator>,
-    /// Direction of sliding (+1 toward the ship) while the anchor slides.
-    direction: f64,
     qdd: Vec<f64>,
     acc: Vec<BodyAcceleration>,
 }
@@ -210,27 +208,25 @@ impl Runner<'_> {
         let n = self.n();
         let (q, rest) = y.split_at(n);
         let (u, w) = rest.split_at(n);
-        let holding = self.dynamics.accelerations(q, u, &mut self.qdd)?;
+        let reaction = self.dynamics.accelerations(q, u, &mut self.qdd)?;
         let bodies = self.dynamics.assembly().bodies.clone();
         self.dynamics.kernel_mut().accelerations(q, u, &self.qdd, &mut self.acc);
         // Eq. 52 in Newton's form: the joint force on B_k balances the outboard bodies'
         // inertia (with added mass) less their applied loads.
         let mut joints = vec![[0.0; 2]; n - 1];
         let mut sum = [0.0, 0.0];
-        for k in (0..n).rev() {
+        for k in (1..n).rev() {
             let (b, a, l, s) = (&self.model.chain.bodies[k], &self.acc[k], &self.dynamics.loads()[k], &bodies[k]);
             let (sin, cos) = s.theta.sin_cos();
             let a_n = a.ax * sin + a.az * cos;
             sum[0] += b.mass * a.ax + b.added_mass * a_n * sin - l.fx;
             sum[1] += b.mass * a.az + b.added_mass * a_n * cos - l.fz;
-            if k >= 1 {
-                joints[k - 1] = sum;
-            }
+            joints[k - 1] = sum;
         }
         let work: [f64; WORK_COUNT] = w.try_into().expect("work accumulators");
         let env = &self.model.scene.environment;
         let energy = Energy::of(&self.model.chain, &bodies, env.gravity, self.model.seabed_z, work);
-        Ok(Observation { bodies, joints, normal: sum[1], holding, energy })
+        Ok(Observation { bodies, joints, normal: reaction.normal, holding: reaction.holding, energy })
     }
 
     /// Integrates from (t, y0) over h: one RK4 step, or error-controlled sub-steps of an
@@ -285,17 +281,14 @@ impl Runner<'_> {
         releases(obs, self.mu())
     }
 
-    fn set_sliding(&mut self, direction: f64, normal: f64) {
-        self.direction = direction;
-        self.dynamics.set_anchor(AnchorDof::Free);
-        self.dynamics.forces.anchor.set_sliding_friction(normal, direction);
+    fn set_sliding(&mut self, direction: f64) {
+        self.dynamics.slide_anchor(direction);
     }
 
     fn set_held(&mut self, y: &mut [f64]) {
         let n = self.n();
         y[2 * n - 1] = 0.0;
-        self.dynamics.set_anchor(AnchorDof::Stuck);
-        self.dynamics.forces.anchor.sliding_friction = 0.0;
+        self.dynamics.hold_anchor();
     }
 }
 
@@ -320,7 +313,6 @@ pub fn run(model: &Model, kernel: Box<dyn Kernel>) -> RunResult {
         model,
         dynamics: Dynamics::new(kernel, forces, model.anchor),
         integrator: integrator(solver, dim),
-        direction: 0.0,
         qdd: vec![0.0; n],
         acc: vec![BodyAcceleration::default(); n],
     };
@@ -386,12 +378,15 @@ pub fn run(model: &Model, kernel: Box<dyn Kernel>) -> RunResult {
                         Ok(v) => v,
                         Err(e) => break Err(e),
                     };
-                    let direction = -os.holding.signum();
-                    r.set_sliding(direction, os.normal);
+                    r.set_sliding(-os.holding.signum());
                     Some((hs, ys, AnchorDof::Free))
                 }
-                AnchorDof::Free if r.direction != 0.0 && end.bodies[0].vx * r.direction <= 0.0 && events < 8 => {
-                    let dir = r.direction;
+                AnchorDof::Free
+                    if r.dynamics.sliding_direction() != 0.0
+                        && end.bodies[0].vx * r.dynamics.sliding_direction() <= 0.0
+                        && events < 8 =>
+                {
+                    let dir = r.dynamics.sliding_direction();
                     let (hs, mut ys, _) = match r.locate(t_seg, &y_seg, h, |o| o.bodies[0].vx * dir <= 0.0) {
                         Ok(v) => v,
                         Err(e) => break Err(e),
@@ -403,8 +398,7 @@ pub fn run(model: &Model, kernel: Box<dyn Kernel>) -> RunResult {
                         Err(e) => break Err(e),
                     };
                     if r.release(&held) {
-                        let direction = -held.holding.signum();
-                        r.set_sliding(direction, held.normal);
+                        r.set_sliding(-held.holding.signum());
                         Some((hs, ys, AnchorDof::Free))
                     } else {
                         Some((hs, ys, AnchorDof::Stuck))
@@ -445,10 +439,6 @@ pub fn run(model: &Model, kernel: Box<dyn Kernel>) -> RunResult {
             break;
         }
         result.max_energy_drift = result.max_energy_drift.max(drift);
-        // Sliding friction follows the normal force of the last accepted step (Eq. 37).
-        if r.dynamics.anchor() == AnchorDof::Free && r.direction != 0.0 {
-            r.dynamics.forces.anchor.set_sliding_friction(obs_new.normal, r.direction);
-        }
 
         let ship_vx = obs_new.bodies[n - 1].vx;
         if prev_ship_vx > 0.0 && ship_vx <= 0.0 && result.stopping_time.is_none() {

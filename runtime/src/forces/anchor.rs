@@ -4,7 +4,9 @@
 //! the normal force is the seabed's reaction N = m_1 g − ρ V_1 g − F_2z (Eq. 37, F_2z the
 //! chain's upward pull). Stick and slip are decided by the run (see `simulate`): while the
 //! anchor is held the friction is a constraint force; while it slides the friction is
-//! −μ N in the direction of sliding, set here by [`AnchorForces::set_sliding_friction`].
+//! −μ N against the direction of sliding, with N the normal force of the same solve: N is
+//! linear in the accelerations, so the kernel's solve takes the friction implicitly
+//! ([`crate::kernel::Kernel::solve`]; the paper lags N by one step instead).
 
 /// The anchor's force data.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -17,8 +19,6 @@ pub struct AnchorForces {
     pub drag_coefficient: f64,
     /// μ.
     pub friction_coefficient: f64,
-    /// Friction force along +x while sliding, N (0 while held).
-    pub sliding_friction: f64,
 }
 
 impl AnchorForces {
@@ -28,11 +28,16 @@ impl AnchorForces {
         0.5 * self.drag_coefficient * rho * self.frontal_area * u * u.abs()
     }
 
-    /// Sets the sliding friction from the normal force `normal` (N) and the direction of
-    /// sliding (+1 or −1): −μ N direction (Eq. 37). A non-positive normal force (the chain
-    /// lifting the anchor) gives no friction.
-    pub fn set_sliding_friction(&mut self, normal: f64, direction: f64) {
-        self.sliding_friction = -self.friction_coefficient * normal.max(0.0) * direction;
+    /// The friction factor k of a sliding anchor: μ times the direction of sliding (+1
+    /// toward the ship, −1 away), so that the friction force along +x is −k N.
+    pub fn friction_factor(&self, direction: f64) -> f64 {
+        self.friction_coefficient * direction
+    }
+
+    /// The sliding friction force along +x, N, for the normal force `normal` (N) and the
+    /// factor `k` (Eq. 37): −k N, none when the chain lifts the anchor (N ≤ 0).
+    pub fn sliding_friction(k: f64, normal: f64) -> f64 {
+        -k * normal.max(0.0)
     }
 }
 
@@ -42,20 +47,14 @@ mod tests {
 
     #[test]
     fn drag_and_friction_of_the_paper_anchor() {
-        let mut a = AnchorForces {
-            volume: 16.8,
-            frontal_area: 8.4,
-            drag_coefficient: 1.05,
-            friction_coefficient: 0.3,
-            sliding_friction: 0.0,
-        };
+        let a = AnchorForces { volume: 16.8, frontal_area: 8.4, drag_coefficient: 1.05, friction_coefficient: 0.3 };
         // Sliding at 1 m/s in still water: 1.05 · 1025 · 8.4 / 2 = 4520.25 N against the motion.
         assert!((a.drag(1025.0, 0.0, 1.0) + 4520.25).abs() < 1e-9);
         // Normal force of the 40 t anchor with no chain pull: (40000 − 1025 · 16.8) g.
         let normal = (40000.0 - 1025.0 * 16.8) * 9.81;
-        a.set_sliding_friction(normal, 1.0);
-        assert!((a.sliding_friction + 0.3 * normal).abs() < 1e-9);
-        a.set_sliding_friction(-5.0, 1.0);
-        assert_eq!(a.sliding_friction, 0.0);
+        let k = a.friction_factor(1.0);
+        assert!((AnchorForces::sliding_friction(k, normal) + 0.3 * normal).abs() < 1e-9);
+        assert!((AnchorForces::sliding_friction(a.friction_factor(-1.0), normal) - 0.3 * normal).abs() < 1e-9);
+        assert_eq!(AnchorForces::sliding_friction(k, -5.0), 0.0);
     }
 }

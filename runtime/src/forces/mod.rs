@@ -86,7 +86,6 @@ impl Forces {
             frontal_area: s.anchor.width * s.anchor.height,
             drag_coefficient: s.hydrodynamics.anchor_drag_coefficient,
             friction_coefficient: if e.seabed { e.seabed_friction } else { 0.0 },
-            sliding_friction: 0.0,
         };
         f.ship = ShipHydro::new(
             s.ship.mass,
@@ -128,13 +127,7 @@ impl Forces {
             seabed_z: 0.0,
             elements,
             current: Current { surface_speed: 0.0, exponent: 1.0 / 7.0, depth: 1.0, seabed_z: 0.0 },
-            anchor: AnchorForces {
-                volume: 0.0,
-                frontal_area: 0.0,
-                drag_coefficient: 0.0,
-                friction_coefficient: 0.0,
-                sliding_friction: 0.0,
-            },
+            anchor: AnchorForces { volume: 0.0, frontal_area: 0.0, drag_coefficient: 0.0, friction_coefficient: 0.0 },
             ship: ShipHydro::new(1.0, 1.0, 1.0, 0.0, 1.0, g, 1.0),
             power: [0.0; 6],
         }
@@ -190,7 +183,6 @@ impl LoadModel for Forces {
                         power[0] += apply(load, s, [0.0, 0.0], 0.0, self.rho * self.anchor.volume * self.g);
                         power[3] += apply(load, s, [0.0, 0.0], self.anchor.drag(self.rho, current, s.vx), 0.0);
                     }
-                    power[2] += apply(load, s, [0.0, 0.0], self.anchor.sliding_friction, 0.0);
                 }
                 BodyKind::ChainLink | BodyKind::Cable { .. } => {
                     self.element_loads(s, e, load, &mut power);

@@ -1,5 +1,7 @@
 //! The restraining system through the general formulation: speeds ẋ_l with
-//! l = 5, 8, …, 3N−1 (rotations about y) and l = 3N+1 (anchor surge), Eq. 27.
+//! l = 5, 8, …, 3N−1 (rotations about y) and l = 3N+1 (anchor surge), Eq. 27. The anchor's
+//! heave ẋ_{3N+3} is added as a constrained speed (always zero) whose Kane equation gives
+//! the seabed's normal force on the anchor, as Eq. 50 does for the holding force.
 
 use nalgebra::{Matrix3, Vector3};
 
@@ -12,6 +14,8 @@ pub struct ReferenceKernel {
     data: ChainData,
     /// The active speeds l (1-based): 5, 8, …, 3N−1, 3N+1.
     speeds: Vec<usize>,
+    /// The same followed by the constrained anchor heave 3N+3.
+    with_heave: Vec<usize>,
     loads: Vec<Load>,
     wrenches: Vec<Wrench>,
 }
@@ -39,7 +43,14 @@ impl ReferenceKernel {
         };
         let mut speeds: Vec<usize> = (2..=n).map(|k| 3 * (k - 1) + 2).collect();
         speeds.push(3 * n + 1);
-        ReferenceKernel { data, speeds, loads: vec![Load::default(); n], wrenches: vec![Wrench::default(); n] }
+        let with_heave = speeds.iter().copied().chain([3 * n + 3]).collect();
+        ReferenceKernel {
+            data,
+            speeds,
+            with_heave,
+            loads: vec![Load::default(); n],
+            wrenches: vec![Wrench::default(); n],
+        }
     }
 
     fn n(&self) -> usize {
@@ -65,9 +76,11 @@ impl ReferenceKernel {
         (euler, s, x_dot)
     }
 
-    fn partials(&self, q: &[f64], u: &[f64]) -> (Partials, Vec<f64>) {
+    /// The arrays for the active speeds, or with the heave speed appended.
+    fn partials(&self, q: &[f64], u: &[f64], heave: bool) -> (Partials, Vec<f64>) {
         let (euler, s, x_dot) = self.general_state(q, u);
-        let partials = Partials::new(&self.data, &GeneralState { euler: &euler, s: &s, x_dot: &x_dot }, &self.speeds);
+        let speeds = if heave { &self.with_heave } else { &self.speeds };
+        let partials = Partials::new(&self.data, &GeneralState { euler: &euler, s: &s, x_dot: &x_dot }, speeds);
         (partials, x_dot)
     }
 
@@ -94,24 +107,27 @@ impl Kernel for ReferenceKernel {
     }
 
     fn kinematics(&mut self, q: &[f64], u: &[f64], bodies: &mut [BodyState]) {
-        let (partials, x_dot) = self.partials(q, u);
+        let (partials, x_dot) = self.partials(q, u, false);
         self.body_states(q, &partials, &x_dot, bodies);
     }
 
     fn assemble(&mut self, q: &[f64], u: &[f64], model: &mut dyn LoadModel, out: &mut Assembly) {
-        let (partials, x_dot) = self.partials(q, u);
+        let (partials, x_dot) = self.partials(q, u, true);
         self.body_states(q, &partials, &x_dot, &mut out.bodies);
         model.loads(&out.bodies, &mut self.loads);
         for (w, l) in self.wrenches.iter_mut().zip(&self.loads) {
             *w = Wrench { force: Vector3::new(l.fx, 0.0, l.fz), moment: Vector3::new(0.0, l.my, 0.0) };
         }
         let (a, f) = partials.kane_equations(&self.data, &x_dot, &self.wrenches);
-        out.mass.copy_from(&a);
-        out.rhs.copy_from(&f);
+        let n = self.n();
+        out.mass.copy_from(&a.view((0, 0), (n, n)));
+        out.rhs.copy_from(&f.rows(0, n));
+        out.heave.copy_from(&a.view((n, 0), (1, n)).transpose());
+        out.heave_rhs = f[n];
     }
 
     fn accelerations(&mut self, q: &[f64], u: &[f64], qdd: &[f64], out: &mut [BodyAcceleration]) {
-        let (partials, x_dot) = self.partials(q, u);
+        let (partials, x_dot) = self.partials(q, u, false);
         let n = self.n();
         let mut x_ddot = vec![0.0; 6 * n];
         for (i, &l) in self.speeds.iter().enumerate() {
