@@ -4,7 +4,7 @@
 //!
 //! scene ([`scene`], [`paper`]) → topology and model ([`model`], [`chain`], [`catenary`])
 //! → kernel ([`kernel`]: the [`reference`] formulation, or generated code) with the
-//! applied loads ([`forces`]) → right-hand side ([`dynamics`]) → integrator
+//! applied loads ([`forces`]) → right-hand side ([`dynamics`], its [`stability`] limit) → integrator
 //! ([`integrate`]) → results ([`simulate`], [`energy`]) → reports ([`report`], [`eval`]).
 //!
 //! Equation numbers refer to Liu, Hearn, Chen, Jiang & Wu, "Analysis of Dynamic Response of
@@ -28,3 +28,4 @@ pub mod reference;
 pub mod report;
 pub mod scene;
 pub mod simulate;
+pub mod stability;

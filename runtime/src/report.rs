@@ -103,6 +103,19 @@ pub fn summary(model: &Model, result: &RunResult) -> String {
             result.kernel
         ),
     );
+    if let Some(l) = result.stability {
+        w(
+            &mut out,
+            "stability",
+            format!(
+                "RK4 step limit at t = 0: {:.3e} s (fastest mode {:.3e} ± {:.3e}i 1/s; stiffest hinge B_{})",
+                l.rk4_dt,
+                l.lambda.re,
+                l.lambda.im.abs(),
+                l.body
+            ),
+        );
+    }
     w(
         &mut out,
         "run",

@@ -26,6 +26,7 @@ use crate::integrate::{Adaptive, Dopri5, Integrator, RhsError, Rk4, Sdirk4, Tole
 use crate::kernel::{AnchorDof, BodyAcceleration, BodyState, Kernel};
 use crate::model::Model;
 use crate::scene::IntegratorKind;
+use crate::stability::{self, StabilityLimit};
 
 /// The state of every body at one output time.
 #[derive(Clone, Debug)]
@@ -121,6 +122,8 @@ pub struct RunResult {
     pub physics: String,
     /// How static the initial catenary is under the model's own forces.
     pub initial_residual: Option<StaticResidual>,
+    /// RK4's step limit on the linearised equations at t = 0 (RK4 runs only).
+    pub stability: Option<StabilityLimit>,
 }
 
 /// How far the initial configuration is from static equilibrium: the largest centroid
@@ -337,7 +340,25 @@ pub fn run(model: &Model, kernel: Box<dyn Kernel>) -> RunResult {
         kernel: kernel_name,
         physics,
         initial_residual: None,
+        stability: None,
     };
+    // A fixed step beyond the initial state's stability limit is refused before the run.
+    if solver.integrator == IntegratorKind::Rk4 {
+        match stability::limit(&mut r.dynamics, &y) {
+            Ok(limit) => {
+                result.stability = Some(limit);
+                if dt > limit.rk4_dt {
+                    result.stop = Stop::Failed(step_beyond_limit(model, &limit));
+                    return result;
+                }
+            }
+            Err(e) => {
+                result.stop = Stop::Failed(failure(model, 0.0, &y, &e.0));
+                return result;
+            }
+        }
+    }
+    let evaluations_before = r.dynamics.evaluations();
     let mut obs = match r.observe(&y) {
         Ok(o) => o,
         Err(e) => {
@@ -472,7 +493,7 @@ pub fn run(model: &Model, kernel: Box<dyn Kernel>) -> RunResult {
     }
     result.t_end = t;
     result.steps = step;
-    result.rhs_evaluations = r.dynamics.evaluations();
+    result.rhs_evaluations = r.dynamics.evaluations() - evaluations_before;
     result.wall_time = start.elapsed();
     result
 }
@@ -492,6 +513,31 @@ pub fn integrator(solver: &crate::scene::Solver, dim: usize) -> Box<dyn Integrat
             m.control.h_max = solver.dt;
             Box::new(Adaptive::new(m))
         }
+    }
+}
+
+/// The refusal of an RK4 step above the stability limit (`solver.dt` out of range).
+fn step_beyond_limit(model: &Model, limit: &StabilityLimit) -> Failure {
+    let dt = model.scene.solver.dt;
+    let body = &model.chain.bodies[limit.body - 1];
+    let (re, im) = (limit.lambda.re, limit.lambda.im.abs());
+    Failure {
+        t: 0.0,
+        body: limit.body,
+        body_name: format!("{} (B_{}, {:.1} kg, {:.2} m)", body.kind, limit.body, body.mass, body.length()),
+        what: format!(
+            "solver.dt = {dt} s is above this scene's RK4 stability limit of {:.3e} s: valid range 0 < dt ≤ {:.3e} s",
+            limit.rk4_dt, limit.rk4_dt
+        ),
+        cause: format!(
+            "the fastest mode of the linearised equations at t = 0 (eigenvalue {re:.3e} ± {im:.3e}i 1/s, period \
+             {:.3e} s) would grow without bound at this step",
+            if im > 0.0 { 2.0 * std::f64::consts::PI / im } else { f64::INFINITY }
+        ),
+        suggestion: format!(
+            "set solver.dt ≤ {:.1e} s, or integrator = \"dp5\" (adapts its step) or \"sdirk4\" (stiff)",
+            0.9 * limit.rk4_dt
+        ),
     }
 }
 
