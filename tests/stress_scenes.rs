@@ -40,7 +40,7 @@ fn check(name: &str, r: &RunResult) {
         Stop::Failed(f) => {
             let refused = f.t == 0.0 && f.what.contains("solver.dt") && f.what.contains("valid range 0 < dt ≤");
             assert!(refused || (f.t > 0.0 && f.t.is_finite()), "{name}: {f}");
-            assert_eq!(refused, r.steps == 0, "{name}: a refused run takes no step");
+            assert!(!refused || r.steps == 0, "{name}: a refused run takes no step");
             assert!(f.body >= 2 && !f.body_name.is_empty(), "{name}: {f}");
             assert!(!f.suggestion.is_empty() && !f.cause.is_empty(), "{name}: {f}");
         }
@@ -130,6 +130,40 @@ fn rk4_grows_the_fastest_mode_only_beyond_the_limit() {
     assert!(stable < 0.1 * scale, "0.9 × limit: deviation {stable} rad/s against {scale} rad/s");
     assert!(!(unstable < 1.0 * scale), "2 × limit: deviation {unstable} rad/s against {scale} rad/s");
 }
+#[test]
+fn high_friction_anchor_completes() {
+    let r = run("friction_mu_1", 10.0);
+    check("friction_mu_1", &r);
+    assert_eq!(r.stop, Stop::ShipStopped);
+}
+
+#[test]
+fn deep_water_and_nearly_taut_cable_run_cleanly() {
+    for name in ["deep_water_50m", "taut_cable"] {
+        let r = run(name, 3.0);
+        check(name, &r);
+        assert!(!matches!(r.stop, Stop::Failed(_)), "{name}: {:?}", r.stop);
+    }
+}
+
+/// A joint force beyond `SPIKE_FACTOR` × the largest break load stops the run, naming the
+/// joint. Exercised by giving case 1's line a break load of 100 N: its real tensions (tens
+/// of kN at rest) then count as spikes at the first step.
+#[test]
+fn constraint_force_spike_stops_naming_the_joint() {
+    let mut scene = load("friction_mu_1");
+    scene.chain.break_load = 100.0;
+    scene.cable.break_load = 100.0;
+    scene.solver.end_time = 1.0;
+    let r = run_scene(&scene);
+    check("spike", &r);
+    let Stop::Failed(f) = &r.stop else { panic!("expected a failure, got {:?}", r.stop) };
+    assert!(f.what.contains("constraint-force spike: joint") && f.what.contains("1.000e3 N"), "{f}");
+    let n = r.samples[0].bodies.len();
+    assert!((2..=n).contains(&f.body) && f.body_name.contains(&format!("B_{}", f.body)), "{f}");
+    assert!(f.t <= 2.0 * scene.solver.dt, "{f}");
+}
+
 /// Every stress scene is valid under the scene checks and builds a model.
 #[test]
 fn every_stress_scene_loads() {

@@ -12,8 +12,10 @@
 //!   returns to zero, where it is held again if the pull is below μN;
 //! - the ship stopping: the first zero of its surge velocity.
 //!
-//! Every step is checked for non-finite values and energy runaway (relative drift of the
-//! energy balance beyond `solver.max_energy_drift`); a failure stops the run with a
+//! Every step is checked for non-finite values, energy runaway (relative drift of the
+//! energy balance beyond `solver.max_energy_drift`) and constraint-force spikes (a joint
+//! force above [`SPIKE_FACTOR`] times the line's largest break load: the model has no
+//! breaking, so such a force is numerical, not physical); a failure stops the run with a
 //! [`Failure`] naming the time, the body, the likely cause and a suggestion, and the
 //! samples up to the last good step are kept.
 
@@ -27,6 +29,10 @@ use crate::kernel::{AnchorDof, BodyAcceleration, BodyState, Kernel};
 use crate::model::Model;
 use crate::scene::IntegratorKind;
 use crate::stability::{self, StabilityLimit};
+
+/// A joint force above this multiple of the largest break load in the line (chain or
+/// cable) is a numerical spike: the line would have parted many times over.
+pub const SPIKE_FACTOR: f64 = 10.0;
 
 /// The state of every body at one output time.
 #[derive(Clone, Debug)]
@@ -320,6 +326,7 @@ pub fn run(model: &Model, kernel: Box<dyn Kernel>) -> RunResult {
         acc: vec![BodyAcceleration::default(); n],
     };
     let dt = solver.dt;
+    let spike_bound = SPIKE_FACTOR * model.scene.chain.break_load.max(model.scene.cable.break_load);
     let stride = ((solver.output_interval / dt).round() as u64).max(1);
     let max_steps = (solver.end_time / dt).round() as u64;
     let start = Instant::now();
@@ -460,6 +467,18 @@ pub fn run(model: &Model, kernel: Box<dyn Kernel>) -> RunResult {
             break;
         }
         result.max_energy_drift = result.max_energy_drift.max(drift);
+        if let Some((k, tension)) = spike(&obs_new, spike_bound) {
+            let what = format!(
+                "constraint-force spike: joint {k} (B_{} – B_{k}) carries {tension:.3e} N, above {SPIKE_FACTOR} × the \
+                 line's largest break load ({spike_bound:.3e} N in all)",
+                k - 1
+            );
+            let mut f = failure(model, t_next, &y, &what);
+            // The joint's outer body, not the fastest-turning one, is where it shows.
+            (f.body, f.body_name) = (k, body_name(model, k));
+            result.stop = Stop::Failed(f);
+            break;
+        }
 
         let ship_vx = obs_new.bodies[n - 1].vx;
         if prev_ship_vx > 0.0 && ship_vx <= 0.0 && result.stopping_time.is_none() {
@@ -519,12 +538,11 @@ pub fn integrator(solver: &crate::scene::Solver, dim: usize) -> Box<dyn Integrat
 /// The refusal of an RK4 step above the stability limit (`solver.dt` out of range).
 fn step_beyond_limit(model: &Model, limit: &StabilityLimit) -> Failure {
     let dt = model.scene.solver.dt;
-    let body = &model.chain.bodies[limit.body - 1];
     let (re, im) = (limit.lambda.re, limit.lambda.im.abs());
     Failure {
         t: 0.0,
         body: limit.body,
-        body_name: format!("{} (B_{}, {:.1} kg, {:.2} m)", body.kind, limit.body, body.mass, body.length()),
+        body_name: body_name(model, limit.body),
         what: format!(
             "solver.dt = {dt} s is above this scene's RK4 stability limit of {:.3e} s: valid range 0 < dt ≤ {:.3e} s",
             limit.rk4_dt, limit.rk4_dt
@@ -539,6 +557,23 @@ fn step_beyond_limit(model: &Model, limit: &StabilityLimit) -> Failure {
             0.9 * limit.rk4_dt
         ),
     }
+}
+
+/// "auxiliary rod (B_45, 13.9 kg, 1.00 m)" for body k (1-based).
+fn body_name(model: &Model, k: usize) -> String {
+    let body = &model.chain.bodies[k - 1];
+    format!("{} (B_{k}, {:.1} kg, {:.2} m)", body.kind, body.mass, body.length())
+}
+
+/// The joint k (2 … N) and its force when the largest joint force exceeds `bound`, N.
+fn spike(obs: &Observation, bound: f64) -> Option<(usize, f64)> {
+    let (i, tension) =
+        obs.joints
+            .iter()
+            .map(|j| j[0].hypot(j[1]))
+            .enumerate()
+            .fold((0, 0.0), |best, (i, t)| if t > best.1 { (i, t) } else { best });
+    (tension > bound).then_some((i + 2, tension))
 }
 
 /// Static friction is exceeded: |H| > μN (Eq. 37 and the discussion after Eq. 26).
@@ -598,12 +633,5 @@ fn failure(model: &Model, t: f64, last_good: &[f64], what: &str) -> Failure {
             format!("tighten solver.rtol (now {}) or reduce solver.dt (now {dt} s); {kept}", solver.rtol),
         ),
     };
-    Failure {
-        t,
-        body: k,
-        body_name: format!("{} (B_{k}, {:.1} kg, {:.2} m)", body.kind, body.mass, body.length()),
-        what: what.to_string(),
-        cause,
-        suggestion,
-    }
+    Failure { t, body: k, body_name: body_name(model, k), what: what.to_string(), cause, suggestion }
 }
