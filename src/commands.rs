@@ -25,22 +25,30 @@ fn progress(len: usize) -> ProgressBar {
     bar
 }
 
-/// `batch DIR`: runs every scene, prints the table, writes batch.csv and batch.json; with a
-/// `tolerance`, validates against Table 3 and returns whether every check passed.
+/// `batch DIR`: runs every scene once per configuration (one per method compared), prints
+/// the table, writes batch.csv and batch.json; with `error_estimate`, each run is repeated
+/// refined; with a `tolerance`, validates against Table 3 and returns whether every check
+/// passed.
 pub fn batch(
     dir: &Path,
     out: &Path,
-    configure: batch::Configure,
+    configures: &[batch::Configure],
     kernel: KernelFactory,
+    error_estimate: bool,
     tolerance: Option<f64>,
 ) -> Result<bool> {
     let files = batch::scene_files(dir).with_context(|| format!("cannot read scene folder {}", dir.display()))?;
     anyhow::ensure!(!files.is_empty(), "no *.toml scene in {}", dir.display());
-    let bar = progress(files.len());
-    let rows = batch::run_all(&files, configure, kernel, &|row| {
-        bar.set_message(format!("{} {}", row.case, row.status));
-        bar.inc(1);
-    });
+    let bar = progress(files.len() * configures.len());
+    let mut rows = Vec::new();
+    for configure in configures {
+        rows.extend(batch::run_all(&files, *configure, kernel, error_estimate, &|row| {
+            bar.set_message(format!("{} {} {}", row.case, row.method, row.status));
+            bar.inc(1);
+        }));
+    }
+    // Scene by scene, the methods side by side.
+    rows.sort_by(|a, b| a.file.cmp(&b.file));
     bar.finish_and_clear();
     print!("{}", batch::table(&rows));
     let (csv, json) = batch::write(&rows, out).with_context(|| format!("cannot write into {}", out.display()))?;

@@ -83,6 +83,14 @@ enum Command {
         kernel: KernelChoice,
         #[command(flatten)]
         solver: SolverOverrides,
+        /// Compare methods: run every scene with each, e.g. `rk4,dp5@0.02,sdirk4@0.02`
+        /// (`@dt` sets that method's step or observation interval, s). Replaces --integrator.
+        #[arg(long, value_delimiter = ',')]
+        methods: Vec<MethodSpec>,
+        /// Repeat every run refined (RK4 at dt/2, adaptive methods at rtol/10 and atol/10)
+        /// and report the differences as error estimates (stopping time, trajectory).
+        #[arg(long)]
+        error_estimate: bool,
     },
     /// Run one or more scenes and plot them overlaid (SVG): ship surge speed, ship and
     /// anchor displacement, peak joint tension along the line, energy terms.
@@ -239,6 +247,35 @@ enum IntegratorChoice {
     Sdirk4,
 }
 
+/// One method of `batch --methods`: `rk4`, `dp5@0.02`, …
+#[derive(Clone, Copy, Debug)]
+struct MethodSpec {
+    integrator: IntegratorKind,
+    dt: Option<f64>,
+}
+
+impl std::str::FromStr for MethodSpec {
+    type Err = String;
+
+    fn from_str(text: &str) -> Result<Self, String> {
+        let (name, dt) = match text.split_once('@') {
+            Some((name, dt)) => {
+                let dt: f64 =
+                    dt.parse().map_err(|_| format!("{text}: the step after @ must be a number of seconds"))?;
+                (name, Some(dt))
+            }
+            None => (text, None),
+        };
+        let integrator = match name.trim() {
+            "rk4" => IntegratorKind::Rk4,
+            "dp5" => IntegratorKind::Dp5,
+            "sdirk4" => IntegratorKind::Sdirk4,
+            other => return Err(format!("{other}: unknown method (valid: rk4, dp5, sdirk4, each optionally @dt)")),
+        };
+        Ok(MethodSpec { integrator, dt })
+    }
+}
+
 fn load_model_with(scene: Option<&PathBuf>, o: &SolverOverrides) -> Result<Model> {
     let (mut scene, file) = match scene {
         Some(path) => (Scene::load(path)?, path.display().to_string()),
@@ -337,13 +374,37 @@ fn try_main() -> Result<ExitCode> {
             commands::plot(&scenes, &out, &|model: &Model| kernel(choice, model))?;
             Ok(ExitCode::SUCCESS)
         }
-        Command::Batch { dir, out, tolerance, kernel: choice, solver } => {
+        Command::Batch { dir, out, tolerance, kernel: choice, solver, methods, error_estimate } => {
             if let Some(t) = tolerance {
                 anyhow::ensure!(t.is_finite() && t > 0.0, "--tolerance {t}: must be a number > 0 (e.g. 0.05 for 5 %)");
             }
-            let configure =
-                |scene: &mut Scene| solver.apply(scene, &scene.meta.name.clone()).map_err(|e| e.to_string());
-            let ok = commands::batch(&dir, &out, &configure, &|model: &Model| kernel(choice, model), tolerance)?;
+            anyhow::ensure!(
+                methods.is_empty() || (solver.integrator.is_none() && solver.dt.is_none()),
+                "--methods sets the integrator and its step (method@dt): drop --integrator and --dt"
+            );
+            let apply = |scene: &mut Scene, method: Option<MethodSpec>| {
+                if let Some(m) = method {
+                    scene.solver.integrator = m.integrator;
+                    scene.solver.dt = m.dt.unwrap_or(scene.solver.dt);
+                    // The output grid must hold at least one step.
+                    scene.solver.output_interval = scene.solver.output_interval.max(scene.solver.dt);
+                }
+                solver.apply(scene, &scene.meta.name.clone()).map_err(|e| e.to_string())
+            };
+            let per_method: Vec<Box<dyn Fn(&mut Scene) -> Result<(), String> + Sync>> = if methods.is_empty() {
+                vec![Box::new(|scene: &mut Scene| apply(scene, None))]
+            } else {
+                methods.iter().map(|&m| Box::new(move |scene: &mut Scene| apply(scene, Some(m))) as Box<_>).collect()
+            };
+            let configures: Vec<kanestop_runtime::batch::Configure> = per_method.iter().map(|c| c.as_ref()).collect();
+            let ok = commands::batch(
+                &dir,
+                &out,
+                &configures,
+                &|model: &Model| kernel(choice, model),
+                error_estimate,
+                tolerance,
+            )?;
             Ok(if ok { ExitCode::SUCCESS } else { ExitCode::from(1) })
         }
         Command::Codegen { scene, write, root } => {

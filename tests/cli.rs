@@ -205,6 +205,45 @@ fn batch_tabulates_a_folder_and_writes_csv_and_json() {
     );
 }
 
+/// `--methods` runs every scene with each method, side by side; `--error-estimate` adds the
+/// refined runs' differences.
+#[test]
+fn batch_compares_methods_with_error_estimates() {
+    let dir = temp_dir("methods");
+    let scenes = dir.join("scenes");
+    std::fs::create_dir_all(&scenes).unwrap();
+    std::fs::copy(short_scene(&dir), scenes.join("a.toml")).unwrap();
+    let out_dir = dir.join("out");
+    let out = kanestop()
+        .args(["batch"])
+        .arg(&scenes)
+        .args(["--methods", "rk4,dp5@0.01", "--rtol", "1e-5", "--atol", "1e-7", "--error-estimate", "--out"])
+        .arg(&out_dir)
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{stdout}{}", String::from_utf8_lossy(&out.stderr));
+    assert!(stdout.contains("±traj m"), "{stdout}");
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out_dir.join("batch.json")).unwrap()).unwrap();
+    let rows = json.as_array().unwrap();
+    let methods: Vec<&str> = rows.iter().map(|r| r["method"].as_str().unwrap()).collect();
+    assert_eq!(methods, ["rk4", "dp5"]);
+    for r in rows {
+        // The short scene runs to its end time: a trajectory estimate, no stopping time.
+        let e = r["trajectory_error_estimate"].as_f64().expect("an estimate");
+        assert!(e.is_finite() && e < 1e-2, "{r}");
+        assert!(r["stop_error_estimate"].is_null());
+    }
+    // --methods owns the integrator and its step; a bad method is a clear error.
+    let out = kanestop().args(["batch"]).arg(&scenes).args(["--methods", "rk4", "--dt", "0.01"]).output().unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("drop --integrator and --dt"));
+    let out = kanestop().args(["batch"]).arg(&scenes).args(["--methods", "euler"]).output().unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("unknown method"));
+}
+
 #[test]
 fn plot_writes_the_four_svg_charts() {
     let dir = temp_dir("plot");

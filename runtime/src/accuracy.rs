@@ -84,23 +84,6 @@ fn run(scene: &Scene, kernel: &dyn Fn(&Model) -> Box<dyn Kernel>, repeats: usize
     Ok((last.unwrap(), walls[walls.len() / 2]))
 }
 
-/// Largest centroid position difference at the output times both runs share, m.
-fn trajectory_error(a: &RunResult, b: &RunResult) -> f64 {
-    let mut worst: f64 = 0.0;
-    let mut j = 0;
-    for s in &a.samples {
-        while j < b.samples.len() && b.samples[j].t < s.t - 1e-9 {
-            j += 1;
-        }
-        if j < b.samples.len() && (b.samples[j].t - s.t).abs() <= 1e-9 {
-            for (p, q) in s.bodies.iter().zip(&b.samples[j].bodies) {
-                worst = worst.max((p.x - q.x).hypot(p.z - q.z));
-            }
-        }
-    }
-    worst
-}
-
 fn displacement(r: &RunResult, body: usize) -> f64 {
     let (first, last) = (r.samples.first().unwrap(), r.samples.last().unwrap());
     let k = if body == usize::MAX { first.bodies.len() - 1 } else { body };
@@ -161,7 +144,7 @@ pub fn study(
             ship_displacement_error: when((displacement(&r, usize::MAX) - displacement(&reference, usize::MAX)).abs()),
             anchor_displacement_error: when((displacement(&r, 0) - displacement(&reference, 0)).abs()),
             peak_tension_error: when((peak(&r) - peak(&reference)).abs() / peak(&reference)),
-            trajectory_error: Some(trajectory_error(&r, &reference)),
+            trajectory_error: Some(simulate::trajectory_difference(&r, &reference)),
             wall_time: wall,
             rhs_evaluations: r.rhs_evaluations,
         });
@@ -170,7 +153,7 @@ pub fn study(
         scene: scene.meta.name.clone(),
         reference_stopping_time: t_ref,
         reference_error: (check.stopping_time.unwrap_or(f64::NAN) - t_ref).abs(),
-        reference_trajectory_error: trajectory_error(&check, &reference),
+        reference_trajectory_error: simulate::trajectory_difference(&check, &reference),
         rows,
     })
 }

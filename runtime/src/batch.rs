@@ -1,5 +1,7 @@
 //! Many scenes at once: every scene of a folder run in parallel (rayon), one result row
-//! each, written as a terminal table, CSV and JSON.
+//! each, written as a terminal table, CSV and JSON. On request each run is repeated with a
+//! refined setting (RK4: dt/2; adaptive methods: rtol and atol/10) and the difference is its
+//! error estimate.
 
 use std::path::{Path, PathBuf};
 
@@ -9,7 +11,7 @@ use serde::{Deserialize, Serialize};
 use crate::kernel::Kernel;
 use crate::model::Model;
 use crate::report::{break_exceedances, write_atomically};
-use crate::scene::Scene;
+use crate::scene::{IntegratorKind, Scene};
 use crate::simulate::{self, RunResult, Stop};
 
 /// One scene's outcome.
@@ -21,6 +23,8 @@ pub struct BatchRow {
     pub file: String,
     /// "stopped", "end time", "failed" or "invalid".
     pub status: String,
+    /// The integrator: "rk4", "dp5" or "sdirk4" ("" when the scene did not load).
+    pub method: String,
     /// Number of bodies.
     pub bodies: Option<usize>,
     /// First zero of the ship's surge speed, s.
@@ -43,6 +47,12 @@ pub struct BatchRow {
     pub energy_drift: Option<f64>,
     /// Wall-clock time of the run, s.
     pub wall_time: f64,
+    /// |t_stop − t_stop,refined|, s: the stopping time's error estimate (with
+    /// `estimate`, when both runs stopped the ship).
+    pub stop_error_estimate: Option<f64>,
+    /// Largest centroid position difference from the refined run at the common output
+    /// times, m (with `estimate`, when neither run failed).
+    pub trajectory_error_estimate: Option<f64>,
     /// Error or diagnostic, if any.
     pub message: String,
 }
@@ -60,7 +70,9 @@ pub fn scene_files(dir: &Path) -> std::io::Result<Vec<PathBuf>> {
 /// The row of one finished run.
 pub fn row(file: &Path, model: &Model, result: &RunResult) -> BatchRow {
     let paper = model.scene.meta.paper_stopping_time;
-    let peak = result.peak_tension();
+    // A run refused before its first step has no peak and no drift to report.
+    let ran = result.steps > 0;
+    let peak = result.peak_tension().filter(|_| ran);
     let (status, message) = match &result.stop {
         Stop::ShipStopped => ("stopped", String::new()),
         Stop::EndTime => ("end time", String::new()),
@@ -70,6 +82,7 @@ pub fn row(file: &Path, model: &Model, result: &RunResult) -> BatchRow {
         case: model.scene.meta.name.clone(),
         file: file.display().to_string(),
         status: status.into(),
+        method: method_name(model.scene.solver.integrator).into(),
         bodies: Some(model.body_count()),
         stopping_time: result.stopping_time,
         paper_stopping_time: paper,
@@ -79,10 +92,45 @@ pub fn row(file: &Path, model: &Model, result: &RunResult) -> BatchRow {
         peak_time: peak.map(|p| p.1.t),
         break_exceedances: break_exceedances(model, result).len(),
         anchor_start: result.anchor_start(),
-        energy_drift: Some(result.max_energy_drift),
+        energy_drift: ran.then_some(result.max_energy_drift),
         wall_time: result.wall_time.as_secs_f64(),
+        stop_error_estimate: None,
+        trajectory_error_estimate: None,
         message,
     }
+}
+
+/// "rk4", "dp5" or "sdirk4".
+pub fn method_name(kind: IntegratorKind) -> &'static str {
+    match kind {
+        IntegratorKind::Rk4 => "rk4",
+        IntegratorKind::Dp5 => "dp5",
+        IntegratorKind::Sdirk4 => "sdirk4",
+    }
+}
+
+/// The same scene integrated more accurately: RK4 at dt/2, an adaptive method at a tenth of
+/// its tolerances (same observation interval), on the same output times.
+pub fn refined(scene: &Scene) -> Scene {
+    let mut s = scene.clone();
+    match s.solver.integrator {
+        IntegratorKind::Rk4 => s.solver.dt /= 2.0,
+        IntegratorKind::Dp5 | IntegratorKind::Sdirk4 => {
+            s.solver.rtol /= 10.0;
+            s.solver.atol /= 10.0;
+        }
+    }
+    s
+}
+
+/// Fills the error estimates of `row` from the refined run.
+fn estimate(row: &mut BatchRow, result: &RunResult, fine: &RunResult) {
+    let failed = |r: &RunResult| matches!(r.stop, Stop::Failed(_));
+    if failed(result) || failed(fine) {
+        return;
+    }
+    row.stop_error_estimate = result.stopping_time.zip(fine.stopping_time).map(|(a, b)| (a - b).abs());
+    row.trajectory_error_estimate = Some(simulate::trajectory_difference(result, fine));
 }
 
 /// Adjusts a loaded scene before it runs (e.g. command-line solver overrides); an error
@@ -90,12 +138,13 @@ pub fn row(file: &Path, model: &Model, result: &RunResult) -> BatchRow {
 pub type Configure<'a> = &'a (dyn Fn(&mut Scene) -> Result<(), String> + Sync);
 
 /// Runs every file in parallel; `configure` adjusts each scene, `kernel` builds each run's
-/// kernel and `done` is called (from any thread) as each run finishes. Rows come back in
-/// file order.
+/// kernel and `done` is called (from any thread) as each run finishes; with `error_estimate`
+/// each run is repeated [`refined`] to estimate its error. Rows come back in file order.
 pub fn run_all(
     files: &[PathBuf],
     configure: Configure,
     kernel: &(dyn Fn(&Model) -> Box<dyn Kernel> + Sync),
+    error_estimate: bool,
     done: &(dyn Fn(&BatchRow) + Sync),
 ) -> Vec<BatchRow> {
     files
@@ -108,12 +157,20 @@ pub fn run_all(
             let row = match model {
                 Ok(model) => {
                     let result = simulate::run(&model, kernel(&model));
-                    row(file, &model, &result)
+                    let mut row = row(file, &model, &result);
+                    if error_estimate {
+                        match Model::new(&refined(&model.scene)) {
+                            Ok(fine) => estimate(&mut row, &result, &simulate::run(&fine, kernel(&fine))),
+                            Err(e) => row.message = one_line(&format!("no error estimate: {e}")),
+                        }
+                    }
+                    row
                 }
                 Err(message) => BatchRow {
                     case: file.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default(),
                     file: file.display().to_string(),
                     status: "invalid".into(),
+                    method: String::new(),
                     bodies: None,
                     stopping_time: None,
                     paper_stopping_time: None,
@@ -125,6 +182,8 @@ pub fn run_all(
                     anchor_start: None,
                     energy_drift: None,
                     wall_time: 0.0,
+                    stop_error_estimate: None,
+                    trajectory_error_estimate: None,
                     message: one_line(&message),
                 },
             };
@@ -145,15 +204,33 @@ fn opt(v: Option<f64>, scale: f64, digits: usize) -> String {
 
 /// The rows as a terminal table.
 pub fn table(rows: &[BatchRow]) -> String {
+    let estimates = rows.iter().any(|r| r.stop_error_estimate.is_some() || r.trajectory_error_estimate.is_some());
     let mut out = format!(
-        "{:<15} {:>3} {:<9} {:>9} {:>9} {:>8} {:>11} {:>6} {:>8} {:>9} {:>8}\n",
-        "case", "N", "status", "stop (s)", "paper (s)", "diff %", "peak (kN)", "joint", "anchor s", "drift", "wall (s)"
+        "{:<15} {:>3} {:<6} {:<9} {:>9} {:>9} {:>8} {:>11} {:>6} {:>8} {:>9} {:>8}",
+        "case",
+        "N",
+        "method",
+        "status",
+        "stop (s)",
+        "paper (s)",
+        "diff %",
+        "peak (kN)",
+        "joint",
+        "anchor s",
+        "drift",
+        "wall (s)"
     );
+    if estimates {
+        out.push_str(&format!(" {:>9} {:>9}", "±stop s", "±traj m"));
+    }
+    out.push('\n');
+    let e = |v: Option<f64>| v.map(|v| format!("{v:.1e}")).unwrap_or_else(|| "—".into());
     for r in rows {
         out.push_str(&format!(
-            "{:<15} {:>3} {:<9} {:>9} {:>9} {:>8} {:>11} {:>6} {:>8} {:>9} {:>8.2}\n",
+            "{:<15} {:>3} {:<6} {:<9} {:>9} {:>9} {:>8} {:>11} {:>6} {:>8} {:>9} {:>8.2}",
             r.case,
             r.bodies.map(|n| n.to_string()).unwrap_or_default(),
+            r.method,
             r.status,
             opt(r.stopping_time, 1.0, 3),
             opt(r.paper_stopping_time, 1.0, 3),
@@ -164,6 +241,10 @@ pub fn table(rows: &[BatchRow]) -> String {
             r.energy_drift.map(|d| format!("{d:.1e}")).unwrap_or_default(),
             r.wall_time
         ));
+        if estimates {
+            out.push_str(&format!(" {:>9} {:>9}", e(r.stop_error_estimate), e(r.trajectory_error_estimate)));
+        }
+        out.push('\n');
         if !r.message.is_empty() {
             out.push_str(&format!("           {}\n", r.message));
         }
@@ -174,12 +255,12 @@ pub fn table(rows: &[BatchRow]) -> String {
 /// The rows as CSV.
 pub fn csv(rows: &[BatchRow]) -> String {
     let mut out = String::from(
-        "case,file,status,bodies,stopping_time,paper_stopping_time,relative_difference,peak_tension,peak_joint,peak_time,break_exceedances,anchor_start,energy_drift,wall_time,message\n",
+        "case,file,status,bodies,stopping_time,paper_stopping_time,relative_difference,peak_tension,peak_joint,peak_time,break_exceedances,anchor_start,energy_drift,wall_time,message,method,stop_error_estimate,trajectory_error_estimate\n",
     );
     let o = |v: Option<f64>| v.map(|v| format!("{v}")).unwrap_or_default();
     for r in rows {
         out.push_str(&format!(
-            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},\"{}\"\n",
+            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},\"{}\",{},{},{}\n",
             r.case,
             r.file,
             r.status,
@@ -194,7 +275,10 @@ pub fn csv(rows: &[BatchRow]) -> String {
             o(r.anchor_start),
             o(r.energy_drift),
             r.wall_time,
-            r.message.replace('"', "'")
+            r.message.replace('"', "'"),
+            r.method,
+            o(r.stop_error_estimate),
+            o(r.trajectory_error_estimate),
         ));
     }
     out

@@ -171,6 +171,23 @@ pub fn static_residual(model: &Model, kernel: Box<dyn Kernel>) -> Result<StaticR
     Ok(StaticResidual { line, top })
 }
 
+/// Largest centroid position difference at the output times both runs share, m.
+pub fn trajectory_difference(a: &RunResult, b: &RunResult) -> f64 {
+    let mut worst: f64 = 0.0;
+    let mut j = 0;
+    for s in &a.samples {
+        while j < b.samples.len() && b.samples[j].t < s.t - 1e-9 {
+            j += 1;
+        }
+        if j < b.samples.len() && (b.samples[j].t - s.t).abs() <= 1e-9 {
+            for (p, q) in s.bodies.iter().zip(&b.samples[j].bodies) {
+                worst = worst.max((p.x - q.x).hypot(p.z - q.z));
+            }
+        }
+    }
+    worst
+}
+
 impl RunResult {
     /// When the anchor first started to slide, s.
     pub fn anchor_start(&self) -> Option<f64> {
