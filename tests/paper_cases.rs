@@ -102,6 +102,7 @@ fn adaptive_methods_reproduce_the_rk4_stopping_time() {
         scene.solver.rtol = rtol;
         scene.solver.atol = rtol * 1e-2;
         scene.solver.end_time = end;
+        scene.solver.output_interval = scene.solver.output_interval.max(dt);
         assert!(scene.problems().is_empty());
         let model = Model::new(&scene).unwrap();
         simulate::run(&model, Box::new(GeneratedKernel::new(&model.chain).unwrap()))
@@ -110,7 +111,14 @@ fn adaptive_methods_reproduce_the_rk4_stopping_time() {
     let dp5 = run_with(IntegratorKind::Dp5, 0.02, 1e-7, 60.0);
     let (a, b) = (rk4.stopping_time.unwrap(), dp5.stopping_time.unwrap());
     println!("stopping time: RK4 dt = 0.002 s {a:.6} s, DP5 rtol = 1e-7 {b:.6} s");
-    assert!((a - b).abs() < 2e-3, "RK4 {a:.6} s vs DP5 {b:.6} s");
+    // Both converge on the same equations (the normal force is implicit): RK4 at 2 ms is
+    // within ~5e-5 s of the reference, DP5 at 1e-7 within ~1e-6 s (docs/integrators.md).
+    assert!((a - b).abs() < 2e-4, "RK4 {a:.6} s vs DP5 {b:.6} s");
+    // A long observation interval puts the anchor's last stop and the ship's stop in one
+    // interval: the ship's stop is still located under the right anchor state.
+    let long = run_with(IntegratorKind::Dp5, 0.5, 1e-7, 60.0);
+    let c = long.stopping_time.unwrap();
+    assert!((c - b).abs() < 1e-4, "DP5 observed every 0.5 s {c:.6} s vs every 0.02 s {b:.6} s");
     assert!(dp5.max_energy_drift < 1e-5, "DP5 drift {:.2e}", dp5.max_energy_drift);
     let (ra, rb) = (rk4.anchor_start().unwrap(), dp5.anchor_start().unwrap());
     assert!((ra - rb).abs() < 1e-3, "anchor start {ra} vs {rb}");

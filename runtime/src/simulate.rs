@@ -216,6 +216,16 @@ struct Observation {
     energy: Energy,
 }
 
+/// A stretch of one observation interval with one anchor state: its start and the ship's
+/// surge speed there.
+struct Segment {
+    t: f64,
+    y: Vec<f64>,
+    anchor: AnchorDof,
+    direction: f64,
+    ship_vx: f64,
+}
+
 /// The machinery of one run.
 struct Runner<'a> {
     model: &'a Model,
@@ -311,6 +321,14 @@ impl Runner<'_> {
         self.dynamics.slide_anchor(direction);
     }
 
+    /// Restores an anchor state recorded earlier (held, or sliding in `direction`).
+    fn set_state(&mut self, anchor: AnchorDof, direction: f64) {
+        match anchor {
+            AnchorDof::Stuck => self.dynamics.hold_anchor(),
+            AnchorDof::Free => self.dynamics.slide_anchor(direction),
+        }
+    }
+
     fn set_held(&mut self, y: &mut [f64]) {
         let n = self.n();
         y[2 * n - 1] = 0.0;
@@ -400,6 +418,13 @@ pub fn run(model: &Model, kernel: Box<dyn Kernel>) -> RunResult {
         let prev_ship_vx = obs.bodies[n - 1].vx;
         // Integrate [t, t_next] in segments split at located anchor events.
         let (mut t_seg, mut y_seg) = (t, y.clone());
+        let mut segments = vec![Segment {
+            t,
+            y: y.clone(),
+            anchor: r.dynamics.anchor(),
+            direction: r.dynamics.sliding_direction(),
+            ship_vx: prev_ship_vx,
+        }];
         let mut events = 0;
         let outcome: Result<(Vec<f64>, Observation), RhsError> = loop {
             let h = t_next - t_seg;
@@ -424,7 +449,7 @@ pub fn run(model: &Model, kernel: Box<dyn Kernel>) -> RunResult {
                         Err(e) => break Err(e),
                     };
                     r.set_sliding(-os.holding.signum());
-                    Some((hs, ys, AnchorDof::Free))
+                    Some((hs, ys, AnchorDof::Free, os.bodies[n - 1].vx))
                 }
                 AnchorDof::Free
                     if r.dynamics.sliding_direction() != 0.0
@@ -442,20 +467,28 @@ pub fn run(model: &Model, kernel: Box<dyn Kernel>) -> RunResult {
                         Ok(o) => o,
                         Err(e) => break Err(e),
                     };
+                    let ship_vx = held.bodies[n - 1].vx;
                     if r.release(&held) {
                         r.set_sliding(-held.holding.signum());
-                        Some((hs, ys, AnchorDof::Free))
+                        Some((hs, ys, AnchorDof::Free, ship_vx))
                     } else {
-                        Some((hs, ys, AnchorDof::Stuck))
+                        Some((hs, ys, AnchorDof::Stuck, ship_vx))
                     }
                 }
                 _ => None,
             };
             match switched {
-                Some((hs, ys, now)) => {
+                Some((hs, ys, now, ship_vx)) => {
                     result.anchor_events.push(AnchorEvent { t: t_seg + hs, now });
                     t_seg += hs;
                     y_seg = ys;
+                    segments.push(Segment {
+                        t: t_seg,
+                        y: y_seg.clone(),
+                        anchor: now,
+                        direction: r.dynamics.sliding_direction(),
+                        ship_vx,
+                    });
                     if t_next - t_seg <= 1e-12 * dt {
                         let o = match r.observe(&y_seg) {
                             Ok(o) => o,
@@ -499,12 +532,23 @@ pub fn run(model: &Model, kernel: Box<dyn Kernel>) -> RunResult {
 
         let ship_vx = obs_new.bodies[n - 1].vx;
         if prev_ship_vx > 0.0 && ship_vx <= 0.0 && result.stopping_time.is_none() {
-            match r.locate(t, &y, dt, |o| o.bodies[n - 1].vx <= 0.0) {
+            // The first segment whose end has the ship at rest, bisected under that
+            // segment's anchor state (an anchor event may have split the interval).
+            let i = (0..segments.len())
+                .find(|&i| segments.get(i + 1).map_or(ship_vx, |s| s.ship_vx) <= 0.0)
+                .unwrap_or(segments.len() - 1);
+            let seg = &segments[i];
+            let length = segments.get(i + 1).map_or(t_next, |s| s.t) - seg.t;
+            let now = (r.dynamics.anchor(), r.dynamics.sliding_direction());
+            r.set_state(seg.anchor, seg.direction);
+            let located = r.locate(seg.t, &seg.y, length, |o| o.bodies[n - 1].vx <= 0.0);
+            r.set_state(now.0, now.1);
+            match located {
                 Ok((hs, ys, os)) => {
-                    result.stopping_time = Some(t + hs);
+                    result.stopping_time = Some(seg.t + hs);
                     if solver.stop_when_ship_stops {
                         step += 1;
-                        t += hs;
+                        t = seg.t + hs;
                         drop(ys);
                         track_peaks(&mut result, t, &os);
                         record(&mut result, t, &os, r.dynamics.anchor());
