@@ -135,20 +135,34 @@ fn accuracy_study_compares_methods_with_a_tight_reference() {
     use kanestop_runtime::scene::IntegratorKind;
     // Case 3 (μ = 0.7) stops in about 10 s: a short study.
     let scene = CASES[2].scene();
-    let plan =
-        [(IntegratorKind::Rk4, 0.004, 1e-6), (IntegratorKind::Rk4, 0.002, 1e-6), (IntegratorKind::Dp5, 0.02, 1e-4)];
+    let plan = [
+        (IntegratorKind::Rk4, 0.004, 1e-6),
+        (IntegratorKind::Rk4, 0.002, 1e-6),
+        (IntegratorKind::Rk4, 0.001, 1e-6),
+        (IntegratorKind::Dp5, 0.02, 1e-4),
+        (IntegratorKind::Dp5, 0.02, 1e-8),
+    ];
     let kernel =
         |m: &Model| -> Box<dyn kanestop_runtime::kernel::Kernel> { Box::new(GeneratedKernel::new(&m.chain).unwrap()) };
     let s = accuracy::study(&scene, &plan, &kernel, 1).unwrap();
     assert!((s.reference_stopping_time - 10.025).abs() < 0.01, "{}", s.reference_stopping_time);
     assert!(s.reference_error < 1e-4, "reference error {}", s.reference_error);
-    assert_eq!(s.rows.len(), 3);
+    assert_eq!(s.rows.len(), 5);
     for r in &s.rows {
         assert_eq!(r.status, "stopped", "{r:?}");
         assert!(r.stopping_time_error.unwrap() < 1e-2, "{r:?}");
         assert!(r.trajectory_error.unwrap() < 0.05, "{r:?}");
         assert!(r.rhs_evaluations > 0 && r.wall_time > 0.0);
     }
+    // The right-hand side is a smooth function of the state between events (implicit normal
+    // force, one seabed rule), so the errors converge: RK4's trajectory error falls by more
+    // than 8 per halving of dt (order 4 in the limit), DP5's with the tolerance.
+    let traj: Vec<f64> = s.rows.iter().map(|r| r.trajectory_error.unwrap()).collect();
+    assert!(traj[0] > 8.0 * traj[1] && traj[1] > 8.0 * traj[2], "RK4 trajectory errors {traj:?}");
+    assert!(traj[3] > 100.0 * traj[4], "DP5 trajectory errors {traj:?}");
+    assert!(s.rows.iter().any(|r| r.best));
+    let (base, _) = accuracy::matched(&s, "rk4", 0.002).expect("the RK4 2 ms row");
+    assert_eq!(base.setting, 0.002);
     let dir = std::env::temp_dir().join(format!("kanestop-accuracy-{}", std::process::id()));
     let files = accuracy::write(&s, &dir).unwrap();
     assert_eq!(files.len(), 3);

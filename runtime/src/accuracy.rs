@@ -44,6 +44,9 @@ pub struct AccuracyRow {
     pub wall_time: f64,
     /// Right-hand-side evaluations.
     pub rhs_evaluations: u64,
+    /// On the work–precision front of the study: no other run has both a smaller
+    /// stopping-time error and a smaller wall time.
+    pub best: bool,
 }
 
 /// The whole study.
@@ -147,8 +150,10 @@ pub fn study(
             trajectory_error: Some(simulate::trajectory_difference(&r, &reference)),
             wall_time: wall,
             rhs_evaluations: r.rhs_evaluations,
+            best: false,
         });
     }
+    mark_front(&mut rows);
     Ok(AccuracyStudy {
         scene: scene.meta.name.clone(),
         reference_stopping_time: t_ref,
@@ -156,6 +161,45 @@ pub fn study(
         reference_trajectory_error: simulate::trajectory_difference(&check, &reference),
         rows,
     })
+}
+
+/// Marks the rows no other row beats in both stopping-time error and wall time.
+fn mark_front(rows: &mut [AccuracyRow]) {
+    let points: Vec<Option<(f64, f64)>> =
+        rows.iter().map(|r| r.stopping_time_error.map(|e| (e, r.wall_time))).collect();
+    for (i, row) in rows.iter_mut().enumerate() {
+        row.best = points[i].is_some_and(|(e, w)| {
+            !points.iter().enumerate().any(|(j, p)| j != i && p.is_some_and(|(e2, w2)| e2 < e && w2 < w))
+        });
+    }
+}
+
+/// The cheapest run of another method at least as accurate in stopping time as `base`,
+/// with the wall-time ratio base / run (both medians of the same study).
+#[derive(Clone, Debug, PartialEq)]
+pub struct MatchedRun<'a> {
+    pub run: &'a AccuracyRow,
+    pub speedup: f64,
+}
+
+/// For the row of `method` at `setting` (e.g. RK4 at 2 ms), the cheapest run of each other
+/// method that reaches its stopping-time error.
+pub fn matched<'a>(s: &'a AccuracyStudy, method: &str, setting: f64) -> Option<(&'a AccuracyRow, Vec<MatchedRun<'a>>)> {
+    let base = s.rows.iter().find(|r| r.method == method && (r.setting - setting).abs() <= 1e-12 * setting)?;
+    let target = base.stopping_time_error?;
+    let mut methods: Vec<&str> = s.rows.iter().map(|r| r.method.as_str()).filter(|m| *m != method).collect();
+    methods.dedup();
+    let runs = methods
+        .into_iter()
+        .filter_map(|m| {
+            s.rows
+                .iter()
+                .filter(|r| r.method == m && r.stopping_time_error.is_some_and(|e| e <= target))
+                .min_by(|a, b| a.wall_time.total_cmp(&b.wall_time))
+        })
+        .map(|run| MatchedRun { run, speedup: base.wall_time / run.wall_time })
+        .collect();
+    Some((base, runs))
 }
 
 fn e(v: Option<f64>) -> String {
@@ -169,12 +213,12 @@ pub fn table(s: &AccuracyStudy) -> String {
         s.reference_stopping_time, s.reference_error, s.reference_trajectory_error
     );
     out.push_str(&format!(
-        "{:<7} {:>9} {:<9} {:>10} {:>10} {:>10} {:>10} {:>10} {:>9} {:>9}\n",
-        "method", "dt/rtol", "status", "t_stop", "ship x", "anchor x", "peak T", "trajectory", "wall s", "RHS"
+        "{:<7} {:>9} {:<9} {:>10} {:>10} {:>10} {:>10} {:>10} {:>9} {:>9} {:>4}\n",
+        "method", "dt/rtol", "status", "t_stop", "ship x", "anchor x", "peak T", "trajectory", "wall s", "RHS", "best"
     ));
     for r in &s.rows {
         out.push_str(&format!(
-            "{:<7} {:>9.1e} {:<9} {:>10} {:>10} {:>10} {:>10} {:>10} {:>9.3} {:>9}\n",
+            "{:<7} {:>9.1e} {:<9} {:>10} {:>10} {:>10} {:>10} {:>10} {:>9.3} {:>9} {:>4}\n",
             r.method,
             r.setting,
             r.status,
@@ -184,8 +228,30 @@ pub fn table(s: &AccuracyStudy) -> String {
             e(r.peak_tension_error),
             e(r.trajectory_error),
             r.wall_time,
-            r.rhs_evaluations
+            r.rhs_evaluations,
+            if r.best { "*" } else { "" }
         ));
+    }
+    out.push_str("best: * = no other run is both more accurate in stopping time and faster\n");
+    if let Some((base, runs)) = matched(s, "rk4", 0.002) {
+        let target = base.stopping_time_error.unwrap_or(f64::NAN);
+        out.push_str(&format!(
+            "matched: the paper's RK4 at dt = 2 ms errs by {target:.2e} s in {:.3} s wall\n",
+            base.wall_time
+        ));
+        for m in &runs {
+            out.push_str(&format!(
+                "         {} at {:.0e} reaches it ({:.2e} s) in {:.3} s: {:.2}x the speed\n",
+                m.run.method,
+                m.run.setting,
+                m.run.stopping_time_error.unwrap_or(f64::NAN),
+                m.run.wall_time,
+                m.speedup
+            ));
+        }
+        if runs.is_empty() {
+            out.push_str("         no adaptive run of the plan reaches it\n");
+        }
     }
     out
 }
