@@ -80,6 +80,42 @@ impl OdeSystem for BlowUp {
     }
 }
 
+/// A stiff component relaxing onto a moving nonlinear manifold: y1' = −y1²,
+/// y2' = λ (y2 − y1²) − 2 y1³. With e = y2 − y1², e' = λ e, so from y(0) = (1, 1 + e0)
+/// y1 = 1/(1 + t), y2 = y1² + e0 e^{λt}. J = [[−2 y1, 0], [−2λ y1 − 6 y1², λ]] changes along
+/// the solution, in its large entry too.
+struct StiffManifold {
+    lambda: f64,
+}
+
+impl StiffManifold {
+    const E0: f64 = 1.0;
+    fn exact(&self, t: f64) -> [f64; 2] {
+        let y1 = 1.0 / (1.0 + t);
+        [y1, y1 * y1 + Self::E0 * (self.lambda * t).exp()]
+    }
+}
+
+impl OdeSystem for StiffManifold {
+    fn dim(&self) -> usize {
+        2
+    }
+    fn rhs(&mut self, _t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), RhsError> {
+        dy[0] = -y[0] * y[0];
+        dy[1] = self.lambda * (y[1] - y[0] * y[0]) - 2.0 * y[0].powi(3);
+        Ok(())
+    }
+}
+
+/// The run driver's use of an adaptive method: `count` observation intervals of `dt` from
+/// (t0, y), each after [`Integrator::reset`] (→ [`AdaptiveIntegrator::invalidate`]).
+fn intervals(method: &mut dyn Integrator, sys: &mut dyn OdeSystem, y: &mut [f64], t0: f64, dt: f64, count: usize) {
+    for i in 0..count {
+        method.reset();
+        method.step(sys, t0 + i as f64 * dt, y, dt).unwrap();
+    }
+}
+
 fn fixed(method: &mut dyn Integrator, sys: &mut dyn OdeSystem, y0: &[f64], t_end: f64, steps: usize) -> Vec<f64> {
     let mut y = y0.to_vec();
     let h = t_end / steps as f64;
@@ -252,7 +288,102 @@ fn sdirk4_is_stable_and_cheap_where_explicit_methods_need_tiny_steps() {
     let y = fixed(&mut Sdirk4::new(2, 1e-6, 1e-9).unwrap(), &mut sys, &[2.0, 0.0], 2.0, 20);
     assert!(max_diff(&y, &sys.exact(2.0)) < 1e-4, "SDIRK4 fixed {y:?}");
     let y = fixed(&mut Rk4::new(2), &mut sys, &[2.0, 0.0], 2.0, 20);
-    assert!(!(y[0].abs() < 1e6), "RK4 at hλ = −1e5 should blow up: {y:?}");
+    assert!(y[0].is_nan() || y[0].abs() >= 1e6, "RK4 at hλ = −1e5 should blow up: {y:?}");
+}
+
+/// invalidate() before every interval keeps J and its LU: J is only Newton's approximation.
+#[test]
+fn sdirk4_keeps_its_jacobian_and_lu_across_invalidate() {
+    let (dt, count) = (0.01, 1000);
+    let mut sys = StiffManifold { lambda: -1e4 };
+    let mut method = Adaptive::new(Sdirk4::new(2, 1e-6, 1e-9).unwrap());
+    method.method.control.h_max = dt;
+    let mut y = vec![1.0, 1.0 + StiffManifold::E0];
+    intervals(&mut method, &mut sys, &mut y, 0.0, dt, count);
+    let s = method.method.stats();
+    let exact = sys.exact(dt * count as f64);
+    let err = max_diff(&y, &exact);
+    assert!(err < 1e-7, "error {err:e} at t = 10: {y:?} vs {exact:?}, {s:?}");
+    // With J formed where y1 was y1_J, Newton's first correction carries an error e1 in y1
+    // into y2 as 2hγλ(y1 − y1_J) e1/(1 − hγλ) ≈ 2(y1 − y1_J) e1 (hγ|λ| ≫ 1). The tolerance
+    // scales go as y1 and y1², so in their norm the contraction reaches 1 (divergence: J is
+    // refreshed) once y1 has fallen to 2/3 of y1_J. From 1 to 1/11: at most 1 + ⌈ln 11/ln 1.5⌉
+    // Jacobians, against one per interval (1000) when invalidate() dropped J.
+    assert!(s.jacobians <= 1 + (11f64.ln() / 1.5f64.ln()).ceil() as u64, "{s:?}");
+    // The LU too outlives invalidate(): refactored when h changes, not once per interval.
+    assert!(s.factorisations < count as u64 / 2, "{s:?}");
+}
+
+/// The run driver's y = (q, u, W) without its claim that W are quadrature components.
+struct NoHint(Dynamics);
+
+impl OdeSystem for NoHint {
+    fn dim(&self) -> usize {
+        self.0.dim()
+    }
+    fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), RhsError> {
+        self.0.rhs(t, y, dy)
+    }
+}
+
+/// The accumulators' columns of J are zero: skipping them changes nothing but the count of
+/// evaluations, WORK_COUNT fewer per Jacobian.
+#[test]
+fn sdirk4_skips_the_jacobian_columns_of_quadrature_components() {
+    let run = |sys: &mut dyn OdeSystem, y: &mut Vec<f64>| {
+        let mut sd = Sdirk4::new(y.len(), 1e-8, 1e-8).unwrap();
+        // J refreshed after every step whose Newton needed a second iteration: many to count.
+        sd.refresh_theta = 0.0;
+        sd.integrate_to(sys, 0.0, y, CHAIN_T, 1e-3).unwrap();
+        sd.stats()
+    };
+    let (plain, mut y_plain) = chain_system();
+    let full = run(&mut NoHint(plain), &mut y_plain);
+    let (mut dynamics, mut y_hint) = chain_system();
+    assert_eq!(dynamics.quadrature_components(), WORK_COUNT);
+    let hinted = run(&mut dynamics, &mut y_hint);
+    assert_eq!(y_plain, y_hint, "the same trajectory");
+    assert_eq!(full.jacobians, hinted.jacobians);
+    assert!(full.jacobians > 10, "{full:?}");
+    assert_eq!(full.rhs_evaluations - hinted.rhs_evaluations, WORK_COUNT as u64 * full.jacobians);
+}
+
+/// A system that changes under a kept J (an anchor switch): the first Newton failure
+/// refreshes J at the same h; `forget_jacobian` saves that failed attempt.
+#[test]
+fn sdirk4_refreshes_a_jacobian_the_system_outgrew() {
+    let (dt1, dt2) = (0.1, 0.01);
+    let run = |forget: bool| {
+        let mut sys = StiffLinear::new(-1e4, -1.0);
+        let mut method = Adaptive::new(Sdirk4::new(2, 1e-6, 1e-10).unwrap());
+        method.method.control.h_max = dt1;
+        let mut y = vec![2.0, 0.0];
+        intervals(&mut method, &mut sys, &mut y, 0.0, dt1, 10);
+        let before = method.method.stats();
+        // The slow mode becomes stiff: with the old J (λ2 = −1) Newton's contraction is
+        // hγ|Δλ2|/(1 + hγ) ≈ 2.5 at h = dt2, it diverges.
+        sys.l2 = -1e3;
+        if forget {
+            method.method.forget_jacobian();
+        }
+        intervals(&mut method, &mut sys, &mut y, 1.0, dt2, 1);
+        // b(t) = e^{−1} e^{λ2 (t − 1)}, a(t) = e^{−1e4 t} ≈ 0.
+        let b = (-1.0f64).exp() * (sys.l2 * dt2).exp();
+        let err = max_diff(&y, &[b, -b]);
+        assert!(err < 1e-10, "error {err:e} after the switch: {y:?}, b = {b:e}");
+        intervals(&mut method, &mut sys, &mut y, 1.0 + dt2, dt2, 9);
+        (y, before, method.method.stats())
+    };
+    let (y_lazy, before, lazy) = run(false);
+    // One J for the first system: it is linear, so Newton converges at once.
+    assert_eq!(before.jacobians, 1, "{before:?}");
+    // One more for the second, formed after a failed attempt.
+    assert_eq!(lazy.jacobians, 2, "{lazy:?}");
+    let (y_told, _, told) = run(true);
+    assert_eq!(told.jacobians, 2, "{told:?}");
+    assert_eq!(lazy.rejected, told.rejected + 1, "lazy {lazy:?}, told {told:?}");
+    assert!(lazy.rhs_evaluations > told.rhs_evaluations);
+    assert_eq!(y_lazy, y_told, "the retry starts where forget_jacobian does");
 }
 
 // ---------------------------------------------------------------- errors

@@ -156,6 +156,11 @@ impl OdeSystem for Dynamics {
         2 * self.body_count() + WORK_COUNT
     }
 
+    /// The work accumulators W never feed back into the motion.
+    fn quadrature_components(&self) -> usize {
+        WORK_COUNT
+    }
+
     fn rhs(&mut self, _t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), RhsError> {
         let n = self.body_count();
         let (q, rest) = y.split_at(n);

@@ -29,6 +29,15 @@ pub trait OdeSystem {
     fn dim(&self) -> usize;
     /// Writes F(t, y) into `dy`.
     fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), RhsError>;
+
+    /// How many trailing components of y the right-hand side does not depend on
+    /// (∂F/∂y_j = 0 for j ≥ dim − k): integrals carried along, such as work accumulators,
+    /// known as quadrature variables. An implicit method skips their columns of a difference
+    /// Jacobian. The default, 0, claims nothing; a wrong claim slows Newton or stops it
+    /// converging.
+    fn quadrature_components(&self) -> usize {
+        0
+    }
 }
 
 /// A one-step method.

@@ -2,18 +2,47 @@
 //! 5-stage, stiffly accurate SDIRK of order 4 with an embedded order-3 solution and γ = 1/4
 //! (Hairer & Wanner, *Solving ODEs II*, IV.6, Table 6.5, "SDIRK4").
 //!
-//! - The Jacobian J = ∂f/∂y is formed by forward differences (n + 1 right-hand-side
-//!   evaluations) and kept across steps while Newton converges quickly.
+//! - The Jacobian J = ∂f/∂y is formed by forward differences: n + 1 right-hand-side
+//!   evaluations, fewer when the system declares trailing components f does not depend on
+//!   ([`OdeSystem::quadrature_components`]: their columns are zero and not evaluated).
 //! - Every stage solves z = s + hγ f(t + c h, y + z) by simplified Newton iterations with one
-//!   LU factorisation of (I − hγJ) (nalgebra), shared by all five stages and reused across
-//!   steps while hγ is unchanged; step-size changes below 20 % upward are suppressed so the
-//!   factorisation is reused.
+//!   LU factorisation of (I − hγJ) (nalgebra), shared by all five stages.
 //! - The local error y − ŷ is filtered through (I − hγJ)⁻¹ (Hairer & Wanner IV.8, for
 //!   stiff components), then controlled like DOPRI5 with exponent 1/4.
 //! - Dense output: the cubic Hermite interpolant on (y0, f0, y1, f1) (order 3).
 //!
 //! Stiffly accurate (y1 is the last stage) and L-stable: very stiff modes are damped in one
 //! step, whatever h.
+//!
+//! # When J and the LU are formed
+//!
+//! J only steers the simplified Newton iterations and filters the error estimate: the
+//! stages are converged to the tolerance κ whatever J, so an old J costs iterations, not
+//! accuracy. A difference Jacobian costs about n evaluations and its LU O(n³), against a few
+//! evaluations per stage for Newton, so both are kept as long as Newton contracts well (the
+//! strategy of Hairer's RADAU5):
+//!
+//! - J is formed before the first step, then only when it has shown to be poor:
+//!   - an accepted step's Newton iterations contracted more slowly than
+//!     [`Sdirk4::refresh_theta`] (θ = ‖Δ_{m+1}‖/‖Δ_m‖ at a stage's last iteration, the
+//!     largest over the stages): the next step forms J at its start;
+//!   - Newton failed (diverged: θ ≥ 0.99, or not converged in [`Sdirk4::max_newton`]
+//!     iterations) with
+//!     a J formed elsewhere: J is formed at the step's start and the step retried with the
+//!     same h. Only a failure with this current J halves h.
+//!
+//!   There is no age limit: θ measures J's quality where it matters, for the current state,
+//!   system and hγ, while a refresh on a schedule costs n evaluations whether J has degraded
+//!   or not. An error-test rejection keeps J too: the retry has a smaller hγ, for which J's
+//!   error weighs less.
+//! - [`AdaptiveIntegrator::invalidate`] (the state or the system may have changed) forgets
+//!   the first-same-as-last derivative, which belongs to the state, and demotes J to an
+//!   approximation formed elsewhere: if the system did change (an anchor switch), the
+//!   second rule above refreshes J at the first Newton failure.
+//!   [`Sdirk4::forget_jacobian`] forms J anew at the next step, for a caller that knows
+//!   the system changed drastically (saving the failed attempt).
+//! - The LU of (I − hγJ) is kept while J and hγ are unchanged: an accepted step's proposal
+//!   to grow h by less than 20 % is suppressed so that the next step reuses it.
 
 use nalgebra::{DMatrix, DVector, Dyn, LU};
 
@@ -34,6 +63,18 @@ const A: [[f64; 4]; 5] = [
 ];
 /// b − b̂ (b is the last row of A with γ; b̂ = (59/48, −17/96, 225/32, −85/12, 0)).
 const D: [f64; 5] = [-3.0 / 16.0, -27.0 / 32.0, 25.0 / 32.0, 0.0, 0.25];
+
+/// How the Jacobian held relates to the step about to be attempted.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum JacobianState {
+    /// None is held, or the one held is to be replaced before the next attempt.
+    Refresh,
+    /// Formed at another state, or before the system changed: an approximation.
+    Old,
+    /// Formed at the current step's start for the current system: refreshing it cannot
+    /// cure a Newton failure.
+    Current,
+}
 
 /// Why the stage equations were not solved.
 enum NewtonFailure {
@@ -64,16 +105,23 @@ pub struct Sdirk4 {
     /// to √ε: 1 suits angles in rad and speeds in m/s. (Much smaller increments lose the
     /// Jacobian to round-off when |f| is large.)
     pub jacobian_scale: f64,
+    /// Newton contraction θ above which the step after an accepted one forms a new J (0.3).
+    /// RADAU5 uses 0.001 where Jacobians are cheap and advises 0.1 where they are costly; a
+    /// difference Jacobian costs n + 1 evaluations, the Newton work of several steps, while at
+    /// θ = 0.3 an iteration still gains half a decade. On the run driver (n = 98), 0.1 cost
+    /// 1.5× the evaluations of 0.3 on the k_z × 1e4 seabed at rtol 1e-3 (as many on case 1),
+    /// 0.5 about as many as 0.3.
+    pub refresh_theta: f64,
     jac: DMatrix<f64>,
-    /// J is available / J was formed at the current step's start.
-    jac_valid: bool,
-    jac_current: bool,
+    jac_state: JacobianState,
     lu: Option<LU<f64, Dyn, Dyn>>,
     lu_hgamma: f64,
     /// h·f(Y_i) of the stages.
     hk: [Vec<f64>; 5],
     z: Vec<f64>,
     s: Vec<f64>,
+    /// The Newton correction.
+    delta: Vec<f64>,
     ytmp: Vec<f64>,
     ftmp: Vec<f64>,
     rhs_vec: DVector<f64>,
@@ -85,6 +133,9 @@ pub struct Sdirk4 {
     last: Option<(f64, f64)>,
     facold: f64,
     eta_old: f64,
+    /// Newton's contraction at each stage's last iteration, the largest over the stages (the
+    /// refresh test). The last ratio estimates the rate best: the first can include the
+    /// transient growth of a non-normal iteration, such as through the coupling q̇ = u.
     theta_max: f64,
     stats: AdaptiveStats,
 }
@@ -104,14 +155,15 @@ impl Sdirk4 {
             max_newton: 7,
             kappa,
             jacobian_scale: 1.0,
+            refresh_theta: 0.3,
             jac: DMatrix::zeros(dim, dim),
-            jac_valid: false,
-            jac_current: false,
+            jac_state: JacobianState::Refresh,
             lu: None,
             lu_hgamma: f64::NAN,
             hk: [z(), z(), z(), z(), z()],
             z: z(),
             s: z(),
+            delta: z(),
             ytmp: z(),
             ftmp: z(),
             rhs_vec: DVector::zeros(dim),
@@ -137,6 +189,13 @@ impl Sdirk4 {
         initial_step(sys, &self.tol, 3, t, y, self.control.h_max)
     }
 
+    /// Forms J anew before the next step. Not needed for correctness: after
+    /// [`AdaptiveIntegrator::invalidate`] a J that no longer fits is refreshed at the first
+    /// Newton failure; a caller that knows the system changed drastically saves that attempt.
+    pub fn forget_jacobian(&mut self) {
+        self.jac_state = JacobianState::Refresh;
+    }
+
     pub fn dense(&self, theta: f64) -> Vec<f64> {
         let mut out = vec![0.0; self.dim];
         self.dense_into(theta, &mut out);
@@ -145,9 +204,16 @@ impl Sdirk4 {
 
     fn resize(&mut self, n: usize) {
         if self.dim != n {
-            let (control, max_newton, kappa, jacobian_scale) =
-                (self.control.clone(), self.max_newton, self.kappa, self.jacobian_scale);
-            *self = Self { control, max_newton, kappa, jacobian_scale, ..Self::with_tolerances(n, self.tol.clone()) };
+            let (control, max_newton, kappa, jacobian_scale, refresh_theta) =
+                (self.control.clone(), self.max_newton, self.kappa, self.jacobian_scale, self.refresh_theta);
+            *self = Self {
+                control,
+                max_newton,
+                kappa,
+                jacobian_scale,
+                refresh_theta,
+                ..Self::with_tolerances(n, self.tol.clone())
+            };
         }
     }
 
@@ -165,21 +231,31 @@ impl Sdirk4 {
             self.f0 = f0;
             r?;
             // A new start point: the Jacobian no longer belongs to it.
-            self.jac_current = false;
+            self.demote_jacobian();
         }
         Ok(())
     }
 
+    /// A current J becomes an approximation formed elsewhere.
+    fn demote_jacobian(&mut self) {
+        if self.jac_state == JacobianState::Current {
+            self.jac_state = JacobianState::Old;
+        }
+    }
+
     /// J at (t, y) by forward differences with the increment √ε·max(|y_j|, `jacobian_scale`)
-    /// and a fresh f(t, y) as the base point.
+    /// and a fresh f(t, y) as the base point; the columns of the system's quadrature
+    /// components are zero without evaluation.
     fn jacobian(&mut self, sys: &mut dyn OdeSystem, t: f64, y: &[f64]) -> Result<(), RhsError> {
         let n = self.dim;
+        let active = n - sys.quadrature_components().min(n);
+        self.jac.columns_mut(active, n - active).fill(0.0);
         let mut f0 = std::mem::take(&mut self.f0);
         let mut ft = std::mem::take(&mut self.ftmp);
         let mut yp = y.to_vec();
         let result: Result<(), RhsError> = (|| {
             self.eval(sys, t, y, &mut f0)?;
-            for j in 0..n {
+            for j in 0..active {
                 let delta = f64::EPSILON.sqrt() * y[j].abs().max(self.jacobian_scale);
                 yp[j] = y[j] + delta;
                 self.eval(sys, t, &yp, &mut ft)?;
@@ -194,8 +270,7 @@ impl Sdirk4 {
         self.ftmp = ft;
         result?;
         self.stats.jacobians += 1;
-        self.jac_valid = true;
-        self.jac_current = true;
+        self.jac_state = JacobianState::Current;
         self.lu = None;
         Ok(())
     }
@@ -236,6 +311,7 @@ impl Sdirk4 {
         self.theta_max = 0.0;
         let mut z = std::mem::take(&mut self.z);
         let mut s = std::mem::take(&mut self.s);
+        let mut delta = std::mem::take(&mut self.delta);
         let mut ytmp = std::mem::take(&mut self.ytmp);
         let mut ft = std::mem::take(&mut self.ftmp);
         let result = (|| {
@@ -252,6 +328,7 @@ impl Sdirk4 {
                 }
                 let mut norm_prev = f64::NAN;
                 let mut eta = self.eta_old.max(f64::EPSILON).powf(0.8);
+                let mut theta = 0.0;
                 let mut converged = false;
                 for m in 0..self.max_newton {
                     for i in 0..n {
@@ -259,7 +336,6 @@ impl Sdirk4 {
                     }
                     self.eval(sys, t + C[st] * h, &ytmp, &mut ft)?;
                     self.stats.newton_iterations += 1;
-                    let mut delta = vec![0.0; n];
                     for i in 0..n {
                         delta[i] = s[i] + hg * ft[i] - z[i];
                     }
@@ -278,8 +354,7 @@ impl Sdirk4 {
                         )));
                     }
                     if m > 0 {
-                        let theta = norm / norm_prev;
-                        self.theta_max = self.theta_max.max(theta);
+                        theta = norm / norm_prev;
                         if theta >= 0.99 {
                             return Err(NewtonFailure::NoConvergence(format!(
                                 "Newton diverges in stage {} (contraction {theta:.2})",
@@ -302,6 +377,7 @@ impl Sdirk4 {
                     )));
                 }
                 self.eta_old = eta;
+                self.theta_max = self.theta_max.max(theta);
                 for i in 0..n {
                     self.hk[st][i] = (z[i] - s[i]) / GAMMA;
                 }
@@ -310,6 +386,7 @@ impl Sdirk4 {
         })();
         self.z = z;
         self.s = s;
+        self.delta = delta;
         self.ytmp = ytmp;
         self.ftmp = ft;
         result
@@ -317,36 +394,35 @@ impl Sdirk4 {
 
     /// Filtered error estimate of the solved stages into `err`.
     fn error_estimate(&mut self) {
-        let n = self.dim;
         let mut err = std::mem::take(&mut self.err);
-        for i in 0..n {
-            err[i] = (0..5).map(|j| D[j] * self.hk[j][i]).sum();
+        for (i, e) in err.iter_mut().enumerate() {
+            *e = D.iter().zip(&self.hk).map(|(d, hk)| d * hk[i]).sum();
         }
         self.solve_in_place(&mut err);
         self.err = err;
     }
 
     fn accept(&mut self, t: f64, y: &mut [f64], h: f64) {
-        let n = self.dim;
-        for i in 0..n {
-            let y1 = y[i] + self.z[i];
-            self.dense[0][i] = y[i];
+        for (i, yi) in y.iter_mut().enumerate() {
+            let y1 = *yi + self.z[i];
+            self.dense[0][i] = *yi;
             self.dense[1][i] = h * self.f0[i];
             self.dense[2][i] = y1;
             self.dense[3][i] = self.hk[4][i];
-            y[i] = y1;
+            *yi = y1;
         }
         // f(y1) = k_5 (stiffly accurate); the next step starts from it.
-        for i in 0..n {
-            self.f0[i] = self.hk[4][i] / h;
+        for (f, hk) in self.f0.iter_mut().zip(&self.hk[4]) {
+            *f = hk / h;
         }
         self.end = Some((t + h, y.to_vec()));
         self.last = Some((t, h));
         self.stats.accepted += 1;
-        // The Jacobian belongs to the old start; keep it while Newton contracts well.
-        self.jac_current = false;
-        if self.theta_max > 0.3 {
-            self.jac_valid = false;
+        // J belongs to the old start at best: kept while Newton contracts well.
+        if self.theta_max > self.refresh_theta {
+            self.jac_state = JacobianState::Refresh;
+        } else {
+            self.demote_jacobian();
         }
     }
 
@@ -386,7 +462,7 @@ impl AdaptiveIntegrator for Sdirk4 {
                     reason: format!("{rejected} consecutive failures, the last: {reason}"),
                 });
             }
-            if !self.jac_valid {
+            if self.jac_state == JacobianState::Refresh {
                 self.jacobian(sys, t, y)?;
             }
             if !self.factor(h) {
@@ -402,11 +478,11 @@ impl AdaptiveIntegrator for Sdirk4 {
                     rejected += 1;
                     self.stats.rejected += 1;
                     (last_err, reason) = (f64::INFINITY, why);
-                    if self.jac_current {
+                    if self.jac_state == JacobianState::Current {
                         h *= 0.5;
                     } else {
-                        // A stale Jacobian first: refresh it at this start and retry.
-                        self.jac_valid = false;
+                        // A J from elsewhere first: refresh it at this start and retry.
+                        self.jac_state = JacobianState::Refresh;
                     }
                     continue;
                 }
@@ -453,11 +529,11 @@ impl AdaptiveIntegrator for Sdirk4 {
         self.last
     }
 
+    /// Forgets the first-same-as-last derivative and demotes J to an approximation; J and
+    /// its LU are kept (see the module documentation).
     fn invalidate(&mut self) {
         self.end = None;
-        self.jac_valid = false;
-        self.jac_current = false;
-        self.lu = None;
+        self.demote_jacobian();
     }
 
     fn stats(&self) -> AdaptiveStats {
@@ -466,22 +542,28 @@ impl AdaptiveIntegrator for Sdirk4 {
 }
 
 impl Integrator for Sdirk4 {
-    /// One SDIRK4 step of exactly `dt`, without error control; the Jacobian is formed at
-    /// every step's start.
+    /// One SDIRK4 step of exactly `dt`, without error control. J follows the adaptive policy
+    /// (module documentation): a Newton failure with a J formed elsewhere is retried with J
+    /// formed at (t, y), and with that J it is an error.
     fn step(&mut self, sys: &mut dyn OdeSystem, t: f64, y: &mut [f64], dt: f64) -> Result<(), RhsError> {
         self.resize(y.len());
         self.start(sys, t, y)?;
-        if !self.jac_current {
-            self.jacobian(sys, t, y)?;
-        }
-        if !self.factor(dt) {
-            return Err(RhsError(format!("SDIRK4: I − hγJ is singular at t = {t} with h = {dt}")));
-        }
-        match self.stages(sys, t, y, dt) {
-            Ok(()) => {}
-            Err(NewtonFailure::Rhs(e)) => return Err(e),
-            Err(NewtonFailure::NoConvergence(why)) => {
-                return Err(RhsError(format!("SDIRK4 at t = {t}, h = {dt}: {why}; reduce the step")))
+        loop {
+            if self.jac_state == JacobianState::Refresh {
+                self.jacobian(sys, t, y)?;
+            }
+            if !self.factor(dt) {
+                return Err(RhsError(format!("SDIRK4: I − hγJ is singular at t = {t} with h = {dt}")));
+            }
+            match self.stages(sys, t, y, dt) {
+                Ok(()) => break,
+                Err(NewtonFailure::Rhs(e)) => return Err(e),
+                Err(NewtonFailure::NoConvergence(_)) if self.jac_state != JacobianState::Current => {
+                    self.jac_state = JacobianState::Refresh;
+                }
+                Err(NewtonFailure::NoConvergence(why)) => {
+                    return Err(RhsError(format!("SDIRK4 at t = {t}, h = {dt}: {why}; reduce the step")))
+                }
             }
         }
         self.accept(t, y, dt);
