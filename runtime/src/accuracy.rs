@@ -187,8 +187,12 @@ pub struct MatchedRun<'a> {
 pub fn matched<'a>(s: &'a AccuracyStudy, method: &str, setting: f64) -> Option<(&'a AccuracyRow, Vec<MatchedRun<'a>>)> {
     let base = s.rows.iter().find(|r| r.method == method && (r.setting - setting).abs() <= 1e-12 * setting)?;
     let target = base.stopping_time_error?;
-    let mut methods: Vec<&str> = s.rows.iter().map(|r| r.method.as_str()).filter(|m| *m != method).collect();
-    methods.dedup();
+    let mut methods: Vec<&str> = Vec::new();
+    for r in s.rows.iter().filter(|r| r.method != method) {
+        if !methods.contains(&r.method.as_str()) {
+            methods.push(&r.method);
+        }
+    }
     let runs = methods
         .into_iter()
         .filter_map(|m| {

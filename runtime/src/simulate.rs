@@ -25,7 +25,7 @@ use crate::dynamics::{Dynamics, WORK_COUNT};
 use crate::energy::Energy;
 use crate::forces::Forces;
 use crate::integrate::{Adaptive, Dopri5, Integrator, RhsError, Rk4, Sdirk4, Tolerances};
-use crate::kernel::{AnchorDof, BodyAcceleration, BodyState, Kernel};
+use crate::kernel::{AnchorDof, AnchorReaction, BodyAcceleration, BodyState, Kernel};
 use crate::model::Model;
 use crate::scene::IntegratorKind;
 use crate::stability::{self, StabilityLimit};
@@ -207,12 +207,10 @@ impl RunResult {
 /// The observed state after an accepted step.
 struct Observation {
     bodies: Vec<BodyState>,
-    /// F^H_k (x, z) on B_k from B_{k−1}, k = 2 … N (index k − 2), N.
-    joints: Vec<[f64; 2]>,
-    /// The seabed's normal force on the anchor, N (Eq. 37).
-    normal: f64,
-    /// The horizontal force holding a stuck anchor, N (Eq. 50).
-    holding: f64,
+    /// |F^H_k| of the force on B_k from B_{k−1}, k = 2 … N (index k − 2), N (Eq. 52).
+    tensions: Vec<f64>,
+    /// The seabed's normal and holding forces on the anchor (Eqs. 37, 50).
+    reaction: AnchorReaction,
     energy: Energy,
 }
 
@@ -249,7 +247,7 @@ impl Runner<'_> {
         self.dynamics.kernel_mut().accelerations(q, u, &self.qdd, &mut self.acc);
         // Eq. 52 in Newton's form: the joint force on B_k balances the outboard bodies'
         // inertia (with added mass) less their applied loads.
-        let mut joints = vec![[0.0; 2]; n - 1];
+        let mut tensions = vec![0.0; n - 1];
         let mut sum = [0.0, 0.0];
         for k in (1..n).rev() {
             let (b, a, l, s) = (&self.model.chain.bodies[k], &self.acc[k], &self.dynamics.loads()[k], &bodies[k]);
@@ -257,12 +255,12 @@ impl Runner<'_> {
             let a_n = a.ax * sin + a.az * cos;
             sum[0] += b.mass * a.ax + b.added_mass * a_n * sin - l.fx;
             sum[1] += b.mass * a.az + b.added_mass * a_n * cos - l.fz;
-            joints[k - 1] = sum;
+            tensions[k - 1] = sum[0].hypot(sum[1]);
         }
         let work: [f64; WORK_COUNT] = w.try_into().expect("work accumulators");
         let env = &self.model.scene.environment;
         let energy = Energy::of(&self.model.chain, &bodies, env.gravity, self.model.seabed_z, work);
-        Ok(Observation { bodies, joints, normal: reaction.normal, holding: reaction.holding, energy })
+        Ok(Observation { bodies, tensions, reaction, energy })
     }
 
     /// Integrates from (t, y0) over h: one RK4 step, or error-controlled sub-steps of an
@@ -448,7 +446,7 @@ pub fn run(model: &Model, kernel: Box<dyn Kernel>) -> RunResult {
                         Ok(v) => v,
                         Err(e) => break Err(e),
                     };
-                    r.set_sliding(-os.holding.signum());
+                    r.set_sliding(-os.reaction.holding.signum());
                     Some((hs, ys, AnchorDof::Free, os.bodies[n - 1].vx))
                 }
                 AnchorDof::Free
@@ -469,7 +467,7 @@ pub fn run(model: &Model, kernel: Box<dyn Kernel>) -> RunResult {
                     };
                     let ship_vx = held.bodies[n - 1].vx;
                     if r.release(&held) {
-                        r.set_sliding(-held.holding.signum());
+                        r.set_sliding(-held.reaction.holding.signum());
                         Some((hs, ys, AnchorDof::Free, ship_vx))
                     } else {
                         Some((hs, ys, AnchorDof::Stuck, ship_vx))
@@ -629,22 +627,17 @@ fn body_name(model: &Model, k: usize) -> String {
 /// The joint k (2 … N) and its force when the largest joint force exceeds `bound`, N.
 fn spike(obs: &Observation, bound: f64) -> Option<(usize, f64)> {
     let (i, tension) =
-        obs.joints
-            .iter()
-            .map(|j| j[0].hypot(j[1]))
-            .enumerate()
-            .fold((0, 0.0), |best, (i, t)| if t > best.1 { (i, t) } else { best });
+        obs.tensions.iter().enumerate().fold((0, 0.0), |best, (i, &t)| if t > best.1 { (i, t) } else { best });
     (tension > bound).then_some((i + 2, tension))
 }
 
 /// Static friction is exceeded: |H| > μN (Eq. 37 and the discussion after Eq. 26).
 fn releases(obs: &Observation, mu: f64) -> bool {
-    obs.holding.abs() > mu * obs.normal.max(0.0)
+    obs.reaction.holding.abs() > mu * obs.reaction.normal.max(0.0)
 }
 
 fn track_peaks(result: &mut RunResult, t: f64, obs: &Observation) {
-    for (peak, j) in result.peak_tensions.iter_mut().zip(&obs.joints) {
-        let tension = j[0].hypot(j[1]);
+    for (peak, &tension) in result.peak_tensions.iter_mut().zip(&obs.tensions) {
         if tension > peak.tension {
             *peak = PeakTension { tension, t };
         }
@@ -656,7 +649,7 @@ fn record(result: &mut RunResult, t: f64, obs: &Observation, anchor: AnchorDof) 
         t,
         bodies: obs.bodies.clone(),
         energy: obs.energy,
-        tensions: obs.joints.iter().map(|j| j[0].hypot(j[1])).collect(),
+        tensions: obs.tensions.clone(),
         anchor,
     });
 }
