@@ -258,6 +258,55 @@ fn adaptive_wrapper_works_behind_the_fixed_step_interface() {
     assert!(max_diff(&y, &osc.exact(5.0)) < 1e-7);
 }
 
+#[test]
+fn adaptive_wrapper_interpolates_inside_its_last_interval_and_nowhere_else() {
+    // One call over [0, 2] takes many sub-steps; the interpolant anywhere inside matches the
+    // exact solution to the tolerance, outside the span (and for RK4) there is none.
+    for method in [
+        Box::new(Adaptive::new(Dopri5::new(2, 1e-8, 1e-10).unwrap())) as Box<dyn Integrator>,
+        Box::new(Adaptive::new(Sdirk4::new(2, 1e-8, 1e-10).unwrap())),
+    ] {
+        let mut method = method;
+        let mut osc = Oscillator { omega: 2.0 };
+        let mut y = [1.0, 0.0];
+        method.step(&mut osc, 0.0, &mut y, 2.0).unwrap();
+        let mut out = [0.0; 2];
+        let mut worst: f64 = 0.0;
+        for i in 0..=200 {
+            let t = 2.0 * i as f64 / 200.0;
+            assert!(method.dense_state(t, &mut out), "no interpolant at t = {t}");
+            worst = worst.max(max_diff(&out, &osc.exact(t)));
+        }
+        assert!(worst < 1e-6, "interpolation error {worst:e}");
+        assert!(!method.dense_state(2.1, &mut out) && !method.dense_state(-0.1, &mut out));
+    }
+    let (mut osc, mut y, mut out) = (Oscillator { omega: 2.0 }, [1.0, 0.0], [0.0; 2]);
+    let mut rk4 = Rk4::new(2);
+    rk4.step(&mut osc, 0.0, &mut y, 0.01).unwrap();
+    assert!(!rk4.dense_state(0.005, &mut out));
+}
+
+#[test]
+fn dynamics_answers_a_repeated_state_without_solving_again() {
+    let (mut sys, y) = chain_system();
+    let n = 4;
+    let (q, u) = (&y[..n], &y[n..2 * n]);
+    let (mut a, mut b) = (vec![0.0; n], vec![0.0; n]);
+    sys.accelerations(q, u, &mut a).unwrap();
+    sys.accelerations(q, u, &mut b).unwrap();
+    assert_eq!((a.clone(), sys.evaluations()), (b.clone(), 1));
+    // A different state, or the same state under another anchor state, is solved.
+    let mut u2 = u.to_vec();
+    u2[0] = 0.1;
+    sys.accelerations(q, &u2, &mut b).unwrap();
+    assert_eq!(sys.evaluations(), 2);
+    sys.accelerations(q, u, &mut b).unwrap();
+    sys.slide_anchor(0.0);
+    sys.accelerations(q, u, &mut b).unwrap();
+    assert_eq!(sys.evaluations(), 4);
+    assert_ne!(a[n - 1], b[n - 1], "the freed anchor accelerates");
+}
+
 // ---------------------------------------------------------------- stiff problem
 
 #[test]

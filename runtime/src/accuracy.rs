@@ -174,16 +174,18 @@ fn mark_front(rows: &mut [AccuracyRow]) {
     }
 }
 
-/// The cheapest run of another method at least as accurate in stopping time as `base`,
-/// with the wall-time ratio base / run (both medians of the same study).
+/// The run of another method that matches `base`'s stopping-time accuracy, with the
+/// wall-time ratio base / run (both medians of the same study).
 #[derive(Clone, Debug, PartialEq)]
 pub struct MatchedRun<'a> {
     pub run: &'a AccuracyRow,
     pub speedup: f64,
 }
 
-/// For the row of `method` at `setting` (e.g. RK4 at 2 ms), the cheapest run of each other
-/// method that reaches its stopping-time error.
+/// For the row of `method` at `setting` (e.g. RK4 at 2 ms), the run of each other method
+/// that reaches its stopping-time error robustly: the loosest setting of that method from
+/// which every tighter setting in the study reaches it too. An error that is not monotone
+/// in the tolerance (it can cross zero) would otherwise let a lucky loose run win.
 pub fn matched<'a>(s: &'a AccuracyStudy, method: &str, setting: f64) -> Option<(&'a AccuracyRow, Vec<MatchedRun<'a>>)> {
     let base = s.rows.iter().find(|r| r.method == method && (r.setting - setting).abs() <= 1e-12 * setting)?;
     let target = base.stopping_time_error?;
@@ -196,10 +198,10 @@ pub fn matched<'a>(s: &'a AccuracyStudy, method: &str, setting: f64) -> Option<(
     let runs = methods
         .into_iter()
         .filter_map(|m| {
-            s.rows
-                .iter()
-                .filter(|r| r.method == m && r.stopping_time_error.is_some_and(|e| e <= target))
-                .min_by(|a, b| a.wall_time.total_cmp(&b.wall_time))
+            let mut rows: Vec<&AccuracyRow> = s.rows.iter().filter(|r| r.method == m).collect();
+            // Tightest first; walk toward looser settings while they still reach the target.
+            rows.sort_by(|a, b| a.setting.total_cmp(&b.setting));
+            rows.iter().take_while(|r| r.stopping_time_error.is_some_and(|e| e <= target)).last().copied()
         })
         .map(|run| MatchedRun { run, speedup: base.wall_time / run.wall_time })
         .collect();
@@ -245,7 +247,7 @@ pub fn table(s: &AccuracyStudy) -> String {
         ));
         for m in &runs {
             out.push_str(&format!(
-                "         {} at {:.0e} reaches it ({:.2e} s) in {:.3} s: {:.2}x the speed\n",
+                "         {} at {:.0e} and every tighter setting reach it ({:.2e} s) in {:.3} s: {:.2}x the speed\n",
                 m.run.method,
                 m.run.setting,
                 m.run.stopping_time_error.unwrap_or(f64::NAN),
@@ -287,4 +289,50 @@ pub fn write(s: &AccuracyStudy, dir: &Path) -> Result<Vec<PathBuf>, String> {
     w(&files[1], serde_json::to_string_pretty(s).map_err(|e| e.to_string())?.as_bytes())?;
     w(&files[2], crate::plot::work_precision(s)?.as_bytes())?;
     Ok(files.to_vec())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn row(method: &str, setting: f64, error: f64, wall_time: f64) -> AccuracyRow {
+        AccuracyRow {
+            method: method.into(),
+            setting,
+            status: "stopped".into(),
+            stopping_time_error: Some(error),
+            ship_displacement_error: None,
+            anchor_displacement_error: None,
+            peak_tension_error: None,
+            trajectory_error: None,
+            wall_time,
+            rhs_evaluations: 1,
+            best: false,
+        }
+    }
+
+    #[test]
+    fn a_lucky_loose_run_does_not_match() {
+        let rows = vec![
+            row("rk4", 0.002, 4e-5, 0.30),
+            row("dp5", 1e-4, 1e-4, 0.08),
+            row("dp5", 5e-5, 1e-6, 0.10), // reaches the target, but 1e-5 below it does not
+            row("dp5", 1e-5, 5e-5, 0.15),
+            row("dp5", 1e-6, 5e-6, 0.20),
+            row("dp5", 1e-7, 5e-7, 0.30),
+            row("sdirk4", 1e-5, 1e-3, 1.0), // never reaches it
+        ];
+        let s = AccuracyStudy {
+            scene: "t".into(),
+            reference_stopping_time: 20.0,
+            reference_error: 1e-9,
+            reference_trajectory_error: 1e-9,
+            rows,
+        };
+        let (base, runs) = matched(&s, "rk4", 0.002).unwrap();
+        assert_eq!(base.wall_time, 0.30);
+        assert_eq!(runs.len(), 1, "{runs:?}");
+        assert_eq!((runs[0].run.method.as_str(), runs[0].run.setting), ("dp5", 1e-6));
+        assert!((runs[0].speedup - 1.5).abs() < 1e-12);
+    }
 }

@@ -17,7 +17,7 @@ pub const WORK_COUNT: usize = WORK_TERMS.len();
 /// Kernel + loads + the anchor's state: the right-hand side the integrators see.
 pub struct Dynamics {
     kernel: Box<dyn Kernel>,
-    pub forces: Forces,
+    forces: Forces,
     anchor: AnchorDof,
     /// Direction of sliding (+1 toward the ship, −1 away, 0 for no friction) while free.
     direction: f64,
@@ -28,6 +28,33 @@ pub struct Dynamics {
     /// evaluation.
     reaction: AnchorReaction,
     friction: f64,
+    /// The last evaluation's (q, u) and ü: an evaluation at the same state under the same
+    /// anchor state is answered from it (see [`Dynamics::accelerations`]).
+    last: LastEvaluation,
+}
+
+/// Inputs and result of the last evaluation; `valid` is cleared whenever anything but
+/// (q, u) that the result depends on may have changed.
+#[derive(Default)]
+struct LastEvaluation {
+    valid: bool,
+    q: Vec<f64>,
+    u: Vec<f64>,
+    qdd: Vec<f64>,
+}
+
+impl LastEvaluation {
+    fn matches(&self, q: &[f64], u: &[f64]) -> bool {
+        self.valid && self.q == q && self.u == u
+    }
+
+    fn set(&mut self, q: &[f64], u: &[f64], qdd: &[f64]) {
+        for (v, x) in [(&mut self.q, q), (&mut self.u, u), (&mut self.qdd, qdd)] {
+            v.clear();
+            v.extend_from_slice(x);
+        }
+        self.valid = true;
+    }
 }
 
 /// The forces seen by the kernel, keeping a copy of the loads they returned.
@@ -57,6 +84,7 @@ impl Dynamics {
             loads: vec![Load::default(); n],
             reaction: AnchorReaction::default(),
             friction: 0.0,
+            last: LastEvaluation::default(),
         }
     }
 
@@ -65,7 +93,14 @@ impl Dynamics {
         self.kernel.body_count()
     }
 
+    /// The load models (read-only: changing one would change the right-hand side behind the
+    /// last evaluation's back).
+    pub fn forces(&self) -> &Forces {
+        &self.forces
+    }
+
     pub fn kernel_mut(&mut self) -> &mut dyn Kernel {
+        self.last.valid = false;
         self.kernel.as_mut()
     }
 
@@ -77,6 +112,7 @@ impl Dynamics {
     pub fn hold_anchor(&mut self) {
         self.anchor = AnchorDof::Stuck;
         self.direction = 0.0;
+        self.last.valid = false;
     }
 
     /// Frees the anchor to slide in `direction` (+1 toward the ship, −1 away) against the
@@ -84,6 +120,7 @@ impl Dynamics {
     pub fn slide_anchor(&mut self, direction: f64) {
         self.anchor = AnchorDof::Free;
         self.direction = direction;
+        self.last.valid = false;
     }
 
     /// The direction of sliding (0 while held or frictionless).
@@ -126,7 +163,17 @@ impl Dynamics {
     /// A sliding anchor's friction is −μ N with N from this solve. Should N come out
     /// negative (the chain lifting the anchor), friction would pull the anchor along:
     /// the solve is repeated without friction (the model has no lift-off).
+    ///
+    /// A call at the (q, u) of the previous one, with nothing changed in between, returns
+    /// its result without solving again: the driver observes the end of each interval,
+    /// where Dormand–Prince has just evaluated its last stage. Only solves are counted in
+    /// [`Dynamics::evaluations`].
     pub fn accelerations(&mut self, q: &[f64], u: &[f64], qdd: &mut [f64]) -> Result<AnchorReaction, RhsError> {
+        if self.last.matches(q, u) {
+            qdd.copy_from_slice(&self.last.qdd);
+            return Ok(self.reaction);
+        }
+        self.last.valid = false;
         self.evaluations += 1;
         let k = match self.anchor {
             AnchorDof::Free => self.forces.anchor.friction_factor(self.direction),
@@ -141,12 +188,14 @@ impl Dynamics {
         self.friction = AnchorForces::sliding_friction(k, reaction.normal);
         self.loads[0].fx += self.friction;
         self.reaction = reaction;
+        self.last.set(q, u, qdd);
         Ok(reaction)
     }
 
     /// a_lp and f_l at (q, u) with this system's loads, whatever path `accelerations` takes
     /// (for reports such as `eval`).
     pub fn assemble(&mut self, q: &[f64], u: &[f64], out: &mut Assembly) {
+        self.last.valid = false;
         self.kernel.assemble(q, u, &mut self.forces, out);
     }
 }

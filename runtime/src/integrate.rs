@@ -7,7 +7,7 @@ pub mod adaptive;
 pub mod dopri5;
 pub mod sdirk4;
 
-pub use adaptive::{AdaptiveIntegrator, AdaptiveStats, StepControl, StepError, StepOutcome, Tolerances};
+pub use adaptive::{AdaptiveIntegrator, AdaptiveStats, DenseStep, StepControl, StepError, StepOutcome, Tolerances};
 pub use dopri5::Dopri5;
 pub use sdirk4::Sdirk4;
 
@@ -46,9 +46,17 @@ pub trait Integrator {
     fn step(&mut self, system: &mut dyn OdeSystem, t: f64, y: &mut [f64], dt: f64) -> Result<(), RhsError>;
 
     /// Forgets anything cached from earlier steps (e.g. a first-same-as-last derivative):
-    /// called before a step from a state the method did not produce, or after the system
-    /// changed without the state changing (an anchor switch, a new friction force).
+    /// called after the system changed without the state changing (an anchor switch, a new
+    /// friction force). Caches are keyed by (t, y), so a step from a state the method did not
+    /// produce needs no reset.
     fn reset(&mut self) {}
+
+    /// The state at time t inside the last `step` call, from the method's continuous
+    /// extension, into `out`. False when the method has none (RK4) or t is outside that
+    /// call's span: then a state inside a step is found by integrating to it.
+    fn dense_state(&self, _t: f64, _out: &mut [f64]) -> bool {
+        false
+    }
 }
 
 /// The classic fourth-order Runge–Kutta method with a fixed step (the paper's method).
@@ -96,32 +104,59 @@ impl Integrator for Rk4 {
 
 /// An adaptive method behind the fixed-step [`Integrator`] interface: `step(t, y, dt)`
 /// integrates [t, t + dt] with as many error-controlled sub-steps as the tolerances need,
-/// remembering the step size between calls. The existing driver can use it as it is (its
-/// bisection re-integrates partial steps); a driver that locates events on the dense output
-/// should call [`AdaptiveIntegrator::step_adaptive`] directly.
+/// remembering the step size between calls, and keeps the sub-steps' interpolants so that
+/// the driver locates events inside [t, t + dt] on them ([`Integrator::dense_state`]).
 #[derive(Clone, Debug)]
 pub struct Adaptive<M> {
     pub method: M,
     /// The step to try next; `None` before the first step (then Hairer's starting step).
     pub h_next: Option<f64>,
+    /// Interpolants of the last `step` call's sub-steps, in order: the first `used` of them
+    /// (the vectors are reused from call to call).
+    dense: Vec<DenseStep>,
+    used: usize,
 }
 
 impl<M: AdaptiveIntegrator> Adaptive<M> {
     pub fn new(method: M) -> Self {
-        Adaptive { method, h_next: None }
+        Adaptive { method, h_next: None, dense: Vec::new(), used: 0 }
     }
 }
 
 impl<M: AdaptiveIntegrator> Integrator for Adaptive<M> {
     fn step(&mut self, sys: &mut dyn OdeSystem, t: f64, y: &mut [f64], dt: f64) -> Result<(), RhsError> {
         let h = self.h_next.unwrap_or(dt);
-        let next = self.method.integrate_to(sys, t, y, t + dt, h)?;
-        self.h_next = Some(next);
+        let Adaptive { method, dense, used, .. } = self;
+        *used = 0;
+        let next = method.integrate_to_with(sys, t, y, t + dt, h, &mut |m| {
+            if *used == dense.len() {
+                dense.push(DenseStep { t0: 0.0, h: 0.0, coefficients: Vec::new(), interpolate: |_, _, _| {} });
+            }
+            m.save_dense(&mut dense[*used]);
+            *used += 1;
+        });
+        if next.is_err() {
+            self.used = 0;
+        }
+        self.h_next = Some(next?);
         Ok(())
     }
 
     fn reset(&mut self) {
         self.method.invalidate();
+    }
+
+    fn dense_state(&self, t: f64, out: &mut [f64]) -> bool {
+        let steps = &self.dense[..self.used];
+        let (Some(first), Some(last)) = (steps.first(), steps.last()) else { return false };
+        let slack = 1e-12 * (last.t0 + last.h).abs().max(1.0);
+        if !(first.t0 - slack..=last.t0 + last.h + slack).contains(&t) {
+            return false;
+        }
+        // The last sub-step starting at or before t.
+        let k = steps.partition_point(|s| s.t0 <= t).max(1) - 1;
+        steps[k].at(t, out);
+        true
     }
 }
 

@@ -264,16 +264,21 @@ impl Runner<'_> {
     }
 
     /// Integrates from (t, y0) over h: one RK4 step, or error-controlled sub-steps of an
-    /// adaptive method. The method forgets its cached derivatives first: y0 may not be the
-    /// state it last produced (bisection) and the friction may have changed.
+    /// adaptive method. A method's cached derivatives are keyed by (t, y), so a bisection
+    /// restarting from y0 reuses them; a change of the anchor's state resets the method
+    /// ([`Runner::set_state`]).
     fn advance(&mut self, t: f64, y0: &[f64], h: f64) -> Result<Vec<f64>, RhsError> {
         let mut y = y0.to_vec();
-        self.integrator.reset();
         self.integrator.step(&mut self.dynamics, t, &mut y, h)?;
         Ok(y)
     }
 
     /// Bisects (0, h] for the first sub-step at which `g` changes sign from its value at 0.
+    ///
+    /// A method with a continuous extension (DP5, SDIRK4) integrates [t, t + h] once and is
+    /// probed on its interpolants, to their accuracy (one evaluation per probe, for the
+    /// observation); RK4 re-integrates from (t, y0) to each probe, so the event falls on
+    /// a step of its own.
     fn locate(
         &mut self,
         t: f64,
@@ -281,15 +286,20 @@ impl Runner<'_> {
         h: f64,
         g: impl Fn(&Observation) -> bool,
     ) -> Result<(f64, Vec<f64>, Observation), RhsError> {
+        let y_end = self.advance(t, y0, h)?;
+        let mut y = y_end.clone();
+        let dense = self.integrator.dense_state(t + h, &mut y);
         let (mut lo, mut hi) = (0.0, h);
         let mut best = None;
         for _ in 0..60 {
             let mid = 0.5 * (lo + hi);
-            let y = self.advance(t, y0, mid)?;
+            if !(dense && self.integrator.dense_state(t + mid, &mut y)) {
+                y = self.advance(t, y0, mid)?;
+            }
             let obs = self.observe(&y)?;
             if g(&obs) {
                 hi = mid;
-                best = Some((mid, y, obs));
+                best = Some((mid, y.clone(), obs));
             } else {
                 lo = mid;
             }
@@ -300,15 +310,14 @@ impl Runner<'_> {
         match best {
             Some(b) => Ok(b),
             None => {
-                let y = self.advance(t, y0, h)?;
-                let obs = self.observe(&y)?;
-                Ok((h, y, obs))
+                let obs = self.observe(&y_end)?;
+                Ok((h, y_end, obs))
             }
         }
     }
 
     fn mu(&self) -> f64 {
-        self.dynamics.forces.anchor.friction_coefficient
+        self.dynamics.forces().anchor.friction_coefficient
     }
 
     fn release(&self, obs: &Observation) -> bool {
@@ -316,21 +325,23 @@ impl Runner<'_> {
     }
 
     fn set_sliding(&mut self, direction: f64) {
-        self.dynamics.slide_anchor(direction);
+        self.set_state(AnchorDof::Free, direction);
     }
 
-    /// Restores an anchor state recorded earlier (held, or sliding in `direction`).
+    /// Sets the anchor's state (held, or sliding in `direction`). The right-hand side
+    /// changes at the same (t, y), so the method forgets what it cached.
     fn set_state(&mut self, anchor: AnchorDof, direction: f64) {
         match anchor {
             AnchorDof::Stuck => self.dynamics.hold_anchor(),
             AnchorDof::Free => self.dynamics.slide_anchor(direction),
         }
+        self.integrator.reset();
     }
 
     fn set_held(&mut self, y: &mut [f64]) {
         let n = self.n();
         y[2 * n - 1] = 0.0;
-        self.dynamics.hold_anchor();
+        self.set_state(AnchorDof::Stuck, 0.0);
     }
 }
 

@@ -211,6 +211,38 @@ impl From<StepError> for RhsError {
     }
 }
 
+/// A detached copy of one accepted step's continuous extension:
+/// y(t0 + θh) = `interpolate`(coefficients, θ), θ ∈ [0, 1]. An adaptive driver keeps one per
+/// sub-step of an interval, so that events are located on the interpolants afterwards.
+#[derive(Clone, Debug)]
+pub struct DenseStep {
+    /// Start of the step, s.
+    pub t0: f64,
+    /// Its length, s.
+    pub h: f64,
+    /// The method's coefficient vectors, each as long as the state.
+    pub coefficients: Vec<Vec<f64>>,
+    /// The method's interpolation formula.
+    pub interpolate: fn(&[Vec<f64>], f64, &mut [f64]),
+}
+
+impl DenseStep {
+    /// The interpolant at time t (clamped to the step), into `out`.
+    pub fn at(&self, t: f64, out: &mut [f64]) {
+        (self.interpolate)(&self.coefficients, ((t - self.t0) / self.h).clamp(0.0, 1.0), out);
+    }
+
+    /// Sets this copy from a method's step, reusing its vectors.
+    pub fn set(&mut self, t0: f64, h: f64, coefficients: &[Vec<f64>], interpolate: fn(&[Vec<f64>], f64, &mut [f64])) {
+        (self.t0, self.h, self.interpolate) = (t0, h, interpolate);
+        self.coefficients.resize_with(coefficients.len(), Vec::new);
+        for (to, from) in self.coefficients.iter_mut().zip(coefficients) {
+            to.clear();
+            to.extend_from_slice(from);
+        }
+    }
+}
+
 /// An adaptive one-step method with dense output over its last accepted step.
 pub trait AdaptiveIntegrator {
     /// Takes one accepted step from (t, y) trying `h_try` first; `y` becomes the state at
@@ -226,6 +258,9 @@ pub trait AdaptiveIntegrator {
 
     /// The interpolant of the last accepted step at θ ∈ [0, 1] (t = t0 + θh), into `out`.
     fn dense_into(&self, theta: f64, out: &mut [f64]);
+
+    /// Copies the last accepted step's interpolant into `into` (nothing before a step).
+    fn save_dense(&self, into: &mut DenseStep);
 
     /// (t0, h) of the last accepted step, if any.
     fn last_step(&self) -> Option<(f64, f64)>;
@@ -254,6 +289,20 @@ pub trait AdaptiveIntegrator {
         t1: f64,
         h_try: f64,
     ) -> Result<f64, StepError> {
+        self.integrate_to_with(sys, t0, y, t1, h_try, &mut |_| {})
+    }
+
+    /// As [`AdaptiveIntegrator::integrate_to`], calling `accepted` after every accepted step
+    /// (e.g. to keep its dense output).
+    fn integrate_to_with(
+        &mut self,
+        sys: &mut dyn OdeSystem,
+        t0: f64,
+        y: &mut [f64],
+        t1: f64,
+        h_try: f64,
+        accepted: &mut dyn FnMut(&Self),
+    ) -> Result<f64, StepError> {
         if !(h_try.is_finite() && h_try > 0.0) {
             return Err(StepError::InvalidStep(h_try));
         }
@@ -264,6 +313,7 @@ pub trait AdaptiveIntegrator {
             let remaining = t1 - t;
             let clipped = h >= remaining;
             let out = self.step_adaptive(sys, t, y, h.min(remaining))?;
+            accepted(self);
             t = if clipped && out.h == remaining { t1 } else { t + out.h };
             // A clipped last step says nothing about the step size the problem allows.
             h = if clipped && out.rejected == 0 { h.max(out.h_next) } else { out.h_next };

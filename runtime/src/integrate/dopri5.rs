@@ -4,7 +4,7 @@
 //! Hairer's continuous extension of order 4 (`contd5`) as dense output.
 
 use super::adaptive::{
-    initial_step, AdaptiveIntegrator, AdaptiveStats, StepControl, StepError, StepOutcome, Tolerances,
+    initial_step, AdaptiveIntegrator, AdaptiveStats, DenseStep, StepControl, StepError, StepOutcome, Tolerances,
 };
 use super::{Integrator, OdeSystem, RhsError};
 
@@ -47,6 +47,14 @@ const D4: f64 = -10690763975.0 / 1880347072.0;
 const D5: f64 = 701980252875.0 / 199316789632.0;
 const D6: f64 = -1453857185.0 / 822651844.0;
 const D7: f64 = 69997945.0 / 29380423.0;
+
+/// Hairer's continuous extension of order 4 at θ from the coefficients `r` of one step.
+fn contd5(r: &[Vec<f64>], theta: f64, out: &mut [f64]) {
+    let s1 = 1.0 - theta;
+    for i in 0..r[0].len().min(out.len()) {
+        out[i] = r[0][i] + theta * (r[1][i] + s1 * (r[2][i] + theta * (r[3][i] + s1 * r[4][i])));
+    }
+}
 
 /// A cached derivative f(t, y).
 #[derive(Clone, Debug, Default)]
@@ -304,10 +312,12 @@ impl AdaptiveIntegrator for Dopri5 {
     }
 
     fn dense_into(&self, theta: f64, out: &mut [f64]) {
-        let s1 = 1.0 - theta;
-        let r = &self.rcont;
-        for i in 0..self.dim.min(out.len()) {
-            out[i] = r[0][i] + theta * (r[1][i] + s1 * (r[2][i] + theta * (r[3][i] + s1 * r[4][i])));
+        contd5(&self.rcont, theta, out);
+    }
+
+    fn save_dense(&self, into: &mut DenseStep) {
+        if let Some((t0, h)) = self.last {
+            into.set(t0, h, &self.rcont, contd5);
         }
     }
 

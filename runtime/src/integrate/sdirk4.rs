@@ -47,9 +47,18 @@
 use nalgebra::{DMatrix, DVector, Dyn, LU};
 
 use super::adaptive::{
-    initial_step, AdaptiveIntegrator, AdaptiveStats, StepControl, StepError, StepOutcome, Tolerances,
+    initial_step, AdaptiveIntegrator, AdaptiveStats, DenseStep, StepControl, StepError, StepOutcome, Tolerances,
 };
 use super::{Integrator, OdeSystem, RhsError};
+
+/// Cubic Hermite interpolation at θ from d = (y0, h f0, y1, h f1) of one step.
+fn hermite(d: &[Vec<f64>], theta: f64, out: &mut [f64]) {
+    let (t2, t3) = (theta * theta, theta * theta * theta);
+    let (h00, h10, h01, h11) = (2.0 * t3 - 3.0 * t2 + 1.0, t3 - 2.0 * t2 + theta, -2.0 * t3 + 3.0 * t2, t3 - t2);
+    for i in 0..d[0].len().min(out.len()) {
+        out[i] = h00 * d[0][i] + h10 * d[1][i] + h01 * d[2][i] + h11 * d[3][i];
+    }
+}
 
 const GAMMA: f64 = 0.25;
 const C: [f64; 5] = [0.25, 0.75, 11.0 / 20.0, 0.5, 1.0];
@@ -517,11 +526,12 @@ impl AdaptiveIntegrator for Sdirk4 {
     }
 
     fn dense_into(&self, theta: f64, out: &mut [f64]) {
-        let (t2, t3) = (theta * theta, theta * theta * theta);
-        let (h00, h10, h01, h11) = (2.0 * t3 - 3.0 * t2 + 1.0, t3 - 2.0 * t2 + theta, -2.0 * t3 + 3.0 * t2, t3 - t2);
-        let d = &self.dense;
-        for i in 0..self.dim.min(out.len()) {
-            out[i] = h00 * d[0][i] + h10 * d[1][i] + h01 * d[2][i] + h11 * d[3][i];
+        hermite(&self.dense, theta, out);
+    }
+
+    fn save_dense(&self, into: &mut DenseStep) {
+        if let Some((t0, h)) = self.last {
+            into.set(t0, h, &self.dense, hermite);
         }
     }
 

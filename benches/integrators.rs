@@ -1,0 +1,52 @@
+//! The adaptive method against the paper's RK4 on case 1: wall time at equal stopping-time
+//! accuracy, measured side by side in one run.
+//!
+//! ```sh
+//! cargo bench --bench integrators      # about 40 s
+//! ```
+//!
+//! The study of `report accuracy` (reference DP5 at rtol 1e-10) over RK4 at dt = 2 ms and
+//! DP5 at half-decade tolerances from 1e-4 to 1e-7 (observed every 0.02 s, atol = rtol/100),
+//! each setting timed 7 times (median). The DP5 run that matches RK4's stopping-time error
+//! is the loosest tolerance from which every tighter one matches it too
+//! ([`accuracy::matched`]), and the ratio of the two medians is the speed-up. The issue's
+//! goal is 3×; results are recorded in docs/integrators.md.
+
+use kanestop_runtime::accuracy::{self, Setting};
+use kanestop_runtime::generated::GeneratedKernel;
+use kanestop_runtime::kernel::Kernel;
+use kanestop_runtime::model::Model;
+use kanestop_runtime::paper::CASES;
+use kanestop_runtime::scene::IntegratorKind;
+
+/// The speed-up the issue asks of the adaptive method at RK4's (2 ms) accuracy.
+const GOAL: f64 = 3.0;
+
+fn main() {
+    let scene = CASES[0].scene();
+    let mut plan: Vec<Setting> = vec![(IntegratorKind::Rk4, 0.002, 1e-6)];
+    for decade in [1e-4, 1e-5, 1e-6] {
+        for mantissa in [1.0, 0.5, 0.2] {
+            plan.push((IntegratorKind::Dp5, 0.02, mantissa * decade));
+        }
+    }
+    plan.push((IntegratorKind::Dp5, 0.02, 1e-7));
+    let kernel = |m: &Model| -> Box<dyn Kernel> {
+        Box::new(GeneratedKernel::new(&m.chain).expect("case 1 has a checked-in kernel"))
+    };
+    let study = match accuracy::study(&scene, &plan, &kernel, 7) {
+        Ok(s) => s,
+        Err(e) => {
+            eprintln!("error: {e}");
+            std::process::exit(1);
+        }
+    };
+    print!("{}", accuracy::table(&study));
+    match accuracy::matched(&study, "rk4", 0.002).and_then(|(_, runs)| runs.first().map(|m| m.speedup)) {
+        Some(speedup) => println!(
+            "goal: {GOAL}x the speed of RK4 (2 ms) at its stopping-time accuracy: {} ({speedup:.2}x)",
+            if speedup >= GOAL { "met" } else { "NOT met" }
+        ),
+        None => println!("goal: {GOAL}x: NOT met (no DP5 tolerance of the plan reaches RK4's accuracy)"),
+    }
+}
