@@ -99,10 +99,15 @@ pub fn write_plots(models: &[Model], results: &[RunResult], out: &Path) -> Resul
 }
 
 /// `report accuracy`: the work–precision study, printed and written into `out`.
-pub fn accuracy(scene: &Scene, out: &Path, repeats: usize, kernel: KernelFactory) -> Result<()> {
+pub fn accuracy(scene: &Scene, out: &Path, repeats: usize, atol_ratio: f64, kernel: KernelFactory) -> Result<()> {
     anyhow::ensure!(repeats >= 1, "--repeats {repeats}: must be at least 1");
+    anyhow::ensure!(
+        atol_ratio.is_finite() && atol_ratio > 0.0,
+        "--atol-ratio {atol_ratio}: must be finite and > 0 (atol = ratio × rtol)"
+    );
     let plan = kanestop_runtime::accuracy::default_plan();
-    let study = kanestop_runtime::accuracy::study(scene, &plan, kernel, repeats).map_err(anyhow::Error::msg)?;
+    let study =
+        kanestop_runtime::accuracy::study(scene, &plan, atol_ratio, kernel, repeats).map_err(anyhow::Error::msg)?;
     print!("{}", kanestop_runtime::accuracy::table(&study));
     for f in kanestop_runtime::accuracy::write(&study, out).map_err(anyhow::Error::msg)? {
         println!("written   {}", f.display());

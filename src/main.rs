@@ -133,6 +133,9 @@ enum ReportKind {
         /// Runs per setting; the median wall time is reported.
         #[arg(long, default_value_t = 3)]
         repeats: usize,
+        /// Absolute tolerance of the adaptive runs as a multiple of their rtol (> 0).
+        #[arg(long, default_value_t = kanestop_runtime::accuracy::DEFAULT_ATOL_RATIO)]
+        atol_ratio: f64,
         #[arg(long, value_enum, default_value_t = KernelChoice::Generated)]
         kernel: KernelChoice,
     },
@@ -365,9 +368,9 @@ fn try_main() -> Result<ExitCode> {
             println!("{}", serde_json::to_string_pretty(&out)?);
             Ok(ExitCode::SUCCESS)
         }
-        Command::Report { kind: ReportKind::Accuracy { scene, out, repeats, kernel: choice } } => {
+        Command::Report { kind: ReportKind::Accuracy { scene, out, repeats, atol_ratio, kernel: choice } } => {
             let model = load_model(scene.as_ref())?;
-            commands::accuracy(&model.scene, &out, repeats, &|m: &Model| kernel(choice, m))?;
+            commands::accuracy(&model.scene, &out, repeats, atol_ratio, &|m: &Model| kernel(choice, m))?;
             Ok(ExitCode::SUCCESS)
         }
         Command::Plot { scenes, out, kernel: choice } => {

@@ -144,7 +144,8 @@ fn accuracy_study_compares_methods_with_a_tight_reference() {
     ];
     let kernel =
         |m: &Model| -> Box<dyn kanestop_runtime::kernel::Kernel> { Box::new(GeneratedKernel::new(&m.chain).unwrap()) };
-    let s = accuracy::study(&scene, &plan, &kernel, 1).unwrap();
+    let s = accuracy::study(&scene, &plan, accuracy::DEFAULT_ATOL_RATIO, &kernel, 1).unwrap();
+    assert!(accuracy::study(&scene, &plan, 0.0, &kernel, 1).unwrap_err().contains("atol ratio = 0"));
     assert!((s.reference_stopping_time - 10.025).abs() < 0.01, "{}", s.reference_stopping_time);
     assert!(s.reference_error < 1e-4, "reference error {}", s.reference_error);
     assert_eq!(s.rows.len(), 5);

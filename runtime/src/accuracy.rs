@@ -59,15 +59,21 @@ pub struct AccuracyStudy {
     pub reference_error: f64,
     /// Its estimated trajectory error, m.
     pub reference_trajectory_error: f64,
+    /// The adaptive runs' absolute tolerance as a multiple of their rtol.
+    pub atol_ratio: f64,
     pub rows: Vec<AccuracyRow>,
 }
 
-fn configured(base: &Scene, method: IntegratorKind, dt: f64, rtol: f64) -> Scene {
+/// The adaptive runs' atol / rtol unless told otherwise: the ratio of the scenes' default
+/// tolerances (rtol 1e-6, atol 1e-8).
+pub const DEFAULT_ATOL_RATIO: f64 = 1e-2;
+
+fn configured(base: &Scene, method: IntegratorKind, dt: f64, rtol: f64, atol_ratio: f64) -> Scene {
     let mut s = base.clone();
     s.solver.integrator = method;
     s.solver.dt = dt;
     s.solver.rtol = rtol;
-    s.solver.atol = rtol * 1e-2;
+    s.solver.atol = rtol * atol_ratio;
     // A common output grid for every run: 0.04 s is a multiple of every dt used.
     s.solver.output_interval = 0.04;
     s.solver.stop_when_ship_stops = true;
@@ -103,7 +109,7 @@ fn peak(r: &RunResult) -> f64 {
 pub type Setting = (IntegratorKind, f64, f64);
 
 /// The default sweep: RK4 at dt = 4, 2, 1, 0.5 ms; DP5 at rtol = 1e-3 … 1e-8; SDIRK4 at
-/// 1e-4 … 1e-6 (adaptive methods observed every 0.02 s; atol = rtol/100).
+/// 1e-4 … 1e-6 (adaptive methods observed every 0.02 s).
 pub fn default_plan() -> Vec<Setting> {
     [0.004, 0.002, 0.001, 0.0005]
         .iter()
@@ -113,16 +119,21 @@ pub fn default_plan() -> Vec<Setting> {
         .collect()
 }
 
-/// Runs the study on `scene` over `plan` with kernels from `kernel`; `repeats` wall-time
-/// repetitions per setting.
+/// Runs the study on `scene` over `plan` with kernels from `kernel`; the adaptive runs take
+/// atol = `atol_ratio` × rtol (the reference always [`DEFAULT_ATOL_RATIO`]); `repeats`
+/// wall-time repetitions per setting.
 pub fn study(
     scene: &Scene,
     plan: &[Setting],
+    atol_ratio: f64,
     kernel: &dyn Fn(&Model) -> Box<dyn Kernel>,
     repeats: usize,
 ) -> Result<AccuracyStudy, String> {
-    let (reference, _) = run(&configured(scene, IntegratorKind::Dp5, 0.02, 1e-10), kernel, 1)?;
-    let (check, _) = run(&configured(scene, IntegratorKind::Dp5, 0.02, 1e-9), kernel, 1)?;
+    if !(atol_ratio.is_finite() && atol_ratio > 0.0) {
+        return Err(format!("atol ratio = {atol_ratio}: must be finite and > 0 (atol = ratio × rtol)"));
+    }
+    let (reference, _) = run(&configured(scene, IntegratorKind::Dp5, 0.02, 1e-10, DEFAULT_ATOL_RATIO), kernel, 1)?;
+    let (check, _) = run(&configured(scene, IntegratorKind::Dp5, 0.02, 1e-9, DEFAULT_ATOL_RATIO), kernel, 1)?;
     let t_ref = match (&reference.stop, reference.stopping_time) {
         (Stop::ShipStopped, Some(t)) => t,
         _ => return Err(format!("the reference run did not stop the ship: {:?}", reference.stop)),
@@ -131,7 +142,7 @@ pub fn study(
     for &(method, dt, rtol) in plan {
         let name = format!("{method:?}").to_lowercase();
         let setting = if method == IntegratorKind::Rk4 { dt } else { rtol };
-        let (r, wall) = run(&configured(scene, method, dt, rtol), kernel, repeats)?;
+        let (r, wall) = run(&configured(scene, method, dt, rtol, atol_ratio), kernel, repeats)?;
         let stopped = matches!(r.stop, Stop::ShipStopped);
         let status = match &r.stop {
             Stop::ShipStopped => "stopped".to_string(),
@@ -159,6 +170,7 @@ pub fn study(
         reference_stopping_time: t_ref,
         reference_error: (check.stopping_time.unwrap_or(f64::NAN) - t_ref).abs(),
         reference_trajectory_error: simulate::trajectory_difference(&check, &reference),
+        atol_ratio,
         rows,
     })
 }
@@ -218,6 +230,7 @@ pub fn table(s: &AccuracyStudy) -> String {
         "reference: DP5 rtol 1e-10, stopping time {:.9} s (estimated error {:.1e} s, trajectory {:.1e} m)\n",
         s.reference_stopping_time, s.reference_error, s.reference_trajectory_error
     );
+    out.push_str(&format!("adaptive runs: observed every 0.02 s, atol = {:e} × rtol\n", s.atol_ratio));
     out.push_str(&format!(
         "{:<7} {:>9} {:<9} {:>10} {:>10} {:>10} {:>10} {:>10} {:>9} {:>9} {:>4}\n",
         "method", "dt/rtol", "status", "t_stop", "ship x", "anchor x", "peak T", "trajectory", "wall s", "RHS", "best"
@@ -327,6 +340,7 @@ mod tests {
             reference_stopping_time: 20.0,
             reference_error: 1e-9,
             reference_trajectory_error: 1e-9,
+            atol_ratio: DEFAULT_ATOL_RATIO,
             rows,
         };
         let (base, runs) = matched(&s, "rk4", 0.002).unwrap();
