@@ -130,7 +130,7 @@ impl<M: AdaptiveIntegrator> Integrator for Adaptive<M> {
         *used = 0;
         let next = method.integrate_to_with(sys, t, y, t + dt, h, &mut |m| {
             if *used == dense.len() {
-                dense.push(DenseStep { t0: 0.0, h: 0.0, coefficients: Vec::new(), interpolate: |_, _, _| {} });
+                dense.push(DenseStep::default());
             }
             m.save_dense(&mut dense[*used]);
             *used += 1;

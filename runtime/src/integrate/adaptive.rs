@@ -226,6 +226,13 @@ pub struct DenseStep {
     pub interpolate: fn(&[Vec<f64>], f64, &mut [f64]),
 }
 
+impl Default for DenseStep {
+    /// An empty step, to be [`DenseStep::set`].
+    fn default() -> Self {
+        DenseStep { t0: 0.0, h: 0.0, coefficients: Vec::new(), interpolate: |_, _, _| {} }
+    }
+}
+
 impl DenseStep {
     /// The interpolant at time t (clamped to the step), into `out`.
     pub fn at(&self, t: f64, out: &mut [f64]) {
