@@ -6,7 +6,7 @@
 //! ```
 //!
 //! The study of `report accuracy` (reference DP5 at rtol 1e-10) over RK4 at dt = 2 ms and
-//! DP5 at half-decade tolerances from 1e-4 to 1e-7, observed every 0.02 s, each setting
+//! DP5 at tolerances 1, 0.5 and 0.2 per decade from 1e-4 to 1e-7, observed every 0.02 s, each setting
 //! timed 7 times (median), for two absolute tolerances: atol = rtol/100 (the ratio of the
 //! scenes' defaults) and atol = rtol. The DP5 run that matches RK4's stopping-time error is
 //! the loosest tolerance from which every tighter one matches it too

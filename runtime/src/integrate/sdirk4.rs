@@ -235,6 +235,8 @@ impl Sdirk4 {
     fn start(&mut self, sys: &mut dyn OdeSystem, t: f64, y: &[f64]) -> Result<(), RhsError> {
         let hit = matches!(&self.end, Some((te, ye)) if *te == t && ye.as_slice() == y);
         if !hit {
+            // f0 is about to belong to (t, y), not to the last step's end.
+            self.end = None;
             let mut f0 = std::mem::take(&mut self.f0);
             let r = self.eval(sys, t, y, &mut f0);
             self.f0 = f0;
