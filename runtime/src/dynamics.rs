@@ -9,7 +9,7 @@
 use crate::forces::anchor::AnchorForces;
 use crate::forces::{Forces, WORK_TERMS};
 use crate::integrate::{OdeSystem, RhsError};
-use crate::kernel::{AnchorDof, AnchorReaction, Assembly, BodyState, Kernel, Load, LoadModel};
+use crate::kernel::{AnchorDof, AnchorReaction, Assembly, BodyAcceleration, BodyState, Kernel, Load, LoadModel};
 
 /// Number of work accumulators at the end of the state.
 pub const WORK_COUNT: usize = WORK_TERMS.len();
@@ -99,9 +99,11 @@ impl Dynamics {
         &self.forces
     }
 
-    pub fn kernel_mut(&mut self) -> &mut dyn Kernel {
-        self.last.valid = false;
-        self.kernel.as_mut()
+    /// Body accelerations (Eq. 17) for generalised accelerations `qdd` at (q, u). Pure
+    /// kinematics: it leaves the last evaluation valid, so the fixed-step driver's observation
+    /// at the end of a step is also the next step's first stage.
+    pub fn body_accelerations(&mut self, q: &[f64], u: &[f64], qdd: &[f64], out: &mut [BodyAcceleration]) {
+        self.kernel.accelerations(q, u, qdd, out);
     }
 
     pub fn anchor(&self) -> AnchorDof {

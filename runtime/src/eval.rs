@@ -141,7 +141,7 @@ pub fn evaluate(model: &Model, kernel: Box<dyn Kernel>, state: Option<&StateFile
     let eig = SymmetricEigen::new(m.clone()).eigenvalues;
     let cond = eig.max() / eig.min();
     let mut acc = vec![BodyAcceleration::default(); n];
-    dynamics.kernel_mut().accelerations(&q, &u, &qdd, &mut acc);
+    dynamics.body_accelerations(&q, &u, &qdd, &mut acc);
     let bodies = asm
         .bodies
         .iter()

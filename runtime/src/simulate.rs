@@ -153,7 +153,7 @@ pub fn static_residual(model: &Model, kernel: Box<dyn Kernel>) -> Result<StaticR
     let mut qdd = vec![0.0; n];
     dynamics.accelerations(&q, &u, &mut qdd)?;
     let mut acc = vec![BodyAcceleration::default(); n];
-    dynamics.kernel_mut().accelerations(&q, &u, &qdd, &mut acc);
+    dynamics.body_accelerations(&q, &u, &qdd, &mut acc);
     let last_stage = model.scene.cable.stages.len().saturating_sub(1);
     let (mut line, mut top) = ((0.0, 0), (0.0, 0));
     for (k, (b, a)) in model.chain.bodies.iter().zip(&acc).enumerate() {
@@ -244,7 +244,7 @@ impl Runner<'_> {
         let (u, w) = rest.split_at(n);
         let reaction = self.dynamics.accelerations(q, u, &mut self.qdd)?;
         let bodies = self.dynamics.assembly().bodies.clone();
-        self.dynamics.kernel_mut().accelerations(q, u, &self.qdd, &mut self.acc);
+        self.dynamics.body_accelerations(q, u, &self.qdd, &mut self.acc);
         // Eq. 52 in Newton's form: the joint force on B_k balances the outboard bodies'
         // inertia (with added mass) less their applied loads.
         let mut tensions = vec![0.0; n - 1];
