@@ -98,7 +98,7 @@ fn per_solve(kernel: &mut dyn Kernel, chain: &Chain, anchor: AnchorDof) -> f64 {
     let mut scratch = Assembly::new(n);
     let mut qdd = vec![0.0; n];
     time(|| {
-        let f = kernel.solve(black_box(&q), black_box(&u), anchor, &mut forces, &mut scratch, &mut qdd).unwrap();
+        let f = kernel.solve(black_box(&q), black_box(&u), anchor, 0.0, &mut forces, &mut scratch, &mut qdd).unwrap();
         black_box((f, &qdd));
     })
 }
