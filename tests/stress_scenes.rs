@@ -1,8 +1,10 @@
 //! A reduced set of the stress scenes (`scenes/stress/`), shortened so the whole file runs
 //! in a few seconds: each run either completes with an energy drift below 0.5 %, is refused
 //! before it starts (an RK4 step above the scene's stability limit), or stops with the
-//! diagnostic (time, body, cause, suggestion). Never a NaN, a panic or a hang. The full set:
-//! `cargo run --release -- batch scenes/stress` (docs/integrators.md).
+//! diagnostic (time, body, cause, suggestion). Never a NaN, a panic or a hang. The last
+//! test runs the full set, full length, with RK4 and DP5 (about 10 s); the same side by side
+//! with error estimates: `cargo run --release -- batch scenes/stress --methods rk4,dp5@0.02
+//! --error-estimate` (docs/integrators.md).
 
 use std::path::Path;
 
@@ -193,4 +195,50 @@ fn fine_cable_converges_to_the_paper_discretisation() {
     let coarse = simulate::run(&model, Box::new(GeneratedKernel::new(&model.chain).unwrap()));
     let (a, b) = (fine.stopping_time.unwrap(), coarse.stopping_time.unwrap());
     assert!((a - b).abs() < 0.01 * b, "fine cable stops at {a:.4} s, case 1 at {b:.4} s");
+}
+
+/// The whole stress set, each scene with RK4 at its own dt and DP5 (rtol 1e-5, atol 1e-7,
+/// observed every 0.02 s), full length: every run passes [`check`] (finite states, drift
+/// below 0.5 % or a complete diagnostic), and every scene is completed by at least one
+/// method. The runs go two at a time (CI has two cores); about 10 s optimised.
+#[test]
+fn full_stress_set_completes_with_at_least_one_method() {
+    use kanestop_runtime::scene::IntegratorKind;
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/stress");
+    let mut files: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .flatten()
+        .map(|e| e.path())
+        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+        .collect();
+    files.sort();
+    let runs: Vec<Scene> = files
+        .iter()
+        .flat_map(|p| {
+            let rk4 = Scene::load(p).unwrap_or_else(|e| panic!("{e}"));
+            let mut dp5 = rk4.clone();
+            dp5.solver.integrator = IntegratorKind::Dp5;
+            (dp5.solver.dt, dp5.solver.rtol, dp5.solver.atol) = (0.02, 1e-5, 1e-7);
+            [rk4, dp5]
+        })
+        .collect();
+    let results: Vec<RunResult> = std::thread::scope(|s| {
+        let half = runs.len().div_ceil(2);
+        let workers: Vec<_> =
+            runs.chunks(half).map(|chunk| s.spawn(|| chunk.iter().map(run_scene).collect::<Vec<_>>())).collect();
+        workers.into_iter().flat_map(|w| w.join().expect("a stress run panicked")).collect()
+    });
+    for (scene, r) in runs.iter().zip(&results) {
+        check(&format!("{} ({:?})", scene.meta.name, scene.solver.integrator), r);
+    }
+    for (pair, scene) in results.chunks(2).zip(runs.iter().step_by(2)) {
+        let completed = pair.iter().any(|r| matches!(r.stop, Stop::ShipStopped | Stop::EndTime));
+        assert!(
+            completed,
+            "{}: no method completed: {:?}",
+            scene.meta.name,
+            pair.iter().map(|r| &r.stop).collect::<Vec<_>>()
+        );
+    }
+    assert!(files.len() >= 10, "{} stress scenes", files.len());
 }
