@@ -130,6 +130,10 @@ pub trait Kernel {
     fn assemble(&mut self, q: &[f64], u: &[f64], model: &mut dyn LoadModel, out: &mut Assembly);
 
     /// Body accelerations (Eq. 17) for generalised accelerations `qdd`.
+    ///
+    /// It must not change what a later [`Kernel::solve`] or [`Kernel::assemble`] returns
+    /// (scratch overwritten before use is fine): `Dynamics` keeps its last solve valid across
+    /// this call.
     fn accelerations(&mut self, q: &[f64], u: &[f64], qdd: &[f64], out: &mut [BodyAcceleration]);
 
     /// Generalised accelerations at (q, u) over the speeds `anchor` leaves active; a stuck
