@@ -17,25 +17,25 @@
 //! ringing of the cable and chain (atol = rtol/100). It shows whether the model's lightly
 //! damped modes are what holds the ratio down. Results are recorded in docs/integrators.md.
 
-use kanestop_runtime::accuracy::{self, Setting, DEFAULT_ATOL_RATIO};
 use kanestop_runtime::generated::GeneratedKernel;
 use kanestop_runtime::kernel::Kernel;
 use kanestop_runtime::model::Model;
 use kanestop_runtime::paper::CASES;
-use kanestop_runtime::scene::IntegratorKind;
+use kanestop_runtime::scene::Method;
+use kanestop_workflow::accuracy::{self, Setting, DEFAULT_ATOL_RATIO};
 
 /// The speed-up the issue asks of the adaptive method at RK4's (2 ms) accuracy.
 const GOAL: f64 = 3.0;
 
 fn main() {
     let scene = CASES[0].scene();
-    let mut plan: Vec<Setting> = vec![(IntegratorKind::Rk4, 0.002, 1e-6)];
+    let mut plan: Vec<Setting> = vec![(Method::Rk4, 0.002, 1e-6)];
     for decade in [1e-4, 1e-5, 1e-6] {
         for mantissa in [1.0, 0.5, 0.2] {
-            plan.push((IntegratorKind::Dp5, 0.02, mantissa * decade));
+            plan.push((Method::Dp5, 0.02, mantissa * decade));
         }
     }
-    plan.push((IntegratorKind::Dp5, 0.02, 1e-7));
+    plan.push((Method::Dp5, 0.02, 1e-7));
     let kernel = |m: &Model| -> Box<dyn Kernel> {
         Box::new(GeneratedKernel::new(&m.chain).expect("case 1 has a checked-in kernel"))
     };
@@ -53,7 +53,7 @@ fn main() {
             }
         };
         print!("{}", accuracy::table(&study));
-        match accuracy::matched(&study, "rk4", 0.002).and_then(|(_, runs)| runs.first().map(|m| m.speedup)) {
+        match accuracy::matched(&study, Method::Rk4, 0.002).and_then(|(_, runs)| runs.first().map(|m| m.speedup)) {
             Some(speedup) => println!(
                 "goal: {GOAL}x the speed of RK4 (2 ms) at its stopping-time accuracy, atol = {atol_ratio:e} × rtol: \
                  {} ({speedup:.2}x)\n",

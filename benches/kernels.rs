@@ -14,7 +14,7 @@
 use std::hint::black_box;
 use std::time::Instant;
 
-use kanestop_codegen::BodyKind;
+use kanestop_chain::BodyKind;
 use kanestop_runtime::chain::{box_inertia, Body, Chain, Shape};
 use kanestop_runtime::forces::Forces;
 use kanestop_runtime::generated::{available, GeneratedKernel, SolvePath};

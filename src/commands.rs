@@ -1,29 +1,14 @@
-//! The commands that run many scenes: `batch` (a folder, tabulated) and `plot` (overlaid
-//! time histories). Both run scenes in parallel.
+//! The commands that run many scenes, `batch` and `plot`, and `report accuracy`: each calls
+//! the workflow layer and prints what it returns.
 
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result};
-use indicatif::{ProgressBar, ProgressStyle};
-use kanestop_runtime::batch;
-use kanestop_runtime::kernel::Kernel;
 use kanestop_runtime::model::Model;
-use kanestop_runtime::plot;
 use kanestop_runtime::scene::Scene;
-use kanestop_runtime::simulate::{self, RunResult};
-use rayon::prelude::*;
-
-/// Builds the kernel of each run.
-pub type KernelFactory<'a> = &'a (dyn Fn(&Model) -> Box<dyn Kernel> + Sync);
-
-fn progress(len: usize) -> ProgressBar {
-    let bar = ProgressBar::new(len as u64);
-    bar.set_style(
-        ProgressStyle::with_template("{bar:40} {pos}/{len} scenes  {elapsed_precise}  {msg}")
-            .expect("a valid progress template"),
-    );
-    bar
-}
+use kanestop_runtime::simulate::RunResult;
+use kanestop_workflow::kernels::KernelFactory;
+use kanestop_workflow::{accuracy, batch, parallel, plot, progress, validation};
 
 /// `batch DIR`: runs every scene once per configuration (one per method compared), prints
 /// the table, writes batch.csv and batch.json; with `error_estimate`, each run is repeated
@@ -39,11 +24,12 @@ pub fn batch(
 ) -> Result<bool> {
     let files = batch::scene_files(dir).with_context(|| format!("cannot read scene folder {}", dir.display()))?;
     anyhow::ensure!(!files.is_empty(), "no *.toml scene in {}", dir.display());
-    let bar = progress(files.len() * configures.len());
+    let bar = progress::bar(files.len() * configures.len(), "scenes");
     let mut rows = Vec::new();
     for configure in configures {
         rows.extend(batch::run_all(&files, *configure, kernel, error_estimate, &|row| {
-            bar.set_message(format!("{} {} {}", row.case, row.method, row.status));
+            let method = row.method.map(|m| m.name()).unwrap_or_default();
+            bar.set_message(format!("{} {method} {}", row.case, row.status));
             bar.inc(1);
         }));
     }
@@ -51,11 +37,11 @@ pub fn batch(
     rows.sort_by(|a, b| a.file.cmp(&b.file));
     bar.finish_and_clear();
     print!("{}", batch::table(&rows));
-    let (csv, json) = batch::write(&rows, out).with_context(|| format!("cannot write into {}", out.display()))?;
+    let (csv, json) = batch::write(&rows, out)?;
     println!("written   {} and {}", csv.display(), json.display());
-    let mut ok = !rows.iter().any(|r| r.status == "failed" || r.status == "invalid");
+    let mut ok = !rows.iter().any(|r| r.status.is_problem());
     if let Some(tol) = tolerance {
-        let v = batch::validate(&rows, tol);
+        let v = validation::validate(&rows, tol);
         if let Some(tau) = v.kendall_tau {
             println!("order     Kendall's τ against Table 3 = {tau:.3} ({} discordant pairs)", v.discordant.len());
             for (a, b) in &v.discordant {
@@ -75,15 +61,8 @@ pub fn batch(
 pub fn plot(scenes: &[PathBuf], out: &Path, kernel: KernelFactory) -> Result<Vec<PathBuf>> {
     let models: Vec<Model> =
         scenes.iter().map(|p| -> Result<Model> { Ok(Model::new(&Scene::load(p)?)?) }).collect::<Result<_>>()?;
-    let bar = progress(models.len());
-    let results: Vec<RunResult> = models
-        .par_iter()
-        .map(|m| {
-            let r = simulate::run(m, kernel(m));
-            bar.inc(1);
-            r
-        })
-        .collect();
+    let bar = progress::bar(models.len(), "scenes");
+    let results = parallel::run_models(&models, kernel, &|_| bar.inc(1));
     bar.finish_and_clear();
     write_plots(&models, &results, out)
 }
@@ -91,7 +70,7 @@ pub fn plot(scenes: &[PathBuf], out: &Path, kernel: KernelFactory) -> Result<Vec
 /// Writes the plots of finished runs.
 pub fn write_plots(models: &[Model], results: &[RunResult], out: &Path) -> Result<Vec<PathBuf>> {
     let runs: Vec<(&Model, &RunResult)> = models.iter().zip(results).collect();
-    let files = plot::write_plots(&runs, out).map_err(anyhow::Error::msg)?;
+    let files = plot::write_plots(&runs, out)?;
     for f in &files {
         println!("written   {}", f.display());
     }
@@ -105,11 +84,10 @@ pub fn accuracy(scene: &Scene, out: &Path, repeats: usize, atol_ratio: f64, kern
         atol_ratio.is_finite() && atol_ratio > 0.0,
         "--atol-ratio {atol_ratio}: must be finite and > 0 (atol = ratio × rtol)"
     );
-    let plan = kanestop_runtime::accuracy::default_plan();
-    let study =
-        kanestop_runtime::accuracy::study(scene, &plan, atol_ratio, kernel, repeats).map_err(anyhow::Error::msg)?;
-    print!("{}", kanestop_runtime::accuracy::table(&study));
-    for f in kanestop_runtime::accuracy::write(&study, out).map_err(anyhow::Error::msg)? {
+    let plan = accuracy::default_plan();
+    let study = accuracy::study(scene, &plan, atol_ratio, kernel, repeats)?;
+    print!("{}", accuracy::table(&study));
+    for f in accuracy::write(&study, out)? {
         println!("written   {}", f.display());
     }
     Ok(())

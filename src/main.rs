@@ -8,16 +8,16 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use anyhow::{Context, Result};
+use clap::builder::PossibleValue;
 use clap::{Parser, Subcommand, ValueEnum};
 use kanestop_runtime::eval::{evaluate, StateFile};
-use kanestop_runtime::generated::GeneratedKernel;
-use kanestop_runtime::kernel::Kernel;
 use kanestop_runtime::model::Model;
 use kanestop_runtime::paper::DEFAULT_SCENE;
 use kanestop_runtime::reference::ReferenceKernel;
-use kanestop_runtime::report;
-use kanestop_runtime::scene::{IntegratorKind, Scene, SceneError};
+use kanestop_runtime::scene::{Method, Scene, SceneError};
 use kanestop_runtime::simulate::{self, Stop};
+use kanestop_workflow::kernels::{self, KernelChoice};
+use kanestop_workflow::{history, summary};
 
 #[derive(Parser)]
 #[command(
@@ -43,8 +43,8 @@ enum Command {
         #[arg(long)]
         plot: Option<PathBuf>,
         /// Which Kane kernel evaluates the equations of motion.
-        #[arg(long, value_enum, default_value_t = KernelChoice::Generated)]
-        kernel: KernelChoice,
+        #[arg(long, value_enum, default_value = "generated")]
+        kernel: KernelArg,
         #[command(flatten)]
         solver: SolverOverrides,
     },
@@ -57,8 +57,8 @@ enum Command {
         /// scene's initial state.
         #[arg(long)]
         state: Option<PathBuf>,
-        #[arg(long, value_enum, default_value_t = KernelChoice::Generated)]
-        kernel: KernelChoice,
+        #[arg(long, value_enum, default_value = "generated")]
+        kernel: KernelArg,
     },
     /// Reports that run a scene many times (e.g. `report accuracy`).
     Report {
@@ -79,8 +79,8 @@ enum Command {
         /// exit code 1 otherwise.
         #[arg(long)]
         tolerance: Option<f64>,
-        #[arg(long, value_enum, default_value_t = KernelChoice::Generated)]
-        kernel: KernelChoice,
+        #[arg(long, value_enum, default_value = "generated")]
+        kernel: KernelArg,
         #[command(flatten)]
         solver: SolverOverrides,
         /// Compare methods: run every scene with each, e.g. `rk4,dp5@0.02,sdirk4@0.02`
@@ -101,8 +101,8 @@ enum Command {
         /// Folder for the SVG files.
         #[arg(long, default_value = "out/plots")]
         out: PathBuf,
-        #[arg(long, value_enum, default_value_t = KernelChoice::Generated)]
-        kernel: KernelChoice,
+        #[arg(long, value_enum, default_value = "generated")]
+        kernel: KernelArg,
     },
     /// Show the generated kernels a scene needs (variants, N, operation counts, lines);
     /// `--write` regenerates the checked-in kernels under generated/src/.
@@ -134,38 +134,44 @@ enum ReportKind {
         #[arg(long, default_value_t = 3)]
         repeats: usize,
         /// Absolute tolerance of the adaptive runs as a multiple of their rtol (> 0).
-        #[arg(long, default_value_t = kanestop_runtime::accuracy::DEFAULT_ATOL_RATIO)]
+        #[arg(long, default_value_t = kanestop_workflow::accuracy::DEFAULT_ATOL_RATIO)]
         atol_ratio: f64,
-        #[arg(long, value_enum, default_value_t = KernelChoice::Generated)]
-        kernel: KernelChoice,
+        #[arg(long, value_enum, default_value = "generated")]
+        kernel: KernelArg,
     },
 }
 
-#[derive(Clone, Copy, ValueEnum)]
-enum KernelChoice {
-    /// The generic formulation of the paper's Eqs. 1–27 (slow, the oracle).
-    Reference,
-    /// Flat code emitted by kanestop-codegen for the chain's N and water switch, with the
-    /// O(N) recursive solve (default; the reference when no kernel fits the chain).
-    Generated,
+/// `--kernel`: which Kane kernel evaluates the equations of motion.
+#[derive(Clone, Copy)]
+struct KernelArg(KernelChoice);
+
+impl ValueEnum for KernelArg {
+    fn value_variants<'a>() -> &'a [Self] {
+        &[KernelArg(KernelChoice::Reference), KernelArg(KernelChoice::Generated)]
+    }
+
+    fn to_possible_value(&self) -> Option<PossibleValue> {
+        let help = match self.0 {
+            KernelChoice::Reference => "The generic formulation of the paper's Eqs. 1–27 (slow, the oracle)",
+            KernelChoice::Generated => {
+                "Flat code emitted by kanestop-codegen for the chain's N and water switch, with the O(N) recursive \
+                 solve (default; the reference when no kernel fits the chain)"
+            }
+        };
+        Some(PossibleValue::new(self.0.name()).help(help))
+    }
 }
 
-fn kernel(choice: KernelChoice, model: &Model) -> Box<dyn Kernel> {
-    match choice {
-        KernelChoice::Reference => Box::new(ReferenceKernel::new(&model.chain)),
-        KernelChoice::Generated => match GeneratedKernel::new(&model.chain) {
-            Ok(k) => Box::new(k),
-            Err(e) => {
-                eprintln!("note: {e}; using the reference kernel");
-                Box::new(ReferenceKernel::new(&model.chain))
-            }
-        },
+impl KernelArg {
+    fn factory(self) -> impl Fn(&Model) -> Box<dyn kanestop_runtime::kernel::Kernel> + Sync {
+        kernels::factory(self.0)
     }
 }
 
 /// `codegen`: what would be generated for a scene, and optionally write the checked-in files.
 fn codegen(scene: Option<&PathBuf>, write: bool, root: &std::path::Path) -> Result<()> {
-    use kanestop_codegen::{generate, Variant, Water};
+    use kanestop_chain::{Variant, Water};
+    use kanestop_codegen::generate;
     let model = load_model(scene)?;
     let n = model.body_count();
     let wet = model.chain.bodies.iter().any(|b| b.added_mass != 0.0);
@@ -228,7 +234,7 @@ fn load_model(scene: Option<&PathBuf>) -> Result<Model> {
 struct SolverOverrides {
     /// Integration method (overrides solver.integrator).
     #[arg(long, value_enum)]
-    integrator: Option<IntegratorChoice>,
+    integrator: Option<MethodArg>,
     /// Time step or, for adaptive methods, observation interval, s (overrides solver.dt).
     #[arg(long)]
     dt: Option<f64>,
@@ -240,20 +246,29 @@ struct SolverOverrides {
     atol: Option<f64>,
 }
 
-#[derive(Clone, Copy, ValueEnum)]
-enum IntegratorChoice {
-    /// Classic RK4, fixed step (the paper's).
-    Rk4,
-    /// Dormand–Prince 5(4), adaptive.
-    Dp5,
-    /// L-stable SDIRK4, adaptive, for stiff scenes.
-    Sdirk4,
+/// `--integrator`: a [`Method`], with the help text of each.
+#[derive(Clone, Copy)]
+struct MethodArg(Method);
+
+impl ValueEnum for MethodArg {
+    fn value_variants<'a>() -> &'a [Self] {
+        &[MethodArg(Method::Rk4), MethodArg(Method::Dp5), MethodArg(Method::Sdirk4)]
+    }
+
+    fn to_possible_value(&self) -> Option<PossibleValue> {
+        let help = match self.0 {
+            Method::Rk4 => "Classic RK4, fixed step (the paper's)",
+            Method::Dp5 => "Dormand–Prince 5(4), adaptive",
+            Method::Sdirk4 => "L-stable SDIRK4, adaptive, for stiff scenes",
+        };
+        Some(PossibleValue::new(self.0.name()).help(help))
+    }
 }
 
 /// One method of `batch --methods`: `rk4`, `dp5@0.02`, …
 #[derive(Clone, Copy, Debug)]
 struct MethodSpec {
-    integrator: IntegratorKind,
+    method: Method,
     dt: Option<f64>,
 }
 
@@ -269,13 +284,8 @@ impl std::str::FromStr for MethodSpec {
             }
             None => (text, None),
         };
-        let integrator = match name.trim() {
-            "rk4" => IntegratorKind::Rk4,
-            "dp5" => IntegratorKind::Dp5,
-            "sdirk4" => IntegratorKind::Sdirk4,
-            other => return Err(format!("{other}: unknown method (valid: rk4, dp5, sdirk4, each optionally @dt)")),
-        };
-        Ok(MethodSpec { integrator, dt })
+        let method = name.parse::<Method>().map_err(|e| format!("{e}, each optionally @dt"))?;
+        Ok(MethodSpec { method, dt })
     }
 }
 
@@ -292,12 +302,8 @@ impl SolverOverrides {
     /// Applies the overrides to `scene` (read from `file`) and checks the result.
     fn apply(&self, scene: &mut Scene, file: &str) -> Result<(), SceneError> {
         let s = &mut scene.solver;
-        if let Some(i) = self.integrator {
-            s.integrator = match i {
-                IntegratorChoice::Rk4 => IntegratorKind::Rk4,
-                IntegratorChoice::Dp5 => IntegratorKind::Dp5,
-                IntegratorChoice::Sdirk4 => IntegratorKind::Sdirk4,
-            };
+        if let Some(MethodArg(method)) = self.integrator {
+            s.integrator = method;
         }
         s.dt = self.dt.unwrap_or(s.dt);
         s.rtol = self.rtol.unwrap_or(s.rtol);
@@ -330,17 +336,17 @@ fn try_main() -> Result<ExitCode> {
         scene: None,
         out: None,
         plot: None,
-        kernel: KernelChoice::Generated,
+        kernel: KernelArg(KernelChoice::Generated),
         solver: SolverOverrides::default(),
     });
     match command {
         Command::Run { scene, out, plot, kernel: choice, solver } => {
             let model = load_model_with(scene.as_ref(), &solver)?;
             let result =
-                simulate::run_checked(&model, kernel(choice, &model), Box::new(ReferenceKernel::new(&model.chain)));
-            print!("{}", report::summary(&model, &result));
+                simulate::run_checked(&model, choice.factory()(&model), Box::new(ReferenceKernel::new(&model.chain)));
+            print!("{}", summary::summary(&model, &result));
             if let Some(path) = out {
-                report::write_csv(&result, &path).with_context(|| format!("cannot write {}", path.display()))?;
+                history::write_csv(&result, &path).with_context(|| format!("cannot write {}", path.display()))?;
                 println!("{:<10}{} ({} samples)", "written", path.display(), result.samples.len());
             }
             if let Some(dir) = plot {
@@ -364,17 +370,17 @@ fn try_main() -> Result<ExitCode> {
                 }
                 None => None,
             };
-            let out = evaluate(&model, kernel(choice, &model), state.as_ref())?;
+            let out = evaluate(&model, choice.factory()(&model), state.as_ref())?;
             println!("{}", serde_json::to_string_pretty(&out)?);
             Ok(ExitCode::SUCCESS)
         }
         Command::Report { kind: ReportKind::Accuracy { scene, out, repeats, atol_ratio, kernel: choice } } => {
             let model = load_model(scene.as_ref())?;
-            commands::accuracy(&model.scene, &out, repeats, atol_ratio, &|m: &Model| kernel(choice, m))?;
+            commands::accuracy(&model.scene, &out, repeats, atol_ratio, &choice.factory())?;
             Ok(ExitCode::SUCCESS)
         }
         Command::Plot { scenes, out, kernel: choice } => {
-            commands::plot(&scenes, &out, &|model: &Model| kernel(choice, model))?;
+            commands::plot(&scenes, &out, &choice.factory())?;
             Ok(ExitCode::SUCCESS)
         }
         Command::Batch { dir, out, tolerance, kernel: choice, solver, methods, error_estimate } => {
@@ -387,7 +393,7 @@ fn try_main() -> Result<ExitCode> {
             );
             let apply = |scene: &mut Scene, method: Option<MethodSpec>| {
                 if let Some(m) = method {
-                    scene.solver.integrator = m.integrator;
+                    scene.solver.integrator = m.method;
                     scene.solver.dt = m.dt.unwrap_or(scene.solver.dt);
                     // The output grid must hold at least one step.
                     scene.solver.output_interval = scene.solver.output_interval.max(scene.solver.dt);
@@ -399,15 +405,8 @@ fn try_main() -> Result<ExitCode> {
             } else {
                 methods.iter().map(|&m| Box::new(move |scene: &mut Scene| apply(scene, Some(m))) as Box<_>).collect()
             };
-            let configures: Vec<kanestop_runtime::batch::Configure> = per_method.iter().map(|c| c.as_ref()).collect();
-            let ok = commands::batch(
-                &dir,
-                &out,
-                &configures,
-                &|model: &Model| kernel(choice, model),
-                error_estimate,
-                tolerance,
-            )?;
+            let configures: Vec<kanestop_workflow::batch::Configure> = per_method.iter().map(|c| c.as_ref()).collect();
+            let ok = commands::batch(&dir, &out, &configures, &choice.factory(), error_estimate, tolerance)?;
             Ok(if ok { ExitCode::SUCCESS } else { ExitCode::from(1) })
         }
         Command::Codegen { scene, write, root } => {

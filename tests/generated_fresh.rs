@@ -34,7 +34,8 @@ fn checked_in_kernels_are_fresh() {
 
 #[test]
 fn generation_is_deterministic() {
-    use kanestop_codegen::{generate, Variant, Water};
+    use kanestop_chain::{Variant, Water};
+    use kanestop_codegen::generate;
     let a = generate(Variant::new(7, Water::On));
     let b = generate(Variant::new(7, Water::On));
     assert_eq!(a.source, b.source);

@@ -1,7 +1,8 @@
 //! Snapshots of the generated source for small chains, every variant: a change to the
 //! generator shows as a reviewable diff under `tests/snapshots/`.
 
-use kanestop_codegen::{generate, Variant, Water};
+use kanestop_chain::{Variant, Water};
+use kanestop_codegen::generate;
 
 fn snapshot(n: usize, water: Water) {
     let file = generate(Variant::new(n, water));

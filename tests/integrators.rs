@@ -8,7 +8,7 @@ use common::{rod_chain, G};
 use kanestop_runtime::dynamics::{Dynamics, WORK_COUNT};
 use kanestop_runtime::forces::Forces;
 use kanestop_runtime::integrate::{
-    Adaptive, AdaptiveIntegrator, Dopri5, Integrator, OdeSystem, RhsError, Rk4, Sdirk4, StepError,
+    Adaptive, AdaptiveIntegrator, Dp5, Integrator, OdeSystem, RhsError, Rk4, Sdirk4, StepError,
 };
 use kanestop_runtime::kernel::{AnchorDof, BodyAcceleration};
 use kanestop_runtime::reference::ReferenceKernel;
@@ -150,12 +150,12 @@ fn rk4_is_fourth_order_on_the_oscillator() {
 }
 
 #[test]
-fn dopri5_is_fifth_order_in_fixed_steps() {
+fn dp5_is_fifth_order_in_fixed_steps() {
     let mut osc = Oscillator { omega: 2.0 };
     let exact = osc.exact(3.0);
     let errs: Vec<f64> = [60, 120, 240]
         .iter()
-        .map(|&n| max_diff(&fixed(&mut Dopri5::new(2, 1e-6, 1e-9).unwrap(), &mut osc, &[1.0, 0.0], 3.0, n), &exact))
+        .map(|&n| max_diff(&fixed(&mut Dp5::new(2, 1e-6, 1e-9).unwrap(), &mut osc, &[1.0, 0.0], 3.0, n), &exact))
         .collect();
     for p in orders(&errs) {
         assert!((p - 5.0).abs() < 0.2, "DP5 order {p} (errors {errs:?})");
@@ -178,11 +178,11 @@ fn sdirk4_is_fourth_order_in_fixed_steps() {
 
 /// The continuous extension is of order 4: its error inside a step is O(h⁵).
 #[test]
-fn dopri5_dense_output_is_fourth_order() {
+fn dp5_dense_output_is_fourth_order() {
     let osc = Oscillator { omega: 2.0 };
     let dense_error = |n: usize| {
         let mut sys = Oscillator { omega: 2.0 };
-        let mut dp = Dopri5::new(2, 1e-6, 1e-9).unwrap();
+        let mut dp = Dp5::new(2, 1e-6, 1e-9).unwrap();
         let (mut y, h) = (vec![1.0, 0.0], 3.0 / n as f64);
         let mut worst: f64 = 0.0;
         for i in 0..n {
@@ -208,7 +208,7 @@ fn dopri5_dense_output_is_fourth_order() {
     }
     // The endpoints reproduce the step.
     let mut sys = Oscillator { omega: 2.0 };
-    let mut dp = Dopri5::new(2, 1e-6, 1e-9).unwrap();
+    let mut dp = Dp5::new(2, 1e-6, 1e-9).unwrap();
     let mut y = vec![1.0, 0.0];
     dp.step(&mut sys, 0.0, &mut y, 0.1).unwrap();
     assert_eq!(dp.dense(1.0), y);
@@ -216,13 +216,13 @@ fn dopri5_dense_output_is_fourth_order() {
 }
 
 #[test]
-fn dopri5_error_follows_the_tolerance_and_steps_scale_as_a_fifth_order_method() {
+fn dp5_error_follows_the_tolerance_and_steps_scale_as_a_fifth_order_method() {
     let osc = Oscillator { omega: 2.0 };
     let exact = osc.exact(10.0);
     let mut rows = Vec::new();
     for tol in [1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10] {
         let mut sys = Oscillator { omega: 2.0 };
-        let mut dp = Dopri5::new(2, tol, tol).unwrap();
+        let mut dp = Dp5::new(2, tol, tol).unwrap();
         let mut y = vec![1.0, 0.0];
         let h0 = dp.initial_step(&mut sys, 0.0, &y).unwrap();
         dp.integrate_to(&mut sys, 0.0, &mut y, 10.0, h0).unwrap();
@@ -238,9 +238,9 @@ fn dopri5_error_follows_the_tolerance_and_steps_scale_as_a_fifth_order_method() 
 }
 
 #[test]
-fn dopri5_uses_six_evaluations_per_accepted_step_fsal() {
+fn dp5_uses_six_evaluations_per_accepted_step_fsal() {
     let mut sys = StiffLinear::new(-1.0, -2.0);
-    let mut dp = Dopri5::new(2, 1e-8, 1e-10).unwrap();
+    let mut dp = Dp5::new(2, 1e-8, 1e-10).unwrap();
     let mut y = vec![2.0, 0.0];
     dp.integrate_to(&mut sys, 0.0, &mut y, 5.0, 1e-3).unwrap();
     let s = dp.stats();
@@ -253,7 +253,7 @@ fn dopri5_uses_six_evaluations_per_accepted_step_fsal() {
 #[test]
 fn adaptive_wrapper_works_behind_the_fixed_step_interface() {
     let mut osc = Oscillator { omega: 2.0 };
-    let mut method = Adaptive::new(Dopri5::new(2, 1e-9, 1e-12).unwrap());
+    let mut method = Adaptive::new(Dp5::new(2, 1e-9, 1e-12).unwrap());
     let y = fixed(&mut method, &mut osc, &[1.0, 0.0], 5.0, 10);
     assert!(max_diff(&y, &osc.exact(5.0)) < 1e-7);
 }
@@ -263,7 +263,7 @@ fn adaptive_wrapper_interpolates_inside_its_last_interval_and_nowhere_else() {
     // One call over [0, 2] takes many sub-steps; the interpolant anywhere inside matches the
     // exact solution to the tolerance, outside the span (and for RK4) there is none.
     for method in [
-        Box::new(Adaptive::new(Dopri5::new(2, 1e-8, 1e-10).unwrap())) as Box<dyn Integrator>,
+        Box::new(Adaptive::new(Dp5::new(2, 1e-8, 1e-10).unwrap())) as Box<dyn Integrator>,
         Box::new(Adaptive::new(Sdirk4::new(2, 1e-8, 1e-10).unwrap())),
     ] {
         let mut method = method;
@@ -330,7 +330,7 @@ fn sdirk4_is_stable_and_cheap_where_explicit_methods_need_tiny_steps() {
 
     // DOPRI5 at the same tolerance is held at its stability limit, |hλ| ≲ 3.3.
     let mut sys = StiffLinear::new(-1e6, -1.0);
-    let mut dp = Dopri5::new(2, 1e-6, 1e-9).unwrap();
+    let mut dp = Dp5::new(2, 1e-6, 1e-9).unwrap();
     let mut y = vec![2.0, 0.0];
     dp.integrate_to(&mut sys, 0.0, &mut y, 0.05, 1e-8).unwrap();
     let d = dp.stats();
@@ -445,7 +445,7 @@ fn sdirk4_refreshes_a_jacobian_the_system_outgrew() {
 
 #[test]
 fn step_size_collapse_is_an_error_with_its_time() {
-    let mut dp = Dopri5::new(1, 1e-8, 1e-8).unwrap();
+    let mut dp = Dp5::new(1, 1e-8, 1e-8).unwrap();
     let mut y = vec![1.0];
     match dp.integrate_to(&mut BlowUp, 0.0, &mut y, 2.0, 1e-3) {
         Err(e @ StepError::StepSizeCollapse { t, .. }) => {
@@ -463,12 +463,12 @@ fn step_size_collapse_is_an_error_with_its_time() {
 #[test]
 fn zero_negative_and_non_finite_tolerances_are_refused() {
     for (rtol, atol) in [(0.0, 0.0), (-1e-6, 1e-6), (1e-6, -1.0), (f64::NAN, 1e-6), (1e-6, f64::INFINITY)] {
-        let e = Dopri5::new(3, rtol, atol).unwrap_err();
+        let e = Dp5::new(3, rtol, atol).unwrap_err();
         assert!(matches!(e, StepError::InvalidTolerance(_)), "{rtol}, {atol}: {e}");
         assert!(Sdirk4::new(3, rtol, atol).is_err());
     }
-    assert!(Dopri5::new(3, 0.0, 1e-9).is_ok());
-    let mut dp = Dopri5::new(2, 1e-6, 1e-6).unwrap();
+    assert!(Dp5::new(3, 0.0, 1e-9).is_ok());
+    let mut dp = Dp5::new(2, 1e-6, 1e-6).unwrap();
     let mut y = vec![1.0, 0.0];
     assert!(matches!(
         dp.step_adaptive(&mut Oscillator { omega: 1.0 }, 0.0, &mut y, 0.0),
@@ -494,7 +494,7 @@ const CHAIN_T: f64 = 1.5;
 
 fn chain_reference() -> Vec<f64> {
     let (mut sys, mut y) = chain_system();
-    let mut dp = Dopri5::new(y.len(), 1e-13, 1e-13).unwrap();
+    let mut dp = Dp5::new(y.len(), 1e-13, 1e-13).unwrap();
     dp.integrate_to(&mut sys, 0.0, &mut y, CHAIN_T, 1e-4).unwrap();
     y
 }
@@ -514,7 +514,7 @@ fn measured_orders_on_a_gravity_only_chain() {
         chain_error(&fixed(method, &mut sys, &y0, CHAIN_T, steps), &reference)
     };
     let rk4: Vec<f64> = [300, 600, 1200].iter().map(|&n| run(&mut Rk4::new(dim), n)).collect();
-    let dp5: Vec<f64> = [100, 200, 400].iter().map(|&n| run(&mut Dopri5::new(dim, 1e-6, 1e-9).unwrap(), n)).collect();
+    let dp5: Vec<f64> = [100, 200, 400].iter().map(|&n| run(&mut Dp5::new(dim, 1e-6, 1e-9).unwrap(), n)).collect();
     let (p_rk4, p_dp5) = (orders(&rk4), orders(&dp5));
     eprintln!("chain: RK4 errors {rk4:?} orders {p_rk4:?}; DP5 errors {dp5:?} orders {p_dp5:?}");
     for p in p_rk4 {
@@ -531,7 +531,7 @@ fn adaptive_methods_meet_their_tolerance_on_the_chain() {
     let (_, y0) = chain_system();
     for tol in [1e-6, 1e-9] {
         let (mut sys, mut y) = chain_system();
-        let mut dp = Dopri5::new(y0.len(), tol, tol).unwrap();
+        let mut dp = Dp5::new(y0.len(), tol, tol).unwrap();
         let h = dp.initial_step(&mut sys, 0.0, &y).unwrap();
         dp.integrate_to(&mut sys, 0.0, &mut y, CHAIN_T, h).unwrap();
         let e = chain_error(&y, &reference);

@@ -204,7 +204,7 @@ fn fine_cable_converges_to_the_paper_discretisation() {
 /// run. Two threads take the runs from a shared queue (CI has two cores); about 8 s optimised.
 #[test]
 fn full_stress_set_completes_with_at_least_one_method() {
-    use kanestop_runtime::scene::IntegratorKind;
+    use kanestop_runtime::scene::Method;
     use std::sync::atomic::{AtomicUsize, Ordering};
     const REFUSED_UNDER_RK4: [&str; 2] = ["dt_too_large", "seabed_kz_x1e4"];
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/stress");
@@ -220,9 +220,9 @@ fn full_stress_set_completes_with_at_least_one_method() {
         .iter()
         .flat_map(|p| {
             let rk4 = Scene::load(p).unwrap_or_else(|e| panic!("{e}"));
-            assert_eq!(rk4.solver.integrator, IntegratorKind::Rk4, "{}", p.display());
+            assert_eq!(rk4.solver.integrator, Method::Rk4, "{}", p.display());
             let mut dp5 = rk4.clone();
-            dp5.solver.integrator = IntegratorKind::Dp5;
+            dp5.solver.integrator = Method::Dp5;
             (dp5.solver.dt, dp5.solver.rtol, dp5.solver.atol) = (0.02, 1e-5, 1e-7);
             [rk4, dp5]
         })
@@ -247,7 +247,7 @@ fn full_stress_set_completes_with_at_least_one_method() {
         let method = scene.solver.integrator;
         check(&format!("{name} ({method:?})"), r);
         let completed = matches!(r.stop, Stop::ShipStopped | Stop::EndTime);
-        let refused = method == IntegratorKind::Rk4 && REFUSED_UNDER_RK4.contains(&name.as_str());
+        let refused = method == Method::Rk4 && REFUSED_UNDER_RK4.contains(&name.as_str());
         assert_eq!(completed, !refused, "{name} ({method:?}): {:?}", r.stop);
         if refused {
             assert_eq!(r.steps, 0, "{name}: refused before the run");

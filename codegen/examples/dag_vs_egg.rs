@@ -28,9 +28,10 @@ use std::str::FromStr;
 use std::time::{Duration, Instant};
 
 use egg::{rewrite as rw, Analysis, CostFunction, DidMerge, EGraph, Extractor, Id, Language, RecExpr, Rewrite, Runner};
+use kanestop_chain::{Variant, Water};
 use kanestop_codegen::expr::{self, Node, OpCount};
+use kanestop_codegen::generate;
 use kanestop_codegen::planar::{self, Function};
-use kanestop_codegen::{generate, Variant, Water};
 
 /// A constant by its bit pattern (egg needs `Ord + Hash`); parses and prints as f64.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]

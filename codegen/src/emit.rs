@@ -4,11 +4,12 @@
 
 use std::collections::HashSet;
 
+use kanestop_chain::{Variant, Water};
 use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::quote;
 
 use crate::expr::{Dag, Id, Node, OpCount};
-use crate::planar::{self, Function, Variant, Water};
+use crate::planar::{self, Function};
 
 /// What was generated for one function.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -338,7 +339,7 @@ pub fn generate(variant: Variant) -> GeneratedFile {
         /// N, the number of bodies this kernel is specialised for.
         pub const BODIES: usize = #n_lit;
         /// This variant, for [`crate::lookup`].
-        pub const KERNEL: crate::Kernel = crate::Kernel {
+        pub const KERNEL: crate::KernelTable = crate::KernelTable {
             bodies: #n_lit,
             wet: #wet,
             kinematics,
@@ -413,7 +414,7 @@ fn registry_with(variants: &[Variant], out_dir: bool) -> String {
         pub const AVAILABLE: &[(usize, bool)] = &[#(#list),*];
         /// The kernel for `bodies` bodies, with or without added mass.
         #[allow(clippy::match_single_binding)]
-        pub fn lookup(bodies: usize, wet: bool) -> Option<crate::Kernel> {
+        pub fn lookup(bodies: usize, wet: bool) -> Option<crate::KernelTable> {
             match (bodies, wet) {
                 #arms
                 _ => None,

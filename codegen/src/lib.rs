@@ -4,10 +4,11 @@
 //! restraining chain (Huston's form of Kane's method, Liu et al., Eqs. 1–27) into flat,
 //! specialised Rust kernels.
 //!
-//! The generator is an ordinary library with a small, explicit input model,
-//! [`topology::Topology`]: the body kinds in chain order and the counts per stage. The same
-//! type describes the chain to the runtime, so the generator and the runtime can never
-//! disagree about which body is which.
+//! The generator is a pure function from an input model to code: [`generate`] takes a
+//! [`Variant`] (the number of bodies and the water switch, from the shared crate
+//! `kanestop-chain`) and returns the emitted source. The runtime reads the same
+//! `kanestop-chain` types, so the generator and the runtime can never disagree about which
+//! parameters a kernel folds; it never depends on this crate (docs/architecture.md).
 //!
 //! - [`expr`]: the hash-consed expression DAG (sharing, folding, exact zeros);
 //! - [`planar`]: the expansion of the chain's kinematics, a_lp, f_l and the O(N) solve;
@@ -18,11 +19,9 @@ pub mod emit;
 pub mod expr;
 pub mod planar;
 pub mod scenes;
-pub mod topology;
 
 pub use emit::{generate, GeneratedFile};
-pub use planar::{Variant, Water};
-pub use topology::{BodyKind, Topology, TopologyError};
+use kanestop_chain::{Variant, Water};
 
 /// Body counts generated for the tests (snapshots and generated-vs-reference checks) on top
 /// of the counts the scenes need.

@@ -30,45 +30,9 @@
 //! Indices: bodies are 0-based here (`k` = B_{k+1}) and 1-based in emitted names; the
 //! a_lp names use the 0-based coordinate indices of `q` (a_i_j is M[i][j]).
 
+use kanestop_chain::{ParamField, Variant};
+
 use crate::expr::{Dag, Id};
-
-/// Whether the water's added mass (Eq. 46) enters a_lp.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub enum Water {
-    /// No added-mass terms: A_k = m_k 1.
-    Off,
-    /// Added mass m_a,k n_k n_kᵀ on every rod-like body (B_2 … B_{N−1}).
-    On,
-}
-
-impl Water {
-    pub fn suffix(self) -> &'static str {
-        match self {
-            Water::Off => "dry",
-            Water::On => "wet",
-        }
-    }
-}
-
-/// One kernel shape: N bodies (anchor, N − 3 links or cable elements, rod, ship) and the
-/// water switch. Masses, lengths and inertias are runtime parameters.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub struct Variant {
-    pub bodies: usize,
-    pub water: Water,
-}
-
-impl Variant {
-    pub fn new(bodies: usize, water: Water) -> Self {
-        assert!(bodies >= 3, "a chain has at least an anchor, one rod and a ship");
-        Variant { bodies, water }
-    }
-
-    /// Module name, e.g. `chain46_dry`.
-    pub fn module(&self) -> String {
-        format!("chain{}_{}", self.bodies, self.water.suffix())
-    }
-}
 
 type V2 = [Id; 2];
 
@@ -84,45 +48,24 @@ struct Params {
 }
 
 /// Which parameters a kernel of `variant` reads; the rest are structurally zero and the
-/// runtime checks that the chain agrees ([`structural_zeros`]).
+/// runtime checks that the chain agrees ([`Variant::structural_zeros`]).
 fn params(dag: &mut Dag, variant: Variant) -> Params {
     let n = variant.bodies;
     let zero = dag.zero();
     let mut p = Params { mass: vec![], inertia: vec![], centroid: vec![], joint: vec![], added_mass: vec![] };
     for k in 0..n {
-        let rod_like = k > 0 && k < n - 1;
         p.mass.push(dag.input(format!("p[{k}].mass")));
         p.inertia.push(if k == 0 { zero } else { dag.input(format!("p[{k}].inertia")) });
         let cx = dag.input(format!("p[{k}].centroid[0]"));
-        let cz = if rod_like { zero } else { dag.input(format!("p[{k}].centroid[1]")) };
+        let cz = if variant.folds(k, ParamField::CentroidZ) { zero } else { dag.input(format!("p[{k}].centroid[1]")) };
         p.centroid.push([cx, cz]);
         let jx = dag.input(format!("p[{k}].joint[0]"));
-        let jz = if k <= 1 { dag.input(format!("p[{k}].joint[1]")) } else { zero };
+        let jz = if variant.folds(k, ParamField::JointZ) { zero } else { dag.input(format!("p[{k}].joint[1]")) };
         p.joint.push([jx, jz]);
-        let wet = rod_like && variant.water == Water::On;
-        p.added_mass.push(if wet { dag.input(format!("p[{k}].added_mass")) } else { zero });
+        let folded = variant.folds(k, ParamField::AddedMass);
+        p.added_mass.push(if folded { zero } else { dag.input(format!("p[{k}].added_mass")) });
     }
     p
-}
-
-/// What a chain must satisfy for a kernel of `variant` (0-based body index, field):
-/// these parameters are folded to zero in the generated code.
-pub fn structural_zeros(variant: Variant) -> Vec<(usize, &'static str)> {
-    let n = variant.bodies;
-    let mut out = Vec::new();
-    for k in 0..n {
-        let rod_like = k > 0 && k < n - 1;
-        if rod_like {
-            out.push((k, "centroid[1]"));
-        }
-        if k >= 2 {
-            out.push((k, "joint[1]"));
-        }
-        if !(rod_like && variant.water == Water::On) {
-            out.push((k, "added_mass"));
-        }
-    }
-    out
 }
 
 /// R(θ) v: body (x, z) components to inertial ones for a rotation θ about y.

@@ -4,7 +4,7 @@
 /// N, the number of bodies this kernel is specialised for.
 pub const BODIES: usize = 50;
 /// This variant, for [`crate::lookup`].
-pub const KERNEL: crate::Kernel = crate::Kernel {
+pub const KERNEL: crate::KernelTable = crate::KernelTable {
     bodies: 50,
     wet: false,
     kinematics,

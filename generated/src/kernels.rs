@@ -66,7 +66,7 @@ pub const AVAILABLE: &[(usize, bool)] = &[
 ];
 /// The kernel for `bodies` bodies, with or without added mass.
 #[allow(clippy::match_single_binding)]
-pub fn lookup(bodies: usize, wet: bool) -> Option<crate::Kernel> {
+pub fn lookup(bodies: usize, wet: bool) -> Option<crate::KernelTable> {
     match (bodies, wet) {
         (3, false) => Some(chain3_dry::KERNEL),
         (3, true) => Some(chain3_wet::KERNEL),

@@ -50,9 +50,10 @@ pub type SolveFreeFn = fn(&[BodyParams], &[f64], &[[f64; 2]], &[[f64; 3]], f64, 
 /// O(N) solve with the anchor stuck, returning the holding and normal forces (Eqs. 50, 37).
 pub type SolveStuckFn = fn(&[BodyParams], &[f64], &[[f64; 2]], &[[f64; 3]], &mut [f64]) -> [f64; 2];
 
-/// One generated variant's entry points.
+/// One generated variant's entry points: a table of functions, which the runtime's
+/// `GeneratedKernel` binds to a chain's numbers behind its `Kernel` trait.
 #[derive(Clone, Copy, Debug)]
-pub struct Kernel {
+pub struct KernelTable {
     /// N.
     pub bodies: usize,
     /// Whether the added mass enters a_lp (water on).
@@ -65,7 +66,7 @@ pub struct Kernel {
 }
 
 /// The kernel for `bodies` bodies and the water switch, checked-in or built for a scene.
-pub fn find(bodies: usize, wet: bool) -> Option<Kernel> {
+pub fn find(bodies: usize, wet: bool) -> Option<KernelTable> {
     kernels::lookup(bodies, wet).or_else(|| extra::lookup(bodies, wet))
 }
 

@@ -5,7 +5,7 @@
 //! boxes and perpendicular to x for the rods, y = z × x into the page. Every vector stored
 //! here is planar (x, z): the y components are zero by construction.
 
-use kanestop_codegen::BodyKind;
+use kanestop_chain::BodyKind;
 
 /// Geometry of a body, used by the force models and the inertia of Eq. 18.
 #[derive(Clone, Copy, Debug, PartialEq)]

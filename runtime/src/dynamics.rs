@@ -111,7 +111,7 @@ impl Dynamics {
     }
 
     /// Holds the anchor (its surge is no speed; static friction holds it).
-    pub fn hold_anchor(&mut self) {
+    pub fn stick_anchor(&mut self) {
         self.anchor = AnchorDof::Stuck;
         self.direction = 0.0;
         self.last.valid = false;

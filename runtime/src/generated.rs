@@ -10,7 +10,7 @@
 //! ([`SolvePath::Recursive`]); [`SolvePath::Assembled`] assembles the generated a_lp and f_l
 //! and factors them like the reference (kept for comparison and benchmarks).
 
-use kanestop_codegen::planar::{structural_zeros, Variant, Water};
+use kanestop_chain::{ParamField, StructuralZero, Variant, Water};
 use kanestop_generated::BodyParams;
 
 use crate::chain::Chain;
@@ -48,7 +48,7 @@ pub fn available() -> Vec<(usize, bool)> {
 
 /// A generated kernel bound to one chain's numbers.
 pub struct GeneratedKernel {
-    kernel: kanestop_generated::Kernel,
+    kernel: kanestop_generated::KernelTable,
     solve_path: SolvePath,
     params: Vec<BodyParams>,
     trig: Vec<[f64; 2]>,
@@ -88,13 +88,12 @@ impl GeneratedKernel {
                 added_mass: b.added_mass,
             })
             .collect();
-        for (k, field) in structural_zeros(variant) {
+        for StructuralZero { body: k, field } in variant.structural_zeros() {
             let b = &params[k];
             let value = match field {
-                "centroid[1]" => b.centroid[1],
-                "joint[1]" => b.joint[1],
-                "added_mass" => b.added_mass,
-                other => unreachable!("unknown structural field {other}"),
+                ParamField::CentroidZ => b.centroid[1],
+                ParamField::JointZ => b.joint[1],
+                ParamField::AddedMass => b.added_mass,
             };
             if value != 0.0 {
                 return Err(GeneratedError(format!(

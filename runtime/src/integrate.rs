@@ -4,11 +4,11 @@
 use std::fmt;
 
 pub mod adaptive;
-pub mod dopri5;
+pub mod dp5;
 pub mod sdirk4;
 
 pub use adaptive::{AdaptiveIntegrator, AdaptiveStats, DenseStep, StepControl, StepError, StepOutcome, Tolerances};
-pub use dopri5::Dopri5;
+pub use dp5::Dp5;
 pub use sdirk4::Sdirk4;
 
 /// The right-hand side could not be evaluated (e.g. a singular mass matrix).

@@ -10,8 +10,6 @@
 //! Equation numbers refer to Liu, Hearn, Chen, Jiang & Wu, "Analysis of Dynamic Response of
 //! a Restraining System for a Powerless Advancing Ship Based on the Kane Method".
 
-pub mod accuracy;
-pub mod batch;
 pub mod catenary;
 pub mod chain;
 pub mod dynamics;
@@ -23,9 +21,7 @@ pub mod integrate;
 pub mod kernel;
 pub mod model;
 pub mod paper;
-pub mod plot;
 pub mod reference;
-pub mod report;
 pub mod scene;
 pub mod simulate;
 pub mod stability;

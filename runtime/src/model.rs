@@ -6,7 +6,7 @@
 
 use std::f64::consts::FRAC_PI_2;
 
-use kanestop_codegen::{BodyKind, Topology};
+use kanestop_chain::{BodyKind, Topology};
 
 use crate::catenary::{lay_elements, Catenary, CatenaryError};
 use crate::chain::{box_inertia, Body, Chain, Shape};
@@ -217,6 +217,34 @@ impl Model {
     pub fn water_depth(&self) -> f64 {
         -self.seabed_z
     }
+
+    /// Load limits of the joint k (2 … N) between B_{k−1} and B_k: the weaker of the two
+    /// bodies' (chain: Table 1's proof and break loads; cable and rod: the cable's break load;
+    /// the anchor and the ship have none).
+    pub fn joint_limits(&self, k: usize) -> LoadLimits {
+        let s = &self.scene;
+        let limits = |kind: BodyKind| match kind {
+            BodyKind::ChainLink => LoadLimits { proof: Some(s.chain.proof_load), breaking: Some(s.chain.break_load) },
+            BodyKind::Cable { .. } | BodyKind::Rod => LoadLimits { proof: None, breaking: Some(s.cable.break_load) },
+            BodyKind::Anchor | BodyKind::Ship => LoadLimits::default(),
+        };
+        let (a, b) = (limits(self.chain.bodies[k - 2].kind), limits(self.chain.bodies[k - 1].kind));
+        let min = |x: Option<f64>, y: Option<f64>| match (x, y) {
+            (Some(x), Some(y)) => Some(x.min(y)),
+            (x, None) => x,
+            (None, y) => y,
+        };
+        LoadLimits { proof: min(a.proof, b.proof), breaking: min(a.breaking, b.breaking) }
+    }
+}
+
+/// The load limits of a joint, N.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct LoadLimits {
+    /// Proof load (chain joints only), N.
+    pub proof: Option<f64>,
+    /// Break load, N.
+    pub breaking: Option<f64>,
 }
 
 /// Height of a level rod's centreline above the seabed at rest, m: the depth δ at which the

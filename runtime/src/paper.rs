@@ -5,8 +5,7 @@
 //! and the diff is reviewable).
 
 use crate::scene::{
-    Anchor, Cable, CableStage, ChainSpec, Environment, Hydrodynamics, Initial, IntegratorKind, Meta, Rod, Scene, Ship,
-    Solver,
+    Anchor, Cable, CableStage, ChainSpec, Environment, Hydrodynamics, Initial, Meta, Method, Rod, Scene, Ship, Solver,
 };
 
 /// g, m/s².
@@ -210,7 +209,7 @@ impl Case {
                 ship_speed: self.ship_speed,
             },
             solver: Solver {
-                integrator: IntegratorKind::Rk4,
+                integrator: Method::Rk4,
                 dt: 0.002,
                 rtol: 1e-6,
                 atol: 1e-8,

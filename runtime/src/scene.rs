@@ -189,7 +189,7 @@ pub struct Initial {
 #[serde(deny_unknown_fields)]
 pub struct Solver {
     /// The method.
-    pub integrator: IntegratorKind,
+    pub integrator: Method,
     /// Time step of `rk4`, s. For the adaptive methods, the observation interval: events,
     /// stability checks and peak tensions are evaluated every `dt`, and the method takes its
     /// own error-controlled steps (never longer) in between.
@@ -211,13 +211,52 @@ pub struct Solver {
 /// Integration methods a scene can name.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
-pub enum IntegratorKind {
+pub enum Method {
     /// Classic fourth-order Runge–Kutta with fixed step (the paper's method).
     Rk4,
     /// Dormand–Prince 5(4), adaptive (explicit).
     Dp5,
     /// L-stable SDIRK of order 4, adaptive, for stiff scenes (implicit).
     Sdirk4,
+}
+
+impl Method {
+    /// Every method, in the order the docs list them.
+    pub const ALL: [Method; 3] = [Method::Rk4, Method::Dp5, Method::Sdirk4];
+
+    /// The name a scene, the command line and every output use: `rk4`, `dp5` or `sdirk4`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::Rk4 => "rk4",
+            Method::Dp5 => "dp5",
+            Method::Sdirk4 => "sdirk4",
+        }
+    }
+
+    /// True for the error-controlled methods (`dp5`, `sdirk4`), whose `dt` is an observation
+    /// interval.
+    pub fn is_adaptive(self) -> bool {
+        self != Method::Rk4
+    }
+}
+
+impl fmt::Display for Method {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// A name that is not a [`Method`].
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("{0}: unknown method (valid: rk4, dp5, sdirk4)")]
+pub struct UnknownMethod(pub String);
+
+impl std::str::FromStr for Method {
+    type Err = UnknownMethod;
+
+    fn from_str(text: &str) -> Result<Self, UnknownMethod> {
+        Method::ALL.into_iter().find(|m| m.name() == text.trim()).ok_or_else(|| UnknownMethod(text.to_string()))
+    }
 }
 
 /// A scene that could not be read or is not valid.

@@ -24,10 +24,10 @@ use std::time::{Duration, Instant};
 use crate::dynamics::{Dynamics, WORK_COUNT};
 use crate::energy::Energy;
 use crate::forces::Forces;
-use crate::integrate::{Adaptive, Dopri5, Integrator, RhsError, Rk4, Sdirk4, Tolerances};
+use crate::integrate::{Adaptive, Dp5, Integrator, RhsError, Rk4, Sdirk4, Tolerances};
 use crate::kernel::{AnchorDof, AnchorReaction, BodyAcceleration, BodyState, Kernel};
 use crate::model::Model;
-use crate::scene::IntegratorKind;
+use crate::scene::Method;
 use crate::stability::{self, StabilityLimit};
 
 /// A joint force above this multiple of the largest break load in the line (chain or
@@ -158,9 +158,9 @@ pub fn static_residual(model: &Model, kernel: Box<dyn Kernel>) -> Result<StaticR
     let (mut line, mut top) = ((0.0, 0), (0.0, 0));
     for (k, (b, a)) in model.chain.bodies.iter().zip(&acc).enumerate() {
         let slot = match b.kind {
-            kanestop_codegen::BodyKind::ChainLink => &mut line,
-            kanestop_codegen::BodyKind::Cable { stage } if stage < last_stage => &mut line,
-            kanestop_codegen::BodyKind::Cable { .. } => &mut top,
+            kanestop_chain::BodyKind::ChainLink => &mut line,
+            kanestop_chain::BodyKind::Cable { stage } if stage < last_stage => &mut line,
+            kanestop_chain::BodyKind::Cable { .. } => &mut top,
             _ => continue,
         };
         let m = a.ax.hypot(a.az);
@@ -332,13 +332,13 @@ impl Runner<'_> {
     /// changes at the same (t, y), so the method forgets what it cached.
     fn set_state(&mut self, anchor: AnchorDof, direction: f64) {
         match anchor {
-            AnchorDof::Stuck => self.dynamics.hold_anchor(),
+            AnchorDof::Stuck => self.dynamics.stick_anchor(),
             AnchorDof::Free => self.dynamics.slide_anchor(direction),
         }
         self.integrator.reset();
     }
 
-    fn set_held(&mut self, y: &mut [f64]) {
+    fn set_stuck(&mut self, y: &mut [f64]) {
         let n = self.n();
         y[2 * n - 1] = 0.0;
         self.set_state(AnchorDof::Stuck, 0.0);
@@ -394,7 +394,7 @@ pub fn run(model: &Model, kernel: Box<dyn Kernel>) -> RunResult {
         stability: None,
     };
     // A fixed step beyond the initial state's stability limit is refused before the run.
-    if solver.integrator == IntegratorKind::Rk4 {
+    if solver.integrator == Method::Rk4 {
         match stability::limit(&mut r.dynamics, &y) {
             Ok(limit) => {
                 result.stability = Some(limit);
@@ -471,7 +471,7 @@ pub fn run(model: &Model, kernel: Box<dyn Kernel>) -> RunResult {
                         Err(e) => break Err(e),
                     };
                     // The anchor has come to rest: held if the pull is within μN.
-                    r.set_held(&mut ys);
+                    r.set_stuck(&mut ys);
                     let held = match r.observe(&ys) {
                         Ok(o) => o,
                         Err(e) => break Err(e),
@@ -591,13 +591,13 @@ pub fn run(model: &Model, kernel: Box<dyn Kernel>) -> RunResult {
 pub fn integrator(solver: &crate::scene::Solver, dim: usize) -> Box<dyn Integrator> {
     let tolerances = || Tolerances::new(solver.rtol, solver.atol).expect("tolerances checked with the scene");
     match solver.integrator {
-        IntegratorKind::Rk4 => Box::new(Rk4::new(dim)),
-        IntegratorKind::Dp5 => {
-            let mut m = Dopri5::with_tolerances(dim, tolerances());
+        Method::Rk4 => Box::new(Rk4::new(dim)),
+        Method::Dp5 => {
+            let mut m = Dp5::with_tolerances(dim, tolerances());
             m.control.h_max = solver.dt;
             Box::new(Adaptive::new(m))
         }
-        IntegratorKind::Sdirk4 => {
+        Method::Sdirk4 => {
             let mut m = Sdirk4::with_tolerances(dim, tolerances());
             m.control.h_max = solver.dt;
             Box::new(Adaptive::new(m))
@@ -685,15 +685,15 @@ fn failure(model: &Model, t: f64, last_good: &[f64], what: &str) -> Failure {
     );
     let kept = format!("the first {:.3} s up to the failure are kept", (t - dt).max(0.0));
     let (cause, suggestion) = match solver.integrator {
-        IntegratorKind::Rk4 => (
+        Method::Rk4 => (
             format!("the explicit step dt = {dt} s is beyond the stability limit of {mode}"),
             format!("reduce solver.dt (try {:.1e} s) or use integrator = \"dp5\"; {kept}", dt / 16.0),
         ),
-        IntegratorKind::Dp5 => (
+        Method::Dp5 => (
             format!("the error-controlled steps could not follow {mode}"),
             format!("tighten solver.rtol (now {}) or use integrator = \"sdirk4\"; {kept}", solver.rtol),
         ),
-        IntegratorKind::Sdirk4 => (
+        Method::Sdirk4 => (
             format!("the implicit method's Newton iterations or error control failed on {mode}"),
             format!("tighten solver.rtol (now {}) or reduce solver.dt (now {dt} s); {kept}", solver.rtol),
         ),

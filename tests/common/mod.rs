@@ -1,7 +1,7 @@
 //! Shared helpers for the integration tests: small chains built directly, without scenes.
 #![allow(dead_code)]
 
-use kanestop_codegen::BodyKind;
+use kanestop_chain::BodyKind;
 use kanestop_runtime::chain::{box_inertia, Body, Chain, Shape};
 use kanestop_runtime::dynamics::{Dynamics, WORK_COUNT};
 use kanestop_runtime::forces::Forces;

@@ -16,7 +16,7 @@ pub mod morison;
 pub mod seabed;
 pub mod ship;
 
-use kanestop_codegen::BodyKind;
+use kanestop_chain::BodyKind;
 
 use crate::chain::{Chain, Shape};
 use crate::kernel::{BodyState, Load, LoadModel};

@@ -4,11 +4,13 @@
 
 use std::path::{Path, PathBuf};
 
+use kanestop_runtime::forces::WORK_TERMS;
+use kanestop_runtime::model::{LoadLimits, Model};
+use kanestop_runtime::simulate::RunResult;
 use plotters::prelude::*;
 
-use crate::model::Model;
-use crate::report::{joint_limits, write_atomically};
-use crate::simulate::RunResult;
+use crate::output::write_atomically;
+use crate::{Error, Result};
 
 /// Ten distinguishable colours (the common "category10" set).
 const PALETTE: [RGBColor; 10] = [
@@ -48,6 +50,7 @@ fn bounds(curves: &[Curve]) -> ((f64, f64), (f64, f64)) {
 }
 
 fn chart(title: &str, x_label: &str, y_label: &str, curves: &[Curve]) -> Result<String, String> {
+    // plotters' errors carry the backend's type; their text is what a user can act on.
     let mut svg = String::new();
     {
         let root = SVGBackend::with_string(&mut svg, (900, 540)).into_drawing_area();
@@ -82,13 +85,14 @@ fn chart(title: &str, x_label: &str, y_label: &str, curves: &[Curve]) -> Result<
 
 /// Writes ship-speed.svg, displacement.svg, peak-tension.svg and energy.svg for the runs
 /// into `dir`, each whole or not at all. Returns the files written.
-pub fn write_plots(runs: &[(&Model, &RunResult)], dir: &Path) -> Result<Vec<PathBuf>, String> {
-    std::fs::create_dir_all(dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
+pub fn write_plots(runs: &[(&Model, &RunResult)], dir: &Path) -> Result<Vec<PathBuf>> {
+    std::fs::create_dir_all(dir).map_err(Error::io("create", dir))?;
     let name = |m: &Model| m.scene.meta.name.clone();
     let mut files = Vec::new();
-    let mut emit = |file: &str, svg: String| -> Result<(), String> {
+    let mut emit = |file: &str, svg: std::result::Result<String, String>| -> Result<()> {
+        let svg = svg.map_err(|message| Error::Plot { chart: file.to_string(), message })?;
         let path = dir.join(file);
-        write_atomically(&path, svg.as_bytes()).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+        write_atomically(&path, svg.as_bytes()).map_err(Error::io("write", &path))?;
         files.push(path);
         Ok(())
     };
@@ -104,7 +108,7 @@ pub fn write_plots(runs: &[(&Model, &RunResult)], dir: &Path) -> Result<Vec<Path
             }
         })
         .collect();
-    emit("ship-speed.svg", chart("Ship surge speed", "t (s)", "surge speed (m/s)", &speed)?)?;
+    emit("ship-speed.svg", chart("Ship surge speed", "t (s)", "surge speed (m/s)", &speed))?;
 
     let mut displacement = Vec::new();
     for (m, r) in runs {
@@ -121,7 +125,7 @@ pub fn write_plots(runs: &[(&Model, &RunResult)], dir: &Path) -> Result<Vec<Path
             dashed: true,
         });
     }
-    emit("displacement.svg", chart("Ship and anchor displacement", "t (s)", "displacement (m)", &displacement)?)?;
+    emit("displacement.svg", chart("Ship and anchor displacement", "t (s)", "displacement (m)", &displacement))?;
 
     let mut tension: Vec<Curve> = runs
         .iter()
@@ -133,17 +137,17 @@ pub fn write_plots(runs: &[(&Model, &RunResult)], dir: &Path) -> Result<Vec<Path
         .collect();
     if let Some((m, _)) = runs.first() {
         let n = m.body_count();
-        let limit_curve = |label: &str, pick: fn((Option<f64>, Option<f64>)) -> Option<f64>| Curve {
+        let limit_curve = |label: &str, pick: fn(LoadLimits) -> Option<f64>| Curve {
             label: label.into(),
-            points: (2..=n).filter_map(|k| pick(joint_limits(m, k)).map(|v| (k as f64, v / 1e3))).collect(),
+            points: (2..=n).filter_map(|k| pick(m.joint_limits(k)).map(|v| (k as f64, v / 1e3))).collect(),
             dashed: true,
         };
-        tension.push(limit_curve("proof load", |l| l.0));
-        tension.push(limit_curve("break load", |l| l.1));
+        tension.push(limit_curve("proof load", |l| l.proof));
+        tension.push(limit_curve("break load", |l| l.breaking));
     }
     emit(
         "peak-tension.svg",
-        chart("Peak joint tension along the line", "joint k (B_k−1 – B_k)", "tension (kN)", &tension)?,
+        chart("Peak joint tension along the line", "joint k (B_k−1 – B_k)", "tension (kN)", &tension),
     )?;
 
     if let Some((m, r)) = runs.first() {
@@ -163,7 +167,7 @@ pub fn write_plots(runs: &[(&Model, &RunResult)], dir: &Path) -> Result<Vec<Path
                 dashed: false,
             },
         ];
-        for (i, term) in crate::forces::WORK_TERMS.iter().enumerate() {
+        for (i, term) in WORK_TERMS.iter().enumerate() {
             energy.push(Curve {
                 label: format!("work: {term}"),
                 points: r.samples.iter().map(|s| (s.t, s.energy.work[i] / 1e6)).collect(),
@@ -175,72 +179,67 @@ pub fn write_plots(runs: &[(&Model, &RunResult)], dir: &Path) -> Result<Vec<Path
             points: r.samples.iter().map(|s| (s.t, (s.energy.balance() - r.energy0) / 1e6)).collect(),
             dashed: false,
         });
-        emit("energy.svg", chart(&format!("Energy terms, {}", name(m)), "t (s)", "energy (MJ)", &energy)?)?;
+        emit("energy.svg", chart(&format!("Energy terms, {}", name(m)), "t (s)", "energy (MJ)", &energy))?;
     }
     Ok(files)
 }
 
-/// Work–precision chart of an accuracy study: stopping-time error (and trajectory error,
-/// dashed) against wall time, log–log, one curve per method.
-pub fn work_precision(study: &crate::accuracy::AccuracyStudy) -> Result<String, String> {
+/// One curve of a [`log_log`] chart.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LogCurve {
+    /// The legend entry; `None` draws the curve without one.
+    pub label: Option<String>,
+    /// Its colour, as an index into the palette.
+    pub color: usize,
+    /// Thin (a secondary quantity) or thick.
+    pub thin: bool,
+    /// The points, positive in both coordinates, in drawing order.
+    pub points: Vec<(f64, f64)>,
+}
+
+/// A log–log chart of `curves` (lines with a marker at each point) as SVG text.
+pub fn log_log(title: &str, x_desc: &str, y_desc: &str, curves: &[LogCurve]) -> Result<String> {
+    log_log_svg(title, x_desc, y_desc, curves).map_err(|message| Error::Plot { chart: title.to_string(), message })
+}
+
+fn log_log_svg(title: &str, x_desc: &str, y_desc: &str, curves: &[LogCurve]) -> Result<String, String> {
     let mut svg = String::new();
     {
         let root = SVGBackend::with_string(&mut svg, (900, 540)).into_drawing_area();
         root.fill(&WHITE).map_err(|e| e.to_string())?;
-        let points = |m: &str, pick: fn(&crate::accuracy::AccuracyRow) -> Option<f64>| -> Vec<(f64, f64)> {
-            study
-                .rows
-                .iter()
-                .filter(|r| r.method == m)
-                .filter_map(|r| pick(r).filter(|e| *e > 0.0).map(|e| (r.wall_time, e)))
-                .collect()
-        };
-        let all: Vec<(f64, f64)> = ["rk4", "dp5", "sdirk4"]
-            .iter()
-            .flat_map(|m| points(m, |r| r.stopping_time_error).into_iter().chain(points(m, |r| r.trajectory_error)))
-            .collect();
         let (mut x0, mut x1, mut y0, mut y1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
-        for &(x, y) in &all {
+        for &(x, y) in curves.iter().flat_map(|c| &c.points) {
             (x0, x1, y0, y1) = (x0.min(x), x1.max(x), y0.min(y), y1.max(y));
         }
-        if all.is_empty() {
+        if curves.iter().all(|c| c.points.is_empty()) {
             (x0, x1, y0, y1) = (1e-3, 1.0, 1e-9, 1.0);
         }
         let mut c = ChartBuilder::on(&root)
-            .caption(format!("Error against run time, {}", study.scene), ("sans-serif", 22))
+            .caption(title, ("sans-serif", 22))
             .margin(12)
             .x_label_area_size(44)
             .y_label_area_size(80)
             .build_cartesian_2d((x0 * 0.8..x1 * 1.25).log_scale(), (y0 * 0.5..y1 * 2.0).log_scale())
             .map_err(|e| e.to_string())?;
         c.configure_mesh()
-            .x_desc("wall time (s)")
-            .y_desc("error: stopping time (s), trajectory (m, thin)")
+            .x_desc(x_desc)
+            .y_desc(y_desc)
             .x_label_formatter(&|v| format!("{v:.2}"))
             .y_label_formatter(&|v| format!("{v:.0e}"))
             .draw()
             .map_err(|e| e.to_string())?;
-        for (i, m) in ["rk4", "dp5", "sdirk4"].iter().enumerate() {
-            let color = PALETTE[i];
-            for (dashed, pick) in [
-                (false, (|r: &crate::accuracy::AccuracyRow| r.stopping_time_error) as fn(&_) -> _),
-                (true, |r: &crate::accuracy::AccuracyRow| r.trajectory_error),
-            ] {
-                let mut pts = points(m, pick);
-                pts.sort_by(|a, b| a.0.total_cmp(&b.0));
-                if pts.is_empty() {
-                    continue;
-                }
-                let style =
-                    ShapeStyle { color: color.to_rgba(), filled: false, stroke_width: if dashed { 1 } else { 2 } };
-                let series = c.draw_series(LineSeries::new(pts.clone(), style)).map_err(|e| e.to_string())?;
-                if !dashed {
-                    series
-                        .label(m.to_string())
-                        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], color.stroke_width(2)));
-                }
-                c.draw_series(pts.iter().map(|&p| Circle::new(p, 3, color.filled()))).map_err(|e| e.to_string())?;
+        for curve in curves.iter().filter(|c| !c.points.is_empty()) {
+            let color = PALETTE[curve.color % PALETTE.len()];
+            let style =
+                ShapeStyle { color: color.to_rgba(), filled: false, stroke_width: if curve.thin { 1 } else { 2 } };
+            let series = c.draw_series(LineSeries::new(curve.points.clone(), style)).map_err(|e| e.to_string())?;
+            if let Some(label) = &curve.label {
+                series
+                    .label(label.clone())
+                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], color.stroke_width(2)));
             }
+            c.draw_series(curve.points.iter().map(|&p| Circle::new(p, 3, color.filled())))
+                .map_err(|e| e.to_string())?;
         }
         c.configure_series_labels()
             .background_style(WHITE.mix(0.85))

@@ -13,19 +13,21 @@
 
 use std::path::{Path, PathBuf};
 
+use kanestop_runtime::kernel::Kernel;
+use kanestop_runtime::model::Model;
+use kanestop_runtime::scene::{Method, Scene};
+use kanestop_runtime::simulate::{self, RunResult, Stop};
 use serde::{Deserialize, Serialize};
 
-use crate::kernel::Kernel;
-use crate::model::Model;
-use crate::report::write_atomically;
-use crate::scene::{IntegratorKind, Scene};
-use crate::simulate::{self, RunResult, Stop};
+use crate::output::write_atomically;
+use crate::plot::{log_log, LogCurve};
+use crate::{Error, Result};
 
 /// One run of the study.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct AccuracyRow {
-    /// "rk4", "dp5" or "sdirk4".
-    pub method: String,
+    /// The integrator.
+    pub method: Method,
     /// dt (s) for RK4, rtol for the adaptive methods.
     pub setting: f64,
     /// "stopped", or why not.
@@ -52,6 +54,7 @@ pub struct AccuracyRow {
 /// The whole study.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct AccuracyStudy {
+    /// The scene's name.
     pub scene: String,
     /// Stopping time of the reference solution, s.
     pub reference_stopping_time: f64,
@@ -61,6 +64,7 @@ pub struct AccuracyStudy {
     pub reference_trajectory_error: f64,
     /// The adaptive runs' absolute tolerance as a multiple of their rtol.
     pub atol_ratio: f64,
+    /// One row per setting of the plan, in its order.
     pub rows: Vec<AccuracyRow>,
 }
 
@@ -68,7 +72,7 @@ pub struct AccuracyStudy {
 /// tolerances (rtol 1e-6, atol 1e-8).
 pub const DEFAULT_ATOL_RATIO: f64 = 1e-2;
 
-fn configured(base: &Scene, method: IntegratorKind, dt: f64, rtol: f64, atol_ratio: f64) -> Scene {
+fn configured(base: &Scene, method: Method, dt: f64, rtol: f64, atol_ratio: f64) -> Scene {
     let mut s = base.clone();
     s.solver.integrator = method;
     s.solver.dt = dt;
@@ -80,8 +84,8 @@ fn configured(base: &Scene, method: IntegratorKind, dt: f64, rtol: f64, atol_rat
     s
 }
 
-fn run(scene: &Scene, kernel: &dyn Fn(&Model) -> Box<dyn Kernel>, repeats: usize) -> Result<(RunResult, f64), String> {
-    let model = Model::new(scene).map_err(|e| e.to_string())?;
+fn run(scene: &Scene, kernel: &dyn Fn(&Model) -> Box<dyn Kernel>, repeats: usize) -> Result<(RunResult, f64)> {
+    let model = Model::new(scene)?;
     let mut walls = Vec::new();
     let mut last = None;
     for _ in 0..repeats.max(1) {
@@ -90,7 +94,8 @@ fn run(scene: &Scene, kernel: &dyn Fn(&Model) -> Box<dyn Kernel>, repeats: usize
         last = Some(r);
     }
     walls.sort_by(f64::total_cmp);
-    Ok((last.unwrap(), walls[walls.len() / 2]))
+    let last = last.expect("at least one repeat");
+    Ok((last, walls[walls.len() / 2]))
 }
 
 fn displacement(r: &RunResult, body: usize) -> f64 {
@@ -106,16 +111,16 @@ fn peak(r: &RunResult) -> f64 {
 }
 
 /// One setting of the study: method, dt (s) and rtol.
-pub type Setting = (IntegratorKind, f64, f64);
+pub type Setting = (Method, f64, f64);
 
 /// The default sweep: RK4 at dt = 4, 2, 1, 0.5 ms; DP5 at rtol = 1e-3 … 1e-8; SDIRK4 at
 /// 1e-4 … 1e-6 (adaptive methods observed every 0.02 s).
 pub fn default_plan() -> Vec<Setting> {
     [0.004, 0.002, 0.001, 0.0005]
         .iter()
-        .map(|&dt| (IntegratorKind::Rk4, dt, 1e-6))
-        .chain([1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8].iter().map(|&tol| (IntegratorKind::Dp5, 0.02, tol)))
-        .chain([1e-4, 1e-5, 1e-6].iter().map(|&tol| (IntegratorKind::Sdirk4, 0.02, tol)))
+        .map(|&dt| (Method::Rk4, dt, 1e-6))
+        .chain([1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8].iter().map(|&tol| (Method::Dp5, 0.02, tol)))
+        .chain([1e-4, 1e-5, 1e-6].iter().map(|&tol| (Method::Sdirk4, 0.02, tol)))
         .collect()
 }
 
@@ -128,20 +133,26 @@ pub fn study(
     atol_ratio: f64,
     kernel: &dyn Fn(&Model) -> Box<dyn Kernel>,
     repeats: usize,
-) -> Result<AccuracyStudy, String> {
+) -> Result<AccuracyStudy> {
     if !(atol_ratio.is_finite() && atol_ratio > 0.0) {
-        return Err(format!("atol ratio = {atol_ratio}: must be finite and > 0 (atol = ratio × rtol)"));
+        return Err(Error::Argument {
+            name: "atol ratio",
+            value: atol_ratio.to_string(),
+            expected: "must be finite and > 0 (atol = ratio × rtol)",
+        });
     }
-    let (reference, _) = run(&configured(scene, IntegratorKind::Dp5, 0.02, 1e-10, DEFAULT_ATOL_RATIO), kernel, 1)?;
-    let (check, _) = run(&configured(scene, IntegratorKind::Dp5, 0.02, 1e-9, DEFAULT_ATOL_RATIO), kernel, 1)?;
+    if repeats == 0 {
+        return Err(Error::Argument { name: "repeats", value: "0".into(), expected: "must be at least 1" });
+    }
+    let (reference, _) = run(&configured(scene, Method::Dp5, 0.02, 1e-10, DEFAULT_ATOL_RATIO), kernel, 1)?;
+    let (check, _) = run(&configured(scene, Method::Dp5, 0.02, 1e-9, DEFAULT_ATOL_RATIO), kernel, 1)?;
     let t_ref = match (&reference.stop, reference.stopping_time) {
         (Stop::ShipStopped, Some(t)) => t,
-        _ => return Err(format!("the reference run did not stop the ship: {:?}", reference.stop)),
+        _ => return Err(Error::NoReference(format!("{:?}", reference.stop))),
     };
     let mut rows = Vec::new();
     for &(method, dt, rtol) in plan {
-        let name = format!("{method:?}").to_lowercase();
-        let setting = if method == IntegratorKind::Rk4 { dt } else { rtol };
+        let setting = if method == Method::Rk4 { dt } else { rtol };
         let (r, wall) = run(&configured(scene, method, dt, rtol, atol_ratio), kernel, repeats)?;
         let stopped = matches!(r.stop, Stop::ShipStopped);
         let status = match &r.stop {
@@ -151,7 +162,7 @@ pub fn study(
         };
         let when = |v: f64| stopped.then_some(v);
         rows.push(AccuracyRow {
-            method: name,
+            method,
             setting,
             status,
             stopping_time_error: r.stopping_time.filter(|_| stopped).map(|t| (t - t_ref).abs()),
@@ -190,7 +201,9 @@ fn mark_front(rows: &mut [AccuracyRow]) {
 /// wall-time ratio base / run (both medians of the same study).
 #[derive(Clone, Debug, PartialEq)]
 pub struct MatchedRun<'a> {
+    /// The matching run.
     pub run: &'a AccuracyRow,
+    /// Wall time of the base run over this one's.
     pub speedup: f64,
 }
 
@@ -198,13 +211,13 @@ pub struct MatchedRun<'a> {
 /// that reaches its stopping-time error robustly: the loosest setting of that method from
 /// which every tighter setting in the study reaches it too. An error that is not monotone
 /// in the tolerance (it can cross zero) would otherwise let a lucky loose run win.
-pub fn matched<'a>(s: &'a AccuracyStudy, method: &str, setting: f64) -> Option<(&'a AccuracyRow, Vec<MatchedRun<'a>>)> {
+pub fn matched(s: &AccuracyStudy, method: Method, setting: f64) -> Option<(&AccuracyRow, Vec<MatchedRun<'_>>)> {
     let base = s.rows.iter().find(|r| r.method == method && (r.setting - setting).abs() <= 1e-12 * setting)?;
     let target = base.stopping_time_error?;
-    let mut methods: Vec<&str> = Vec::new();
+    let mut methods: Vec<Method> = Vec::new();
     for r in s.rows.iter().filter(|r| r.method != method) {
-        if !methods.contains(&r.method.as_str()) {
-            methods.push(&r.method);
+        if !methods.contains(&r.method) {
+            methods.push(r.method);
         }
     }
     let runs = methods
@@ -252,7 +265,7 @@ pub fn table(s: &AccuracyStudy) -> String {
         ));
     }
     out.push_str("best: * = no other run is both more accurate in stopping time and faster\n");
-    if let Some((base, runs)) = matched(s, "rk4", 0.002) {
+    if let Some((base, runs)) = matched(s, Method::Rk4, 0.002) {
         let target = base.stopping_time_error.unwrap_or(f64::NAN);
         out.push_str(&format!(
             "matched: the paper's RK4 at dt = 2 ms errs by {target:.2e} s in {:.3} s wall\n",
@@ -277,8 +290,8 @@ pub fn table(s: &AccuracyStudy) -> String {
 
 /// Writes accuracy.csv, accuracy.json and accuracy.svg (stopping-time error against wall
 /// time, log–log, one curve per method) into `dir`.
-pub fn write(s: &AccuracyStudy, dir: &Path) -> Result<Vec<PathBuf>, String> {
-    std::fs::create_dir_all(dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
+pub fn write(s: &AccuracyStudy, dir: &Path) -> Result<Vec<PathBuf>> {
+    std::fs::create_dir_all(dir).map_err(Error::io("create", dir))?;
     let o = |v: Option<f64>| v.map(|v| format!("{v:e}")).unwrap_or_default();
     let mut csv = String::from("method,setting,status,stopping_time_error,ship_displacement_error,anchor_displacement_error,peak_tension_error,trajectory_error,wall_time,rhs_evaluations\n");
     for r in &s.rows {
@@ -297,20 +310,50 @@ pub fn write(s: &AccuracyStudy, dir: &Path) -> Result<Vec<PathBuf>, String> {
         ));
     }
     let files = [dir.join("accuracy.csv"), dir.join("accuracy.json"), dir.join("accuracy.svg")];
-    let w = |p: &Path, b: &[u8]| write_atomically(p, b).map_err(|e| format!("cannot write {}: {e}", p.display()));
+    let w = |p: &Path, b: &[u8]| write_atomically(p, b).map_err(Error::io("write", p));
+    // Charts first: a chart that cannot be drawn leaves no file of the study behind.
+    let chart = work_precision(s)?;
     w(&files[0], csv.as_bytes())?;
-    w(&files[1], serde_json::to_string_pretty(s).map_err(|e| e.to_string())?.as_bytes())?;
-    w(&files[2], crate::plot::work_precision(s)?.as_bytes())?;
+    w(&files[1], serde_json::to_string_pretty(s).expect("a study serialises: numbers and names").as_bytes())?;
+    w(&files[2], chart.as_bytes())?;
     Ok(files.to_vec())
+}
+
+/// The work–precision chart: stopping-time error (and trajectory error, thin) against wall
+/// time, log–log, one colour per method.
+pub fn work_precision(s: &AccuracyStudy) -> Result<String> {
+    let mut curves = Vec::new();
+    for (color, method) in Method::ALL.into_iter().enumerate() {
+        for (thin, pick) in [
+            (false, (|r: &AccuracyRow| r.stopping_time_error) as fn(&AccuracyRow) -> Option<f64>),
+            (true, |r: &AccuracyRow| r.trajectory_error),
+        ] {
+            let mut points: Vec<(f64, f64)> = s
+                .rows
+                .iter()
+                .filter(|r| r.method == method)
+                .filter_map(|r| pick(r).filter(|e| *e > 0.0).map(|e| (r.wall_time, e)))
+                .collect();
+            points.sort_by(|a, b| a.0.total_cmp(&b.0));
+            let label = (!thin).then(|| method.to_string());
+            curves.push(LogCurve { label, color, thin, points });
+        }
+    }
+    log_log(
+        &format!("Error against run time, {}", s.scene),
+        "wall time (s)",
+        "error: stopping time (s), trajectory (m, thin)",
+        &curves,
+    )
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    fn row(method: &str, setting: f64, error: f64, wall_time: f64) -> AccuracyRow {
+    fn row(method: Method, setting: f64, error: f64, wall_time: f64) -> AccuracyRow {
         AccuracyRow {
-            method: method.into(),
+            method,
             setting,
             status: "stopped".into(),
             stopping_time_error: Some(error),
@@ -327,13 +370,13 @@ mod tests {
     #[test]
     fn a_lucky_loose_run_does_not_match() {
         let rows = vec![
-            row("rk4", 0.002, 4e-5, 0.30),
-            row("dp5", 1e-4, 1e-4, 0.08),
-            row("dp5", 5e-5, 1e-6, 0.10), // reaches the target, but 1e-5 below it does not
-            row("dp5", 1e-5, 5e-5, 0.15),
-            row("dp5", 1e-6, 5e-6, 0.20),
-            row("dp5", 1e-7, 5e-7, 0.30),
-            row("sdirk4", 1e-5, 1e-3, 1.0), // never reaches it
+            row(Method::Rk4, 0.002, 4e-5, 0.30),
+            row(Method::Dp5, 1e-4, 1e-4, 0.08),
+            row(Method::Dp5, 5e-5, 1e-6, 0.10), // reaches the target, but 1e-5 below it does not
+            row(Method::Dp5, 1e-5, 5e-5, 0.15),
+            row(Method::Dp5, 1e-6, 5e-6, 0.20),
+            row(Method::Dp5, 1e-7, 5e-7, 0.30),
+            row(Method::Sdirk4, 1e-5, 1e-3, 1.0), // never reaches it
         ];
         let s = AccuracyStudy {
             scene: "t".into(),
@@ -343,10 +386,10 @@ mod tests {
             atol_ratio: DEFAULT_ATOL_RATIO,
             rows,
         };
-        let (base, runs) = matched(&s, "rk4", 0.002).unwrap();
+        let (base, runs) = matched(&s, Method::Rk4, 0.002).unwrap();
         assert_eq!(base.wall_time, 0.30);
         assert_eq!(runs.len(), 1, "{runs:?}");
-        assert_eq!((runs[0].run.method.as_str(), runs[0].run.setting), ("dp5", 1e-6));
+        assert_eq!((runs[0].run.method, runs[0].run.setting), (Method::Dp5, 1e-6));
         assert!((runs[0].speedup - 1.5).abs() < 1e-12);
     }
 }

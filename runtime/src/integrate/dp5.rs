@@ -86,7 +86,7 @@ impl Cached {
 /// accepted step. Fixed-step use: [`Integrator::step`] takes one DP5 step of the given size
 /// without error control (for order studies and for the existing fixed-step driver).
 #[derive(Clone, Debug)]
-pub struct Dopri5 {
+pub struct Dp5 {
     dim: usize,
     tol: Tolerances,
     /// Step-size control; public so a driver can set h_min/h_max.
@@ -105,16 +105,16 @@ pub struct Dopri5 {
     stats: AdaptiveStats,
 }
 
-impl Dopri5 {
+impl Dp5 {
     /// A DP5 integrator for systems of dimension `dim` with the given tolerances.
     pub fn new(dim: usize, rtol: f64, atol: f64) -> Result<Self, StepError> {
         Ok(Self::with_tolerances(dim, Tolerances::new(rtol, atol)?))
     }
 
-    /// As [`Dopri5::new`] with checked [`Tolerances`] (e.g. one atol per component).
+    /// As [`Dp5::new`] with checked [`Tolerances`] (e.g. one atol per component).
     pub fn with_tolerances(dim: usize, tol: Tolerances) -> Self {
         let z = || vec![0.0; dim];
-        Dopri5 {
+        Dp5 {
             dim,
             tol,
             control: StepControl::default(),
@@ -245,7 +245,7 @@ impl Dopri5 {
     }
 }
 
-impl AdaptiveIntegrator for Dopri5 {
+impl AdaptiveIntegrator for Dp5 {
     fn step_adaptive(
         &mut self,
         sys: &mut dyn OdeSystem,
@@ -335,7 +335,7 @@ impl AdaptiveIntegrator for Dopri5 {
     }
 }
 
-impl Integrator for Dopri5 {
+impl Integrator for Dp5 {
     /// One DP5 step of exactly `dt`, without error control.
     fn step(&mut self, sys: &mut dyn OdeSystem, t: f64, y: &mut [f64], dt: f64) -> Result<(), RhsError> {
         self.resize(y.len());

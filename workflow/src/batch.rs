@@ -1,18 +1,68 @@
-//! Many scenes at once: every scene of a folder run in parallel (rayon), one result row
-//! each, written as a terminal table, CSV and JSON. On request each run is repeated with a
+//! Many scenes at once: every scene of a folder run in parallel ([`crate::parallel`]), one
+//! result row each, written as a terminal table, CSV and JSON. On request each run is repeated with a
 //! refined setting (RK4: dt/2; adaptive methods: rtol and atol/10) and the difference is its
 //! error estimate.
 
 use std::path::{Path, PathBuf};
 
-use rayon::prelude::*;
+use kanestop_runtime::model::Model;
+use kanestop_runtime::scene::{Method, Scene};
+use kanestop_runtime::simulate::{self, RunResult, Stop};
 use serde::{Deserialize, Serialize};
 
-use crate::kernel::Kernel;
-use crate::model::Model;
-use crate::report::{break_exceedances, write_atomically};
-use crate::scene::{IntegratorKind, Scene};
-use crate::simulate::{self, RunResult, Stop};
+use crate::checks::break_exceedances;
+use crate::kernels::KernelFactory;
+use crate::output::write_atomically;
+use crate::{diagnostic, parallel, Error, Result};
+
+/// How a row's run ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub enum Status {
+    /// The ship stopped.
+    #[serde(rename = "stopped")]
+    Stopped,
+    /// The end time came first.
+    #[serde(rename = "end time")]
+    EndTime,
+    /// A numerical failure, or a step refused before the run.
+    #[serde(rename = "failed")]
+    Failed,
+    /// The scene did not load or admits no model.
+    #[serde(rename = "invalid")]
+    Invalid,
+}
+
+impl Status {
+    /// The name every output uses: `stopped`, `end time`, `failed` or `invalid`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Status::Stopped => "stopped",
+            Status::EndTime => "end time",
+            Status::Failed => "failed",
+            Status::Invalid => "invalid",
+        }
+    }
+
+    /// The status of a finished run.
+    pub fn of(stop: &Stop) -> Status {
+        match stop {
+            Stop::ShipStopped => Status::Stopped,
+            Stop::EndTime => Status::EndTime,
+            Stop::Failed(_) => Status::Failed,
+        }
+    }
+
+    /// True when the run or the scene went wrong.
+    pub fn is_problem(self) -> bool {
+        matches!(self, Status::Failed | Status::Invalid)
+    }
+}
+
+impl std::fmt::Display for Status {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
 
 /// One scene's outcome.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -21,10 +71,11 @@ pub struct BatchRow {
     pub case: String,
     /// The scene file.
     pub file: String,
-    /// "stopped", "end time", "failed" or "invalid".
-    pub status: String,
-    /// The integrator: "rk4", "dp5" or "sdirk4" ("" when the scene did not load).
-    pub method: String,
+    /// How the run ended.
+    pub status: Status,
+    /// The integrator (none when the scene did not load).
+    #[serde(with = "method_or_empty")]
+    pub method: Option<Method>,
     /// Number of bodies.
     pub bodies: Option<usize>,
     /// First zero of the ship's surge speed, s.
@@ -73,16 +124,15 @@ pub fn row(file: &Path, model: &Model, result: &RunResult) -> BatchRow {
     // A run refused before its first step has no peak and no drift to report.
     let ran = result.steps > 0;
     let peak = result.peak_tension().filter(|_| ran);
-    let (status, message) = match &result.stop {
-        Stop::ShipStopped => ("stopped", String::new()),
-        Stop::EndTime => ("end time", String::new()),
-        Stop::Failed(f) => ("failed", one_line(&f.to_string())),
+    let message = match &result.stop {
+        Stop::Failed(f) => one_line(&diagnostic::describe(model, f)),
+        Stop::ShipStopped | Stop::EndTime => String::new(),
     };
     BatchRow {
         case: model.scene.meta.name.clone(),
         file: file.display().to_string(),
-        status: status.into(),
-        method: method_name(model.scene.solver.integrator).into(),
+        status: Status::of(&result.stop),
+        method: Some(model.scene.solver.integrator),
         bodies: Some(model.body_count()),
         stopping_time: result.stopping_time,
         paper_stopping_time: paper,
@@ -100,22 +150,13 @@ pub fn row(file: &Path, model: &Model, result: &RunResult) -> BatchRow {
     }
 }
 
-/// "rk4", "dp5" or "sdirk4".
-pub fn method_name(kind: IntegratorKind) -> &'static str {
-    match kind {
-        IntegratorKind::Rk4 => "rk4",
-        IntegratorKind::Dp5 => "dp5",
-        IntegratorKind::Sdirk4 => "sdirk4",
-    }
-}
-
 /// The same scene integrated more accurately: RK4 at dt/2, an adaptive method at a tenth of
 /// its tolerances (same observation interval), on the same output times.
 pub fn refined(scene: &Scene) -> Scene {
     let mut s = scene.clone();
     match s.solver.integrator {
-        IntegratorKind::Rk4 => s.solver.dt /= 2.0,
-        IntegratorKind::Dp5 | IntegratorKind::Sdirk4 => {
+        Method::Rk4 => s.solver.dt /= 2.0,
+        Method::Dp5 | Method::Sdirk4 => {
             s.solver.rtol /= 10.0;
             s.solver.atol /= 10.0;
         }
@@ -135,7 +176,7 @@ fn estimate(row: &mut BatchRow, result: &RunResult, fine: &RunResult) {
 
 /// Adjusts a loaded scene before it runs (e.g. command-line solver overrides); an error
 /// marks the scene invalid.
-pub type Configure<'a> = &'a (dyn Fn(&mut Scene) -> Result<(), String> + Sync);
+pub type Configure<'a> = &'a (dyn Fn(&mut Scene) -> std::result::Result<(), String> + Sync);
 
 /// Runs every file in parallel; `configure` adjusts each scene, `kernel` builds each run's
 /// kernel and `done` is called (from any thread) as each run finishes; with `error_estimate`
@@ -143,54 +184,51 @@ pub type Configure<'a> = &'a (dyn Fn(&mut Scene) -> Result<(), String> + Sync);
 pub fn run_all(
     files: &[PathBuf],
     configure: Configure,
-    kernel: &(dyn Fn(&Model) -> Box<dyn Kernel> + Sync),
+    kernel: KernelFactory,
     error_estimate: bool,
     done: &(dyn Fn(&BatchRow) + Sync),
 ) -> Vec<BatchRow> {
-    files
-        .par_iter()
-        .map(|file| {
-            let model = Scene::load(file).map_err(|e| e.to_string()).and_then(|mut s| {
-                configure(&mut s)?;
-                Model::new(&s).map_err(|e| e.to_string())
-            });
-            let row = match model {
-                Ok(model) => {
-                    let result = simulate::run(&model, kernel(&model));
-                    let mut row = row(file, &model, &result);
-                    if error_estimate {
-                        match Model::new(&refined(&model.scene)) {
-                            Ok(fine) => estimate(&mut row, &result, &simulate::run(&fine, kernel(&fine))),
-                            Err(e) => row.message = one_line(&format!("no error estimate: {e}")),
-                        }
+    parallel::map(files, |file| {
+        let model = Scene::load(file).map_err(|e| e.to_string()).and_then(|mut s| {
+            configure(&mut s)?;
+            Model::new(&s).map_err(|e| e.to_string())
+        });
+        let row = match model {
+            Ok(model) => {
+                let result = simulate::run(&model, kernel(&model));
+                let mut row = row(file, &model, &result);
+                if error_estimate {
+                    match Model::new(&refined(&model.scene)) {
+                        Ok(fine) => estimate(&mut row, &result, &simulate::run(&fine, kernel(&fine))),
+                        Err(e) => row.message = one_line(&format!("no error estimate: {e}")),
                     }
-                    row
                 }
-                Err(message) => BatchRow {
-                    case: file.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default(),
-                    file: file.display().to_string(),
-                    status: "invalid".into(),
-                    method: String::new(),
-                    bodies: None,
-                    stopping_time: None,
-                    paper_stopping_time: None,
-                    relative_difference: None,
-                    peak_tension: None,
-                    peak_joint: None,
-                    peak_time: None,
-                    break_exceedances: 0,
-                    anchor_start: None,
-                    energy_drift: None,
-                    wall_time: 0.0,
-                    stop_error_estimate: None,
-                    trajectory_error_estimate: None,
-                    message: one_line(&message),
-                },
-            };
-            done(&row);
-            row
-        })
-        .collect()
+                row
+            }
+            Err(message) => BatchRow {
+                case: file.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default(),
+                file: file.display().to_string(),
+                status: Status::Invalid,
+                method: None,
+                bodies: None,
+                stopping_time: None,
+                paper_stopping_time: None,
+                relative_difference: None,
+                peak_tension: None,
+                peak_joint: None,
+                peak_time: None,
+                break_exceedances: 0,
+                anchor_start: None,
+                energy_drift: None,
+                wall_time: 0.0,
+                stop_error_estimate: None,
+                trajectory_error_estimate: None,
+                message: one_line(&message),
+            },
+        };
+        done(&row);
+        row
+    })
 }
 
 /// A message on one line: its lines, trimmed, joined by " | ".
@@ -230,8 +268,8 @@ pub fn table(rows: &[BatchRow]) -> String {
             "{:<15} {:>3} {:<6} {:<9} {:>9} {:>9} {:>8} {:>11} {:>6} {:>8} {:>9} {:>8.2}",
             r.case,
             r.bodies.map(|n| n.to_string()).unwrap_or_default(),
-            r.method,
-            r.status,
+            r.method.map(Method::name).unwrap_or_default(),
+            r.status.name(),
             opt(r.stopping_time, 1.0, 3),
             opt(r.paper_stopping_time, 1.0, 3),
             opt(r.relative_difference, 100.0, 2),
@@ -263,7 +301,7 @@ pub fn csv(rows: &[BatchRow]) -> String {
             "{},{},{},{},{},{},{},{},{},{},{},{},{},{},\"{}\",{},{},{}\n",
             r.case,
             r.file,
-            r.status,
+            r.status.name(),
             r.bodies.map(|n| n.to_string()).unwrap_or_default(),
             o(r.stopping_time),
             o(r.paper_stopping_time),
@@ -276,7 +314,7 @@ pub fn csv(rows: &[BatchRow]) -> String {
             o(r.energy_drift),
             r.wall_time,
             r.message.replace('"', "'"),
-            r.method,
+            r.method.map(Method::name).unwrap_or_default(),
             o(r.stop_error_estimate),
             o(r.trajectory_error_estimate),
         ));
@@ -285,60 +323,30 @@ pub fn csv(rows: &[BatchRow]) -> String {
 }
 
 /// Writes `batch.csv` and `batch.json` into `dir` (created if needed), each whole or not at all.
-pub fn write(rows: &[BatchRow], dir: &Path) -> std::io::Result<(PathBuf, PathBuf)> {
-    std::fs::create_dir_all(dir)?;
+pub fn write(rows: &[BatchRow], dir: &Path) -> Result<(PathBuf, PathBuf)> {
+    std::fs::create_dir_all(dir).map_err(Error::io("create", dir))?;
     let (c, j) = (dir.join("batch.csv"), dir.join("batch.json"));
-    write_atomically(&c, csv(rows).as_bytes())?;
-    let json = serde_json::to_string_pretty(rows).map_err(std::io::Error::other)?;
-    write_atomically(&j, json.as_bytes())?;
+    write_atomically(&c, csv(rows).as_bytes()).map_err(Error::io("write", &c))?;
+    let json = serde_json::to_string_pretty(rows).expect("rows serialise: plain numbers and strings");
+    write_atomically(&j, json.as_bytes()).map_err(Error::io("write", &j))?;
     Ok((c, j))
 }
 
-/// What a validation against Table 3 found.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Validation {
-    /// Rows that failed a check, with the reason.
-    pub problems: Vec<String>,
-    /// Kendall's τ between the simulated and the paper's stopping times (1: same order).
-    pub kendall_tau: Option<f64>,
-    /// Pairs of cases the simulation orders differently from Table 3.
-    pub discordant: Vec<(String, String)>,
-}
+/// A row's method as its name, or "" when the scene did not load (the JSON contract).
+mod method_or_empty {
+    use kanestop_runtime::scene::Method;
+    use serde::{Deserialize, Deserializer, Serializer};
 
-/// Checks rows against the paper: stopping time within `tolerance` (relative) of Table 3,
-/// energy drift below 0.5 %, no break load exceeded, no failed run; and compares the order
-/// of the cases by stopping time with Table 3's.
-pub fn validate(rows: &[BatchRow], tolerance: f64) -> Validation {
-    let mut problems = Vec::new();
-    for r in rows {
-        if r.status != "stopped" {
-            problems.push(format!("{}: {} {}", r.case, r.status, r.message));
-            continue;
-        }
-        if let Some(d) = r.relative_difference.filter(|d| d.abs() > tolerance) {
-            problems.push(format!("{}: stopping time differs from Table 3 by {:+.2} %", r.case, 100.0 * d));
-        }
-        if let Some(e) = r.energy_drift.filter(|&e| e > 0.005) {
-            problems.push(format!("{}: energy balance drift {e:.2e} > 0.5 %", r.case));
-        }
-        if r.break_exceedances > 0 {
-            problems.push(format!("{}: break load exceeded at {} joint(s)", r.case, r.break_exceedances));
+    pub fn serialize<S: Serializer>(method: &Option<Method>, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_str(method.map(Method::name).unwrap_or_default())
+    }
+
+    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<Option<Method>, D::Error> {
+        let name = String::deserialize(d)?;
+        if name.is_empty() {
+            Ok(None)
+        } else {
+            name.parse().map(Some).map_err(serde::de::Error::custom)
         }
     }
-    let paired: Vec<(&BatchRow, f64, f64)> =
-        rows.iter().filter_map(|r| Some((r, r.stopping_time?, r.paper_stopping_time?))).collect();
-    let (mut concordant, mut discordant) = (0usize, Vec::new());
-    for i in 0..paired.len() {
-        for j in i + 1..paired.len() {
-            let (a, b) = (&paired[i], &paired[j]);
-            if (a.1 - b.1) * (a.2 - b.2) > 0.0 {
-                concordant += 1;
-            } else {
-                discordant.push((a.0.case.clone(), b.0.case.clone()));
-            }
-        }
-    }
-    let pairs = concordant + discordant.len();
-    let kendall_tau = (pairs > 0).then(|| (concordant as f64 - discordant.len() as f64) / pairs as f64);
-    Validation { problems, kendall_tau, discordant }
 }

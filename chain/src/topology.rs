@@ -1,4 +1,4 @@
-//! The input model: which bodies the chain has, in Huston's order.
+//! Which bodies the chain has, in Huston's order.
 //!
 //! Body B_1 is the gravity anchor, then the chain links, the cable elements stage by stage,
 //! the auxiliary rod B_{N-1} and the ship B_N (paper, Section 2.3.1). Only the *structure*
@@ -16,7 +16,10 @@ pub enum BodyKind {
     /// A studless chain link modelled as a homogeneous rod.
     ChainLink,
     /// A restraining-cable element of the given stage (0-based).
-    Cable { stage: usize },
+    Cable {
+        /// The stage, 0-based from the chain toward the ship.
+        stage: usize,
+    },
     /// B_{N-1}: the auxiliary rod that replaces the net, above the water.
     Rod,
     /// B_N: the ship, a cuboid hinged to the rod.
@@ -54,23 +57,12 @@ pub struct Topology {
 }
 
 /// A topology that cannot describe a chain.
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 pub enum TopologyError {
     /// No cable stage, or a stage with no element.
+    #[error("the cable needs at least one stage, each with at least one element")]
     EmptyCable,
 }
-
-impl fmt::Display for TopologyError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            TopologyError::EmptyCable => {
-                write!(f, "the cable needs at least one stage, each with at least one element")
-            }
-        }
-    }
-}
-
-impl std::error::Error for TopologyError {}
 
 impl Topology {
     /// A topology, checked: every cable stage must hold at least one element.

@@ -1,0 +1,54 @@
+//! Which Kane kernel a run uses.
+
+use kanestop_runtime::generated::GeneratedKernel;
+use kanestop_runtime::kernel::Kernel;
+use kanestop_runtime::model::Model;
+use kanestop_runtime::reference::ReferenceKernel;
+
+/// The kernel a user asks for.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum KernelChoice {
+    /// The generic formulation of the paper's Eqs. 1–27 (slow, the oracle).
+    Reference,
+    /// Flat code emitted by `kanestop-codegen` for the chain's N and water switch, with the
+    /// O(N) recursive solve; the reference when no kernel fits the chain (with a note).
+    #[default]
+    Generated,
+}
+
+impl KernelChoice {
+    /// `reference` or `generated`.
+    pub fn name(self) -> &'static str {
+        match self {
+            KernelChoice::Reference => "reference",
+            KernelChoice::Generated => "generated",
+        }
+    }
+
+    /// The kernel for `model`, and a note when the choice could not be honoured.
+    pub fn build(self, model: &Model) -> (Box<dyn Kernel>, Option<String>) {
+        match self {
+            KernelChoice::Reference => (Box::new(ReferenceKernel::new(&model.chain)), None),
+            KernelChoice::Generated => match GeneratedKernel::new(&model.chain) {
+                Ok(k) => (Box::new(k), None),
+                Err(e) => {
+                    (Box::new(ReferenceKernel::new(&model.chain)), Some(format!("{e}; using the reference kernel")))
+                }
+            },
+        }
+    }
+}
+
+/// Builds the kernel of each run of a workflow.
+pub type KernelFactory<'a> = &'a (dyn Fn(&Model) -> Box<dyn Kernel> + Sync);
+
+/// The factory of `choice`: its notes go to standard error, once per run.
+pub fn factory(choice: KernelChoice) -> impl Fn(&Model) -> Box<dyn Kernel> + Sync {
+    move |model: &Model| {
+        let (kernel, note) = choice.build(model);
+        if let Some(note) = note {
+            eprintln!("note: {note}");
+        }
+        kernel
+    }
+}

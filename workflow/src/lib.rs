@@ -1,0 +1,88 @@
+//! # kanestop-workflow
+//!
+//! Everything that orchestrates runs of the lean runtime (`kanestop-runtime`) and shows their
+//! results, shared by the command line and the Python package:
+//!
+//! - [`kernels`]: which Kane kernel a run uses;
+//! - [`parallel`]: many runs at once on a thread pool (feature `parallel`, on by default),
+//!   with [`progress`] reporting;
+//! - [`batch`]: a folder of scenes as one table ([`validation`] against the paper's Table 3);
+//! - [`accuracy`]: the work–precision study (error against run time);
+//! - reports that only read results: [`summary`] (the one-screen text), [`diagnostic`] (a
+//!   failure in words, with advice), [`history`] (the CSV time history), [`checks`] (peaks
+//!   against load limits) and [`plot`] (SVG charts);
+//! - [`output`]: files written whole or not at all.
+//!
+//! This is the only layer with plotting, thread pools, progress bars and JSON; the runtime
+//! below it has none of them (docs/architecture.md).
+
+#![warn(missing_docs)]
+
+pub mod accuracy;
+pub mod batch;
+pub mod checks;
+pub mod diagnostic;
+pub mod history;
+pub mod kernels;
+pub mod output;
+pub mod parallel;
+pub mod plot;
+pub mod progress;
+pub mod summary;
+pub mod validation;
+
+use std::path::PathBuf;
+
+/// Why a workflow could not be carried out. A numerical failure of a run is not an error:
+/// it is a result ([`kanestop_runtime::simulate::Stop::Failed`]).
+#[derive(Debug, thiserror::Error)]
+pub enum Error {
+    /// A scene could not be read or is not valid.
+    #[error(transparent)]
+    Scene(#[from] kanestop_runtime::scene::SceneError),
+    /// A scene admits no model (e.g. no initial configuration).
+    #[error(transparent)]
+    Model(#[from] kanestop_runtime::model::ModelError),
+    /// A file or folder could not be read or written.
+    #[error("cannot {action} {}: {source}", path.display())]
+    Io {
+        /// What was attempted: "read", "write", "create".
+        action: &'static str,
+        /// The file or folder.
+        path: PathBuf,
+        /// What the system said.
+        source: std::io::Error,
+    },
+    /// A chart could not be drawn.
+    #[error("cannot draw {chart}: {message}")]
+    Plot {
+        /// The chart's file name.
+        chart: String,
+        /// What the plotting library said.
+        message: String,
+    },
+    /// An argument of the workflow is out of range.
+    #[error("{name} = {value}: {expected}")]
+    Argument {
+        /// The argument, e.g. `--repeats`.
+        name: &'static str,
+        /// Its value as given.
+        value: String,
+        /// The valid range.
+        expected: &'static str,
+    },
+    /// The accuracy study's reference run did not stop the ship.
+    #[error("the reference run did not stop the ship: {0}")]
+    NoReference(String),
+}
+
+/// The workflow layer's result.
+pub type Result<T, E = Error> = std::result::Result<T, E>;
+
+impl Error {
+    /// An I/O error on `path`.
+    pub fn io(action: &'static str, path: impl Into<PathBuf>) -> impl FnOnce(std::io::Error) -> Error {
+        let path = path.into();
+        move |source| Error::Io { action, path, source }
+    }
+}

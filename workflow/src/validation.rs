@@ -1,0 +1,52 @@
+//! The paper cases of a batch against Table 3: values within a tolerance, the same order.
+
+use crate::batch::{BatchRow, Status};
+
+/// What a validation against Table 3 found.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Validation {
+    /// Rows that failed a check, with the reason.
+    pub problems: Vec<String>,
+    /// Kendall's τ between the simulated and the paper's stopping times (1: same order).
+    pub kendall_tau: Option<f64>,
+    /// Pairs of cases the simulation orders differently from Table 3.
+    pub discordant: Vec<(String, String)>,
+}
+
+/// Checks rows against the paper: stopping time within `tolerance` (relative) of Table 3,
+/// energy drift below 0.5 %, no break load exceeded, no failed run; and compares the order
+/// of the cases by stopping time with Table 3's.
+pub fn validate(rows: &[BatchRow], tolerance: f64) -> Validation {
+    let mut problems = Vec::new();
+    for r in rows {
+        if r.status != Status::Stopped {
+            problems.push(format!("{}: {} {}", r.case, r.status, r.message));
+            continue;
+        }
+        if let Some(d) = r.relative_difference.filter(|d| d.abs() > tolerance) {
+            problems.push(format!("{}: stopping time differs from Table 3 by {:+.2} %", r.case, 100.0 * d));
+        }
+        if let Some(e) = r.energy_drift.filter(|&e| e > 0.005) {
+            problems.push(format!("{}: energy balance drift {e:.2e} > 0.5 %", r.case));
+        }
+        if r.break_exceedances > 0 {
+            problems.push(format!("{}: break load exceeded at {} joint(s)", r.case, r.break_exceedances));
+        }
+    }
+    let paired: Vec<(&BatchRow, f64, f64)> =
+        rows.iter().filter_map(|r| Some((r, r.stopping_time?, r.paper_stopping_time?))).collect();
+    let (mut concordant, mut discordant) = (0usize, Vec::new());
+    for i in 0..paired.len() {
+        for j in i + 1..paired.len() {
+            let (a, b) = (&paired[i], &paired[j]);
+            if (a.1 - b.1) * (a.2 - b.2) > 0.0 {
+                concordant += 1;
+            } else {
+                discordant.push((a.0.case.clone(), b.0.case.clone()));
+            }
+        }
+    }
+    let pairs = concordant + discordant.len();
+    let kendall_tau = (pairs > 0).then(|| (concordant as f64 - discordant.len() as f64) / pairs as f64);
+    Validation { problems, kendall_tau, discordant }
+}
