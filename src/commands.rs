@@ -1,14 +1,47 @@
-//! The commands that run many scenes, `batch` and `plot`, and `report accuracy`: each calls
-//! the workflow layer and prints what it returns.
+//! The commands, once their arguments are parsed: each calls the runtime or the workflow
+//! layer and prints what it returns.
 
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result};
+use kanestop_runtime::eval::{evaluate, StateFile};
 use kanestop_runtime::model::Model;
+use kanestop_runtime::reference::ReferenceKernel;
 use kanestop_runtime::scene::Scene;
-use kanestop_runtime::simulate::RunResult;
+use kanestop_runtime::simulate::{self, RunResult, Stop};
 use kanestop_workflow::kernels::KernelFactory;
-use kanestop_workflow::{accuracy, batch, parallel, plot, progress, validation};
+use kanestop_workflow::{accuracy, batch, history, parallel, plot, progress, summary, validation};
+
+/// `run`: one scene, its summary, optionally its CSV history and plots. Returns whether the
+/// run ended in a numerical failure.
+pub fn run(model: &Model, kernel: KernelFactory, out: Option<&Path>, plot: Option<&Path>) -> Result<bool> {
+    let result = simulate::run_checked(model, kernel(model), Box::new(ReferenceKernel::new(&model.chain)));
+    print!("{}", summary::summary(model, &result));
+    if let Some(path) = out {
+        history::write_csv(&result, path).with_context(|| format!("cannot write {}", path.display()))?;
+        println!("{:<10}{} ({} samples)", "written", path.display(), result.samples.len());
+    }
+    if let Some(dir) = plot {
+        write_plots(std::slice::from_ref(model), std::slice::from_ref(&result), dir)?;
+    }
+    Ok(matches!(result.stop, Stop::Failed(_)))
+}
+
+/// `eval`: the equations of motion at the initial state or at the state in `state`, as JSON.
+pub fn eval(model: &Model, kernel: KernelFactory, state: Option<&Path>) -> Result<()> {
+    let state = match state {
+        Some(path) => {
+            let text = std::fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))?;
+            let s: StateFile =
+                serde_json::from_str(&text).with_context(|| format!("state file {} is not valid", path.display()))?;
+            Some(s)
+        }
+        None => None,
+    };
+    let out = evaluate(model, kernel(model), state.as_ref())?;
+    println!("{}", serde_json::to_string_pretty(&out)?);
+    Ok(())
+}
 
 /// `batch DIR`: runs every scene once per configuration (one per method compared), prints
 /// the table, writes batch.csv and batch.json; with `error_estimate`, each run is repeated

@@ -10,14 +10,10 @@ use std::process::ExitCode;
 use anyhow::{Context, Result};
 use clap::builder::PossibleValue;
 use clap::{Parser, Subcommand, ValueEnum};
-use kanestop_runtime::eval::{evaluate, StateFile};
 use kanestop_runtime::model::Model;
 use kanestop_runtime::paper::DEFAULT_SCENE;
-use kanestop_runtime::reference::ReferenceKernel;
 use kanestop_runtime::scene::{Method, Scene, SceneError};
-use kanestop_runtime::simulate::{self, Stop};
 use kanestop_workflow::kernels::{self, KernelChoice};
-use kanestop_workflow::{history, summary};
 
 #[derive(Parser)]
 #[command(
@@ -317,6 +313,28 @@ impl SolverOverrides {
     }
 }
 
+/// How `batch` adjusts each scene: once with the overrides alone, or once per method of
+/// `--methods` (each with its `@dt`).
+fn configurations<'a>(
+    solver: &'a SolverOverrides,
+    methods: &[MethodSpec],
+) -> Vec<Box<dyn Fn(&mut Scene) -> Result<(), String> + Sync + 'a>> {
+    let apply = move |scene: &mut Scene, method: Option<MethodSpec>| {
+        if let Some(m) = method {
+            scene.solver.integrator = m.method;
+            scene.solver.dt = m.dt.unwrap_or(scene.solver.dt);
+            // The output grid must hold at least one step.
+            scene.solver.output_interval = scene.solver.output_interval.max(scene.solver.dt);
+        }
+        solver.apply(scene, &scene.meta.name.clone()).map_err(|e| e.to_string())
+    };
+    if methods.is_empty() {
+        vec![Box::new(move |scene: &mut Scene| apply(scene, None))]
+    } else {
+        methods.iter().map(|&m| Box::new(move |scene: &mut Scene| apply(scene, Some(m))) as Box<_>).collect()
+    }
+}
+
 /// Exit code of a run that ended in a numerical failure.
 const EXIT_NUMERICAL_FAILURE: u8 = 3;
 
@@ -342,36 +360,12 @@ fn try_main() -> Result<ExitCode> {
     match command {
         Command::Run { scene, out, plot, kernel: choice, solver } => {
             let model = load_model_with(scene.as_ref(), &solver)?;
-            let result =
-                simulate::run_checked(&model, choice.factory()(&model), Box::new(ReferenceKernel::new(&model.chain)));
-            print!("{}", summary::summary(&model, &result));
-            if let Some(path) = out {
-                history::write_csv(&result, &path).with_context(|| format!("cannot write {}", path.display()))?;
-                println!("{:<10}{} ({} samples)", "written", path.display(), result.samples.len());
-            }
-            if let Some(dir) = plot {
-                commands::write_plots(std::slice::from_ref(&model), std::slice::from_ref(&result), &dir)?;
-            }
-            Ok(if matches!(result.stop, Stop::Failed(_)) {
-                ExitCode::from(EXIT_NUMERICAL_FAILURE)
-            } else {
-                ExitCode::SUCCESS
-            })
+            let failed = commands::run(&model, &choice.factory(), out.as_deref(), plot.as_deref())?;
+            Ok(if failed { ExitCode::from(EXIT_NUMERICAL_FAILURE) } else { ExitCode::SUCCESS })
         }
         Command::Eval { scene, state, kernel: choice } => {
             let model = load_model(scene.as_ref())?;
-            let state = match state {
-                Some(path) => {
-                    let text =
-                        std::fs::read_to_string(&path).with_context(|| format!("cannot read {}", path.display()))?;
-                    let s: StateFile = serde_json::from_str(&text)
-                        .with_context(|| format!("state file {} is not valid", path.display()))?;
-                    Some(s)
-                }
-                None => None,
-            };
-            let out = evaluate(&model, choice.factory()(&model), state.as_ref())?;
-            println!("{}", serde_json::to_string_pretty(&out)?);
+            commands::eval(&model, &choice.factory(), state.as_deref())?;
             Ok(ExitCode::SUCCESS)
         }
         Command::Report { kind: ReportKind::Accuracy { scene, out, repeats, atol_ratio, kernel: choice } } => {
@@ -391,20 +385,7 @@ fn try_main() -> Result<ExitCode> {
                 methods.is_empty() || (solver.integrator.is_none() && solver.dt.is_none()),
                 "--methods sets the integrator and its step (method@dt): drop --integrator and --dt"
             );
-            let apply = |scene: &mut Scene, method: Option<MethodSpec>| {
-                if let Some(m) = method {
-                    scene.solver.integrator = m.method;
-                    scene.solver.dt = m.dt.unwrap_or(scene.solver.dt);
-                    // The output grid must hold at least one step.
-                    scene.solver.output_interval = scene.solver.output_interval.max(scene.solver.dt);
-                }
-                solver.apply(scene, &scene.meta.name.clone()).map_err(|e| e.to_string())
-            };
-            let per_method: Vec<Box<dyn Fn(&mut Scene) -> Result<(), String> + Sync>> = if methods.is_empty() {
-                vec![Box::new(|scene: &mut Scene| apply(scene, None))]
-            } else {
-                methods.iter().map(|&m| Box::new(move |scene: &mut Scene| apply(scene, Some(m))) as Box<_>).collect()
-            };
+            let per_method = configurations(&solver, &methods);
             let configures: Vec<kanestop_workflow::batch::Configure> = per_method.iter().map(|c| c.as_ref()).collect();
             let ok = commands::batch(&dir, &out, &configures, &choice.factory(), error_estimate, tolerance)?;
             Ok(if ok { ExitCode::SUCCESS } else { ExitCode::from(1) })
