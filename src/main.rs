@@ -313,12 +313,12 @@ impl SolverOverrides {
     }
 }
 
+/// A batch configuration that owns its captures.
+type BoxedConfigure<'a> = Box<dyn Fn(&mut Scene) -> Result<(), String> + Sync + 'a>;
+
 /// How `batch` adjusts each scene: once with the overrides alone, or once per method of
 /// `--methods` (each with its `@dt`).
-fn configurations<'a>(
-    solver: &'a SolverOverrides,
-    methods: &[MethodSpec],
-) -> Vec<Box<dyn Fn(&mut Scene) -> Result<(), String> + Sync + 'a>> {
+fn configurations<'a>(solver: &'a SolverOverrides, methods: &[MethodSpec]) -> Vec<BoxedConfigure<'a>> {
     let apply = move |scene: &mut Scene, method: Option<MethodSpec>| {
         if let Some(m) = method {
             scene.solver.integrator = m.method;

@@ -259,6 +259,30 @@ fn plot_writes_the_four_svg_charts() {
 }
 
 #[test]
+fn plot_of_a_run_refused_before_its_first_step_does_not_panic() {
+    // Regression: a run refused at t = 0 has no samples; plotting it beside a good run
+    // indexed its first sample (exit 101, a partial set of SVGs).
+    let dir = temp_dir("plot-refused");
+    let scene = short_scene(&dir);
+    let refused = dir.join("refused.toml");
+    std::fs::write(
+        &refused,
+        std::fs::read_to_string(&scene)
+            .unwrap()
+            .replace("dt = 0.0005", "dt = 0.05")
+            .replace("output_interval = 0.01", "output_interval = 0.05")
+            .replace("name = \"case01\"", "name = \"refused\""),
+    )
+    .unwrap();
+    let out_dir = dir.join("plots");
+    let out = kanestop().arg("plot").arg(&refused).arg(&scene).arg("--out").arg(&out_dir).output().unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let svg = std::fs::read_to_string(out_dir.join("displacement.svg")).unwrap();
+    assert!(svg.contains("case01 ship"), "the good run is drawn");
+    assert!(!svg.contains("refused ship") && svg.trim_end().ends_with("</svg>"));
+}
+
+#[test]
 fn batch_and_run_take_solver_overrides() {
     let dir = temp_dir("overrides");
     let scenes = dir.join("scenes");

@@ -26,7 +26,7 @@ fn run(name: &str, end_time: f64) -> RunResult {
 
 fn run_scene(scene: &Scene) -> RunResult {
     let name = &scene.meta.name;
-    let model = Model::new(&scene).unwrap_or_else(|e| panic!("{name}: {e}"));
+    let model = Model::new(scene).unwrap_or_else(|e| panic!("{name}: {e}"));
     simulate::run(&model, Box::new(GeneratedKernel::new(&model.chain).unwrap()))
 }
 
@@ -130,7 +130,7 @@ fn rk4_grows_the_fastest_mode_only_beyond_the_limit() {
     let (stable, unstable) = (deviation(0.9 * limit, &fine), deviation(2.0 * limit, &fine));
     eprintln!("rate scale {scale:.3e}, deviation at 0.9 × limit {stable:.3e}, at 2 × limit {unstable:.3e}");
     assert!(stable < 0.1 * scale, "0.9 × limit: deviation {stable} rad/s against {scale} rad/s");
-    assert!(!(unstable < 1.0 * scale), "2 × limit: deviation {unstable} rad/s against {scale} rad/s");
+    assert!(unstable >= scale || unstable.is_nan(), "2 × limit: deviation {unstable} rad/s against {scale} rad/s");
 }
 #[test]
 fn high_friction_anchor_completes() {

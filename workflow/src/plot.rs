@@ -84,53 +84,80 @@ fn chart(title: &str, x_label: &str, y_label: &str, curves: &[Curve]) -> Result<
 }
 
 /// Writes ship-speed.svg, displacement.svg, peak-tension.svg and energy.svg for the runs
-/// into `dir`, each whole or not at all. Returns the files written.
+/// into `dir`, each whole or not at all; every chart is drawn before the first is written.
+/// A run with no samples (refused before its first step) has no curves. Returns the files
+/// written.
 pub fn write_plots(runs: &[(&Model, &RunResult)], dir: &Path) -> Result<Vec<PathBuf>> {
+    let charts = [
+        ("ship-speed.svg", chart("Ship surge speed", "t (s)", "surge speed (m/s)", &speed_curves(runs))),
+        (
+            "displacement.svg",
+            chart("Ship and anchor displacement", "t (s)", "displacement (m)", &displacement_curves(runs)),
+        ),
+        (
+            "peak-tension.svg",
+            chart("Peak joint tension along the line", "joint k (B_k−1 – B_k)", "tension (kN)", &tension_curves(runs)),
+        ),
+    ];
+    let energy = runs.first().map(|(m, r)| {
+        let title = format!("Energy terms, {}", m.scene.meta.name);
+        ("energy.svg", chart(&title, "t (s)", "energy (MJ)", &energy_curves(r)))
+    });
+    let mut svgs = Vec::new();
+    for (file, svg) in charts.into_iter().chain(energy) {
+        svgs.push((file, svg.map_err(|message| Error::Plot { chart: file.to_string(), message })?));
+    }
     std::fs::create_dir_all(dir).map_err(Error::io("create", dir))?;
-    let name = |m: &Model| m.scene.meta.name.clone();
     let mut files = Vec::new();
-    let mut emit = |file: &str, svg: std::result::Result<String, String>| -> Result<()> {
-        let svg = svg.map_err(|message| Error::Plot { chart: file.to_string(), message })?;
+    for (file, svg) in svgs {
         let path = dir.join(file);
         write_atomically(&path, svg.as_bytes()).map_err(Error::io("write", &path))?;
         files.push(path);
-        Ok(())
-    };
+    }
+    Ok(files)
+}
 
-    let speed: Vec<Curve> = runs
-        .iter()
+/// The ship's surge speed of each run.
+fn speed_curves(runs: &[(&Model, &RunResult)]) -> Vec<Curve> {
+    runs.iter()
         .map(|(m, r)| {
             let n = m.body_count();
             Curve {
-                label: name(m),
+                label: m.scene.meta.name.clone(),
                 points: r.samples.iter().map(|s| (s.t, s.bodies[n - 1].vx)).collect(),
                 dashed: false,
             }
         })
-        .collect();
-    emit("ship-speed.svg", chart("Ship surge speed", "t (s)", "surge speed (m/s)", &speed))?;
+        .collect()
+}
 
-    let mut displacement = Vec::new();
+/// The ship's (solid) and the anchor's (dashed) displacement of each run that has samples.
+fn displacement_curves(runs: &[(&Model, &RunResult)]) -> Vec<Curve> {
+    let mut curves = Vec::new();
     for (m, r) in runs {
+        let Some(first) = r.samples.first() else { continue };
         let n = m.body_count();
-        let (s0, a0) = (r.samples[0].bodies[n - 1].x, r.samples[0].bodies[0].x);
-        displacement.push(Curve {
-            label: format!("{} ship", name(m)),
+        let (s0, a0) = (first.bodies[n - 1].x, first.bodies[0].x);
+        curves.push(Curve {
+            label: format!("{} ship", m.scene.meta.name),
             points: r.samples.iter().map(|s| (s.t, s.bodies[n - 1].x - s0)).collect(),
             dashed: false,
         });
-        displacement.push(Curve {
-            label: format!("{} anchor", name(m)),
+        curves.push(Curve {
+            label: format!("{} anchor", m.scene.meta.name),
             points: r.samples.iter().map(|s| (s.t, s.bodies[0].x - a0)).collect(),
             dashed: true,
         });
     }
-    emit("displacement.svg", chart("Ship and anchor displacement", "t (s)", "displacement (m)", &displacement))?;
+    curves
+}
 
-    let mut tension: Vec<Curve> = runs
+/// The peak tension along the line of each run, and the first run's proof and break loads.
+fn tension_curves(runs: &[(&Model, &RunResult)]) -> Vec<Curve> {
+    let mut curves: Vec<Curve> = runs
         .iter()
         .map(|(m, r)| Curve {
-            label: format!("{} peak", name(m)),
+            label: format!("{} peak", m.scene.meta.name),
             points: r.peak_tensions.iter().enumerate().map(|(i, p)| ((i + 2) as f64, p.tension / 1e3)).collect(),
             dashed: false,
         })
@@ -142,46 +169,41 @@ pub fn write_plots(runs: &[(&Model, &RunResult)], dir: &Path) -> Result<Vec<Path
             points: (2..=n).filter_map(|k| pick(m.joint_limits(k)).map(|v| (k as f64, v / 1e3))).collect(),
             dashed: true,
         };
-        tension.push(limit_curve("proof load", |l| l.proof));
-        tension.push(limit_curve("break load", |l| l.breaking));
+        curves.push(limit_curve("proof load", |l| l.proof));
+        curves.push(limit_curve("break load", |l| l.breaking));
     }
-    emit(
-        "peak-tension.svg",
-        chart("Peak joint tension along the line", "joint k (B_k−1 – B_k)", "tension (kN)", &tension),
-    )?;
+    curves
+}
 
-    if let Some((m, r)) = runs.first() {
-        let mut energy = vec![
-            Curve {
-                label: "kinetic".into(),
-                points: r.samples.iter().map(|s| (s.t, (s.energy.kinetic + s.energy.added_kinetic) / 1e6)).collect(),
-                dashed: false,
-            },
-            Curve {
-                label: "potential − E_G(0)".into(),
-                points: r
-                    .samples
-                    .iter()
-                    .map(|s| (s.t, (s.energy.potential - r.samples[0].energy.potential) / 1e6))
-                    .collect(),
-                dashed: false,
-            },
-        ];
-        for (i, term) in WORK_TERMS.iter().enumerate() {
-            energy.push(Curve {
-                label: format!("work: {term}"),
-                points: r.samples.iter().map(|s| (s.t, s.energy.work[i] / 1e6)).collect(),
-                dashed: true,
-            });
-        }
-        energy.push(Curve {
-            label: "balance − E_0".into(),
-            points: r.samples.iter().map(|s| (s.t, (s.energy.balance() - r.energy0) / 1e6)).collect(),
+/// The energy terms of one run (Eq. 63): kinetic, potential change, each work term, and the
+/// balance's drift.
+fn energy_curves(r: &RunResult) -> Vec<Curve> {
+    let Some(first) = r.samples.first() else { return Vec::new() };
+    let mut curves = vec![
+        Curve {
+            label: "kinetic".into(),
+            points: r.samples.iter().map(|s| (s.t, (s.energy.kinetic + s.energy.added_kinetic) / 1e6)).collect(),
             dashed: false,
+        },
+        Curve {
+            label: "potential − E_G(0)".into(),
+            points: r.samples.iter().map(|s| (s.t, (s.energy.potential - first.energy.potential) / 1e6)).collect(),
+            dashed: false,
+        },
+    ];
+    for (i, term) in WORK_TERMS.iter().enumerate() {
+        curves.push(Curve {
+            label: format!("work: {term}"),
+            points: r.samples.iter().map(|s| (s.t, s.energy.work[i] / 1e6)).collect(),
+            dashed: true,
         });
-        emit("energy.svg", chart(&format!("Energy terms, {}", name(m)), "t (s)", "energy (MJ)", &energy))?;
     }
-    Ok(files)
+    curves.push(Curve {
+        label: "balance − E_0".into(),
+        points: r.samples.iter().map(|s| (s.t, (s.energy.balance() - r.energy0) / 1e6)).collect(),
+        dashed: false,
+    });
+    curves
 }
 
 /// One curve of a [`log_log`] chart.
