@@ -335,10 +335,21 @@ fn configurations<'a>(solver: &'a SolverOverrides, methods: &[MethodSpec]) -> Ve
     }
 }
 
+/// Rust ignores SIGPIPE, so a closed pipe (`kanestop codegen | head`) makes `println!`
+/// panic; like other command-line tools, end quietly instead.
+fn restore_sigpipe() {
+    #[cfg(unix)]
+    // SAFETY: called first in main, before any thread exists; SIG_DFL is a valid handler.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+    }
+}
+
 /// Exit code of a run that ended in a numerical failure.
 const EXIT_NUMERICAL_FAILURE: u8 = 3;
 
 fn main() -> ExitCode {
+    restore_sigpipe();
     match try_main() {
         Ok(code) => code,
         Err(e) => {

@@ -309,3 +309,23 @@ fn batch_and_run_take_solver_overrides() {
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("solver.atol = -1"));
 }
+
+#[test]
+fn a_closed_pipe_ends_the_output_quietly() {
+    // Regression: `kanestop codegen | head` panicked in println! (exit 101).
+    use std::io::{BufRead, BufReader};
+    let mut child = kanestop()
+        .arg("codegen")
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut first = String::new();
+    BufReader::new(child.stdout.take().unwrap()).read_line(&mut first).unwrap();
+    assert!(first.starts_with("scene"), "{first}");
+    // The reader is dropped: the pipe is closed while codegen still has lines to print.
+    let out = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert_ne!(out.status.code(), Some(101), "{stderr}");
+}
