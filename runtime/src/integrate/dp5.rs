@@ -337,7 +337,7 @@ impl AdaptiveIntegrator for Dp5 {
 
 impl Integrator for Dp5 {
     /// One DP5 step of exactly `dt`, without error control.
-    fn step(&mut self, sys: &mut dyn OdeSystem, t: f64, y: &mut [f64], dt: f64) -> Result<(), RhsError> {
+    fn step(&mut self, sys: &mut dyn OdeSystem, t: f64, y: &mut [f64], dt: f64) -> Result<(), StepError> {
         self.resize(y.len());
         self.first_stage(sys, t, y)?;
         self.attempt(sys, t, y, dt)?;
