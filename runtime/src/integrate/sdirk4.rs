@@ -631,3 +631,107 @@ impl Integrator for Sdirk4 {
         Ok(())
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// ẏ = A y with eigenvalues −1 and −10⁴: y1' = −y1, y2' = −10⁴ (y2 − y1).
+    struct Stiff;
+    impl OdeSystem for Stiff {
+        fn dim(&self) -> usize {
+            2
+        }
+        fn rhs(&mut self, _t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), RhsError> {
+            dy[0] = -y[0];
+            dy[1] = -1e4 * (y[1] - y[0]);
+            Ok(())
+        }
+    }
+
+    /// ẏ = −y.
+    struct Decay;
+    impl OdeSystem for Decay {
+        fn dim(&self) -> usize {
+            1
+        }
+        fn rhs(&mut self, _t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), RhsError> {
+            dy[0] = -y[0];
+            Ok(())
+        }
+    }
+
+    fn fixed_error(steps: usize) -> f64 {
+        // Tight tolerances: in fixed-step mode they only stop Newton.
+        let mut sd = Sdirk4::new(1, 1e-12, 1e-14).expect("tolerances");
+        let (mut y, dt) = ([1.0], 1.0 / steps as f64);
+        for i in 0..steps {
+            Integrator::step(&mut sd, &mut Decay, i as f64 * dt, &mut y, dt).expect("step");
+        }
+        (y[0] - (-1.0f64).exp()).abs()
+    }
+
+    #[test]
+    fn fixed_steps_are_fourth_order() {
+        let ratio = fixed_error(10) / fixed_error(20);
+        assert!((ratio - 16.0).abs() < 2.0, "ratio {ratio}");
+    }
+
+    #[test]
+    fn a_large_step_on_a_stiff_system_stays_bounded() {
+        // h = 0.5 is 5000 times RK4's limit on the fast mode (≈ 2.8e-4): L-stability damps it.
+        let mut sd = Sdirk4::new(2, 1e-12, 1e-14).expect("tolerances");
+        let mut y = [1.0, 0.0];
+        for i in 0..4 {
+            Integrator::step(&mut sd, &mut Stiff, 0.5 * i as f64, &mut y, 0.5).expect("step");
+        }
+        // After t = 2 the fast mode has decayed: y2 ≈ y1 ≈ e^{−2}.
+        let slow = (-2.0f64).exp();
+        assert!((y[0] - slow).abs() < 1e-2 && (y[1] - slow).abs() < 1e-2, "{y:?} vs {slow}");
+    }
+
+    #[test]
+    fn adaptive_steps_on_a_stiff_system_are_few_and_accurate() {
+        let mut sd = Sdirk4::new(2, 1e-6, 1e-8).expect("tolerances");
+        let mut y = [1.0, 0.0];
+        sd.integrate_to(&mut Stiff, 0.0, &mut y, 1.0, 1e-4).expect("integrates");
+        let slow = (-1.0f64).exp();
+        assert!((y[0] - slow).abs() < 1e-4 && (y[1] - slow).abs() < 1e-4, "{y:?}");
+        // An explicit method would need ≥ 1/2.8e-4 ≈ 3600 steps.
+        assert!(sd.stats().accepted < 200, "{:?}", sd.stats());
+    }
+
+    #[test]
+    fn dense_output_matches_the_step_ends() {
+        let mut sd = Sdirk4::new(1, 1e-10, 1e-12).expect("tolerances");
+        let mut y = [1.0];
+        let out = sd.step_adaptive(&mut Decay, 0.0, &mut y, 0.02).expect("step");
+        let mut at = [0.0];
+        sd.dense_into(0.0, &mut at);
+        assert_eq!(at[0], 1.0);
+        sd.dense_into(1.0, &mut at);
+        assert_eq!(at[0], y[0]);
+        sd.dense_into(0.5, &mut at);
+        assert!((at[0] - (-0.5 * out.h).exp()).abs() < 1e-8, "{} at h = {}", at[0], out.h);
+    }
+
+    #[test]
+    fn invalid_tolerances_and_steps_are_refused() {
+        assert!(matches!(Sdirk4::new(1, 1e-20, 1e-9), Err(StepError::InvalidTolerance(_))));
+        assert!(matches!(Sdirk4::new(1, 1e-6, -1.0), Err(StepError::InvalidTolerance(_))));
+        let mut sd = Sdirk4::new(1, 1e-6, 1e-9).expect("tolerances");
+        assert_eq!(
+            sd.step_adaptive(&mut Decay, 0.0, &mut [1.0], f64::INFINITY),
+            Err(StepError::InvalidStep(f64::INFINITY))
+        );
+    }
+
+    #[test]
+    fn newton_errors_keep_their_words() {
+        let e = StepError::NewtonFailed { t: 1.0, h: 0.5, reason: NewtonError::Diverges { stage: 3, theta: 1.5 } };
+        assert_eq!(
+            e.to_string(),
+            "SDIRK4 at t = 1, h = 0.5: Newton diverges in stage 3 (contraction 1.50); reduce the step"
+        );
+    }
+}
