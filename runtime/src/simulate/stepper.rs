@@ -73,6 +73,10 @@ struct Interval {
     prev_ship_vx: f64,
 }
 
+/// A located, applied anchor switch: its offset in the segment (s), the state there, the
+/// anchor's state from then on and the ship's surge speed (m/s).
+type Switch = (f64, Vec<f64>, AnchorDof, f64);
+
 /// How a segment ended.
 enum SegmentEnd {
     Switched(AnchorEvent),
@@ -232,6 +236,7 @@ impl<'a> Stepper<'a> {
 
     /// Whether the last completed interval ends on an output time (every
     /// `solver.output_interval`, and the end time).
+    #[allow(clippy::manual_is_multiple_of)] // is_multiple_of needs Rust 1.87; the crate's MSRV is 1.80
     pub fn at_output(&self) -> bool {
         self.steps % self.stride == 0 || self.steps == self.max_steps
     }
@@ -335,12 +340,7 @@ impl<'a> Stepper<'a> {
 
     /// A switch of the anchor inside the segment of length h ending in `end`, located and
     /// applied: (offset, state, the anchor's state from then on, the ship's surge speed).
-    fn anchor_switch(
-        &mut self,
-        iv: &Interval,
-        h: f64,
-        end: &Observation,
-    ) -> Result<Option<(f64, Vec<f64>, AnchorDof, f64)>, FailureKind> {
+    fn anchor_switch(&mut self, iv: &Interval, h: f64, end: &Observation) -> Result<Option<Switch>, FailureKind> {
         let mu = self.m.mu();
         let direction = self.m.dynamics.sliding_direction();
         let span = (iv.t_seg, iv.y_seg.as_slice(), h);
