@@ -11,7 +11,8 @@ use std::path::Path;
 use kanestop_runtime::generated::GeneratedKernel;
 use kanestop_runtime::model::Model;
 use kanestop_runtime::scene::Scene;
-use kanestop_runtime::simulate::{self, RunResult, Stop};
+use kanestop_runtime::simulate::{self, FailureKind, RunResult, Stop};
+use kanestop_workflow::diagnostic::describe;
 
 fn load(name: &str) -> Scene {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/stress").join(format!("{name}.toml"));
@@ -25,26 +26,45 @@ fn run(name: &str, end_time: f64) -> RunResult {
 }
 
 fn run_scene(scene: &Scene) -> RunResult {
-    let name = &scene.meta.name;
-    let model = Model::new(scene).unwrap_or_else(|e| panic!("{name}: {e}"));
+    let model = model(scene);
     simulate::run(&model, Box::new(GeneratedKernel::new(&model.chain).unwrap()))
+}
+
+fn model(scene: &Scene) -> Model {
+    let name = &scene.meta.name;
+    Model::new(scene).unwrap_or_else(|e| panic!("{name}: {e}"))
+}
+
+/// "chain link (B_11, 143.6 kg, 1.00 m)" in `scene`.
+fn describe_body(scene: &Scene, k: usize) -> String {
+    let name = kanestop_workflow::diagnostic::body_name(&model(scene), k);
+    assert!(name.contains(&format!("(B_{k}, ")), "{name}");
+    name
+}
+
+/// The worded diagnostic of a failed run of `scene`.
+fn diagnostic(scene: &Scene, r: &RunResult) -> String {
+    let Stop::Failed(f) = &r.stop else { panic!("expected a failure, got {:?}", r.stop) };
+    describe(&model(scene), f)
 }
 
 /// Completed runs: drift below 0.5 % and finite states throughout. Failed runs: a
 /// diagnostic with a time inside the run (or t = 0 for a step refused before the run, with
 /// the valid range), a body and a suggestion.
-fn check(name: &str, r: &RunResult) {
+fn check(name: &str, scene: &Scene, r: &RunResult) {
     for s in &r.samples {
         assert!(s.bodies.iter().all(|b| [b.x, b.z, b.theta, b.vx, b.vz, b.omega].iter().all(|v| v.is_finite())));
         assert!(s.energy.balance().is_finite(), "{name}: non-finite energy at t = {}", s.t);
     }
     match &r.stop {
         Stop::Failed(f) => {
-            let refused = f.t == 0.0 && f.what.contains("solver.dt") && f.what.contains("valid range 0 < dt ≤");
-            assert!(refused || (f.t > 0.0 && f.t.is_finite()), "{name}: {f}");
+            let text = describe(&model(scene), f);
+            let refused = f.t == 0.0 && matches!(f.kind, FailureKind::StepAboveLimit { .. });
+            assert!(!refused || text.contains("valid range 0 < dt ≤"), "{name}: {text}");
+            assert!(refused || (f.t > 0.0 && f.t.is_finite()), "{name}: {text}");
             assert!(!refused || r.steps == 0, "{name}: a refused run takes no step");
-            assert!(f.body >= 2 && !f.body_name.is_empty(), "{name}: {f}");
-            assert!(!f.suggestion.is_empty() && !f.cause.is_empty(), "{name}: {f}");
+            assert!(f.body >= 2 && text.contains(&format!("body: {}", describe_body(scene, f.body))), "{name}: {text}");
+            assert!(text.contains("likely cause: ") && text.contains("suggestion: "), "{name}: {text}");
         }
         Stop::EndTime | Stop::ShipStopped => {
             assert!(r.max_energy_drift < 0.005, "{name}: drift {:e}", r.max_energy_drift);
@@ -60,20 +80,24 @@ fn rk4_limit(r: &RunResult) -> f64 {
 #[test]
 fn very_stiff_seabed_is_refused_under_rk4_at_the_papers_step() {
     let r = run("seabed_kz_x1e4", 1.0);
-    check("seabed_kz_x1e4", &r);
+    check("seabed_kz_x1e4", &load("seabed_kz_x1e4"), &r);
     // The contact mode at k_z × 1e4 limits RK4 below the paper's 2 ms: refused with the range.
     let Stop::Failed(f) = &r.stop else { panic!("expected a refusal, got {:?}", r.stop) };
     let limit = rk4_limit(&r);
     assert!((1e-3..2e-3).contains(&limit), "limit {limit}");
-    assert!(f.t == 0.0 && f.suggestion.contains("solver.dt") && f.suggestion.contains("sdirk4"), "{f}");
+    let text = diagnostic(&load("seabed_kz_x1e4"), &r);
+    let suggestion = text.split("suggestion: ").nth(1).unwrap_or_default();
+    assert!(f.t == 0.0 && suggestion.contains("solver.dt") && suggestion.contains("sdirk4"), "{text}");
 }
 
 #[test]
 fn step_beyond_the_stability_limit_is_refused_before_the_run() {
     let r = run("dt_too_large", 5.0);
-    check("dt_too_large", &r);
+    check("dt_too_large", &load("dt_too_large"), &r);
     let Stop::Failed(f) = &r.stop else { panic!("expected a refusal, got {:?}", r.stop) };
-    assert!(f.what.contains("solver.dt = 0.05 s"), "{f}");
+    assert!(matches!(f.kind, FailureKind::StepAboveLimit { dt, .. } if dt == 0.05), "{f}");
+    let text = diagnostic(&load("dt_too_large"), &r);
+    assert!(text.contains("solver.dt = 0.05 s is above this scene's RK4 stability limit"), "{text}");
     assert!(rk4_limit(&r) < 0.05 && r.samples.is_empty() && r.rhs_evaluations == 0);
 }
 
@@ -85,10 +109,12 @@ fn a_step_that_becomes_unstable_later_stops_with_the_diagnostic() {
     let mut scene = load("dt_too_large");
     scene.solver.dt = 0.02;
     let r = run_scene(&scene);
-    check("case 1 at 20 ms", &r);
+    check("case 1 at 20 ms", &scene, &r);
     assert!(rk4_limit(&r) > 0.02);
     let Stop::Failed(f) = &r.stop else { panic!("expected a failure, got {:?}", r.stop) };
-    assert!(f.t > 0.5 && f.what.contains("energy runaway") && f.suggestion.contains("solver.dt"), "{f}");
+    assert!(f.t > 0.5 && matches!(f.kind, FailureKind::EnergyRunaway { .. }), "{f}");
+    let text = diagnostic(&scene, &r);
+    assert!(text.contains("energy runaway") && text.contains("suggestion: reduce solver.dt"), "{text}");
     assert!(!r.samples.is_empty(), "the samples before the failure are kept");
 }
 
@@ -135,7 +161,7 @@ fn rk4_grows_the_fastest_mode_only_beyond_the_limit() {
 #[test]
 fn high_friction_anchor_completes() {
     let r = run("friction_mu_1", 10.0);
-    check("friction_mu_1", &r);
+    check("friction_mu_1", &load("friction_mu_1"), &r);
     assert_eq!(r.stop, Stop::ShipStopped);
 }
 
@@ -143,7 +169,7 @@ fn high_friction_anchor_completes() {
 fn deep_water_and_nearly_taut_cable_run_cleanly() {
     for name in ["deep_water_50m", "taut_cable"] {
         let r = run(name, 3.0);
-        check(name, &r);
+        check(name, &load(name), &r);
         assert!(!matches!(r.stop, Stop::Failed(_)), "{name}: {:?}", r.stop);
     }
 }
@@ -158,11 +184,14 @@ fn constraint_force_spike_stops_naming_the_joint() {
     scene.cable.break_load = 100.0;
     scene.solver.end_time = 1.0;
     let r = run_scene(&scene);
-    check("spike", &r);
+    check("spike", &scene, &r);
     let Stop::Failed(f) = &r.stop else { panic!("expected a failure, got {:?}", r.stop) };
-    assert!(f.what.contains("constraint-force spike: joint") && f.what.contains("1.000e3 N"), "{f}");
+    let FailureKind::ForceSpike { joint, bound, .. } = f.kind else { panic!("expected a spike, got {f}") };
+    assert!(joint == f.body && bound == 1e3, "{f}");
+    let text = diagnostic(&scene, &r);
+    assert!(text.contains("constraint-force spike: joint") && text.contains("1.000e3 N"), "{text}");
     let n = r.samples[0].bodies.len();
-    assert!((2..=n).contains(&f.body) && f.body_name.contains(&format!("B_{}", f.body)), "{f}");
+    assert!((2..=n).contains(&f.body) && text.contains(&format!("body: {}", describe_body(&scene, f.body))), "{text}");
     assert!(f.t <= 2.0 * scene.solver.dt, "{f}");
 }
 
@@ -188,7 +217,7 @@ fn every_stress_scene_loads() {
 #[test]
 fn fine_cable_converges_to_the_paper_discretisation() {
     let fine = run("fine_cable", 60.0);
-    check("fine_cable", &fine);
+    check("fine_cable", &load("fine_cable"), &fine);
     assert_eq!(fine.samples[0].bodies.len(), 170);
     let scene = kanestop_runtime::paper::CASES[0].scene();
     let model = Model::new(&scene).unwrap();
@@ -245,7 +274,7 @@ fn full_stress_set_completes_with_at_least_one_method() {
     for (scene, (_, r)) in runs.iter().zip(&results) {
         let name = &scene.meta.name;
         let method = scene.solver.integrator;
-        check(&format!("{name} ({method:?})"), r);
+        check(&format!("{name} ({method:?})"), scene, r);
         let completed = matches!(r.stop, Stop::ShipStopped | Stop::EndTime);
         let refused = method == Method::Rk4 && REFUSED_UNDER_RK4.contains(&name.as_str());
         assert_eq!(completed, !refused, "{name} ({method:?}): {:?}", r.stop);

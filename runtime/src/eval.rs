@@ -129,7 +129,7 @@ pub fn evaluate(model: &Model, kernel: Box<dyn Kernel>, state: Option<&StateFile
     let physics = forces.description();
     let mut dynamics = Dynamics::new(kernel, forces, anchor);
     let mut qdd = vec![0.0; n];
-    dynamics.accelerations(&q, &u, &mut qdd).map_err(|e| EvalError(e.0))?;
+    dynamics.accelerations(&q, &u, &mut qdd).map_err(|e| EvalError(e.to_string()))?;
     let active = dynamics.active_speeds();
     // M and f for the report come from an assembly, whatever the kernel's solve path.
     let mut asm = Assembly::new(n);

@@ -14,7 +14,7 @@ use kanestop_chain::{ParamField, StructuralZero, Variant, Water};
 use kanestop_generated::BodyParams;
 
 use crate::chain::Chain;
-use crate::integrate::RhsError;
+use crate::kernel::RhsError;
 use crate::kernel::{
     check_friction_factor, solve_assembled, AnchorDof, AnchorReaction, Assembly, BodyAcceleration, BodyState, Kernel,
     Load, LoadModel,
@@ -214,11 +214,7 @@ impl Kernel for GeneratedKernel {
             }
         };
         if !reaction.holding.is_finite() || !reaction.normal.is_finite() || qdd.iter().any(|x| !x.is_finite()) {
-            return Err(RhsError(
-                "the generated recursive solve produced a non-finite acceleration (non-finite state or \
-                 degenerate chain)"
-                    .into(),
-            ));
+            return Err(RhsError::NonFiniteAcceleration);
         }
         Ok(reaction)
     }

@@ -1,27 +1,16 @@
 //! Time integration of ẏ = F(t, y). Integrators know nothing about ships: they see an
 //! [`OdeSystem`] only.
 
-use std::fmt;
-
 pub mod adaptive;
 pub mod dp5;
 pub mod sdirk4;
 
 pub use adaptive::{AdaptiveIntegrator, AdaptiveStats, DenseStep, StepControl, StepError, StepOutcome, Tolerances};
 pub use dp5::Dp5;
-pub use sdirk4::Sdirk4;
+pub use sdirk4::{NewtonError, Sdirk4};
 
-/// The right-hand side could not be evaluated (e.g. a singular mass matrix).
-#[derive(Clone, Debug, PartialEq)]
-pub struct RhsError(pub String);
-
-impl fmt::Display for RhsError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(&self.0)
-    }
-}
-
-impl std::error::Error for RhsError {}
+/// The right-hand side could not be evaluated; defined with the kernels that produce it.
+pub use crate::kernel::RhsError;
 
 /// A first-order system ẏ = F(t, y).
 pub trait OdeSystem {
@@ -43,7 +32,7 @@ pub trait OdeSystem {
 /// A one-step method.
 pub trait Integrator {
     /// Advances `y` from `t` to `t + dt`.
-    fn step(&mut self, system: &mut dyn OdeSystem, t: f64, y: &mut [f64], dt: f64) -> Result<(), RhsError>;
+    fn step(&mut self, system: &mut dyn OdeSystem, t: f64, y: &mut [f64], dt: f64) -> Result<(), StepError>;
 
     /// Forgets anything cached from earlier steps (e.g. a first-same-as-last derivative):
     /// called after the system changed without the state changing (an anchor switch, a new
@@ -76,7 +65,7 @@ impl Rk4 {
 }
 
 impl Integrator for Rk4 {
-    fn step(&mut self, sys: &mut dyn OdeSystem, t: f64, y: &mut [f64], dt: f64) -> Result<(), RhsError> {
+    fn step(&mut self, sys: &mut dyn OdeSystem, t: f64, y: &mut [f64], dt: f64) -> Result<(), StepError> {
         let n = y.len();
         if self.k1.len() != n {
             *self = Rk4::new(n);
@@ -124,7 +113,7 @@ impl<M: AdaptiveIntegrator> Adaptive<M> {
 }
 
 impl<M: AdaptiveIntegrator> Integrator for Adaptive<M> {
-    fn step(&mut self, sys: &mut dyn OdeSystem, t: f64, y: &mut [f64], dt: f64) -> Result<(), RhsError> {
+    fn step(&mut self, sys: &mut dyn OdeSystem, t: f64, y: &mut [f64], dt: f64) -> Result<(), StepError> {
         let h = self.h_next.unwrap_or(dt);
         let Adaptive { method, dense, used, .. } = self;
         *used = 0;

@@ -19,7 +19,27 @@
 
 use nalgebra::{DMatrix, DVector};
 
-use crate::integrate::RhsError;
+/// Why a kernel could not produce the accelerations: the right-hand side of ẏ = F(t, y)
+/// cannot be evaluated at this state.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum RhsError {
+    /// The Cholesky factorisation of a_lp (Eq. 26) failed.
+    #[error("the mass matrix a_lp is not positive definite (non-finite state or degenerate chain)")]
+    MassNotPositiveDefinite,
+    /// The generated recursive O(N) solve returned a non-finite ẍ or reaction.
+    #[error("the generated recursive solve produced a non-finite acceleration (non-finite state or degenerate chain)")]
+    NonFiniteAcceleration,
+    /// 1 + μ ∂N/∂F ≤ 0: sliding friction is ill-posed (Painlevé's paradox, Eq. 37).
+    #[error(
+        "the anchor's sliding friction is ill-posed (1 + μ ∂N/∂F = {factor:.3e} ≤ 0, Painlevé's paradox): \
+         the chain's pull on the anchor grows the normal force faster than friction resists; \
+         lower environment.seabed_friction"
+    )]
+    IllPosedFriction {
+        /// The factor 1 + μ ∂N/∂F (dimensionless).
+        factor: f64,
+    },
+}
 
 /// Whether the anchor's surge is a degree of freedom.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
@@ -178,9 +198,7 @@ pub fn solve_assembled(
         AnchorDof::Stuck => n - 1,
     };
     let a: DMatrix<f64> = asm.mass.view((0, 0), (m, m)).into_owned();
-    let chol = a.cholesky().ok_or_else(|| {
-        RhsError("the mass matrix a_lp is not positive definite (non-finite state or degenerate chain)".into())
-    })?;
+    let chol = a.cholesky().ok_or(RhsError::MassNotPositiveDefinite)?;
     let mut x = chol.solve(&asm.rhs.rows(0, m).into_owned());
     let heave = asm.heave.rows(0, m);
     let mut normal = heave.dot(&x) - asm.heave_rhs;
@@ -208,10 +226,6 @@ pub fn check_friction_factor(factor: f64) -> Result<(), RhsError> {
     if !(factor <= 0.0) {
         Ok(()) // NaN is left to the caller's finiteness check
     } else {
-        Err(RhsError(format!(
-            "the anchor's sliding friction is ill-posed (1 + μ ∂N/∂F = {factor:.3e} ≤ 0, Painlevé's paradox): \
-             the chain's pull on the anchor grows the normal force faster than friction resists; \
-             lower environment.seabed_friction"
-        )))
+        Err(RhsError::IllPosedFriction { factor })
     }
 }

@@ -18,6 +18,20 @@ use nalgebra::{Complex, DMatrix};
 use crate::dynamics::Dynamics;
 use crate::integrate::{OdeSystem, RhsError};
 
+/// Why the stability limit could not be computed.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum StabilityError {
+    /// The right-hand side failed at a perturbed state.
+    #[error(transparent)]
+    Rhs(#[from] RhsError),
+    /// A difference quotient of ∂ẏ/∂y is NaN or infinite.
+    #[error("the Jacobian at the initial state is not finite")]
+    NonFiniteJacobian,
+    /// The real Schur decomposition did not converge.
+    #[error("the eigenvalues of the Jacobian at the initial state did not converge")]
+    NoEigenvalues,
+}
+
 /// The fastest mode of a scene at t = 0 and the step RK4 can take on it.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct StabilityLimit {
@@ -68,7 +82,7 @@ pub fn rk4_step_limit(lambda: Complex<f64>) -> f64 {
 }
 
 /// The [`StabilityLimit`] of `dynamics` at the state `y0` = (q, u, W).
-pub fn limit(dynamics: &mut Dynamics, y0: &[f64]) -> Result<StabilityLimit, RhsError> {
+pub fn limit(dynamics: &mut Dynamics, y0: &[f64]) -> Result<StabilityLimit, StabilityError> {
     let n = dynamics.body_count();
     let dim = 2 * n;
     let mut jac = DMatrix::zeros(dim, dim);
@@ -86,13 +100,12 @@ pub fn limit(dynamics: &mut Dynamics, y0: &[f64]) -> Result<StabilityLimit, RhsE
         }
     }
     if jac.iter().any(|v| !v.is_finite()) {
-        return Err(RhsError("the Jacobian at the initial state is not finite".into()));
+        return Err(StabilityError::NonFiniteJacobian);
     }
     // The hinge whose own angle drives its acceleration hardest.
     let (body, _) =
         (0..n - 1).map(|i| (i + 2, -jac[(n + i, i)])).fold((2, f64::MIN), |b, c| if c.1 > b.1 { c } else { b });
-    let schur = nalgebra::linalg::Schur::try_new(jac, 1e-12, 100_000)
-        .ok_or_else(|| RhsError("the eigenvalues of the Jacobian at the initial state did not converge".into()))?;
+    let schur = nalgebra::linalg::Schur::try_new(jac, 1e-12, 100_000).ok_or(StabilityError::NoEigenvalues)?;
     let mut best = StabilityLimit { rk4_dt: f64::INFINITY, lambda: Complex::new(0.0, 0.0), body };
     for lambda in schur.complex_eigenvalues().iter() {
         let h = rk4_step_limit(*lambda);

@@ -1,9 +1,102 @@
 //! A numerical failure in words: what was detected, where, the likely cause and what to try.
+//!
+//! The runtime reports a [`Failure`] as data (time, body, kind); this module names the body
+//! ("cable stage 1 (B_18, 27.7 kg, 2.00 m)"), words what was detected and advises which
+//! scene field or flag to change for the method the scene uses.
 
 use kanestop_runtime::model::Model;
-use kanestop_runtime::simulate::Failure;
+use kanestop_runtime::scene::Method;
+use kanestop_runtime::simulate::{Failure, FailureKind, SPIKE_FACTOR};
+use kanestop_runtime::stability::StabilityLimit;
 
 /// The diagnostic of `failure` in `model`'s run, on several lines.
-pub fn describe(_model: &Model, failure: &Failure) -> String {
-    failure.to_string()
+pub fn describe(model: &Model, failure: &Failure) -> String {
+    let (what, cause, suggestion) = match &failure.kind {
+        FailureKind::StepAboveLimit { dt, limit } => refusal(*dt, limit),
+        kind => {
+            let swinging = match kind {
+                FailureKind::ForceSpike { swinging, .. } => *swinging,
+                _ => failure.body,
+            };
+            let (cause, suggestion) = advice(model, failure.t, swinging);
+            (what(kind), cause, suggestion)
+        }
+    };
+    format!(
+        "numerical failure at t = {:.4} s: {what}\n  body: {}\n  likely cause: {cause}\n  suggestion: {suggestion}",
+        failure.t,
+        body_name(model, failure.body)
+    )
+}
+
+/// "auxiliary rod (B_45, 13.9 kg, 1.00 m)" for body k (1-based).
+pub fn body_name(model: &Model, k: usize) -> String {
+    let body = &model.chain.bodies[k - 1];
+    format!("{} (B_{k}, {:.1} kg, {:.2} m)", body.kind, body.mass, body.length())
+}
+
+/// What a run-time failure detected.
+fn what(kind: &FailureKind) -> String {
+    match kind {
+        FailureKind::StepAboveLimit { dt, limit } => refusal(*dt, limit).0,
+        FailureKind::Stability(e) => e.to_string(),
+        FailureKind::Rhs(e) => e.to_string(),
+        FailureKind::Step(e) => e.to_string(),
+        FailureKind::NonFiniteState => "non-finite state".to_string(),
+        FailureKind::EnergyRunaway { drift, limit } => {
+            format!("energy runaway: |E − E_0|/E_0 = {drift:.3e} exceeds solver.max_energy_drift = {limit}")
+        }
+        FailureKind::ForceSpike { joint, force, bound, .. } => format!(
+            "constraint-force spike: joint {joint} (B_{} – B_{joint}) carries {force:.3e} N, above {SPIKE_FACTOR} × \
+             the line's largest break load ({bound:.3e} N in all)",
+            joint - 1
+        ),
+    }
+}
+
+/// The refusal of an RK4 step `dt` (s) above the stability limit: (what, cause, suggestion).
+fn refusal(dt: f64, limit: &StabilityLimit) -> (String, String, String) {
+    let (re, im) = (limit.lambda.re, limit.lambda.im.abs());
+    let what = format!(
+        "solver.dt = {dt} s is above this scene's RK4 stability limit of {:.3e} s: valid range 0 < dt ≤ {:.3e} s",
+        limit.rk4_dt, limit.rk4_dt
+    );
+    let cause = format!(
+        "the fastest mode of the linearised equations at t = 0 (eigenvalue {re:.3e} ± {im:.3e}i 1/s, period \
+         {:.3e} s) would grow without bound at this step",
+        if im > 0.0 { 2.0 * std::f64::consts::PI / im } else { f64::INFINITY }
+    );
+    let suggestion = format!(
+        "set solver.dt ≤ {:.1e} s, or integrator = \"dp5\" (adapts its step) or \"sdirk4\" (stiff)",
+        0.9 * limit.rk4_dt
+    );
+    (what, cause, suggestion)
+}
+
+/// The likely cause and what to try for a failure at `t` (s) whose unstable mode lives at
+/// body `k` (1-based), for the scene's method.
+fn advice(model: &Model, t: f64, k: usize) -> (String, String) {
+    let body = &model.chain.bodies[k - 1];
+    let solver = &model.scene.solver;
+    let dt = solver.dt;
+    let ratio = model.chain.bodies.iter().map(|b| b.mass).fold(0.0, f64::max) / body.mass;
+    let mode = format!(
+        "the stiffest mode: a light element swinging between heavy neighbours under high tension (mass ratio \
+         {ratio:.0}:1 with the heaviest body)"
+    );
+    let kept = format!("the first {:.3} s up to the failure are kept", (t - dt).max(0.0));
+    match solver.integrator {
+        Method::Rk4 => (
+            format!("the explicit step dt = {dt} s is beyond the stability limit of {mode}"),
+            format!("reduce solver.dt (try {:.1e} s) or use integrator = \"dp5\"; {kept}", dt / 16.0),
+        ),
+        Method::Dp5 => (
+            format!("the error-controlled steps could not follow {mode}"),
+            format!("tighten solver.rtol (now {}) or use integrator = \"sdirk4\"; {kept}", solver.rtol),
+        ),
+        Method::Sdirk4 => (
+            format!("the implicit method's Newton iterations or error control failed on {mode}"),
+            format!("tighten solver.rtol (now {}) or reduce solver.dt (now {dt} s); {kept}", solver.rtol),
+        ),
+    }
 }

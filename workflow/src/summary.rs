@@ -123,7 +123,7 @@ fn outcome_lines(out: &mut Lines, model: &Model, result: &RunResult) {
                 None => "end time reached; the ship did not stop".to_string(),
             },
         ),
-        Stop::Failed(f) => out.line("FAILED", f.to_string().replace('\n', "\n          ")),
+        Stop::Failed(f) => out.line("FAILED", crate::diagnostic::describe(model, f).replace('\n', "\n          ")),
     }
     let anchor = match (model.anchor, result.anchor_start()) {
         (_, Some(t)) => {

@@ -1,8 +1,7 @@
 //! What the adaptive methods share: tolerances, the step-size controller, the outcome of one
 //! accepted step and the errors an adaptive step can end in.
 
-use std::fmt;
-
+use super::sdirk4::NewtonError;
 use super::{OdeSystem, RhsError};
 
 /// Error tolerances: a component's error is measured against atol_i + rtol·max(|y0_i|, |y1_i|).
@@ -151,13 +150,19 @@ pub struct AdaptiveStats {
     pub newton_iterations: u64,
 }
 
-/// Why an adaptive step failed.
-#[derive(Clone, Debug, PartialEq)]
+/// Why a step failed (adaptive or fixed).
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum StepError {
     /// The right-hand side failed.
-    Rhs(RhsError),
+    #[error(transparent)]
+    Rhs(#[from] RhsError),
     /// The error test (or, for implicit methods, Newton) kept failing until the step would
     /// have to go below the floor.
+    #[error(
+        "step-size collapse at t = {t:.6} s: the step fell to {h:.3e} s, below the floor {h_min:.3e} s \
+         ({reason}; scaled error {error:.3e}, largest in state component {component}); the problem is \
+         stiff or singular here: try the stiff method or looser tolerances"
+    )]
     StepSizeCollapse {
         /// Start of the step, s.
         t: f64,
@@ -173,42 +178,35 @@ pub enum StepError {
         reason: String,
     },
     /// A tolerance is zero, negative or not finite.
+    #[error("invalid tolerance: {0}")]
     InvalidTolerance(String),
     /// The step requested is not positive and finite.
+    #[error("invalid step h = {0}: must be finite and > 0")]
     InvalidStep(f64),
-}
-
-impl fmt::Display for StepError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            StepError::Rhs(e) => write!(f, "{e}"),
-            StepError::StepSizeCollapse { t, h, h_min, error, component, reason } => write!(
-                f,
-                "step-size collapse at t = {t:.6} s: the step fell to {h:.3e} s, below the floor {h_min:.3e} s \
-                 ({reason}; scaled error {error:.3e}, largest in state component {component}); the problem is \
-                 stiff or singular here: try the stiff method or looser tolerances"
-            ),
-            StepError::InvalidTolerance(m) => write!(f, "invalid tolerance: {m}"),
-            StepError::InvalidStep(h) => write!(f, "invalid step h = {h}: must be finite and > 0"),
-        }
-    }
-}
-
-impl std::error::Error for StepError {}
-
-impl From<RhsError> for StepError {
-    fn from(e: RhsError) -> Self {
-        StepError::Rhs(e)
-    }
-}
-
-impl From<StepError> for RhsError {
-    fn from(e: StepError) -> Self {
-        match e {
-            StepError::Rhs(r) => r,
-            other => RhsError(other.to_string()),
-        }
-    }
+    /// Hairer's starting step came out non-finite or zero: f(t, y) is not finite.
+    #[error("non-finite derivative at t = {t}: no starting step")]
+    NoStartingStep {
+        /// s.
+        t: f64,
+    },
+    /// A fixed SDIRK4 step: the iteration matrix I − hγJ is singular.
+    #[error("SDIRK4: I − hγJ is singular at t = {t} with h = {h}")]
+    SingularIterationMatrix {
+        /// Start of the step, s.
+        t: f64,
+        /// The step, s.
+        h: f64,
+    },
+    /// A fixed SDIRK4 step: Newton failed with a Jacobian formed at the step's start.
+    #[error("SDIRK4 at t = {t}, h = {h}: {reason}; reduce the step")]
+    NewtonFailed {
+        /// Start of the step, s.
+        t: f64,
+        /// The step, s.
+        h: f64,
+        /// How Newton failed.
+        reason: NewtonError,
+    },
 }
 
 /// A detached copy of one accepted step's continuous extension:
@@ -357,6 +355,6 @@ pub fn initial_step(
     if h.is_finite() && h > 0.0 {
         Ok(h)
     } else {
-        Err(StepError::Rhs(RhsError(format!("non-finite derivative at t = {t}: no starting step"))))
+        Err(StepError::NoStartingStep { t })
     }
 }

@@ -337,11 +337,80 @@ impl AdaptiveIntegrator for Dp5 {
 
 impl Integrator for Dp5 {
     /// One DP5 step of exactly `dt`, without error control.
-    fn step(&mut self, sys: &mut dyn OdeSystem, t: f64, y: &mut [f64], dt: f64) -> Result<(), RhsError> {
+    fn step(&mut self, sys: &mut dyn OdeSystem, t: f64, y: &mut [f64], dt: f64) -> Result<(), StepError> {
         self.resize(y.len());
         self.first_stage(sys, t, y)?;
         self.attempt(sys, t, y, dt)?;
         self.accept(t, y, dt);
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// ẏ = −y.
+    struct Decay;
+    impl OdeSystem for Decay {
+        fn dim(&self) -> usize {
+            1
+        }
+        fn rhs(&mut self, _t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), RhsError> {
+            dy[0] = -y[0];
+            Ok(())
+        }
+    }
+
+    /// Error at t = 1 of `steps` fixed DP5 steps on ẏ = −y from y = 1.
+    fn fixed_error(steps: usize) -> f64 {
+        let mut dp = Dp5::new(1, 1e-6, 1e-9).expect("tolerances");
+        let (mut y, dt) = ([1.0], 1.0 / steps as f64);
+        for i in 0..steps {
+            Integrator::step(&mut dp, &mut Decay, i as f64 * dt, &mut y, dt).expect("step");
+        }
+        (y[0] - (-1.0f64).exp()).abs()
+    }
+
+    #[test]
+    fn fixed_steps_are_fifth_order() {
+        // Halving the step divides the error by 2⁵ = 32.
+        let ratio = fixed_error(16) / fixed_error(32);
+        assert!((ratio - 32.0).abs() < 3.0, "ratio {ratio}");
+    }
+
+    #[test]
+    fn adaptive_steps_meet_the_tolerance() {
+        for tol in [1e-4, 1e-8] {
+            let mut dp = Dp5::new(1, tol, tol).expect("tolerances");
+            let mut y = [1.0];
+            dp.integrate_to(&mut Decay, 0.0, &mut y, 2.0, 0.1).expect("integrates");
+            let err = (y[0] - (-2.0f64).exp()).abs();
+            assert!(err < 10.0 * tol && err > 0.0, "tol {tol}: error {err}");
+        }
+    }
+
+    #[test]
+    fn dense_output_is_accurate_inside_the_step() {
+        let mut dp = Dp5::new(1, 1e-10, 1e-12).expect("tolerances");
+        let mut y = [1.0];
+        let out = dp.step_adaptive(&mut Decay, 0.0, &mut y, 0.05).expect("step");
+        let mut mid = [0.0];
+        for theta in [0.0, 0.25, 0.5, 0.9, 1.0] {
+            dp.dense_into(theta, &mut mid);
+            let exact = (-theta * out.h).exp();
+            assert!((mid[0] - exact).abs() < 1e-9, "θ = {theta}: {} vs {exact}", mid[0]);
+        }
+        dp.dense_into(1.0, &mut mid);
+        assert_eq!(mid[0], y[0], "the interpolant ends on the step's solution");
+    }
+
+    #[test]
+    fn invalid_tolerances_and_steps_are_refused() {
+        assert!(matches!(Dp5::new(1, -1e-6, 1e-9), Err(StepError::InvalidTolerance(_))));
+        assert!(matches!(Dp5::new(1, 0.0, 0.0), Err(StepError::InvalidTolerance(_))));
+        assert!(matches!(Dp5::new(1, f64::NAN, 1e-9), Err(StepError::InvalidTolerance(_))));
+        let mut dp = Dp5::new(1, 1e-6, 1e-9).expect("tolerances");
+        assert_eq!(dp.step_adaptive(&mut Decay, 0.0, &mut [1.0], 0.0), Err(StepError::InvalidStep(0.0)));
     }
 }

@@ -85,11 +85,58 @@ enum JacobianState {
     Current,
 }
 
+/// How the simplified Newton iterations of one stage failed.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum NewtonError {
+    /// The update became non-finite.
+    #[error("non-finite Newton update in stage {stage}")]
+    NonFinite {
+        /// The stage, 1 … 5.
+        stage: usize,
+    },
+    /// The contraction θ = ‖Δ_{m+1}‖/‖Δ_m‖ reached 0.99.
+    #[error("Newton diverges in stage {stage} (contraction {theta:.2})")]
+    Diverges {
+        /// The stage, 1 … 5.
+        stage: usize,
+        /// The last contraction.
+        theta: f64,
+    },
+    /// [`Sdirk4::max_newton`] iterations did not reach the tolerance κ.
+    #[error("Newton not converged in {iterations} iterations in stage {stage}")]
+    NotConverged {
+        /// The iteration limit.
+        iterations: u32,
+        /// The stage, 1 … 5.
+        stage: usize,
+    },
+}
+
 /// Why the stage equations were not solved.
 enum NewtonFailure {
     Rhs(RhsError),
     /// Diverged, too slow, or non-finite.
-    NoConvergence(String),
+    NoConvergence(NewtonError),
+}
+
+/// Scratch vectors of the stage solves, each as long as the state.
+#[derive(Clone, Debug, Default)]
+struct StageWork {
+    /// The stage increment z = Y_i − y.
+    z: Vec<f64>,
+    /// Its known part Σ_{j<i} a_ij h k_j.
+    s: Vec<f64>,
+    /// The Newton correction.
+    delta: Vec<f64>,
+    ytmp: Vec<f64>,
+    ftmp: Vec<f64>,
+}
+
+impl StageWork {
+    fn new(dim: usize) -> Self {
+        let z = || vec![0.0; dim];
+        StageWork { z: z(), s: z(), delta: z(), ytmp: z(), ftmp: z() }
+    }
 }
 
 impl From<RhsError> for NewtonFailure {
@@ -127,11 +174,8 @@ pub struct Sdirk4 {
     lu_hgamma: f64,
     /// h·f(Y_i) of the stages.
     hk: [Vec<f64>; 5],
-    z: Vec<f64>,
-    s: Vec<f64>,
-    /// The Newton correction.
-    delta: Vec<f64>,
-    ytmp: Vec<f64>,
+    work: StageWork,
+    /// Scratch for the difference Jacobian.
     ftmp: Vec<f64>,
     rhs_vec: DVector<f64>,
     err: Vec<f64>,
@@ -170,10 +214,7 @@ impl Sdirk4 {
             lu: None,
             lu_hgamma: f64::NAN,
             hk: [z(), z(), z(), z(), z()],
-            z: z(),
-            s: z(),
-            delta: z(),
-            ytmp: z(),
+            work: StageWork::new(dim),
             ftmp: z(),
             rhs_vec: DVector::zeros(dim),
             err: z(),
@@ -317,90 +358,98 @@ impl Sdirk4 {
 
     /// Solves the five stage equations for a step h from (t, y); y1 = y + z (last stage).
     fn stages(&mut self, sys: &mut dyn OdeSystem, t: f64, y: &[f64], h: f64) -> Result<(), NewtonFailure> {
+        self.theta_max = 0.0;
+        let mut w = std::mem::take(&mut self.work);
+        let mut result = Ok(());
+        for st in 0..5 {
+            result = self.stage(sys, t, y, h, st, &mut w);
+            if result.is_err() {
+                break;
+            }
+        }
+        self.work = w;
+        result
+    }
+
+    /// Stage `st` (0-based): predictor, Newton, and h k_st = (z − s)/γ.
+    fn stage(
+        &mut self,
+        sys: &mut dyn OdeSystem,
+        t: f64,
+        y: &[f64],
+        h: f64,
+        st: usize,
+        w: &mut StageWork,
+    ) -> Result<(), NewtonFailure> {
+        // Known part s = Σ_{j<st} a_ij h k_j and a predictor for z.
+        for i in 0..self.dim {
+            let mut acc = 0.0;
+            for (j, a) in A[st].iter().enumerate().take(st) {
+                acc += a * self.hk[j][i];
+            }
+            w.s[i] = acc;
+            let last = if st == 0 { h * self.f0[i] } else { self.hk[st - 1][i] };
+            w.z[i] = acc + GAMMA * last;
+        }
+        let (eta, theta) = self.newton(sys, t, y, h, st, w)?;
+        self.eta_old = eta;
+        self.theta_max = self.theta_max.max(theta);
+        for i in 0..self.dim {
+            self.hk[st][i] = (w.z[i] - w.s[i]) / GAMMA;
+        }
+        Ok(())
+    }
+
+    /// Simplified Newton on z = s + hγ f(t + c h, y + z) for stage `st` from the predictor in
+    /// `w.z`; returns (η, θ) of the last iteration.
+    fn newton(
+        &mut self,
+        sys: &mut dyn OdeSystem,
+        t: f64,
+        y: &[f64],
+        h: f64,
+        st: usize,
+        w: &mut StageWork,
+    ) -> Result<(f64, f64), NewtonFailure> {
         let n = self.dim;
         let hg = h * GAMMA;
-        self.theta_max = 0.0;
-        let mut z = std::mem::take(&mut self.z);
-        let mut s = std::mem::take(&mut self.s);
-        let mut delta = std::mem::take(&mut self.delta);
-        let mut ytmp = std::mem::take(&mut self.ytmp);
-        let mut ft = std::mem::take(&mut self.ftmp);
-        let result = (|| {
-            for st in 0..5 {
-                // Known part s = Σ_{j<st} a_ij h k_j and a predictor for z.
-                for i in 0..n {
-                    let mut acc = 0.0;
-                    for (j, a) in A[st].iter().enumerate().take(st) {
-                        acc += a * self.hk[j][i];
-                    }
-                    s[i] = acc;
-                    let last = if st == 0 { h * self.f0[i] } else { self.hk[st - 1][i] };
-                    z[i] = acc + GAMMA * last;
-                }
-                let mut norm_prev = f64::NAN;
-                let mut eta = self.eta_old.max(f64::EPSILON).powf(0.8);
-                let mut theta = 0.0;
-                let mut converged = false;
-                for m in 0..self.max_newton {
-                    for i in 0..n {
-                        ytmp[i] = y[i] + z[i];
-                    }
-                    self.eval(sys, t + C[st] * h, &ytmp, &mut ft)?;
-                    self.stats.newton_iterations += 1;
-                    for i in 0..n {
-                        delta[i] = s[i] + hg * ft[i] - z[i];
-                    }
-                    self.solve_in_place(&mut delta);
-                    let mut sum = 0.0;
-                    for i in 0..n {
-                        z[i] += delta[i];
-                        let sc = self.tol.scale(i, y[i], y[i]);
-                        sum += (delta[i] / sc).powi(2);
-                    }
-                    let norm = (sum / n.max(1) as f64).sqrt();
-                    if !norm.is_finite() {
-                        return Err(NewtonFailure::NoConvergence(format!(
-                            "non-finite Newton update in stage {}",
-                            st + 1
-                        )));
-                    }
-                    if m > 0 {
-                        theta = norm / norm_prev;
-                        if theta >= 0.99 {
-                            return Err(NewtonFailure::NoConvergence(format!(
-                                "Newton diverges in stage {} (contraction {theta:.2})",
-                                st + 1
-                            )));
-                        }
-                        eta = theta / (1.0 - theta);
-                    }
-                    norm_prev = norm;
-                    if eta * norm <= self.kappa || norm <= 1e-12 {
-                        converged = true;
-                        break;
-                    }
-                }
-                if !converged {
-                    return Err(NewtonFailure::NoConvergence(format!(
-                        "Newton not converged in {} iterations in stage {}",
-                        self.max_newton,
-                        st + 1
-                    )));
-                }
-                self.eta_old = eta;
-                self.theta_max = self.theta_max.max(theta);
-                for i in 0..n {
-                    self.hk[st][i] = (z[i] - s[i]) / GAMMA;
-                }
+        let stage = st + 1;
+        let mut norm_prev = f64::NAN;
+        let mut eta = self.eta_old.max(f64::EPSILON).powf(0.8);
+        let mut theta = 0.0;
+        for m in 0..self.max_newton {
+            for i in 0..n {
+                w.ytmp[i] = y[i] + w.z[i];
             }
-            Ok(())
-        })();
-        self.z = z;
-        self.s = s;
-        self.delta = delta;
-        self.ytmp = ytmp;
-        self.ftmp = ft;
-        result
+            self.eval(sys, t + C[st] * h, &w.ytmp, &mut w.ftmp)?;
+            self.stats.newton_iterations += 1;
+            for i in 0..n {
+                w.delta[i] = w.s[i] + hg * w.ftmp[i] - w.z[i];
+            }
+            self.solve_in_place(&mut w.delta);
+            let mut sum = 0.0;
+            for i in 0..n {
+                w.z[i] += w.delta[i];
+                let sc = self.tol.scale(i, y[i], y[i]);
+                sum += (w.delta[i] / sc).powi(2);
+            }
+            let norm = (sum / n.max(1) as f64).sqrt();
+            if !norm.is_finite() {
+                return Err(NewtonFailure::NoConvergence(NewtonError::NonFinite { stage }));
+            }
+            if m > 0 {
+                theta = norm / norm_prev;
+                if theta >= 0.99 {
+                    return Err(NewtonFailure::NoConvergence(NewtonError::Diverges { stage, theta }));
+                }
+                eta = theta / (1.0 - theta);
+            }
+            norm_prev = norm;
+            if eta * norm <= self.kappa || norm <= 1e-12 {
+                return Ok((eta, theta));
+            }
+        }
+        Err(NewtonFailure::NoConvergence(NewtonError::NotConverged { iterations: self.max_newton, stage }))
     }
 
     /// Filtered error estimate of the solved stages into `err`.
@@ -415,7 +464,7 @@ impl Sdirk4 {
 
     fn accept(&mut self, t: f64, y: &mut [f64], h: f64) {
         for (i, yi) in y.iter_mut().enumerate() {
-            let y1 = *yi + self.z[i];
+            let y1 = *yi + self.work.z[i];
             self.dense[0][i] = *yi;
             self.dense[1][i] = h * self.f0[i];
             self.dense[2][i] = y1;
@@ -437,8 +486,22 @@ impl Sdirk4 {
         }
     }
 
+    /// The outcome of an accepted step h with scaled error `err` after `rejected` attempts,
+    /// and the PI controller's next step (its memory updated).
+    fn outcome(&mut self, h: f64, err: f64, rejected: u32, evals0: u64) -> StepOutcome {
+        let ctl = &self.control;
+        let alpha = 0.25 - 0.75 * ctl.beta;
+        let fac = if err == 0.0 { ctl.fac_max } else { ctl.safety * err.powf(-alpha) * self.facold.powf(ctl.beta) };
+        let fac_max = if rejected > 0 { 1.0 } else { ctl.fac_max };
+        let fac = fac.clamp(ctl.fac_min, fac_max);
+        // Keep h (and the LU) for small increases.
+        let h_next = if (1.0..1.2).contains(&fac) { h } else { (h * fac).min(ctl.h_max) };
+        self.facold = err.max(1e-4);
+        StepOutcome { h, h_next, rejected, error: err, rhs_evaluations: self.stats.rhs_evaluations - evals0 }
+    }
+
     fn ynew(&self, y: &[f64]) -> Vec<f64> {
-        y.iter().zip(&self.z).map(|(a, b)| a + b).collect()
+        y.iter().zip(&self.work.z).map(|(a, b)| a + b).collect()
     }
 }
 
@@ -457,7 +520,6 @@ impl AdaptiveIntegrator for Sdirk4 {
         let evals0 = self.stats.rhs_evaluations;
         self.start(sys, t, y)?;
         let ctl = self.control.clone();
-        let alpha = 0.25 - 0.75 * ctl.beta;
         let mut h = h_try.min(ctl.h_max);
         let mut rejected = 0u32;
         let (mut last_err, mut last_comp, mut reason) = (f64::NAN, 0, String::new());
@@ -488,7 +550,7 @@ impl AdaptiveIntegrator for Sdirk4 {
                 Err(NewtonFailure::NoConvergence(why)) => {
                     rejected += 1;
                     self.stats.rejected += 1;
-                    (last_err, reason) = (f64::INFINITY, why);
+                    (last_err, reason) = (f64::INFINITY, why.to_string());
                     if self.jac_state == JacobianState::Current {
                         h *= 0.5;
                     } else {
@@ -503,21 +565,8 @@ impl AdaptiveIntegrator for Sdirk4 {
             let y1 = self.ynew(y);
             let (err, comp) = self.tol.norm(&self.err, y, &y1);
             if err <= 1.0 {
-                let fac =
-                    if err == 0.0 { ctl.fac_max } else { ctl.safety * err.powf(-alpha) * self.facold.powf(ctl.beta) };
-                let fac_max = if rejected > 0 { 1.0 } else { ctl.fac_max };
-                let fac = fac.clamp(ctl.fac_min, fac_max);
-                // Keep h (and the LU) for small increases.
-                let h_next = if (1.0..1.2).contains(&fac) { h } else { (h * fac).min(ctl.h_max) };
-                self.facold = err.max(1e-4);
                 self.accept(t, y, h);
-                return Ok(StepOutcome {
-                    h,
-                    h_next,
-                    rejected,
-                    error: err,
-                    rhs_evaluations: self.stats.rhs_evaluations - evals0,
-                });
+                return Ok(self.outcome(h, err, rejected, evals0));
             }
             rejected += 1;
             self.stats.rejected += 1;
@@ -557,7 +606,7 @@ impl Integrator for Sdirk4 {
     /// One SDIRK4 step of exactly `dt`, without error control. J follows the adaptive policy
     /// (module documentation): a Newton failure with a J formed elsewhere is retried with J
     /// formed at (t, y), and with that J it is an error.
-    fn step(&mut self, sys: &mut dyn OdeSystem, t: f64, y: &mut [f64], dt: f64) -> Result<(), RhsError> {
+    fn step(&mut self, sys: &mut dyn OdeSystem, t: f64, y: &mut [f64], dt: f64) -> Result<(), StepError> {
         self.resize(y.len());
         self.start(sys, t, y)?;
         loop {
@@ -565,20 +614,124 @@ impl Integrator for Sdirk4 {
                 self.jacobian(sys, t, y)?;
             }
             if !self.factor(dt) {
-                return Err(RhsError(format!("SDIRK4: I − hγJ is singular at t = {t} with h = {dt}")));
+                return Err(StepError::SingularIterationMatrix { t, h: dt });
             }
             match self.stages(sys, t, y, dt) {
                 Ok(()) => break,
-                Err(NewtonFailure::Rhs(e)) => return Err(e),
+                Err(NewtonFailure::Rhs(e)) => return Err(e.into()),
                 Err(NewtonFailure::NoConvergence(_)) if self.jac_state != JacobianState::Current => {
                     self.jac_state = JacobianState::Refresh;
                 }
-                Err(NewtonFailure::NoConvergence(why)) => {
-                    return Err(RhsError(format!("SDIRK4 at t = {t}, h = {dt}: {why}; reduce the step")))
+                Err(NewtonFailure::NoConvergence(reason)) => {
+                    return Err(StepError::NewtonFailed { t, h: dt, reason });
                 }
             }
         }
         self.accept(t, y, dt);
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// ẏ = A y with eigenvalues −1 and −10⁴: y1' = −y1, y2' = −10⁴ (y2 − y1).
+    struct Stiff;
+    impl OdeSystem for Stiff {
+        fn dim(&self) -> usize {
+            2
+        }
+        fn rhs(&mut self, _t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), RhsError> {
+            dy[0] = -y[0];
+            dy[1] = -1e4 * (y[1] - y[0]);
+            Ok(())
+        }
+    }
+
+    /// ẏ = −y.
+    struct Decay;
+    impl OdeSystem for Decay {
+        fn dim(&self) -> usize {
+            1
+        }
+        fn rhs(&mut self, _t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), RhsError> {
+            dy[0] = -y[0];
+            Ok(())
+        }
+    }
+
+    fn fixed_error(steps: usize) -> f64 {
+        // Tight tolerances: in fixed-step mode they only stop Newton.
+        let mut sd = Sdirk4::new(1, 1e-12, 1e-14).expect("tolerances");
+        let (mut y, dt) = ([1.0], 1.0 / steps as f64);
+        for i in 0..steps {
+            Integrator::step(&mut sd, &mut Decay, i as f64 * dt, &mut y, dt).expect("step");
+        }
+        (y[0] - (-1.0f64).exp()).abs()
+    }
+
+    #[test]
+    fn fixed_steps_are_fourth_order() {
+        let ratio = fixed_error(10) / fixed_error(20);
+        assert!((ratio - 16.0).abs() < 2.0, "ratio {ratio}");
+    }
+
+    #[test]
+    fn a_large_step_on_a_stiff_system_stays_bounded() {
+        // h = 0.5 is 5000 times RK4's limit on the fast mode (≈ 2.8e-4): L-stability damps it.
+        let mut sd = Sdirk4::new(2, 1e-12, 1e-14).expect("tolerances");
+        let mut y = [1.0, 0.0];
+        for i in 0..4 {
+            Integrator::step(&mut sd, &mut Stiff, 0.5 * i as f64, &mut y, 0.5).expect("step");
+        }
+        // After t = 2 the fast mode has decayed: y2 ≈ y1 ≈ e^{−2}.
+        let slow = (-2.0f64).exp();
+        assert!((y[0] - slow).abs() < 1e-2 && (y[1] - slow).abs() < 1e-2, "{y:?} vs {slow}");
+    }
+
+    #[test]
+    fn adaptive_steps_on_a_stiff_system_are_few_and_accurate() {
+        let mut sd = Sdirk4::new(2, 1e-6, 1e-8).expect("tolerances");
+        let mut y = [1.0, 0.0];
+        sd.integrate_to(&mut Stiff, 0.0, &mut y, 1.0, 1e-4).expect("integrates");
+        let slow = (-1.0f64).exp();
+        assert!((y[0] - slow).abs() < 1e-4 && (y[1] - slow).abs() < 1e-4, "{y:?}");
+        // An explicit method would need ≥ 1/2.8e-4 ≈ 3600 steps.
+        assert!(sd.stats().accepted < 200, "{:?}", sd.stats());
+    }
+
+    #[test]
+    fn dense_output_matches_the_step_ends() {
+        let mut sd = Sdirk4::new(1, 1e-10, 1e-12).expect("tolerances");
+        let mut y = [1.0];
+        let out = sd.step_adaptive(&mut Decay, 0.0, &mut y, 0.02).expect("step");
+        let mut at = [0.0];
+        sd.dense_into(0.0, &mut at);
+        assert_eq!(at[0], 1.0);
+        sd.dense_into(1.0, &mut at);
+        assert_eq!(at[0], y[0]);
+        sd.dense_into(0.5, &mut at);
+        assert!((at[0] - (-0.5 * out.h).exp()).abs() < 1e-8, "{} at h = {}", at[0], out.h);
+    }
+
+    #[test]
+    fn invalid_tolerances_and_steps_are_refused() {
+        assert!(matches!(Sdirk4::new(1, 1e-20, 1e-9), Err(StepError::InvalidTolerance(_))));
+        assert!(matches!(Sdirk4::new(1, 1e-6, -1.0), Err(StepError::InvalidTolerance(_))));
+        let mut sd = Sdirk4::new(1, 1e-6, 1e-9).expect("tolerances");
+        assert_eq!(
+            sd.step_adaptive(&mut Decay, 0.0, &mut [1.0], f64::INFINITY),
+            Err(StepError::InvalidStep(f64::INFINITY))
+        );
+    }
+
+    #[test]
+    fn newton_errors_keep_their_words() {
+        let e = StepError::NewtonFailed { t: 1.0, h: 0.5, reason: NewtonError::Diverges { stage: 3, theta: 1.5 } };
+        assert_eq!(
+            e.to_string(),
+            "SDIRK4 at t = 1, h = 0.5: Newton diverges in stage 3 (contraction 1.50); reduce the step"
+        );
     }
 }

@@ -1,0 +1,110 @@
+//! One run: integrate a model from t = 0 until the ship stops, the end time, or a
+//! numerical failure, checking every step.
+//!
+//! After every accepted step the state is *observed* ([`observe`]): body states and
+//! accelerations, the joint forces (Eq. 52), the seabed's normal and holding forces on the
+//! anchor (Eqs. 37, 50) and the energy balance (Eq. 63). Two kinds of event are located to
+//! round-off by bisection on the integrator's dense output or on re-integrated partial
+//! steps, not merely detected at the next step ([`events`]):
+//!
+//! - the anchor's stick–slip switch (discussion after Eq. 26 and Eq. 37): held until the
+//!   holding force exceeds μN, then sliding with friction −μN (N implicit, from the same
+//!   solve; the paper lags it by one step, see docs/model-choices.md) until its velocity
+//!   returns to zero, where it is held again if the pull is below μN;
+//! - the ship stopping: the first zero of its surge velocity.
+//!
+//! Every step is checked ([`health`]) for non-finite values, energy runaway (relative drift
+//! of the energy balance beyond `solver.max_energy_drift`) and constraint-force spikes (a
+//! joint force above [`SPIKE_FACTOR`] times the line's largest break load: the model has no
+//! breaking, so such a force is numerical, not physical); a failure stops the run with a
+//! [`Failure`] naming the time, the body and what was detected (typed data: the words are
+//! the workflow's), and the samples up to the last good step are kept.
+//!
+//! [`Stepper`] advances a run interval by interval and says why it stopped ([`Stopped`]);
+//! [`run`] drives it and collects the [`RunResult`].
+
+use std::time::Instant;
+
+pub mod events;
+pub mod failure;
+pub mod health;
+mod observe;
+pub mod result;
+pub mod stepper;
+
+pub use failure::{Failure, FailureKind};
+pub use health::SPIKE_FACTOR;
+pub use result::{
+    static_residual, trajectory_difference, AnchorEvent, PeakTension, RunResult, Sample, StaticResidual, Stop,
+};
+pub use stepper::{Stepper, Stopped};
+
+use crate::integrate::{Adaptive, Dp5, Integrator, Rk4, Sdirk4, Tolerances};
+use crate::kernel::Kernel;
+use crate::model::Model;
+use crate::scene::Method;
+
+/// Integrates `model` with `kernel`; `residual_kernel`, when given, first evaluates the
+/// initial configuration's [`StaticResidual`].
+pub fn run_checked(model: &Model, kernel: Box<dyn Kernel>, residual_kernel: Box<dyn Kernel>) -> RunResult {
+    let residual = static_residual(model, residual_kernel).ok();
+    let mut result = run(model, kernel);
+    result.initial_residual = residual;
+    result
+}
+
+/// Integrates `model` with `kernel`.
+pub fn run(model: &Model, kernel: Box<dyn Kernel>) -> RunResult {
+    let mut stepper = Stepper::new(model, kernel);
+    let mut result = RunResult::empty(&stepper, model.body_count());
+    let start = Instant::now();
+    let started = stepper.start();
+    result.stability = stepper.stability();
+    if let Err(f) = started {
+        result.stop = Stop::Failed(f);
+        return result;
+    }
+    result.energy0 = stepper.energy0();
+    result.samples.extend(stepper.sample());
+    result.stop = loop {
+        match stepper.step() {
+            Ok(Stopped::AnchorSwitched(event)) => result.anchor_events.push(event),
+            Ok(stopped @ (Stopped::Step | Stopped::ShipStopped { .. })) => {
+                result.track_peaks(stepper.t(), stepper.tensions());
+                if stopped != Stopped::Step || stepper.at_output() {
+                    result.samples.extend(stepper.sample());
+                }
+                if stopped != Stopped::Step {
+                    break Stop::ShipStopped;
+                }
+            }
+            Ok(Stopped::EndTime) => break Stop::EndTime,
+            Err(f) => break Stop::Failed(f),
+        }
+    };
+    result.stopping_time = stepper.stopping_time();
+    result.t_end = stepper.t();
+    result.steps = stepper.steps();
+    result.rhs_evaluations = stepper.rhs_evaluations();
+    result.max_energy_drift = stepper.max_energy_drift();
+    result.wall_time = start.elapsed();
+    result
+}
+
+/// The method a scene names, sized for states of `dim` entries.
+pub fn integrator(solver: &crate::scene::Solver, dim: usize) -> Box<dyn Integrator> {
+    let tolerances = || Tolerances::new(solver.rtol, solver.atol).expect("tolerances checked with the scene");
+    match solver.integrator {
+        Method::Rk4 => Box::new(Rk4::new(dim)),
+        Method::Dp5 => {
+            let mut m = Dp5::with_tolerances(dim, tolerances());
+            m.control.h_max = solver.dt;
+            Box::new(Adaptive::new(m))
+        }
+        Method::Sdirk4 => {
+            let mut m = Sdirk4::with_tolerances(dim, tolerances());
+            m.control.h_max = solver.dt;
+            Box::new(Adaptive::new(m))
+        }
+    }
+}

@@ -1,0 +1,406 @@
+//! The run as a stepper: [`Stepper::step`] advances the model by one output interval of
+//! `solver.dt` (or to the next event inside it) and says why it stopped.
+//!
+//! An interval [t, t + dt] is integrated in segments split at located anchor switches:
+//! each segment is integrated to the interval's end, its end observed, and when the
+//! anchor's switching function changed sign the switch is located by bisection
+//! ([`super::events`]), applied, and the segment ends there ([`Stopped::AnchorSwitched`]).
+//! A completed interval is checked ([`super::health`]); a first zero of the ship's surge
+//! speed inside it is then located under the anchor state of the segment it fell in.
+
+use super::events::{self, Located};
+use super::failure::{Failure, FailureKind};
+use super::health;
+use super::observe::{Observation, Observer};
+use super::{integrator, AnchorEvent, Sample};
+use crate::dynamics::{Dynamics, WORK_COUNT};
+use crate::forces::Forces;
+use crate::integrate::Integrator;
+use crate::kernel::{AnchorDof, Kernel};
+use crate::model::Model;
+use crate::scene::Method;
+use crate::stability::{self, StabilityLimit};
+
+/// An interval is split at located anchor switches into at most this many segments: a
+/// switch is looked for at the end of each of the first `MAX_SEGMENTS − 1`, and the last
+/// integrates to the interval's end whatever the anchor does. A real stick–slip cycle takes
+/// many steps; more switches than this within one step is chatter on the switching surface
+/// (held and sliding each trigger the other within round-off), which would otherwise
+/// loop without advancing time.
+pub const MAX_SEGMENTS: u32 = 8;
+
+/// Why [`Stepper::step`] returned.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Stopped {
+    /// An interval of `solver.dt` was completed and passed the checks: the stepper is at its
+    /// end ([`Stepper::t`]).
+    Step,
+    /// The anchor switched inside the current interval, at the event's time; the next call
+    /// continues the interval from there.
+    AnchorSwitched(AnchorEvent),
+    /// The ship's surge speed reached zero at `t` (s) and the scene stops the run there
+    /// (`solver.stop_when_ship_stops`): the stepper is at the located stop. Without that
+    /// setting the run goes on and [`Stepper::stopping_time`] keeps the time.
+    ShipStopped {
+        /// s.
+        t: f64,
+    },
+    /// `solver.end_time` is reached: nothing more to do.
+    EndTime,
+}
+
+/// A segment of one interval with one anchor state: its start and the ship's surge speed
+/// there.
+struct Segment {
+    t: f64,
+    y: Vec<f64>,
+    anchor: AnchorDof,
+    direction: f64,
+    ship_vx: f64,
+}
+
+/// The interval being integrated.
+struct Interval {
+    t_next: f64,
+    /// Start of the current segment and the state there.
+    t_seg: f64,
+    y_seg: Vec<f64>,
+    segments: Vec<Segment>,
+    /// Segments integrated so far.
+    count: u32,
+    /// A switch landed on the interval's end: nothing is left to integrate.
+    at_end: bool,
+    prev_ship_vx: f64,
+}
+
+/// A located, applied anchor switch: its offset in the segment (s), the state there, the
+/// anchor's state from then on and the ship's surge speed (m/s).
+type Switch = (f64, Vec<f64>, AnchorDof, f64);
+
+/// How a segment ended.
+enum SegmentEnd {
+    Switched(AnchorEvent),
+    Interval(Vec<f64>, Observation),
+}
+
+/// The right-hand side, the method and the observation's scratch.
+struct Machine {
+    dynamics: Dynamics,
+    integrator: Box<dyn Integrator>,
+    observer: Observer,
+}
+
+impl Machine {
+    fn observe(&mut self, model: &Model, y: &[f64]) -> Result<Observation, FailureKind> {
+        Ok(self.observer.observe(model, &mut self.dynamics, y)?)
+    }
+
+    fn locate(
+        &mut self,
+        model: &Model,
+        span: (f64, &[f64], f64),
+        g: impl Fn(&Observation) -> bool,
+    ) -> Result<Located<Observation>, FailureKind> {
+        let Machine { dynamics, integrator, observer } = self;
+        let observe = |d: &mut Dynamics, y: &[f64]| observer.observe(model, d, y).map_err(FailureKind::from);
+        events::locate(integrator.as_mut(), dynamics, span, observe, g)
+    }
+
+    fn mu(&self) -> f64 {
+        self.dynamics.forces().anchor.friction_coefficient
+    }
+
+    /// Sets the anchor's state (held, or sliding in `direction`). The right-hand side
+    /// changes at the same (t, y), so the method forgets what it cached.
+    fn set_state(&mut self, anchor: AnchorDof, direction: f64) {
+        match anchor {
+            AnchorDof::Stuck => self.dynamics.stick_anchor(),
+            AnchorDof::Free => self.dynamics.slide_anchor(direction),
+        }
+        self.integrator.reset();
+    }
+}
+
+/// One run of a model, advanced interval by interval.
+pub struct Stepper<'a> {
+    model: &'a Model,
+    m: Machine,
+    kernel: &'static str,
+    physics: String,
+    stability: Option<StabilityLimit>,
+    /// The last good state: time (s), y = (q, u, W) and its observation.
+    t: f64,
+    y: Vec<f64>,
+    obs: Option<Observation>,
+    steps: u64,
+    max_steps: u64,
+    stride: u64,
+    interval: Option<Interval>,
+    evaluations0: u64,
+    energy0: f64,
+    max_energy_drift: f64,
+    spike_bound: f64,
+    stopping_time: Option<f64>,
+}
+
+impl<'a> Stepper<'a> {
+    /// A stepper at t = 0 for `model` with `kernel`; call [`Stepper::start`] before stepping.
+    pub fn new(model: &'a Model, kernel: Box<dyn Kernel>) -> Self {
+        let solver = &model.scene.solver;
+        let n = model.body_count();
+        let kernel_name = kernel.name();
+        let forces = Forces::new(model);
+        let physics = forces.description();
+        let m = Machine {
+            dynamics: Dynamics::new(kernel, forces, model.anchor),
+            integrator: integrator(solver, 2 * n + WORK_COUNT),
+            observer: Observer::new(n),
+        };
+        Stepper {
+            model,
+            m,
+            kernel: kernel_name,
+            physics,
+            stability: None,
+            t: 0.0,
+            y: model.q0.iter().chain(&model.u0).copied().chain([0.0; WORK_COUNT]).collect(),
+            obs: None,
+            steps: 0,
+            max_steps: (solver.end_time / solver.dt).round() as u64,
+            stride: ((solver.output_interval / solver.dt).round() as u64).max(1),
+            interval: None,
+            evaluations0: 0,
+            energy0: 0.0,
+            max_energy_drift: 0.0,
+            spike_bound: health::spike_bound(model),
+            stopping_time: None,
+        }
+    }
+
+    /// Checks and observes the initial state: under RK4 the step is refused above the
+    /// initial state's stability limit ([`Stepper::stability`]); then the energy balance
+    /// E_0 is taken. Right-hand-side evaluations are counted from after the limit.
+    pub fn start(&mut self) -> Result<(), Failure> {
+        if self.model.scene.solver.integrator == Method::Rk4 {
+            let limit = stability::limit(&mut self.m.dynamics, &self.y).map_err(|e| self.failure(0.0, e.into()))?;
+            self.stability = Some(limit);
+            let dt = self.model.scene.solver.dt;
+            if dt > limit.rk4_dt {
+                return Err(Failure::step_above_limit(dt, limit));
+            }
+        }
+        self.evaluations0 = self.m.dynamics.evaluations();
+        let obs = self.m.observe(self.model, &self.y).map_err(|e| self.failure(0.0, e))?;
+        self.energy0 = obs.energy.balance();
+        self.obs = Some(obs);
+        Ok(())
+    }
+
+    /// Advances to the end of the current interval or to the next event in it. After an
+    /// `Err`, [`Stopped::ShipStopped`] or [`Stopped::EndTime`] the run is over: the stepper
+    /// stays at its last good state.
+    pub fn step(&mut self) -> Result<Stopped, Failure> {
+        if self.steps >= self.max_steps || self.obs.is_none() {
+            return Ok(Stopped::EndTime);
+        }
+        let mut iv = match self.interval.take() {
+            Some(iv) => iv,
+            None => self.open_interval(),
+        };
+        let t_next = iv.t_next;
+        let (y_new, obs_new) = match self.segment(&mut iv).map_err(|k| self.failure(t_next, k))? {
+            SegmentEnd::Switched(event) => {
+                self.interval = Some(iv);
+                return Ok(Stopped::AnchorSwitched(event));
+            }
+            SegmentEnd::Interval(y, o) => (y, o),
+        };
+        self.check(&obs_new).map_err(|k| self.failure(t_next, k))?;
+        if let Some(stopped) = self.ship_stop(&iv, &obs_new).map_err(|k| self.failure(t_next, k))? {
+            return Ok(stopped);
+        }
+        self.steps += 1;
+        (self.t, self.y, self.obs) = (t_next, y_new, Some(obs_new));
+        Ok(Stopped::Step)
+    }
+
+    /// Time of the last good state, s.
+    pub fn t(&self) -> f64 {
+        self.t
+    }
+
+    /// Intervals completed.
+    pub fn steps(&self) -> u64 {
+        self.steps
+    }
+
+    /// Whether the last completed interval ends on an output time (every
+    /// `solver.output_interval`, and the end time).
+    #[allow(clippy::manual_is_multiple_of)] // is_multiple_of needs Rust 1.87; the crate's MSRV is 1.80
+    pub fn at_output(&self) -> bool {
+        self.steps % self.stride == 0 || self.steps == self.max_steps
+    }
+
+    /// The last good state as an output sample (`None` before a successful start).
+    pub fn sample(&self) -> Option<Sample> {
+        self.obs.as_ref().map(|o| Sample {
+            t: self.t,
+            bodies: o.bodies.clone(),
+            energy: o.energy,
+            tensions: o.tensions.clone(),
+            anchor: self.m.dynamics.anchor(),
+        })
+    }
+
+    /// |F^H_k| at the last good state, k = 2 … N (index k − 2), N (Eq. 52).
+    pub fn tensions(&self) -> &[f64] {
+        self.obs.as_ref().map_or(&[], |o| &o.tensions)
+    }
+
+    /// The energy balance at t = 0, J (0 before a successful start).
+    pub fn energy0(&self) -> f64 {
+        self.energy0
+    }
+
+    /// Largest relative drift |E − E_0|/E_0 over the completed intervals.
+    pub fn max_energy_drift(&self) -> f64 {
+        self.max_energy_drift
+    }
+
+    /// First zero of the ship's surge speed, located to round-off, s.
+    pub fn stopping_time(&self) -> Option<f64> {
+        self.stopping_time
+    }
+
+    /// RK4's step limit at t = 0 (RK4 runs, after [`Stepper::start`]).
+    pub fn stability(&self) -> Option<StabilityLimit> {
+        self.stability
+    }
+
+    /// Right-hand-side solves since the start (the stability limit's excluded).
+    pub fn rhs_evaluations(&self) -> u64 {
+        self.m.dynamics.evaluations() - self.evaluations0
+    }
+
+    /// The kernel's name.
+    pub fn kernel(&self) -> &'static str {
+        self.kernel
+    }
+
+    /// What the loads include.
+    pub fn physics(&self) -> &str {
+        &self.physics
+    }
+
+    fn failure(&self, t: f64, kind: FailureKind) -> Failure {
+        Failure::at(self.model, t, &self.y, kind)
+    }
+
+    fn open_interval(&self) -> Interval {
+        let prev_ship_vx = self.obs.as_ref().map_or(0.0, Observation::ship_vx);
+        let first = Segment {
+            t: self.t,
+            y: self.y.clone(),
+            anchor: self.m.dynamics.anchor(),
+            direction: self.m.dynamics.sliding_direction(),
+            ship_vx: prev_ship_vx,
+        };
+        Interval {
+            t_next: (self.steps + 1) as f64 * self.model.scene.solver.dt,
+            t_seg: self.t,
+            y_seg: self.y.clone(),
+            segments: vec![first],
+            count: 0,
+            at_end: false,
+            prev_ship_vx,
+        }
+    }
+
+    /// Integrates the current segment to the interval's end and looks for an anchor switch.
+    fn segment(&mut self, iv: &mut Interval) -> Result<SegmentEnd, FailureKind> {
+        if iv.at_end {
+            let o = self.m.observe(self.model, &iv.y_seg)?;
+            return Ok(SegmentEnd::Interval(std::mem::take(&mut iv.y_seg), o));
+        }
+        let h = iv.t_next - iv.t_seg;
+        let y_end = events::advance(self.m.integrator.as_mut(), &mut self.m.dynamics, iv.t_seg, &iv.y_seg, h)?;
+        health::finite(&y_end)?;
+        let end = self.m.observe(self.model, &y_end)?;
+        iv.count += 1;
+        let switch = if iv.count < MAX_SEGMENTS { self.anchor_switch(iv, h, &end)? } else { None };
+        let Some((hs, ys, now, ship_vx)) = switch else { return Ok(SegmentEnd::Interval(y_end, end)) };
+        let event = AnchorEvent { t: iv.t_seg + hs, now };
+        iv.t_seg += hs;
+        iv.y_seg = ys;
+        let direction = self.m.dynamics.sliding_direction();
+        iv.segments.push(Segment { t: iv.t_seg, y: iv.y_seg.clone(), anchor: now, direction, ship_vx });
+        iv.at_end = iv.t_next - iv.t_seg <= 1e-12 * self.model.scene.solver.dt;
+        Ok(SegmentEnd::Switched(event))
+    }
+
+    /// A switch of the anchor inside the segment of length h ending in `end`, located and
+    /// applied: (offset, state, the anchor's state from then on, the ship's surge speed).
+    fn anchor_switch(&mut self, iv: &Interval, h: f64, end: &Observation) -> Result<Option<Switch>, FailureKind> {
+        let mu = self.m.mu();
+        let direction = self.m.dynamics.sliding_direction();
+        let span = (iv.t_seg, iv.y_seg.as_slice(), h);
+        match self.m.dynamics.anchor() {
+            AnchorDof::Stuck if mu > 0.0 && events::releases(end, mu) => {
+                let (hs, ys, os) = self.m.locate(self.model, span, |o| events::releases(o, mu))?;
+                self.m.set_state(AnchorDof::Free, -os.reaction.holding.signum());
+                Ok(Some((hs, ys, AnchorDof::Free, os.ship_vx())))
+            }
+            AnchorDof::Free if direction != 0.0 && events::reversed(end, direction) => {
+                let (hs, mut ys, _) = self.m.locate(self.model, span, |o| events::reversed(o, direction))?;
+                // The anchor has come to rest: held if the pull is within μN.
+                ys[2 * self.model.body_count() - 1] = 0.0;
+                self.m.set_state(AnchorDof::Stuck, 0.0);
+                let held = self.m.observe(self.model, &ys)?;
+                if events::releases(&held, mu) {
+                    self.m.set_state(AnchorDof::Free, -held.reaction.holding.signum());
+                    Ok(Some((hs, ys, AnchorDof::Free, held.ship_vx())))
+                } else {
+                    Ok(Some((hs, ys, AnchorDof::Stuck, held.ship_vx())))
+                }
+            }
+            _ => Ok(None),
+        }
+    }
+
+    /// The health checks of a completed interval; keeps the largest drift.
+    fn check(&mut self, obs: &Observation) -> Result<(), FailureKind> {
+        let limit = self.model.scene.solver.max_energy_drift;
+        let drift = health::energy_drift(obs.energy.balance(), self.energy0, limit)?;
+        self.max_energy_drift = self.max_energy_drift.max(drift);
+        health::no_spike(&obs.tensions, self.spike_bound)
+    }
+
+    /// Locates the ship's first stop inside the completed interval, under the anchor state
+    /// of the first segment whose end has the ship at rest (an anchor event may have split
+    /// the interval). `Some` when the run ends there.
+    fn ship_stop(&mut self, iv: &Interval, end: &Observation) -> Result<Option<Stopped>, FailureKind> {
+        let ship_vx = end.ship_vx();
+        if !(iv.prev_ship_vx > 0.0 && ship_vx <= 0.0 && self.stopping_time.is_none()) {
+            return Ok(None);
+        }
+        let segments = &iv.segments;
+        let i = (0..segments.len())
+            .find(|&i| segments.get(i + 1).map_or(ship_vx, |s| s.ship_vx) <= 0.0)
+            .unwrap_or(segments.len() - 1);
+        let seg = &segments[i];
+        let length = segments.get(i + 1).map_or(iv.t_next, |s| s.t) - seg.t;
+        let now = (self.m.dynamics.anchor(), self.m.dynamics.sliding_direction());
+        self.m.set_state(seg.anchor, seg.direction);
+        let located = self.m.locate(self.model, (seg.t, &seg.y, length), events::ship_stopped);
+        self.m.set_state(now.0, now.1);
+        let (hs, _, os) = located?;
+        let t = seg.t + hs;
+        self.stopping_time = Some(t);
+        if !self.model.scene.solver.stop_when_ship_stops {
+            return Ok(None);
+        }
+        self.steps += 1;
+        (self.t, self.obs) = (t, Some(os));
+        Ok(Some(Stopped::ShipStopped { t }))
+    }
+}
