@@ -9,7 +9,7 @@ use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::quote;
 
 use crate::expr::{Dag, Id, Node, OpCount};
-use crate::planar::{self, Function};
+use crate::planar::{self, Function, Slot};
 
 /// What was generated for one function.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -50,6 +50,19 @@ fn ident(name: &str) -> Ident {
 
 fn place(text: &str) -> TokenStream {
     syn::parse_str::<syn::Expr>(text).map(|e| quote!(#e)).unwrap_or_else(|e| panic!("bad place `{text}`: {e}"))
+}
+
+/// The Rust place of an output slot: `array[index]` or `array[index][component]`.
+fn slot(slot: &Slot) -> TokenStream {
+    let array = ident(slot.array);
+    let index = Literal::usize_unsuffixed(slot.index);
+    match slot.component {
+        None => quote!(#array[#index]),
+        Some(c) => {
+            let c = Literal::usize_unsuffixed(c);
+            quote!(#array[#index][#c])
+        }
+    }
 }
 
 fn literal(v: f64) -> TokenStream {
@@ -162,13 +175,13 @@ fn body(f: &Function) -> (TokenStream, usize) {
         operand[i] = Some((quote!(#name), ATOM));
         count += 1;
     }
-    for (target, value) in &f.stores {
-        let target = place(target);
-        let value = operand[value.index()].clone().expect("stored values are live").0;
+    for store in &f.stores {
+        let target = slot(&store.slot);
+        let value = operand[store.value.index()].clone().expect("stored values are live").0;
         stmts.extend(quote!(#target = #value;));
     }
-    if f.dense_fill {
-        stmts.extend(dense_fill(n_of(f)));
+    if let Some(n) = f.dense_fill {
+        stmts.extend(dense_fill(n));
     }
     let returned: Vec<TokenStream> =
         f.ret.iter().map(|r| operand[r.index()].clone().expect("returned value is live").0).collect();
@@ -178,16 +191,6 @@ fn body(f: &Function) -> (TokenStream, usize) {
         values => stmts.extend(quote!([#(#values),*])),
     }
     (stmts, count)
-}
-
-/// N of a function with a dense fill, from its `k_col` stores (N − 2 is the last index).
-fn n_of(f: &Function) -> usize {
-    f.stores
-        .iter()
-        .filter_map(|(p, _)| p.strip_prefix("k_col[")?.strip_suffix(']')?.parse::<usize>().ok())
-        .max()
-        .map(|c| c + 2)
-        .expect("a dense fill has k_col stores")
 }
 
 /// The local arrays the dense fill reads, declared before the stores.
@@ -262,7 +265,7 @@ pub fn generate(variant: Variant) -> GeneratedFile {
     let mut function = |name: &'static str, f: Function, doc: String, sig: TokenStream, prelude: TokenStream| {
         let mut ops = f.dag.count(&f.roots());
         let mut prelude = prelude;
-        if f.dense_fill {
+        if f.dense_fill.is_some() {
             ops += dense_ops(n);
             prelude.extend(dense_locals(n));
         }
