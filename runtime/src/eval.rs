@@ -77,29 +77,42 @@ pub struct EvalOutput {
 }
 
 /// Why a state cannot be evaluated.
-#[derive(Clone, Debug, PartialEq)]
-pub struct EvalError(pub String);
-
-impl std::fmt::Display for EvalError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(&self.0)
-    }
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum EvalError {
+    /// `state.q` or `state.u` does not have N entries.
+    #[error("state.{name} has {len} entries: the scene has N = {bodies} bodies, so it needs {bodies} (β_2 … β_{bodies}, s_1)")]
+    Length {
+        /// `q` or `u`.
+        name: &'static str,
+        /// The number of entries given.
+        len: usize,
+        /// N.
+        bodies: usize,
+    },
+    /// An entry of the state is infinite or NaN.
+    #[error("state.{name}[{index}] = {value}: must be finite")]
+    NotFinite {
+        /// `q` or `u`.
+        name: &'static str,
+        /// 0-based position of the entry.
+        index: usize,
+        /// The value given.
+        value: f64,
+    },
+    /// The right-hand side refused the state (the message of its error).
+    #[error("{0}")]
+    Dynamics(String),
 }
-
-impl std::error::Error for EvalError {}
 
 impl StateFile {
     /// Checks the state against the model: lengths N, finite values.
     pub fn check(&self, n: usize) -> Result<(), EvalError> {
         for (name, v) in [("q", &self.q), ("u", &self.u)] {
             if v.len() != n {
-                return Err(EvalError(format!(
-                    "state.{name} has {} entries: the scene has N = {n} bodies, so it needs {n} (β_2 … β_{n}, s_1)",
-                    v.len()
-                )));
+                return Err(EvalError::Length { name, len: v.len(), bodies: n });
             }
             if let Some(i) = v.iter().position(|x| !x.is_finite()) {
-                return Err(EvalError(format!("state.{name}[{i}] = {}: must be finite", v[i])));
+                return Err(EvalError::NotFinite { name, index: i, value: v[i] });
             }
         }
         Ok(())
@@ -129,7 +142,7 @@ pub fn evaluate(model: &Model, kernel: Box<dyn Kernel>, state: Option<&StateFile
     let physics = forces.description();
     let mut dynamics = Dynamics::new(kernel, forces, anchor);
     let mut qdd = vec![0.0; n];
-    dynamics.accelerations(&q, &u, &mut qdd).map_err(|e| EvalError(e.0))?;
+    dynamics.accelerations(&q, &u, &mut qdd).map_err(|e| EvalError::Dynamics(e.to_string()))?;
     let active = dynamics.active_speeds();
     // M and f for the report come from an assembly, whatever the kernel's solve path.
     let mut asm = Assembly::new(n);

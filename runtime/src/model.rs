@@ -6,7 +6,7 @@
 
 use std::f64::consts::FRAC_PI_2;
 
-use kanestop_chain::{BodyKind, Topology};
+use kanestop_chain::{BodyKind, Topology, TopologyError};
 
 use crate::catenary::{lay_elements, Catenary, CatenaryError};
 use crate::chain::{box_inertia, Body, Chain, Shape};
@@ -37,20 +37,19 @@ pub struct Model {
 }
 
 /// A scene whose geometry admits no initial configuration.
-#[derive(Clone, Debug, PartialEq)]
-pub struct ModelError(pub String);
-
-impl std::fmt::Display for ModelError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(&self.0)
-    }
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum ModelError {
+    /// The cable stages describe no chain.
+    #[error("cable.stages: {0}")]
+    Topology(TopologyError),
+    /// The cable cannot be laid on the catenary of Eqs. 30–34.
+    #[error("initial configuration: {0}")]
+    InitialConfiguration(CatenaryError),
 }
-
-impl std::error::Error for ModelError {}
 
 impl From<CatenaryError> for ModelError {
     fn from(e: CatenaryError) -> Self {
-        ModelError(format!("initial configuration: {e}"))
+        ModelError::InitialConfiguration(e)
     }
 }
 
@@ -58,7 +57,7 @@ impl Model {
     /// Builds the model of a checked scene.
     pub fn new(scene: &Scene) -> Result<Model, ModelError> {
         let topology = Topology::new(scene.chain.elements, scene.cable.stages.iter().map(|s| s.elements).collect())
-            .map_err(|e| ModelError(format!("cable.stages: {e}")))?;
+            .map_err(ModelError::Topology)?;
         let n = topology.body_count();
 
         // Element lengths along the line.
