@@ -67,6 +67,13 @@ impl Body {
     }
 }
 
+/// Added mass of a submerged rod for accelerations normal to its axis, kg (Eq. 46):
+/// m_a = C_M ρ π D² L / 4, for water density `rho` (kg/m³), added-mass coefficient `c_m`,
+/// diameter `d` (m) and length `len` (m).
+pub fn added_mass(rho: f64, c_m: f64, d: f64, len: f64) -> f64 {
+    c_m * rho * std::f64::consts::PI * d * d * len / 4.0
+}
+
 /// Inertia of a cuboid of mass m about a point a distance `d_s` above or below its centre
 /// on the z axis (Eq. 18, k = 1 with d_s = 0 and k = N), kg·m².
 pub fn box_inertia(mass: f64, length: f64, width: f64, height: f64, d_s: f64) -> [f64; 3] {

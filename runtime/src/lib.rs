@@ -17,6 +17,7 @@ pub mod energy;
 pub mod eval;
 pub mod forces;
 pub mod generated;
+pub mod geometry;
 pub mod integrate;
 pub mod kernel;
 pub mod model;

@@ -9,9 +9,8 @@ use std::f64::consts::FRAC_PI_2;
 use kanestop_chain::{BodyKind, Topology, TopologyError};
 
 use crate::catenary::{lay_elements, Catenary, CatenaryError};
-use crate::chain::{box_inertia, Body, Chain, Shape};
-use crate::forces::morison::added_mass;
-use crate::forces::seabed::segment_area;
+use crate::chain::{added_mass, box_inertia, Body, Chain, Shape};
+use crate::geometry::segment_area;
 use crate::kernel::AnchorDof;
 use crate::scene::Environment;
 use crate::scene::Scene;
