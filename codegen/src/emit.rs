@@ -428,3 +428,80 @@ fn registry_with(variants: &[Variant], out_dir: bool) -> String {
     let what = if out_dir { "the scenes' element counts (build script)" } else { "the checked-in variant list" };
     header(what) + "\n" + &prettyplease::unparse(&file)
 }
+
+#[cfg(test)]
+mod tests {
+    use kanestop_chain::{ParamField, Variant, Water};
+
+    use super::{generate, registry, slot};
+    use crate::planar::Slot;
+
+    #[test]
+    fn slots_render_as_rust_places() {
+        assert_eq!(slot(&Slot::at("qdd", 3)).to_string(), "qdd [3]");
+        assert_eq!(slot(&Slot::at2("bodies", 4, 1)).to_string(), "bodies [4] [1]");
+    }
+
+    #[test]
+    fn structural_zeros_are_absent_from_the_source() {
+        for water in [Water::Off, Water::On] {
+            let v = Variant::new(5, water);
+            let src = generate(v).source;
+            for k in 0..5 {
+                for (field, place) in [
+                    (ParamField::CentroidZ, format!("p[{k}].centroid[1]")),
+                    (ParamField::JointZ, format!("p[{k}].joint[1]")),
+                    (ParamField::AddedMass, format!("p[{k}].added_mass")),
+                ] {
+                    assert_eq!(
+                        src.contains(&place),
+                        !v.folds(k, field),
+                        "{water:?}: `{place}` should {}appear",
+                        if v.folds(k, field) { "not " } else { "" }
+                    );
+                }
+            }
+            // B_1 does not rotate: its inertia never enters.
+            assert!(!src.contains("p[0].inertia"));
+        }
+        assert!(!generate(Variant::new(5, Water::Off)).source.contains("added_mass"));
+    }
+
+    #[test]
+    fn emission_is_deterministic_and_parses() {
+        for v in [Variant::new(3, Water::Off), Variant::new(6, Water::On)] {
+            let (a, b) = (generate(v), generate(v));
+            assert_eq!(a.source, b.source);
+            assert_eq!(a.functions, b.functions);
+            let file = syn::parse_file(&a.source).expect("the emitted source parses");
+            let fns: Vec<String> = file
+                .items
+                .iter()
+                .filter_map(|i| match i {
+                    syn::Item::Fn(f) => Some(f.sig.ident.to_string()),
+                    _ => None,
+                })
+                .collect();
+            assert_eq!(fns, ["kinematics", "assemble", "accelerations", "solve_free", "solve_stuck"]);
+            assert!(a.functions.iter().all(|f| f.ops.total() > 0 && f.statements > 0), "{:?}", a.functions);
+            assert_eq!(a.file_name, format!("{}.rs", v.module()));
+        }
+    }
+
+    #[test]
+    fn dense_fill_only_from_four_bodies() {
+        assert!(!generate(Variant::new(3, Water::On)).source.contains("k_col"));
+        let src = generate(Variant::new(4, Water::On)).source;
+        assert!(src.contains("let mut k_col = [0.0f64; 3];"), "locals sized N − 1");
+        assert!(src.contains("m[j * 4 + l] = a;"));
+    }
+
+    #[test]
+    fn registry_lists_each_variant_once_sorted() {
+        let v = [Variant::new(5, Water::On), Variant::new(3, Water::Off), Variant::new(5, Water::On)];
+        let text = registry(&v);
+        syn::parse_file(&text).expect("the registry parses");
+        assert!(text.contains("pub const AVAILABLE: &[(usize, bool)] = &[(3, false), (5, true)];"), "{text}");
+        assert_eq!(text.matches("pub mod chain5_wet;").count(), 1);
+    }
+}
