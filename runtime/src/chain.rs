@@ -11,9 +11,21 @@ use kanestop_chain::BodyKind;
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Shape {
     /// A cuboid: length L (x), width w (y), height h (z), in m.
-    Box { length: f64, width: f64, height: f64 },
+    Box {
+        /// L, along x, m.
+        length: f64,
+        /// w, along y, m.
+        width: f64,
+        /// h, along z, m.
+        height: f64,
+    },
     /// A homogeneous cylinder: length L and radius R, in m.
-    Rod { length: f64, radius: f64 },
+    Rod {
+        /// L, along x, m.
+        length: f64,
+        /// R, m.
+        radius: f64,
+    },
 }
 
 /// One rigid body B_k.
@@ -87,6 +99,7 @@ pub fn box_inertia(mass: f64, length: f64, width: f64, height: f64, d_s: f64) ->
 /// The chain B_1 … B_N. B_1 is always the anchor, which can only translate along x.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Chain {
+    /// B_1 (anchor) … B_N (ship), in order along the line.
     pub bodies: Vec<Body>,
 }
 

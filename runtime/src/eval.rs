@@ -16,8 +16,11 @@ use crate::model::Model;
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct StateFile {
+    /// Generalised coordinates (β_2 … β_N in rad, s_1 in m), N entries.
     pub q: Vec<f64>,
+    /// Generalised speeds (β̇_2 … β̇_N in rad/s, ṡ_1 in m/s), N entries.
     pub u: Vec<f64>,
+    /// Whether the anchor is stuck or free; the scene's initial state when absent.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub anchor: Option<AnchorDof>,
 }
@@ -30,15 +33,25 @@ pub struct StateFile {
 pub struct EvalBody {
     /// k of B_k (1 = anchor, N = ship).
     pub index: usize,
+    /// What the body is (anchor, chain link, cable element, rod, ship).
     pub kind: String,
+    /// Centroid x, m.
     pub x: f64,
+    /// Centroid z, m.
     pub z: f64,
+    /// Centroid velocity along x, m/s.
     pub vx: f64,
+    /// Centroid velocity along z, m/s.
     pub vz: f64,
+    /// Centroid acceleration along x, m/s² (Eq. 17).
     pub ax: f64,
+    /// Centroid acceleration along z, m/s² (Eq. 17).
     pub az: f64,
+    /// Rotation θ_k about y, rad.
     pub angle: f64,
+    /// Angular velocity about y, rad/s (Eq. 9).
     pub omega: f64,
+    /// Angular acceleration about y, rad/s² (Eq. 17).
     pub alpha: f64,
 }
 
@@ -46,12 +59,15 @@ pub struct EvalBody {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct EvalOutput {
+    /// The scene's name (`meta.name`).
     pub scene: String,
+    /// The kernel that evaluated the state (reference or generated).
     pub kernel: String,
     /// Physics included in f.
     pub physics: String,
     /// N.
     pub bodies_count: usize,
+    /// Whether the anchor was stuck or free at the state.
     pub anchor: AnchorDof,
     /// Names of q's entries: "beta_2" … "beta_N", "s_1".
     pub coordinates: Vec<String>,
@@ -73,6 +89,7 @@ pub struct EvalOutput {
     pub residual: f64,
     /// 2-norm condition number of M (λ_max / λ_min).
     pub cond: f64,
+    /// Every body B_1 … B_N.
     pub bodies: Vec<EvalBody>,
 }
 

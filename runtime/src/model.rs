@@ -18,8 +18,11 @@ use crate::scene::Scene;
 /// Everything a run starts from.
 #[derive(Clone, Debug)]
 pub struct Model {
+    /// The checked scene the model was built from.
     pub scene: Scene,
+    /// How many bodies of each kind, in order (anchor, links, cable stages, rod, ship).
     pub topology: Topology,
+    /// The numeric bodies B_1 … B_N (masses, inertias of Eq. 18, added masses of Eq. 46).
     pub chain: Chain,
     /// Generalised coordinates at t = 0 (see [`crate::kernel`] for the convention).
     pub q0: Vec<f64>,
@@ -53,7 +56,19 @@ impl From<CatenaryError> for ModelError {
 }
 
 impl Model {
-    /// Builds the model of a checked scene.
+    /// Builds the model of a checked scene: the bodies, the cable laid on its catenary
+    /// (Eqs. 30–35) and the initial state.
+    ///
+    /// ```
+    /// use kanestop_runtime::{model::Model, paper::DEFAULT_SCENE, scene::Scene};
+    ///
+    /// let scene = Scene::from_toml(DEFAULT_SCENE, "case01.toml").unwrap();
+    /// let model = Model::new(&scene).unwrap();
+    /// // Anchor, 15 chain links, 28 cable elements, rod and ship.
+    /// assert_eq!(model.body_count(), 46);
+    /// assert_eq!(model.q0.len(), 46);
+    /// assert!(model.cable_end_error() < 1e-9);
+    /// ```
     pub fn new(scene: &Scene) -> Result<Model, ModelError> {
         let topology = Topology::new(scene.chain.elements, scene.cable.stages.iter().map(|s| s.elements).collect())
             .map_err(ModelError::Topology)?;

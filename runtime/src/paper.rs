@@ -49,6 +49,7 @@ pub const TABLE_1: [ChainGrade; 3] = [
 /// One row of Table 2 with its Table 3 stopping time.
 #[derive(Clone, Copy, Debug)]
 pub struct Case {
+    /// The case number of Table 2 (1 … 10).
     pub number: usize,
     /// μ.
     pub friction: f64,

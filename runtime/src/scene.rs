@@ -14,15 +14,25 @@ use serde::{Deserialize, Serialize};
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Scene {
+    /// `[meta]`: name, description, the paper's stopping time.
     pub meta: Meta,
+    /// `[environment]`: gravity, water, current, seabed switches and constants.
     pub environment: Environment,
+    /// `[hydrodynamics]`: the drag and added-mass coefficients of Eqs. 43–47.
     pub hydrodynamics: Hydrodynamics,
+    /// `[anchor]`: the gravity anchor B_1.
     pub anchor: Anchor,
+    /// `[chain]`: the anchor chain's links.
     pub chain: ChainSpec,
+    /// `[cable]`: the cable and its stages.
     pub cable: Cable,
+    /// `[rod]`: the rod between the cable top and the ship.
     pub rod: Rod,
+    /// `[ship]`: the ship B_N.
     pub ship: Ship,
+    /// `[initial]`: the laid catenary and the ship's speed at t = 0.
     pub initial: Initial,
+    /// `[solver]`: integrator, step and tolerances, end time, output and stop rules.
     pub solver: Solver,
 }
 
@@ -263,11 +273,26 @@ impl std::str::FromStr for Method {
 #[derive(Debug)]
 pub enum SceneError {
     /// The file could not be read.
-    Io { file: String, source: std::io::Error },
+    Io {
+        /// The path as given.
+        file: String,
+        /// The I/O error.
+        source: std::io::Error,
+    },
     /// Not TOML, a missing or unknown key, or a value of the wrong type.
-    Parse { file: String, message: String },
+    Parse {
+        /// The path as given.
+        file: String,
+        /// The TOML or serde message.
+        message: String,
+    },
     /// Values out of range: every problem found, each naming its field.
-    Invalid { file: String, problems: Vec<Problem> },
+    Invalid {
+        /// The path as given.
+        file: String,
+        /// Every out-of-range value, in field order.
+        problems: Vec<Problem>,
+    },
 }
 
 /// One out-of-range value.
@@ -307,6 +332,20 @@ impl std::error::Error for SceneError {}
 
 impl Scene {
     /// Reads and checks a scene file.
+    ///
+    /// ```
+    /// use kanestop_runtime::scene::{Scene, SceneError};
+    ///
+    /// let dir = std::env::temp_dir().join(format!("kanestop-doc-{}", std::process::id()));
+    /// std::fs::create_dir_all(&dir).unwrap();
+    /// let path = dir.join("case01.toml");
+    /// std::fs::write(&path, kanestop_runtime::paper::DEFAULT_SCENE).unwrap();
+    /// let scene = Scene::load(&path)?;
+    /// assert_eq!(scene.chain.elements, 15);
+    /// assert!(matches!(Scene::load(&dir.join("missing.toml")), Err(SceneError::Io { .. })));
+    /// # std::fs::remove_dir_all(&dir).unwrap();
+    /// # Ok::<(), SceneError>(())
+    /// ```
     pub fn load(path: &Path) -> Result<Scene, SceneError> {
         let file = path.display().to_string();
         let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io { file: file.clone(), source })?;
@@ -314,6 +353,19 @@ impl Scene {
     }
 
     /// Parses and checks scene text; `file` names it in errors.
+    ///
+    /// ```
+    /// use kanestop_runtime::scene::{Scene, SceneError};
+    ///
+    /// // The embedded case 1 of Table 2.
+    /// let scene = Scene::from_toml(kanestop_runtime::paper::DEFAULT_SCENE, "case01.toml")?;
+    /// assert_eq!(scene.meta.name, "case01");
+    /// // A value out of range is reported with its field.
+    /// let bad = kanestop_runtime::paper::DEFAULT_SCENE.replace("[anchor]\nmass =", "[anchor]\nmass = -1.0 #");
+    /// let err = Scene::from_toml(&bad, "bad.toml").unwrap_err();
+    /// assert!(err.to_string().contains("anchor.mass"), "{err}");
+    /// # Ok::<(), SceneError>(())
+    /// ```
     pub fn from_toml(text: &str, file: &str) -> Result<Scene, SceneError> {
         let scene: Scene =
             toml::from_str(text).map_err(|e| SceneError::Parse { file: file.to_string(), message: e.to_string() })?;

@@ -79,7 +79,9 @@ pub struct GeneralState<'a> {
 /// Per-body applied force F_k (N) and moment T_k (N·m), inertial components (Eq. 23).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Wrench {
+    /// F_k at the centroid C_k, N.
     pub force: Vector3<f64>,
+    /// T_k, N·m.
     pub moment: Vector3<f64>,
 }
 
