@@ -83,27 +83,12 @@ const ATOM: u8 = 4;
 /// The statements of one function: a `let` per named or shared value, single-use unnamed
 /// values inlined into their user (parenthesised so that Rust evaluates exactly the DAG's
 /// operations in the DAG's order), then the stores.
+// Long by design: one walk over the DAG in creation order, one arm per node kind.
 fn body(f: &Function) -> (TokenStream, usize) {
     let dag: &Dag = &f.dag;
     let roots = f.roots();
     let live = dag.reachable(&roots);
-    let mut uses = vec![0usize; dag.len()];
-    for (i, node) in (0..dag.len()).map(|i| (i, dag.node(Id::from_index(i)))) {
-        if !live[i] {
-            continue;
-        }
-        match node {
-            Node::Add(a, b) | Node::Sub(a, b) | Node::Mul(a, b) | Node::Div(a, b) => {
-                uses[a.index()] += 1;
-                uses[b.index()] += 1;
-            }
-            Node::Neg(a) | Node::Sin(a) | Node::Cos(a) => uses[a.index()] += 1,
-            Node::Const(_) | Node::Input(_) => {}
-        }
-    }
-    for r in &roots {
-        uses[r.index()] += 2; // stored values are always bound to a name
-    }
+    let uses = use_counts(dag, &live, &roots);
     // (tokens, binding strength) of every live value.
     let mut operand: Vec<Option<(TokenStream, u8)>> = vec![None; dag.len()];
     let mut used: HashSet<String> = HashSet::new();
@@ -193,6 +178,29 @@ fn body(f: &Function) -> (TokenStream, usize) {
     (stmts, count)
 }
 
+/// How many live nodes read each node; stored and returned values count twice, so that
+/// they are always bound to a name.
+fn use_counts(dag: &Dag, live: &[bool], roots: &[Id]) -> Vec<usize> {
+    let mut uses = vec![0usize; dag.len()];
+    for (i, node) in (0..dag.len()).map(|i| (i, dag.node(Id::from_index(i)))) {
+        if !live[i] {
+            continue;
+        }
+        match node {
+            Node::Add(a, b) | Node::Sub(a, b) | Node::Mul(a, b) | Node::Div(a, b) => {
+                uses[a.index()] += 1;
+                uses[b.index()] += 1;
+            }
+            Node::Neg(a) | Node::Sin(a) | Node::Cos(a) => uses[a.index()] += 1,
+            Node::Const(_) | Node::Input(_) => {}
+        }
+    }
+    for r in roots {
+        uses[r.index()] += 2;
+    }
+    uses
+}
+
 /// The local arrays the dense fill reads, declared before the stores.
 fn dense_locals(n: usize) -> TokenStream {
     let len = Literal::usize_unsuffixed(n - 1);
@@ -238,6 +246,7 @@ fn fixed(name: &str, ty: TokenStream, len: usize, mutable: bool) -> TokenStream 
 }
 
 /// Generates the kernel file of `variant`.
+// Long by design: the five kernels' signatures and docs side by side, as they appear in the file.
 pub fn generate(variant: Variant) -> GeneratedFile {
     let n = variant.bodies;
     let water = match variant.water {
