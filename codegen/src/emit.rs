@@ -80,10 +80,10 @@ const MUL: u8 = 2;
 const NEG: u8 = 3;
 const ATOM: u8 = 4;
 
+// Long by design: one walk over the DAG in creation order, one arm per node kind.
 /// The statements of one function: a `let` per named or shared value, single-use unnamed
 /// values inlined into their user (parenthesised so that Rust evaluates exactly the DAG's
 /// operations in the DAG's order), then the stores.
-// Long by design: one walk over the DAG in creation order, one arm per node kind.
 fn body(f: &Function) -> (TokenStream, usize) {
     let dag: &Dag = &f.dag;
     let roots = f.roots();
@@ -245,8 +245,8 @@ fn fixed(name: &str, ty: TokenStream, len: usize, mutable: bool) -> TokenStream 
     }
 }
 
-/// Generates the kernel file of `variant`.
 // Long by design: the five kernels' signatures and docs side by side, as they appear in the file.
+/// Generates the kernel file of `variant`.
 pub fn generate(variant: Variant) -> GeneratedFile {
     let n = variant.bodies;
     let water = match variant.water {

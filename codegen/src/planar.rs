@@ -372,6 +372,7 @@ pub fn kinematics(variant: Variant) -> Function {
     f
 }
 
+// Long by design: the phases must create DAG nodes in this order (the emitted text is checked in).
 /// a_lp (Eq. 26) over all N speeds, both triangles, and f_l (Eq. 25) with the loads
 /// projected by Eq. 23; plus the row of the anchor's heave speed w = ẋ_{3N+3}, which is
 /// always constrained: `heave[p]` = a_{w,p} for the N active speeds and `heave[N]` = f_w,
@@ -381,7 +382,6 @@ pub fn kinematics(variant: Variant) -> Function {
 /// The heave speed moves every centroid by (0, 1), so a_{w,β_l} = Σ_{k≥l} e_zᵀ A_k J(p_k −
 /// o_l) = −(S_l)_x (J(−1, 0) = e_z), a_{w,s} = Σ_k (A_k)_xz = Σ m_a,k sin θ_k cos θ_k and
 /// f_w = Σ_k F̃_kz.
-// Long by design: the phases must create DAG nodes in this order (the emitted text is checked in).
 pub fn assemble(variant: Variant) -> Function {
     let n = variant.bodies;
     let mut dag = Dag::new();
@@ -554,6 +554,7 @@ pub fn accelerations(variant: Variant) -> Function {
     f
 }
 
+// Long by design: the recursion reads as one inward and one outward pass, in node order.
 /// The O(N) solve of a_lp ẍ_p = f_l by articulated-body recursion.
 ///
 /// At each body origin o_k, with (angular, x, z) components and point accelerations
@@ -566,7 +567,6 @@ pub fn accelerations(variant: Variant) -> Function {
 /// the sliding friction −k N taken implicitly, ẍ_s = −(pA_1x + k pA_1z) / (IA_1xx + k IA_1xz);
 /// with it stuck ẍ_s = 0 and pA_1x is the holding force of Eq. 50. Both return the seabed's
 /// normal force N = IA_1xz ẍ_s + pA_1z (Eq. 37).
-// Long by design: the recursion reads as one inward and one outward pass, in node order.
 pub fn solve(variant: Variant, stuck: bool) -> Function {
     let n = variant.bodies;
     let mut dag = Dag::new();

@@ -110,8 +110,8 @@ pub struct Partials {
 }
 
 impl Partials {
-    /// Builds the arrays for `speeds` (1-based l, each ≤ 6N), Eqs. 2–16.
     // Long by design: the oracle reads as Eqs. 2–16 in order, one block per equation.
+    /// Builds the arrays for `speeds` (1-based l, each ≤ 6N), Eqs. 2–16.
     pub fn new(chain: &ChainData, state: &GeneralState<'_>, speeds: &[usize]) -> Self {
         let n = chain.mass.len();
         assert_eq!(state.x_dot.len(), 6 * n, "ẋ must hold 6N speeds");
