@@ -87,9 +87,9 @@ impl Topology {
     pub fn kinds(&self) -> Vec<BodyKind> {
         let mut kinds = Vec::with_capacity(self.body_count());
         kinds.push(BodyKind::Anchor);
-        kinds.extend(std::iter::repeat(BodyKind::ChainLink).take(self.chain_links));
+        kinds.extend(std::iter::repeat_n(BodyKind::ChainLink, self.chain_links));
         for (stage, &count) in self.cable_stages.iter().enumerate() {
-            kinds.extend(std::iter::repeat(BodyKind::Cable { stage }).take(count));
+            kinds.extend(std::iter::repeat_n(BodyKind::Cable { stage }, count));
         }
         kinds.push(BodyKind::Rod);
         kinds.push(BodyKind::Ship);

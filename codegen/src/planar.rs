@@ -345,7 +345,7 @@ pub fn kinematics(variant: Variant) -> Function {
     let s1_dot = dag.input(format!("u[{}]", n - 1));
     let mut origin = [dag.add(kin.p.joint[0][0], s1), kin.p.joint[0][1]];
     let mut origin_v = [s1_dot, zero];
-    for k in 0..n {
+    for (k, &theta_k) in theta.iter().enumerate() {
         if k > 0 {
             origin = add2(&mut dag, origin, kin.d[k]);
             origin = name2(&mut dag, origin, &format!("o_{}", k + 1));
@@ -360,7 +360,7 @@ pub fn kinematics(variant: Variant) -> Function {
         let t = scale2(&mut dag, kin.omega[k], je);
         let vel = add2(&mut dag, origin_v, t);
         let vel = name2(&mut dag, vel, &format!("v_{}", k + 1));
-        for (j, v) in [pos[0], pos[1], theta[k], vel[0], vel[1], kin.omega[k]].into_iter().enumerate() {
+        for (j, v) in [pos[0], pos[1], theta_k, vel[0], vel[1], kin.omega[k]].into_iter().enumerate() {
             f.store(Slot::at2("bodies", k, j), v);
         }
     }
@@ -734,6 +734,8 @@ fn raw_loads(dag: &mut Dag, n: usize) -> Vec<(V2, Id)> {
 }
 
 #[cfg(test)]
+// Matrix rows and columns read best by index.
+#[allow(clippy::needless_range_loop)]
 mod tests {
     use std::collections::HashMap;
 
@@ -963,7 +965,7 @@ mod tests {
         };
         let v: Vec<Vec<[f64; 2]>> = (0..n).map(partial).collect();
         let theta = absolute_angles(q);
-        let omega = |k: usize, l: usize| if l + 1 <= k && l + 1 < n { 1.0 } else { 0.0 };
+        let omega = |k: usize, l: usize| if l < k && l + 1 < n { 1.0 } else { 0.0 };
         let mut m = vec![0.0; n * n];
         for l in 0..n {
             for p in 0..n {
@@ -1009,8 +1011,17 @@ mod tests {
         }
     }
 
-    /// (a_lp, f_l, heave row) and the solve's (qdd, returned values) at one state.
-    fn solve_case(v: Variant, stuck: bool, friction: f64) -> (Vec<f64>, Vec<f64>, Vec<f64>, Vec<f64>, Vec<f64>) {
+    /// a_lp, f_l and the heave row from `assemble`, and the solve's qdd and returned values.
+    struct Solved {
+        m: Vec<f64>,
+        f: Vec<f64>,
+        heave: Vec<f64>,
+        qdd: Vec<f64>,
+        ret: Vec<f64>,
+    }
+
+    /// Assembles and solves at one state.
+    fn solve_case(v: Variant, stuck: bool, friction: f64) -> Solved {
         let n = v.bodies;
         let ps = chain(v);
         let (q, u) = state(n);
@@ -1033,7 +1044,7 @@ mod tests {
             qdd[slot.index] = x;
         }
         assert!(sol.stores.windows(2).all(|w| w[0].slot.index < w[1].slot.index), "stores sorted by index");
-        (m, rhs, heave, qdd, ret)
+        Solved { m, f: rhs, heave, qdd, ret }
     }
 
     fn row(m: &[f64], r: usize, x: &[f64]) -> f64 {
@@ -1046,7 +1057,7 @@ mod tests {
         for n in [3, 5] {
             for water in [Water::Off, Water::On] {
                 let v = Variant::new(n, water);
-                let (m, f, heave, qdd, ret) = solve_case(v, false, 0.0);
+                let Solved { m, f, heave, qdd, ret } = solve_case(v, false, 0.0);
                 for r in 0..n {
                     let res = row(&m, r, &qdd) - f[r];
                     assert!(res.abs() < 1e-9 * f[r].abs().max(1.0), "N = {n}, row {r}: residual {res}");
@@ -1063,7 +1074,7 @@ mod tests {
     fn sliding_friction_enters_the_anchor_row_only() {
         let v = Variant::new(5, Water::On);
         let k = 0.4;
-        let (m, f, heave, qdd, ret) = solve_case(v, false, k);
+        let Solved { m, f, heave, qdd, ret } = solve_case(v, false, k);
         let n = 5;
         let normal: f64 = (0..n).map(|p| heave[p] * qdd[p]).sum::<f64>() - heave[n];
         assert!((ret[0] - normal).abs() < 1e-9 * normal.abs().max(1.0));
@@ -1078,7 +1089,7 @@ mod tests {
     #[test]
     fn stuck_solve_returns_the_holding_force() {
         let n = 5;
-        let (m, f, heave, qdd, ret) = solve_case(Variant::new(n, Water::On), true, 0.0);
+        let Solved { m, f, heave, qdd, ret } = solve_case(Variant::new(n, Water::On), true, 0.0);
         assert_eq!(qdd[n - 1], 0.0);
         for r in 0..n - 1 {
             assert!((row(&m, r, &qdd) - f[r]).abs() < 1e-9 * f[r].abs().max(1.0));

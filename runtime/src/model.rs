@@ -178,7 +178,7 @@ impl LaidLine {
     fn new(scene: &Scene) -> Result<LaidLine, CatenaryError> {
         // Element lengths along the line.
         let cable_lengths: Vec<f64> =
-            scene.cable.stages.iter().flat_map(|s| std::iter::repeat(s.element_length).take(s.elements)).collect();
+            scene.cable.stages.iter().flat_map(|s| std::iter::repeat_n(s.element_length, s.elements)).collect();
         let (catenary, cable_points) =
             lay_elements(&cable_lengths, scene.initial.horizontal_projection, scene.initial.vertical_projection)?;
 
