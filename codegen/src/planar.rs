@@ -28,7 +28,7 @@
 //! from the ship inward, then accelerations outward (see [`solve`]).
 //!
 //! Indices: bodies are 0-based here (`k` = B_{k+1}) and 1-based in emitted names; the
-//! a_lp names use the 0-based coordinate indices of `q` (a_i_j is M[i][j]).
+//! a_lp names use the 0-based coordinate indices of `q` (`a_i_j` is `M[i][j]`).
 
 use kanestop_chain::{ParamField, Variant};
 
