@@ -9,7 +9,7 @@ use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::quote;
 
 use crate::expr::{Dag, Id, Node, OpCount};
-use crate::planar::{self, Function};
+use crate::planar::{self, Function, Slot};
 
 /// What was generated for one function.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -52,6 +52,19 @@ fn place(text: &str) -> TokenStream {
     syn::parse_str::<syn::Expr>(text).map(|e| quote!(#e)).unwrap_or_else(|e| panic!("bad place `{text}`: {e}"))
 }
 
+/// The Rust place of an output slot: `array[index]` or `array[index][component]`.
+fn slot(slot: &Slot) -> TokenStream {
+    let array = ident(slot.array);
+    let index = Literal::usize_unsuffixed(slot.index);
+    match slot.component {
+        None => quote!(#array[#index]),
+        Some(c) => {
+            let c = Literal::usize_unsuffixed(c);
+            quote!(#array[#index][#c])
+        }
+    }
+}
+
 fn literal(v: f64) -> TokenStream {
     let lit = Literal::f64_unsuffixed(v.abs());
     if v.is_sign_negative() {
@@ -67,6 +80,7 @@ const MUL: u8 = 2;
 const NEG: u8 = 3;
 const ATOM: u8 = 4;
 
+// Long by design: one walk over the DAG in creation order, one arm per node kind.
 /// The statements of one function: a `let` per named or shared value, single-use unnamed
 /// values inlined into their user (parenthesised so that Rust evaluates exactly the DAG's
 /// operations in the DAG's order), then the stores.
@@ -74,23 +88,7 @@ fn body(f: &Function) -> (TokenStream, usize) {
     let dag: &Dag = &f.dag;
     let roots = f.roots();
     let live = dag.reachable(&roots);
-    let mut uses = vec![0usize; dag.len()];
-    for (i, node) in (0..dag.len()).map(|i| (i, dag.node(Id::from_index(i)))) {
-        if !live[i] {
-            continue;
-        }
-        match node {
-            Node::Add(a, b) | Node::Sub(a, b) | Node::Mul(a, b) | Node::Div(a, b) => {
-                uses[a.index()] += 1;
-                uses[b.index()] += 1;
-            }
-            Node::Neg(a) | Node::Sin(a) | Node::Cos(a) => uses[a.index()] += 1,
-            Node::Const(_) | Node::Input(_) => {}
-        }
-    }
-    for r in &roots {
-        uses[r.index()] += 2; // stored values are always bound to a name
-    }
+    let uses = use_counts(dag, &live, &roots);
     // (tokens, binding strength) of every live value.
     let mut operand: Vec<Option<(TokenStream, u8)>> = vec![None; dag.len()];
     let mut used: HashSet<String> = HashSet::new();
@@ -162,13 +160,13 @@ fn body(f: &Function) -> (TokenStream, usize) {
         operand[i] = Some((quote!(#name), ATOM));
         count += 1;
     }
-    for (target, value) in &f.stores {
-        let target = place(target);
-        let value = operand[value.index()].clone().expect("stored values are live").0;
+    for store in &f.stores {
+        let target = slot(&store.slot);
+        let value = operand[store.value.index()].clone().expect("stored values are live").0;
         stmts.extend(quote!(#target = #value;));
     }
-    if f.dense_fill {
-        stmts.extend(dense_fill(n_of(f)));
+    if let Some(n) = f.dense_fill {
+        stmts.extend(dense_fill(n));
     }
     let returned: Vec<TokenStream> =
         f.ret.iter().map(|r| operand[r.index()].clone().expect("returned value is live").0).collect();
@@ -180,14 +178,27 @@ fn body(f: &Function) -> (TokenStream, usize) {
     (stmts, count)
 }
 
-/// N of a function with a dense fill, from its `k_col` stores (N − 2 is the last index).
-fn n_of(f: &Function) -> usize {
-    f.stores
-        .iter()
-        .filter_map(|(p, _)| p.strip_prefix("k_col[")?.strip_suffix(']')?.parse::<usize>().ok())
-        .max()
-        .map(|c| c + 2)
-        .expect("a dense fill has k_col stores")
+/// How many live nodes read each node; stored and returned values count twice, so that
+/// they are always bound to a name.
+fn use_counts(dag: &Dag, live: &[bool], roots: &[Id]) -> Vec<usize> {
+    let mut uses = vec![0usize; dag.len()];
+    for (i, node) in (0..dag.len()).map(|i| (i, dag.node(Id::from_index(i)))) {
+        if !live[i] {
+            continue;
+        }
+        match node {
+            Node::Add(a, b) | Node::Sub(a, b) | Node::Mul(a, b) | Node::Div(a, b) => {
+                uses[a.index()] += 1;
+                uses[b.index()] += 1;
+            }
+            Node::Neg(a) | Node::Sin(a) | Node::Cos(a) => uses[a.index()] += 1,
+            Node::Const(_) | Node::Input(_) => {}
+        }
+    }
+    for r in roots {
+        uses[r.index()] += 2;
+    }
+    uses
 }
 
 /// The local arrays the dense fill reads, declared before the stores.
@@ -234,6 +245,7 @@ fn fixed(name: &str, ty: TokenStream, len: usize, mutable: bool) -> TokenStream 
     }
 }
 
+// Long by design: the five kernels' signatures and docs side by side, as they appear in the file.
 /// Generates the kernel file of `variant`.
 pub fn generate(variant: Variant) -> GeneratedFile {
     let n = variant.bodies;
@@ -262,7 +274,7 @@ pub fn generate(variant: Variant) -> GeneratedFile {
     let mut function = |name: &'static str, f: Function, doc: String, sig: TokenStream, prelude: TokenStream| {
         let mut ops = f.dag.count(&f.roots());
         let mut prelude = prelude;
-        if f.dense_fill {
+        if f.dense_fill.is_some() {
             ops += dense_ops(n);
             prelude.extend(dense_locals(n));
         }
@@ -424,4 +436,81 @@ fn registry_with(variants: &[Variant], out_dir: bool) -> String {
     let file: syn::File = syn::parse2(tokens).expect("registry parses");
     let what = if out_dir { "the scenes' element counts (build script)" } else { "the checked-in variant list" };
     header(what) + "\n" + &prettyplease::unparse(&file)
+}
+
+#[cfg(test)]
+mod tests {
+    use kanestop_chain::{ParamField, Variant, Water};
+
+    use super::{generate, registry, slot};
+    use crate::planar::Slot;
+
+    #[test]
+    fn slots_render_as_rust_places() {
+        assert_eq!(slot(&Slot::at("qdd", 3)).to_string(), "qdd [3]");
+        assert_eq!(slot(&Slot::at2("bodies", 4, 1)).to_string(), "bodies [4] [1]");
+    }
+
+    #[test]
+    fn structural_zeros_are_absent_from_the_source() {
+        for water in [Water::Off, Water::On] {
+            let v = Variant::new(5, water);
+            let src = generate(v).source;
+            for k in 0..5 {
+                for (field, place) in [
+                    (ParamField::CentroidZ, format!("p[{k}].centroid[1]")),
+                    (ParamField::JointZ, format!("p[{k}].joint[1]")),
+                    (ParamField::AddedMass, format!("p[{k}].added_mass")),
+                ] {
+                    assert_eq!(
+                        src.contains(&place),
+                        !v.folds(k, field),
+                        "{water:?}: `{place}` should {}appear",
+                        if v.folds(k, field) { "not " } else { "" }
+                    );
+                }
+            }
+            // B_1 does not rotate: its inertia never enters.
+            assert!(!src.contains("p[0].inertia"));
+        }
+        assert!(!generate(Variant::new(5, Water::Off)).source.contains("added_mass"));
+    }
+
+    #[test]
+    fn emission_is_deterministic_and_parses() {
+        for v in [Variant::new(3, Water::Off), Variant::new(6, Water::On)] {
+            let (a, b) = (generate(v), generate(v));
+            assert_eq!(a.source, b.source);
+            assert_eq!(a.functions, b.functions);
+            let file = syn::parse_file(&a.source).expect("the emitted source parses");
+            let fns: Vec<String> = file
+                .items
+                .iter()
+                .filter_map(|i| match i {
+                    syn::Item::Fn(f) => Some(f.sig.ident.to_string()),
+                    _ => None,
+                })
+                .collect();
+            assert_eq!(fns, ["kinematics", "assemble", "accelerations", "solve_free", "solve_stuck"]);
+            assert!(a.functions.iter().all(|f| f.ops.total() > 0 && f.statements > 0), "{:?}", a.functions);
+            assert_eq!(a.file_name, format!("{}.rs", v.module()));
+        }
+    }
+
+    #[test]
+    fn dense_fill_only_from_four_bodies() {
+        assert!(!generate(Variant::new(3, Water::On)).source.contains("k_col"));
+        let src = generate(Variant::new(4, Water::On)).source;
+        assert!(src.contains("let mut k_col = [0.0f64; 3];"), "locals sized N − 1");
+        assert!(src.contains("m[j * 4 + l] = a;"));
+    }
+
+    #[test]
+    fn registry_lists_each_variant_once_sorted() {
+        let v = [Variant::new(5, Water::On), Variant::new(3, Water::Off), Variant::new(5, Water::On)];
+        let text = registry(&v);
+        syn::parse_file(&text).expect("the registry parses");
+        assert!(text.contains("pub const AVAILABLE: &[(usize, bool)] = &[(3, false), (5, true)];"), "{text}");
+        assert_eq!(text.matches("pub mod chain5_wet;").count(), 1);
+    }
 }

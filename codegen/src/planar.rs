@@ -28,7 +28,7 @@
 //! from the ship inward, then accelerations outward (see [`solve`]).
 //!
 //! Indices: bodies are 0-based here (`k` = B_{k+1}) and 1-based in emitted names; the
-//! a_lp names use the 0-based coordinate indices of `q` (a_i_j is M[i][j]).
+//! a_lp names use the 0-based coordinate indices of `q` (`a_i_j` is `M[i][j]`).
 
 use kanestop_chain::{ParamField, Variant};
 
@@ -259,27 +259,66 @@ impl Kin {
     }
 }
 
+/// An output place of a kernel: `array[index]`, or `array[index][component]` for an array
+/// of small arrays. Kept typed here; [`crate::emit`] renders it as Rust.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Slot {
+    /// The argument or local array written (`m`, `qdd`, `bodies`, …).
+    pub array: &'static str,
+    /// The outer index.
+    pub index: usize,
+    /// The inner index, for arrays of small arrays (`bodies[k][j]`).
+    pub component: Option<usize>,
+}
+
+impl Slot {
+    /// `array[index]`.
+    pub fn at(array: &'static str, index: usize) -> Slot {
+        Slot { array, index, component: None }
+    }
+
+    /// `array[index][component]`.
+    pub fn at2(array: &'static str, index: usize, component: usize) -> Slot {
+        Slot { array, index, component: Some(component) }
+    }
+}
+
+/// One output: `slot = value;`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Store {
+    /// Where the value goes.
+    pub slot: Slot,
+    /// What is stored.
+    pub value: Id,
+}
+
 /// A function body: where each output goes.
 pub struct Function {
     pub dag: Dag,
-    /// (place, value): `place = value;` in order.
-    pub stores: Vec<(String, Id)>,
+    /// The stores, emitted in order.
+    pub stores: Vec<Store>,
     /// The returned values: none, one (`-> f64`) or several (`-> [f64; n]`).
     pub ret: Vec<Id>,
-    /// With N ≥ 4, the dense block of a_lp over the coordinates 1 ≤ j < l ≤ N − 2 is
-    /// filled after the stores by a fixed loop nest, a_jl = K_l − ō_j · S_l, from the local
-    /// arrays `k_col`, `s_col` and `o_rel` that the stores fill (see [`assemble`]).
-    pub dense_fill: bool,
+    /// `Some(N)` when, with N ≥ 4, the dense block of a_lp over the coordinates
+    /// 1 ≤ j < l ≤ N − 2 is filled after the stores by a fixed loop nest,
+    /// a_jl = K_l − ō_j · S_l, from the local arrays `k_col`, `s_col` and `o_rel` that the
+    /// stores fill (see [`assemble`]).
+    pub dense_fill: Option<usize>,
 }
 
 impl Function {
     fn new(dag: Dag) -> Self {
-        Function { dag, stores: Vec::new(), ret: Vec::new(), dense_fill: false }
+        Function { dag, stores: Vec::new(), ret: Vec::new(), dense_fill: None }
+    }
+
+    /// Appends the store `slot = value;`.
+    fn store(&mut self, slot: Slot, value: Id) {
+        self.stores.push(Store { slot, value });
     }
 
     /// Every value the function computes.
     pub fn roots(&self) -> Vec<Id> {
-        self.stores.iter().map(|s| s.1).chain(self.ret.iter().copied()).collect()
+        self.stores.iter().map(|s| s.value).chain(self.ret.iter().copied()).collect()
     }
 }
 
@@ -306,7 +345,7 @@ pub fn kinematics(variant: Variant) -> Function {
     let s1_dot = dag.input(format!("u[{}]", n - 1));
     let mut origin = [dag.add(kin.p.joint[0][0], s1), kin.p.joint[0][1]];
     let mut origin_v = [s1_dot, zero];
-    for k in 0..n {
+    for (k, &theta_k) in theta.iter().enumerate() {
         if k > 0 {
             origin = add2(&mut dag, origin, kin.d[k]);
             origin = name2(&mut dag, origin, &format!("o_{}", k + 1));
@@ -321,18 +360,19 @@ pub fn kinematics(variant: Variant) -> Function {
         let t = scale2(&mut dag, kin.omega[k], je);
         let vel = add2(&mut dag, origin_v, t);
         let vel = name2(&mut dag, vel, &format!("v_{}", k + 1));
-        for (j, v) in [pos[0], pos[1], theta[k], vel[0], vel[1], kin.omega[k]].into_iter().enumerate() {
-            f.stores.push((format!("bodies[{k}][{j}]"), v));
+        for (j, v) in [pos[0], pos[1], theta_k, vel[0], vel[1], kin.omega[k]].into_iter().enumerate() {
+            f.store(Slot::at2("bodies", k, j), v);
         }
     }
     for k in 0..n {
-        f.stores.push((format!("trig[{k}][0]"), kin.cs[k][0]));
-        f.stores.push((format!("trig[{k}][1]"), kin.cs[k][1]));
+        f.store(Slot::at2("trig", k, 0), kin.cs[k][0]);
+        f.store(Slot::at2("trig", k, 1), kin.cs[k][1]);
     }
     f.dag = dag;
     f
 }
 
+// Long by design: the phases must create DAG nodes in this order (the emitted text is checked in).
 /// a_lp (Eq. 26) over all N speeds, both triangles, and f_l (Eq. 25) with the loads
 /// projected by Eq. 23; plus the row of the anchor's heave speed w = ẋ_{3N+3}, which is
 /// always constrained: `heave[p]` = a_{w,p} for the N active speeds and `heave[N]` = f_w,
@@ -406,13 +446,13 @@ pub fn assemble(variant: Variant) -> Function {
         }
         let c = l - 1; // coordinate of β_{l+1}
         if (2..=n - 2).contains(&c) {
-            f.stores.push((format!("k_col[{c}]"), k_l));
-            f.stores.push((format!("s_col[{c}][0]"), s_l[l][0]));
-            f.stores.push((format!("s_col[{c}][1]"), s_l[l][1]));
+            f.store(Slot::at("k_col", c), k_l);
+            f.store(Slot::at2("s_col", c, 0), s_l[l][0]);
+            f.store(Slot::at2("s_col", c, 1), s_l[l][1]);
         }
         if (1..=n - 3).contains(&c) {
-            f.stores.push((format!("o_rel[{c}][0]"), rel[l][0]));
-            f.stores.push((format!("o_rel[{c}][1]"), rel[l][1]));
+            f.store(Slot::at2("o_rel", c, 0), rel[l][0]);
+            f.store(Slot::at2("o_rel", c, 1), rel[l][1]);
         }
         entries.push((l - 1, l - 1, j_l[l]));
         // a_{β_l s} = (S_l)_z.
@@ -420,9 +460,9 @@ pub fn assemble(variant: Variant) -> Function {
         // a_{w β_l} = −(S_l)_x.
         let a_w = dag.neg(s_l[l][0]);
         let a_w = dag.name(a_w, format!("a_w_{}", l - 1));
-        f.stores.push((format!("heave[{}]", l - 1), a_w));
+        f.store(Slot::at("heave", l - 1), a_w);
     }
-    f.dense_fill = n >= 4;
+    f.dense_fill = (n >= 4).then_some(n);
     // a_{ss} = Σ m_k + m_a,k sin²θ_k and a_{ws} = Σ m_a,k sin θ_k cos θ_k.
     let mut ass = zero;
     let mut aws = zero;
@@ -438,13 +478,13 @@ pub fn assemble(variant: Variant) -> Function {
     }
     entries.push((n - 1, n - 1, ass));
     let aws = dag.name(aws, format!("a_w_{}", n - 1));
-    f.stores.push((format!("heave[{}]", n - 1), aws));
+    f.store(Slot::at("heave", n - 1), aws);
     entries.sort_by_key(|&(i, j, _)| (i, j));
     for &(i, j, a) in &entries {
         dag.name(a, format!("a_{i}_{j}"));
-        f.stores.push((format!("m[{}]", i * n + j), a));
+        f.store(Slot::at("m", i * n + j), a);
         if i != j {
-            f.stores.push((format!("m[{}]", j * n + i), a));
+            f.store(Slot::at("m", j * n + i), a);
         }
     }
 
@@ -466,10 +506,10 @@ pub fn assemble(variant: Variant) -> Function {
     }
     rhs[n - 1] = dag.name(g[0], format!("f_{}", n - 1));
     for (i, &v) in rhs.iter().enumerate() {
-        f.stores.push((format!("f[{i}]"), v));
+        f.store(Slot::at("f", i), v);
     }
     let f_w = dag.name(g[1], "f_w");
-    f.stores.push((format!("heave[{n}]"), f_w));
+    f.store(Slot::at("heave", n), f_w);
     f.dag = dag;
     f
 }
@@ -506,14 +546,15 @@ pub fn accelerations(variant: Variant) -> Function {
         let a = add2(&mut dag, origin_a, t);
         let a = sub2(&mut dag, a, c);
         let a = name2(&mut dag, a, &format!("a_{}", k + 1));
-        f.stores.push((format!("acc[{k}][0]"), a[0]));
-        f.stores.push((format!("acc[{k}][1]"), a[1]));
-        f.stores.push((format!("acc[{k}][2]"), alpha));
+        f.store(Slot::at2("acc", k, 0), a[0]);
+        f.store(Slot::at2("acc", k, 1), a[1]);
+        f.store(Slot::at2("acc", k, 2), alpha);
     }
     f.dag = dag;
     f
 }
 
+// Long by design: the recursion reads as one inward and one outward pass, in node order.
 /// The O(N) solve of a_lp ẍ_p = f_l by articulated-body recursion.
 ///
 /// At each body origin o_k, with (angular, x, z) components and point accelerations
@@ -654,7 +695,7 @@ pub fn solve(variant: Variant, stuck: bool) -> Function {
         f.ret = vec![normal, factor];
         s_dd
     };
-    f.stores.push((format!("qdd[{}]", n - 1), s_dd));
+    f.store(Slot::at("qdd", n - 1), s_dd);
 
     // Outward pass: (α, a_o) of each body; α_k = −(IA_01 â_x + IA_02 â_z + pA_0) / D.
     let mut alpha = zero;
@@ -674,14 +715,11 @@ pub fn solve(variant: Variant, stuck: bool) -> Function {
         let new_alpha = dag.name(new_alpha, format!("alpha_{}", k + 1));
         let beta_dd = dag.sub(new_alpha, alpha);
         let beta_dd = dag.name(beta_dd, format!("qdd_{}", k - 1));
-        f.stores.push((format!("qdd[{}]", k - 1), beta_dd));
+        f.store(Slot::at("qdd", k - 1), beta_dd);
         alpha = new_alpha;
         acc = a;
     }
-    f.stores.sort_by_key(|s| {
-        let idx: usize = s.0.trim_start_matches("qdd[").trim_end_matches(']').parse().unwrap();
-        idx
-    });
+    f.stores.sort_by_key(|s| s.slot.index);
     f.dag = dag;
     f
 }
@@ -693,4 +731,402 @@ fn raw_loads(dag: &mut Dag, n: usize) -> Vec<(V2, Id)> {
             (f, dag.input(format!("loads[{k}][2]")))
         })
         .collect()
+}
+
+#[cfg(test)]
+// Matrix rows and columns read best by index.
+#[allow(clippy::needless_range_loop)]
+mod tests {
+    use std::collections::HashMap;
+
+    use kanestop_chain::{ParamField, Variant, Water};
+
+    use super::{accelerations, assemble, kinematics, solve, Function, Slot};
+
+    /// Parameters of one body, with the variant's structural zeros applied.
+    #[derive(Clone, Copy)]
+    struct P {
+        mass: f64,
+        inertia: f64,
+        centroid: [f64; 2],
+        joint: [f64; 2],
+        added_mass: f64,
+    }
+
+    /// A small chain with every parameter distinct (the folded ones zeroed).
+    fn chain(v: Variant) -> Vec<P> {
+        (0..v.bodies)
+            .map(|k| {
+                let kf = k as f64;
+                let mut p = P {
+                    mass: 3.0 + 1.5 * kf,
+                    inertia: if k == 0 { 0.0 } else { 0.4 + 0.3 * kf },
+                    centroid: [0.6 + 0.1 * kf, 0.25 - 0.05 * kf],
+                    joint: [1.1 + 0.2 * kf, 0.3 + 0.1 * kf],
+                    added_mass: 0.7 + 0.2 * kf,
+                };
+                if v.folds(k, ParamField::CentroidZ) {
+                    p.centroid[1] = 0.0;
+                }
+                if v.folds(k, ParamField::JointZ) {
+                    p.joint[1] = 0.0;
+                }
+                if v.folds(k, ParamField::AddedMass) {
+                    p.added_mass = 0.0;
+                }
+                p
+            })
+            .collect()
+    }
+
+    /// The kernels' inputs by name, for [`crate::expr::Dag::eval`].
+    #[derive(Default)]
+    struct Inputs(HashMap<String, f64>);
+
+    impl Inputs {
+        fn new(ps: &[P]) -> Self {
+            let mut i = Inputs::default();
+            for (k, p) in ps.iter().enumerate() {
+                i.set(format!("p[{k}].mass"), p.mass);
+                i.set(format!("p[{k}].inertia"), p.inertia);
+                i.set(format!("p[{k}].centroid[0]"), p.centroid[0]);
+                i.set(format!("p[{k}].centroid[1]"), p.centroid[1]);
+                i.set(format!("p[{k}].joint[0]"), p.joint[0]);
+                i.set(format!("p[{k}].joint[1]"), p.joint[1]);
+                i.set(format!("p[{k}].added_mass"), p.added_mass);
+            }
+            i
+        }
+
+        fn set(&mut self, name: String, v: f64) {
+            self.0.insert(name, v);
+        }
+
+        fn array(&mut self, name: &str, values: &[f64]) {
+            for (i, &v) in values.iter().enumerate() {
+                self.set(format!("{name}[{i}]"), v);
+            }
+        }
+
+        /// θ_k and the rotation table of the coordinates q.
+        fn trig(&mut self, q: &[f64]) {
+            for (k, t) in absolute_angles(q).into_iter().enumerate() {
+                self.set(format!("trig[{k}][0]"), t.cos());
+                self.set(format!("trig[{k}][1]"), t.sin());
+            }
+        }
+
+        fn loads(&mut self, loads: &[[f64; 3]]) {
+            for (k, l) in loads.iter().enumerate() {
+                for (j, &v) in l.iter().enumerate() {
+                    self.set(format!("loads[{k}][{j}]"), v);
+                }
+            }
+        }
+
+        /// Every store and returned value of `f`.
+        fn run(&self, f: &Function) -> (HashMap<Slot, f64>, Vec<f64>) {
+            let roots = f.roots();
+            let values = f.dag.eval(&roots, &mut |name| {
+                *self.0.get(name).unwrap_or_else(|| panic!("the kernel reads an unknown input `{name}`"))
+            });
+            let stores = f.stores.iter().zip(&values).map(|(s, &v)| (s.slot, v)).collect();
+            (stores, values[f.stores.len()..].to_vec())
+        }
+    }
+
+    /// θ_1 = 0, θ_k = β_2 + … + β_k.
+    fn absolute_angles(q: &[f64]) -> Vec<f64> {
+        let n = q.len();
+        let mut theta = vec![0.0; n];
+        for k in 1..n {
+            theta[k] = theta[k - 1] + q[k - 1];
+        }
+        theta
+    }
+
+    /// R(θ) v with the paper's rotation about y.
+    fn rot(theta: f64, v: [f64; 2]) -> [f64; 2] {
+        let (s, c) = theta.sin_cos();
+        [v[0] * c + v[1] * s, -v[0] * s + v[1] * c]
+    }
+
+    /// Centroid positions by direct forward kinematics (Eq. 13).
+    fn centroids(ps: &[P], q: &[f64]) -> Vec<[f64; 2]> {
+        let n = ps.len();
+        let theta = absolute_angles(q);
+        let mut o = [ps[0].joint[0] + q[n - 1], ps[0].joint[1]];
+        let mut out = Vec::new();
+        for k in 0..n {
+            if k > 0 {
+                let d = rot(theta[k - 1], ps[k].joint);
+                o = [o[0] + d[0], o[1] + d[1]];
+            }
+            let e = rot(theta[k], ps[k].centroid);
+            out.push([o[0] + e[0], o[1] + e[1]]);
+        }
+        out
+    }
+
+    fn axpy(q: &[f64], h: f64, u: &[f64]) -> Vec<f64> {
+        q.iter().zip(u).map(|(a, b)| a + h * b).collect()
+    }
+
+    fn state(n: usize) -> (Vec<f64>, Vec<f64>) {
+        let q: Vec<f64> = (0..n).map(|k| 0.3 - 0.17 * k as f64).collect();
+        let u: Vec<f64> = (0..n).map(|k| 0.5 + 0.11 * k as f64 * if k % 2 == 0 { 1.0 } else { -1.0 }).collect();
+        (q, u)
+    }
+
+    #[test]
+    fn kinematics_of_a_three_body_chain_by_hand() {
+        let v = Variant::new(3, Water::Off);
+        let mut ps = chain(v);
+        ps[0].joint = [0.0, 0.0];
+        ps[0].centroid = [0.5, 0.25];
+        ps[1].joint = [1.0, 0.5];
+        ps[1].centroid = [0.5, 0.0];
+        ps[2].joint = [1.0, 0.0];
+        ps[2].centroid = [-0.2, 0.3];
+        let q = [std::f64::consts::FRAC_PI_2, -std::f64::consts::FRAC_PI_2, 2.0];
+        let mut i = Inputs::new(&ps);
+        i.array("q", &q);
+        i.array("u", &[0.0; 3]);
+        let (s, _) = i.run(&kinematics(v));
+        // o_1 = (2, 0); B_2 hangs straight down from o_2 = (3, 0.5); B_3 is level again at
+        // o_3 = (3, −0.5).
+        let expected = [[2.5, 0.25], [3.0, 0.0], [2.8, -0.2]];
+        for (k, e) in expected.iter().enumerate() {
+            for (j, &x) in e.iter().enumerate() {
+                let got = s[&Slot::at2("bodies", k, j)];
+                assert!((got - x).abs() < 1e-12, "body {k} coordinate {j}: {got} vs {x}");
+            }
+        }
+        assert!((s[&Slot::at2("bodies", 1, 2)] - std::f64::consts::FRAC_PI_2).abs() < 1e-15);
+        assert!(s[&Slot::at2("bodies", 2, 2)].abs() < 1e-15);
+        assert!((s[&Slot::at2("trig", 1, 1)] - 1.0).abs() < 1e-15);
+    }
+
+    #[test]
+    fn kinematics_match_forward_kinematics_and_its_time_derivative() {
+        for water in [Water::Off, Water::On] {
+            let v = Variant::new(5, water);
+            let ps = chain(v);
+            let (q, u) = state(5);
+            let mut i = Inputs::new(&ps);
+            i.array("q", &q);
+            i.array("u", &u);
+            let (s, _) = i.run(&kinematics(v));
+            let h = 1e-6;
+            let (p, pp, pm) = (centroids(&ps, &q), centroids(&ps, &axpy(&q, h, &u)), centroids(&ps, &axpy(&q, -h, &u)));
+            for k in 0..5 {
+                for j in 0..2 {
+                    assert!((s[&Slot::at2("bodies", k, j)] - p[k][j]).abs() < 1e-12);
+                    let fd = (pp[k][j] - pm[k][j]) / (2.0 * h);
+                    let got = s[&Slot::at2("bodies", k, 3 + j)];
+                    assert!((got - fd).abs() < 1e-7, "v of body {k}, {j}: {got} vs {fd}");
+                }
+            }
+        }
+    }
+
+    /// a_lp from the stores, the dense block filled as the emitted loop nest does.
+    fn mass_matrix(s: &HashMap<Slot, f64>, n: usize, dense: Option<usize>) -> Vec<f64> {
+        let mut m = vec![f64::NAN; n * n];
+        for (slot, &v) in s {
+            if slot.array == "m" {
+                m[slot.index] = v;
+            }
+        }
+        if dense.is_some() {
+            for l in 2..n - 1 {
+                for j in 1..l {
+                    let o = [s[&Slot::at2("o_rel", j, 0)], s[&Slot::at2("o_rel", j, 1)]];
+                    let a = s[&Slot::at("k_col", l)]
+                        - (o[0] * s[&Slot::at2("s_col", l, 0)] + o[1] * s[&Slot::at2("s_col", l, 1)]);
+                    m[j * n + l] = a;
+                    m[l * n + j] = a;
+                }
+            }
+        }
+        m
+    }
+
+    /// a_lp = Σ_k v_klᵀ A_k v_kp + I_k ω_kl ω_kp (Eq. 26) with the partial velocities v_kl of
+    /// Eq. 15 taken by finite differences of the forward kinematics.
+    fn mass_matrix_by_partials(ps: &[P], q: &[f64]) -> Vec<f64> {
+        let n = ps.len();
+        let h = 1e-6;
+        let partial = |l: usize| {
+            let mut dq = vec![0.0; n];
+            dq[l] = 1.0;
+            let (a, b) = (centroids(ps, &axpy(q, h, &dq)), centroids(ps, &axpy(q, -h, &dq)));
+            (0..n).map(|k| [(a[k][0] - b[k][0]) / (2.0 * h), (a[k][1] - b[k][1]) / (2.0 * h)]).collect::<Vec<_>>()
+        };
+        let v: Vec<Vec<[f64; 2]>> = (0..n).map(partial).collect();
+        let theta = absolute_angles(q);
+        let omega = |k: usize, l: usize| if l < k && l + 1 < n { 1.0 } else { 0.0 };
+        let mut m = vec![0.0; n * n];
+        for l in 0..n {
+            for p in 0..n {
+                for (k, b) in ps.iter().enumerate() {
+                    let nrm = [theta[k].sin(), theta[k].cos()];
+                    let (a, c) = (v[l][k], v[p][k]);
+                    let an = nrm[0] * c[0] + nrm[1] * c[1];
+                    let av = [b.mass * c[0] + b.added_mass * an * nrm[0], b.mass * c[1] + b.added_mass * an * nrm[1]];
+                    m[l * n + p] += a[0] * av[0] + a[1] * av[1] + b.inertia * omega(k, l) * omega(k, p);
+                }
+            }
+        }
+        m
+    }
+
+    #[test]
+    fn a_lp_is_symmetric_and_matches_the_partial_velocities() {
+        for n in [3, 4, 6] {
+            for water in [Water::Off, Water::On] {
+                let v = Variant::new(n, water);
+                let ps = chain(v);
+                let (q, u) = state(n);
+                let mut i = Inputs::new(&ps);
+                i.array("u", &u);
+                i.trig(&q);
+                i.loads(&vec![[0.0; 3]; n]);
+                let f = assemble(v);
+                assert_eq!(f.dense_fill, (n >= 4).then_some(n));
+                let (s, _) = i.run(&f);
+                let m = mass_matrix(&s, n, f.dense_fill);
+                let reference = mass_matrix_by_partials(&ps, &q);
+                for r in 0..n {
+                    for c in 0..n {
+                        assert_eq!(m[r * n + c], m[c * n + r], "N = {n}: a_{r}{c} ≠ a_{c}{r}");
+                        let (got, want) = (m[r * n + c], reference[r * n + c]);
+                        assert!(
+                            (got - want).abs() < 1e-6 * want.abs().max(1.0),
+                            "N = {n} {water:?}: a_{r}{c} = {got}, expected {want}"
+                        );
+                    }
+                }
+            }
+        }
+    }
+
+    /// a_lp, f_l and the heave row from `assemble`, and the solve's qdd and returned values.
+    struct Solved {
+        m: Vec<f64>,
+        f: Vec<f64>,
+        heave: Vec<f64>,
+        qdd: Vec<f64>,
+        ret: Vec<f64>,
+    }
+
+    /// Assembles and solves at one state.
+    fn solve_case(v: Variant, stuck: bool, friction: f64) -> Solved {
+        let n = v.bodies;
+        let ps = chain(v);
+        let (q, u) = state(n);
+        let loads: Vec<[f64; 3]> = (0..n).map(|k| [10.0 - 3.0 * k as f64, -20.0 + k as f64, 0.5 * k as f64]).collect();
+        let mut i = Inputs::new(&ps);
+        i.array("u", &u);
+        i.trig(&q);
+        i.loads(&loads);
+        i.set("friction".to_string(), friction);
+        let a = assemble(v);
+        let (s, _) = i.run(&a);
+        let m = mass_matrix(&s, n, a.dense_fill);
+        let rhs: Vec<f64> = (0..n).map(|k| s[&Slot::at("f", k)]).collect();
+        let heave: Vec<f64> = (0..=n).map(|k| s[&Slot::at("heave", k)]).collect();
+        let sol = solve(v, stuck);
+        let (st, ret) = i.run(&sol);
+        let mut qdd = vec![0.0; n];
+        for (slot, &x) in &st {
+            assert_eq!(slot.array, "qdd");
+            qdd[slot.index] = x;
+        }
+        assert!(sol.stores.windows(2).all(|w| w[0].slot.index < w[1].slot.index), "stores sorted by index");
+        Solved { m, f: rhs, heave, qdd, ret }
+    }
+
+    fn row(m: &[f64], r: usize, x: &[f64]) -> f64 {
+        let n = x.len();
+        (0..n).map(|c| m[r * n + c] * x[c]).sum()
+    }
+
+    #[test]
+    fn free_solve_satisfies_a_lp_qdd_equals_f_l() {
+        for n in [3, 5] {
+            for water in [Water::Off, Water::On] {
+                let v = Variant::new(n, water);
+                let Solved { m, f, heave, qdd, ret } = solve_case(v, false, 0.0);
+                for r in 0..n {
+                    let res = row(&m, r, &qdd) - f[r];
+                    assert!(res.abs() < 1e-9 * f[r].abs().max(1.0), "N = {n}, row {r}: residual {res}");
+                }
+                // The returned normal force is the heave row's constraint force (Eq. 37).
+                let normal: f64 = (0..n).map(|p| heave[p] * qdd[p]).sum::<f64>() - heave[n];
+                assert!((ret[0] - normal).abs() < 1e-9 * normal.abs().max(1.0), "{} vs {normal}", ret[0]);
+                assert!((ret[1] - 1.0).abs() < 1e-15, "no friction: factor 1");
+            }
+        }
+    }
+
+    #[test]
+    fn sliding_friction_enters_the_anchor_row_only() {
+        let v = Variant::new(5, Water::On);
+        let k = 0.4;
+        let Solved { m, f, heave, qdd, ret } = solve_case(v, false, k);
+        let n = 5;
+        let normal: f64 = (0..n).map(|p| heave[p] * qdd[p]).sum::<f64>() - heave[n];
+        assert!((ret[0] - normal).abs() < 1e-9 * normal.abs().max(1.0));
+        for r in 0..n - 1 {
+            assert!((row(&m, r, &qdd) - f[r]).abs() < 1e-9 * f[r].abs().max(1.0));
+        }
+        // Surge: a_sp ẍ_p = f_s − k N.
+        let res = row(&m, n - 1, &qdd) - (f[n - 1] - k * normal);
+        assert!(res.abs() < 1e-9 * f[n - 1].abs().max(1.0), "surge residual {res}");
+    }
+
+    #[test]
+    fn stuck_solve_returns_the_holding_force() {
+        let n = 5;
+        let Solved { m, f, heave, qdd, ret } = solve_case(Variant::new(n, Water::On), true, 0.0);
+        assert_eq!(qdd[n - 1], 0.0);
+        for r in 0..n - 1 {
+            assert!((row(&m, r, &qdd) - f[r]).abs() < 1e-9 * f[r].abs().max(1.0));
+        }
+        // Eq. 50: F^C = a_sp ẍ_p − f_s; the normal force as in Eq. 37.
+        let holding = row(&m, n - 1, &qdd) - f[n - 1];
+        assert!((ret[0] - holding).abs() < 1e-9 * holding.abs().max(1.0), "{} vs {holding}", ret[0]);
+        let normal: f64 = (0..n).map(|p| heave[p] * qdd[p]).sum::<f64>() - heave[n];
+        assert!((ret[1] - normal).abs() < 1e-9 * normal.abs().max(1.0));
+    }
+
+    #[test]
+    fn accelerations_are_the_second_time_derivative() {
+        let v = Variant::new(4, Water::On);
+        let ps = chain(v);
+        let (q, u) = state(4);
+        let qdd = [0.7, -1.3, 0.4, 2.1];
+        let mut i = Inputs::new(&ps);
+        i.array("u", &u);
+        i.array("qdd", &qdd);
+        i.trig(&q);
+        let (s, _) = i.run(&accelerations(v));
+        // q(t) = q + u t + qdd t²/2 through the forward kinematics.
+        let h = 1e-4;
+        let at = |t: f64| {
+            let qt: Vec<f64> = (0..4).map(|j| q[j] + u[j] * t + 0.5 * qdd[j] * t * t).collect();
+            centroids(&ps, &qt)
+        };
+        let (a, b, c) = (at(h), at(0.0), at(-h));
+        for k in 0..4 {
+            for j in 0..2 {
+                let fd = (a[k][j] - 2.0 * b[k][j] + c[k][j]) / (h * h);
+                let got = s[&Slot::at2("acc", k, j)];
+                assert!((got - fd).abs() < 1e-5 * fd.abs().max(1.0), "a of body {k}, {j}: {got} vs {fd}");
+            }
+        }
+        let alpha: f64 = qdd[..2].iter().sum();
+        assert!((s[&Slot::at2("acc", 2, 2)] - alpha).abs() < 1e-12);
+    }
 }

@@ -7,8 +7,6 @@
 //! [`lay_elements`] therefore uses the catenary through the same end points whose length
 //! L' ≥ L_c makes the chord polygon end exactly at (x_L, h_L).
 
-use std::fmt;
-
 /// The catenary of Eqs. 30–34, lower end o at the origin on the seabed line.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Catenary {
@@ -25,16 +23,33 @@ pub struct Catenary {
 }
 
 /// Why no catenary exists for the given geometry.
-#[derive(Clone, Debug, PartialEq)]
-pub struct CatenaryError(pub String);
-
-impl fmt::Display for CatenaryError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(&self.0)
-    }
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum CatenaryError {
+    /// The geometry leaves no grounded part: Eqs. 30–34 need 0 < L_c − x_L < h_L.
+    #[error(
+        "no catenary with a grounded part: need 0 < L_c − x_L < h_L, have L_c = {length} m, x_L = {horizontal} m, h_L = {vertical} m"
+    )]
+    NoGroundedPart {
+        /// L_c, m.
+        length: f64,
+        /// x_L, m.
+        horizontal: f64,
+        /// h_L, m.
+        vertical: f64,
+    },
+    /// Eq. 30 has no root in the range searched.
+    #[error("Eq. 30 has no root below b = 700")]
+    NoRoot,
+    /// A rigid element is too long to be laid as a chord of the curve.
+    #[error("element of {length} m cannot be laid on the catenary")]
+    ElementTooLong {
+        /// The element's length, m.
+        length: f64,
+    },
+    /// No curve length makes the chord polygon end at (x_L, h_L).
+    #[error("elements cannot be laid to end at (x_L, h_L)")]
+    CannotEnd,
 }
-
-impl std::error::Error for CatenaryError {}
 
 impl Catenary {
     /// Solves Eq. 30 for b by bisection, then a from Eq. 31 (a = T_h/w_c).
@@ -42,9 +57,7 @@ impl Catenary {
     pub fn solve(length: f64, horizontal: f64, vertical: f64) -> Result<Catenary, CatenaryError> {
         let slack = length - horizontal;
         if !(slack > 0.0 && slack < vertical) {
-            return Err(CatenaryError(format!(
-                "no catenary with a grounded part: need 0 < L_c − x_L < h_L, have L_c = {length} m, x_L = {horizontal} m, h_L = {vertical} m"
-            )));
+            return Err(CatenaryError::NoGroundedPart { length, horizontal, vertical });
         }
         // Eq. 30: g(b) = (cosh b − 1)(L_c − x_L) − h_L (sinh b − b); g > 0 for small b and
         // g < 0 for large b when L_c − x_L < h_L.
@@ -55,7 +68,7 @@ impl Catenary {
             lo = hi;
             hi *= 2.0;
             if hi > 700.0 {
-                return Err(CatenaryError("Eq. 30 has no root below b = 700".into()));
+                return Err(CatenaryError::NoRoot);
             }
         }
         for _ in 0..200 {
@@ -125,7 +138,7 @@ pub fn lay_elements(
             // The chord to arc position t grows with t; it is ≤ len at t = s + len.
             let (mut lo, mut hi) = (s + len, s + 4.0 * len);
             if chord(hi) < len {
-                return Err(CatenaryError(format!("element of {len} m cannot be laid on the catenary")));
+                return Err(CatenaryError::ElementTooLong { length: len });
             }
             for _ in 0..200 {
                 let mid = 0.5 * (lo + hi);
@@ -152,7 +165,7 @@ pub fn lay_elements(
         return Ok((cat, points));
     }
     if residual(hi)? > 0.0 {
-        return Err(CatenaryError("elements cannot be laid to end at (x_L, h_L)".into()));
+        return Err(CatenaryError::CannotEnd);
     }
     for _ in 0..200 {
         let mid = 0.5 * (lo + hi);

@@ -11,9 +11,21 @@ use kanestop_chain::BodyKind;
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Shape {
     /// A cuboid: length L (x), width w (y), height h (z), in m.
-    Box { length: f64, width: f64, height: f64 },
+    Box {
+        /// L, along x, m.
+        length: f64,
+        /// w, along y, m.
+        width: f64,
+        /// h, along z, m.
+        height: f64,
+    },
     /// A homogeneous cylinder: length L and radius R, in m.
-    Rod { length: f64, radius: f64 },
+    Rod {
+        /// L, along x, m.
+        length: f64,
+        /// R, m.
+        radius: f64,
+    },
 }
 
 /// One rigid body B_k.
@@ -67,6 +79,13 @@ impl Body {
     }
 }
 
+/// Added mass of a submerged rod for accelerations normal to its axis, kg (Eq. 46):
+/// m_a = C_M ρ π D² L / 4, for water density `rho` (kg/m³), added-mass coefficient `c_m`,
+/// diameter `d` (m) and length `len` (m).
+pub fn added_mass(rho: f64, c_m: f64, d: f64, len: f64) -> f64 {
+    c_m * rho * std::f64::consts::PI * d * d * len / 4.0
+}
+
 /// Inertia of a cuboid of mass m about a point a distance `d_s` above or below its centre
 /// on the z axis (Eq. 18, k = 1 with d_s = 0 and k = N), kg·m².
 pub fn box_inertia(mass: f64, length: f64, width: f64, height: f64, d_s: f64) -> [f64; 3] {
@@ -80,6 +99,7 @@ pub fn box_inertia(mass: f64, length: f64, width: f64, height: f64, d_s: f64) ->
 /// The chain B_1 … B_N. B_1 is always the anchor, which can only translate along x.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Chain {
+    /// B_1 (anchor) … B_N (ship), in order along the line.
     pub bodies: Vec<Body>,
 }
 

@@ -16,8 +16,11 @@ use crate::model::Model;
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct StateFile {
+    /// Generalised coordinates (β_2 … β_N in rad, s_1 in m), N entries.
     pub q: Vec<f64>,
+    /// Generalised speeds (β̇_2 … β̇_N in rad/s, ṡ_1 in m/s), N entries.
     pub u: Vec<f64>,
+    /// Whether the anchor is stuck or free; the scene's initial state when absent.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub anchor: Option<AnchorDof>,
 }
@@ -30,15 +33,25 @@ pub struct StateFile {
 pub struct EvalBody {
     /// k of B_k (1 = anchor, N = ship).
     pub index: usize,
+    /// What the body is (anchor, chain link, cable element, rod, ship).
     pub kind: String,
+    /// Centroid x, m.
     pub x: f64,
+    /// Centroid z, m.
     pub z: f64,
+    /// Centroid velocity along x, m/s.
     pub vx: f64,
+    /// Centroid velocity along z, m/s.
     pub vz: f64,
+    /// Centroid acceleration along x, m/s² (Eq. 17).
     pub ax: f64,
+    /// Centroid acceleration along z, m/s² (Eq. 17).
     pub az: f64,
+    /// Rotation θ_k about y, rad.
     pub angle: f64,
+    /// Angular velocity about y, rad/s (Eq. 9).
     pub omega: f64,
+    /// Angular acceleration about y, rad/s² (Eq. 17).
     pub alpha: f64,
 }
 
@@ -46,12 +59,15 @@ pub struct EvalBody {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct EvalOutput {
+    /// The scene's name (`meta.name`).
     pub scene: String,
+    /// The kernel that evaluated the state (reference or generated).
     pub kernel: String,
     /// Physics included in f.
     pub physics: String,
     /// N.
     pub bodies_count: usize,
+    /// Whether the anchor was stuck or free at the state.
     pub anchor: AnchorDof,
     /// Names of q's entries: "beta_2" … "beta_N", "s_1".
     pub coordinates: Vec<String>,
@@ -73,33 +89,47 @@ pub struct EvalOutput {
     pub residual: f64,
     /// 2-norm condition number of M (λ_max / λ_min).
     pub cond: f64,
+    /// Every body B_1 … B_N.
     pub bodies: Vec<EvalBody>,
 }
 
 /// Why a state cannot be evaluated.
-#[derive(Clone, Debug, PartialEq)]
-pub struct EvalError(pub String);
-
-impl std::fmt::Display for EvalError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(&self.0)
-    }
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum EvalError {
+    /// `state.q` or `state.u` does not have N entries.
+    #[error("state.{name} has {len} entries: the scene has N = {bodies} bodies, so it needs {bodies} (β_2 … β_{bodies}, s_1)")]
+    Length {
+        /// `q` or `u`.
+        name: &'static str,
+        /// The number of entries given.
+        len: usize,
+        /// N.
+        bodies: usize,
+    },
+    /// An entry of the state is infinite or NaN.
+    #[error("state.{name}[{index}] = {value}: must be finite")]
+    NotFinite {
+        /// `q` or `u`.
+        name: &'static str,
+        /// 0-based position of the entry.
+        index: usize,
+        /// The value given.
+        value: f64,
+    },
+    /// The right-hand side refused the state.
+    #[error(transparent)]
+    Dynamics(#[from] crate::kernel::RhsError),
 }
-
-impl std::error::Error for EvalError {}
 
 impl StateFile {
     /// Checks the state against the model: lengths N, finite values.
     pub fn check(&self, n: usize) -> Result<(), EvalError> {
         for (name, v) in [("q", &self.q), ("u", &self.u)] {
             if v.len() != n {
-                return Err(EvalError(format!(
-                    "state.{name} has {} entries: the scene has N = {n} bodies, so it needs {n} (β_2 … β_{n}, s_1)",
-                    v.len()
-                )));
+                return Err(EvalError::Length { name, len: v.len(), bodies: n });
             }
             if let Some(i) = v.iter().position(|x| !x.is_finite()) {
-                return Err(EvalError(format!("state.{name}[{i}] = {}: must be finite", v[i])));
+                return Err(EvalError::NotFinite { name, index: i, value: v[i] });
             }
         }
         Ok(())
@@ -129,7 +159,7 @@ pub fn evaluate(model: &Model, kernel: Box<dyn Kernel>, state: Option<&StateFile
     let physics = forces.description();
     let mut dynamics = Dynamics::new(kernel, forces, anchor);
     let mut qdd = vec![0.0; n];
-    dynamics.accelerations(&q, &u, &mut qdd).map_err(|e| EvalError(e.to_string()))?;
+    dynamics.accelerations(&q, &u, &mut qdd)?;
     let active = dynamics.active_speeds();
     // M and f for the report come from an assembly, whatever the kernel's solve path.
     let mut asm = Assembly::new(n);

@@ -2,10 +2,10 @@
 //!
 //! Everything between a scene file and a report, in the order data flows:
 //!
-//! scene ([`scene`], [`paper`]) → topology and model ([`model`], [`chain`], [`catenary`])
-//! → kernel ([`kernel`]: the [`reference`] formulation, or generated code) with the
+//! scene ([`scene`], [`paper`]) → topology and model ([`model`], [`chain`], [`catenary`], [`geometry`])
+//! → kernel ([`kernel`]: the [`reference`](mod@reference) formulation, or generated code) with the
 //! applied loads ([`forces`]) → right-hand side ([`dynamics`], its [`stability`] limit) → integrator
-//! ([`integrate`]) → results ([`simulate`], [`energy`]) → reports ([`report`], [`eval`]).
+//! ([`integrate`]) → results ([`simulate`], [`energy`]) → reports ([`eval`]).
 //!
 //! Equation numbers refer to Liu, Hearn, Chen, Jiang & Wu, "Analysis of Dynamic Response of
 //! a Restraining System for a Powerless Advancing Ship Based on the Kane Method".
@@ -17,6 +17,7 @@ pub mod energy;
 pub mod eval;
 pub mod forces;
 pub mod generated;
+pub mod geometry;
 pub mod integrate;
 pub mod kernel;
 pub mod model;

@@ -46,9 +46,22 @@ pub const TABLE_1: [ChainGrade; 3] = [
     ChainGrade { radius: 0.0970, proof_load: 4205e3, break_load: 6001e3 },
 ];
 
+/// The solver settings of every paper scene: RK4 at 2 ms for up to 60 s.
+const SOLVER: Solver = Solver {
+    integrator: Method::Rk4,
+    dt: 0.002,
+    rtol: 1e-6,
+    atol: 1e-8,
+    end_time: 60.0,
+    output_interval: 0.02,
+    stop_when_ship_stops: true,
+    max_energy_drift: 0.05,
+};
+
 /// One row of Table 2 with its Table 3 stopping time.
 #[derive(Clone, Copy, Debug)]
 pub struct Case {
+    /// The case number of Table 2 (1 … 10).
     pub number: usize,
     /// μ.
     pub friction: f64,
@@ -74,6 +87,8 @@ pub struct Case {
     pub change: &'static str,
 }
 
+// One argument per column of Tables 2 and 3, in the tables' order.
+#[allow(clippy::too_many_arguments)]
 const fn case(
     number: usize,
     friction: f64,
@@ -139,6 +154,23 @@ impl Case {
         format!("case{:02}", self.number)
     }
 
+    /// The environment of every case: water, current and seabed on (Section 4), with the
+    /// case's friction μ and surface current.
+    fn environment(&self) -> Environment {
+        Environment {
+            gravity: GRAVITY,
+            water: true,
+            water_density: WATER_DENSITY,
+            kinematic_viscosity: KINEMATIC_VISCOSITY,
+            seabed: true,
+            seabed_stiffness: SEABED_STIFFNESS,
+            seabed_friction: self.friction,
+            line_friction: 0.0,
+            current_surface_speed: self.current,
+            current_exponent: 1.0 / 7.0,
+        }
+    }
+
     /// The case as a scene. The cable's middle stage takes whatever length the first
     /// (3 × 2 m) and last (13 × 2 m) stages leave: 12, 14, 16 × 10 m for 152, 172, 192 m.
     pub fn scene(&self) -> Scene {
@@ -151,18 +183,7 @@ impl Case {
                 description: format!("Liu et al., Table 2, case {}: {}", self.number, self.change),
                 paper_stopping_time: Some(self.stopping_time),
             },
-            environment: Environment {
-                gravity: GRAVITY,
-                water: true,
-                water_density: WATER_DENSITY,
-                kinematic_viscosity: KINEMATIC_VISCOSITY,
-                seabed: true,
-                seabed_stiffness: SEABED_STIFFNESS,
-                seabed_friction: self.friction,
-                line_friction: 0.0,
-                current_surface_speed: self.current,
-                current_exponent: 1.0 / 7.0,
-            },
+            environment: self.environment(),
             hydrodynamics: Hydrodynamics {
                 added_mass_coefficient: 1.0,
                 normal_drag_coefficient: 1.21,
@@ -208,16 +229,7 @@ impl Case {
                 vertical_projection: self.vertical,
                 ship_speed: self.ship_speed,
             },
-            solver: Solver {
-                integrator: Method::Rk4,
-                dt: 0.002,
-                rtol: 1e-6,
-                atol: 1e-8,
-                end_time: 60.0,
-                output_interval: 0.02,
-                stop_when_ship_stops: true,
-                max_energy_drift: 0.05,
-            },
+            solver: SOLVER,
         }
     }
 

@@ -14,15 +14,25 @@ use serde::{Deserialize, Serialize};
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Scene {
+    /// `[meta]`: name, description, the paper's stopping time.
     pub meta: Meta,
+    /// `[environment]`: gravity, water, current, seabed switches and constants.
     pub environment: Environment,
+    /// `[hydrodynamics]`: the drag and added-mass coefficients of Eqs. 43–47.
     pub hydrodynamics: Hydrodynamics,
+    /// `[anchor]`: the gravity anchor B_1.
     pub anchor: Anchor,
+    /// `[chain]`: the anchor chain's links.
     pub chain: ChainSpec,
+    /// `[cable]`: the cable and its stages.
     pub cable: Cable,
+    /// `[rod]`: the rod between the cable top and the ship.
     pub rod: Rod,
+    /// `[ship]`: the ship B_N.
     pub ship: Ship,
+    /// `[initial]`: the laid catenary and the ship's speed at t = 0.
     pub initial: Initial,
+    /// `[solver]`: integrator, step and tolerances, end time, output and stop rules.
     pub solver: Solver,
 }
 
@@ -263,11 +273,26 @@ impl std::str::FromStr for Method {
 #[derive(Debug)]
 pub enum SceneError {
     /// The file could not be read.
-    Io { file: String, source: std::io::Error },
+    Io {
+        /// The path as given.
+        file: String,
+        /// The I/O error.
+        source: std::io::Error,
+    },
     /// Not TOML, a missing or unknown key, or a value of the wrong type.
-    Parse { file: String, message: String },
+    Parse {
+        /// The path as given.
+        file: String,
+        /// The TOML or serde message.
+        message: String,
+    },
     /// Values out of range: every problem found, each naming its field.
-    Invalid { file: String, problems: Vec<Problem> },
+    Invalid {
+        /// The path as given.
+        file: String,
+        /// Every out-of-range value, in field order.
+        problems: Vec<Problem>,
+    },
 }
 
 /// One out-of-range value.
@@ -307,6 +332,20 @@ impl std::error::Error for SceneError {}
 
 impl Scene {
     /// Reads and checks a scene file.
+    ///
+    /// ```
+    /// use kanestop_runtime::scene::{Scene, SceneError};
+    ///
+    /// let dir = std::env::temp_dir().join(format!("kanestop-doc-{}", std::process::id()));
+    /// std::fs::create_dir_all(&dir).unwrap();
+    /// let path = dir.join("case01.toml");
+    /// std::fs::write(&path, kanestop_runtime::paper::DEFAULT_SCENE).unwrap();
+    /// let scene = Scene::load(&path)?;
+    /// assert_eq!(scene.chain.elements, 15);
+    /// assert!(matches!(Scene::load(&dir.join("missing.toml")), Err(SceneError::Io { .. })));
+    /// # std::fs::remove_dir_all(&dir).unwrap();
+    /// # Ok::<(), SceneError>(())
+    /// ```
     pub fn load(path: &Path) -> Result<Scene, SceneError> {
         let file = path.display().to_string();
         let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io { file: file.clone(), source })?;
@@ -314,6 +353,19 @@ impl Scene {
     }
 
     /// Parses and checks scene text; `file` names it in errors.
+    ///
+    /// ```
+    /// use kanestop_runtime::scene::{Scene, SceneError};
+    ///
+    /// // The embedded case 1 of Table 2.
+    /// let scene = Scene::from_toml(kanestop_runtime::paper::DEFAULT_SCENE, "case01.toml")?;
+    /// assert_eq!(scene.meta.name, "case01");
+    /// // A value out of range is reported with its field.
+    /// let bad = kanestop_runtime::paper::DEFAULT_SCENE.replace("[anchor]\nmass =", "[anchor]\nmass = -1.0 #");
+    /// let err = Scene::from_toml(&bad, "bad.toml").unwrap_err();
+    /// assert!(err.to_string().contains("anchor.mass"), "{err}");
+    /// # Ok::<(), SceneError>(())
+    /// ```
     pub fn from_toml(text: &str, file: &str) -> Result<Scene, SceneError> {
         let scene: Scene =
             toml::from_str(text).map_err(|e| SceneError::Parse { file: file.to_string(), message: e.to_string() })?;
@@ -343,6 +395,18 @@ impl Scene {
     /// Every out-of-range value, in file order.
     pub fn problems(&self) -> Vec<Problem> {
         let mut c = Checker::default();
+        self.check_environment(&mut c);
+        self.check_hydrodynamics(&mut c);
+        self.check_anchor_and_chain(&mut c);
+        self.check_cable(&mut c);
+        self.check_rod_and_ship(&mut c);
+        self.check_initial(&mut c);
+        self.check_solver(&mut c);
+        c.problems
+    }
+
+    /// `[environment]`: constants in their physical ranges.
+    fn check_environment(&self, c: &mut Checker) {
         let e = &self.environment;
         c.range("environment.gravity", e.gravity, 0.0, 100.0, false, "m/s²");
         c.positive("environment.water_density", e.water_density, "kg/m³");
@@ -352,11 +416,19 @@ impl Scene {
         c.range("environment.line_friction", e.line_friction, 0.0, 2.0, true, "(dimensionless)");
         c.range("environment.current_surface_speed", e.current_surface_speed, -10.0, 10.0, true, "m/s");
         c.range("environment.current_exponent", e.current_exponent, 0.0, 1.0, false, "(dimensionless)");
+    }
+
+    /// `[hydrodynamics]`: the coefficients of Eqs. 43–47, none negative.
+    fn check_hydrodynamics(&self, c: &mut Checker) {
         let h = &self.hydrodynamics;
         c.non_negative("hydrodynamics.added_mass_coefficient", h.added_mass_coefficient, "(dimensionless)");
         c.non_negative("hydrodynamics.normal_drag_coefficient", h.normal_drag_coefficient, "(dimensionless)");
         c.non_negative("hydrodynamics.tangential_drag_coefficient", h.tangential_drag_coefficient, "(dimensionless)");
         c.non_negative("hydrodynamics.anchor_drag_coefficient", h.anchor_drag_coefficient, "(dimensionless)");
+    }
+
+    /// `[anchor]` and `[chain]`: positive sizes, masses and loads.
+    fn check_anchor_and_chain(&self, c: &mut Checker) {
         let a = &self.anchor;
         c.positive("anchor.mass", a.mass, "kg");
         c.positive("anchor.length", a.length, "m");
@@ -368,6 +440,10 @@ impl Scene {
         c.positive("chain.mass_per_length", ch.mass_per_length, "kg/m");
         c.positive("chain.proof_load", ch.proof_load, "N");
         c.positive("chain.break_load", ch.break_load, "N");
+    }
+
+    /// `[cable]` and its stages: at least one stage, each with elements.
+    fn check_cable(&self, c: &mut Checker) {
         let cb = &self.cable;
         c.positive("cable.radius", cb.radius, "m");
         c.positive("cable.mass_per_length", cb.mass_per_length, "kg/m");
@@ -381,6 +457,12 @@ impl Scene {
             }
             c.positive(&format!("cable.stages[{i}].element_length"), s.element_length, "m");
         }
+    }
+
+    /// `[rod]` and `[ship]`; the ship must float with a draught below its depth (checked
+    /// only when every value before is valid).
+    fn check_rod_and_ship(&self, c: &mut Checker) {
+        let e = &self.environment;
         let r = &self.rod;
         c.positive("rod.length", r.length, "m");
         c.positive("rod.radius", r.radius, "m");
@@ -407,6 +489,10 @@ impl Scene {
                 ),
             );
         }
+    }
+
+    /// `[initial]`: a catenary with a grounded part (Eq. 30) must exist.
+    fn check_initial(&self, c: &mut Checker) {
         let ini = &self.initial;
         c.positive("initial.vertical_projection", ini.vertical_projection, "m");
         c.range("initial.ship_speed", ini.ship_speed, 0.0, 20.0, true, "m/s");
@@ -422,6 +508,10 @@ impl Scene {
                 &format!("m: between L_c − h_L and L_c (cable length L_c = {} m), so that the cable lies partly on the seabed and Eq. 30 has a root", fmt_value(lc)),
             );
         }
+    }
+
+    /// `[solver]`: step, end time, output interval and tolerances.
+    fn check_solver(&self, c: &mut Checker) {
         let so = &self.solver;
         c.range("solver.dt", so.dt, 0.0, 1.0, false, "s");
         c.positive("solver.end_time", so.end_time, "s");
@@ -434,7 +524,6 @@ impl Scene {
         c.range("solver.max_energy_drift", so.max_energy_drift, 0.0, 10.0, false, "(relative)");
         c.range("solver.rtol", so.rtol, 0.0, 0.1, false, "(relative tolerance)");
         c.range("solver.atol", so.atol, 0.0, 1.0, false, "(absolute tolerance)");
-        c.problems
     }
 }
 

@@ -3,6 +3,7 @@
 use crate::chain::Chain;
 use crate::kernel::{BodyState, Load};
 
+/// The weights of every body (Eq. 40).
 #[derive(Clone, Debug)]
 pub struct Gravity {
     /// G_k, N.
@@ -15,6 +16,7 @@ impl Gravity {
         Gravity { weights: chain.bodies.iter().map(|b| b.mass * g).collect() }
     }
 
+    /// Adds −G_k to the z force of each body's load, N.
     pub fn add(&self, _bodies: &[BodyState], loads: &mut [Load]) {
         for (load, w) in loads.iter_mut().zip(&self.weights) {
             load.fz -= w;

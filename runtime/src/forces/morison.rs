@@ -1,5 +1,6 @@
-//! Morison loads on a chain or cable element (Eqs. 43–47): tangential skin drag, normal
-//! drag integrated along the rotating element, and the added-mass coefficients.
+//! Morison loads on a chain or cable element (Eqs. 43–47): tangential skin drag and normal
+//! drag integrated along the rotating element. The added mass of Eq. 46 is inertia, not a
+//! load: it is [`crate::chain::added_mass`], part of each body's a_lp.
 //!
 //! In body axes the water's velocity relative to the element is (v_t, U) at the centroid
 //! (Eq. 43); rotation ω about y adds ω ξ to the normal component at axial position ξ from
@@ -34,11 +35,6 @@ pub fn normal_drag(rho: f64, c_d: f64, d: f64, len: f64, u: f64, omega: f64) -> 
 /// Tangential drag along the body x axis, N (Eq. 45): sign(v_t) π ρ D L C_F v_t² / 2.
 pub fn tangential_drag(rho: f64, c_f: f64, d: f64, len: f64, v_t: f64) -> f64 {
     0.5 * PI * rho * d * len * c_f * v_t * v_t.abs()
-}
-
-/// Added mass for normal acceleration, kg (Eq. 46): C_M ρ π D² L / 4.
-pub fn added_mass(rho: f64, c_m: f64, d: f64, len: f64) -> f64 {
-    c_m * rho * PI * d * d * len / 4.0
 }
 
 #[cfg(test)]

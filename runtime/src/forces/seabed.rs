@@ -4,14 +4,10 @@
 //! The embedded volume of a tilted rod is ∫ A(δ(s)) ds along its axis, with δ(s) the depth
 //! of the lowest fibre below the seabed at axial position s and A(δ) the circular segment
 //! of depth δ (the section taken vertical: exact for a level rod, first-order for a tilted
-//! one; elements on the seabed lie nearly level). See docs/model-choices.md.
+//! one; elements on the seabed lie nearly level). See docs/model-choices.md. A(δ) is
+//! [`segment_area`], shared with the model's resting heights.
 
-/// Area of the circular segment of depth `delta` cut from a circle of radius `r`, m².
-pub fn segment_area(r: f64, delta: f64) -> f64 {
-    let d = delta.clamp(0.0, 2.0 * r);
-    let c = r - d;
-    r * r * (c / r).clamp(-1.0, 1.0).acos() - c * (2.0 * r * d - d * d).max(0.0).sqrt()
-}
+use crate::geometry::segment_area;
 
 /// Slip speed over which the line's seabed friction builds up, m/s: Coulomb friction
 /// regularised as −μ N tanh(v / V_SLIP), so the right-hand side stays smooth.
@@ -78,17 +74,6 @@ pub fn embedded_volume(r: f64, len: f64, h_a: f64, h_b: f64) -> (f64, f64) {
 mod tests {
     use super::*;
     use std::f64::consts::PI;
-
-    #[test]
-    fn segment_area_limits() {
-        let r = 0.1;
-        assert_eq!(segment_area(r, 0.0), 0.0);
-        assert!((segment_area(r, r) - PI * r * r / 2.0).abs() < 1e-15);
-        assert!((segment_area(r, 2.0 * r) - PI * r * r).abs() < 1e-15);
-        // Shallow segment: A ≈ (4/3) √(2rδ) δ.
-        let d = 1e-6;
-        assert!((segment_area(r, d) / ((4.0 / 3.0) * (2.0 * r * d).sqrt() * d) - 1.0).abs() < 1e-4);
-    }
 
     #[test]
     fn half_buried_level_rod() {

@@ -79,7 +79,9 @@ pub struct GeneralState<'a> {
 /// Per-body applied force F_k (N) and moment T_k (N·m), inertial components (Eq. 23).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Wrench {
+    /// F_k at the centroid C_k, N.
     pub force: Vector3<f64>,
+    /// T_k, N·m.
     pub moment: Vector3<f64>,
 }
 
@@ -108,6 +110,7 @@ pub struct Partials {
 }
 
 impl Partials {
+    // Long by design: the oracle reads as Eqs. 2–16 in order, one block per equation.
     /// Builds the arrays for `speeds` (1-based l, each ≤ 6N), Eqs. 2–16.
     pub fn new(chain: &ChainData, state: &GeneralState<'_>, speeds: &[usize]) -> Self {
         let n = chain.mass.len();

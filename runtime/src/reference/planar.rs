@@ -21,6 +21,8 @@ pub struct ReferenceKernel {
 }
 
 impl ReferenceKernel {
+    /// The reference kernel of a chain: its bodies as six-speed rigid bodies (Eqs. 1–26),
+    /// the planar restraining system picked out by the active speeds.
     pub fn new(chain: &Chain) -> Self {
         let n = chain.len();
         let planar = |v: [f64; 2]| Vector3::new(v[0], 0.0, v[1]);
