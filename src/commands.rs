@@ -10,19 +10,29 @@ use kanestop_runtime::reference::ReferenceKernel;
 use kanestop_runtime::scene::Scene;
 use kanestop_runtime::simulate::{self, RunResult, Stop};
 use kanestop_workflow::kernels::KernelFactory;
+use kanestop_workflow::record::RunSummary;
 use kanestop_workflow::{accuracy, batch, history, parallel, plot, progress, summary, validation};
 
-/// `run`: one scene, its summary, optionally its CSV history and plots. Returns whether the
-/// run ended in a numerical failure.
-pub fn run(model: &Model, kernel: KernelFactory, out: Option<&Path>, plot: Option<&Path>) -> Result<bool> {
+/// `run`: one scene, its summary (text, or JSON with `json`), optionally its CSV history and
+/// plots. Returns whether the run ended in a numerical failure.
+pub fn run(model: &Model, kernel: KernelFactory, out: Option<&Path>, plot: Option<&Path>, json: bool) -> Result<bool> {
     let result = simulate::run_checked(model, kernel(model), Box::new(ReferenceKernel::new(&model.chain)));
-    print!("{}", summary::summary(model, &result));
+    if json {
+        println!("{}", serde_json::to_string_pretty(&RunSummary::of(model, &result))?);
+    } else {
+        print!("{}", summary::summary(model, &result));
+    }
+    // With JSON on standard output, the notes go to standard error.
+    let note = |text: String| if json { eprintln!("{text}") } else { println!("{text}") };
     if let Some(path) = out {
         history::write_csv(&result, path).with_context(|| format!("cannot write {}", path.display()))?;
-        println!("{:<10}{} ({} samples)", "written", path.display(), result.samples.len());
+        note(format!("{:<10}{} ({} samples)", "written", path.display(), result.samples.len()));
     }
     if let Some(dir) = plot {
-        write_plots(std::slice::from_ref(model), std::slice::from_ref(&result), dir)?;
+        let runs = [(model, &result)];
+        for f in plot::write_plots(&runs, dir)? {
+            note(format!("written   {}", f.display()));
+        }
     }
     Ok(matches!(result.stop, Stop::Failed(_)))
 }

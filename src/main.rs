@@ -38,6 +38,10 @@ enum Command {
         /// Write plots (SVG) of the run into this folder.
         #[arg(long)]
         plot: Option<PathBuf>,
+        /// Print the summary as one JSON object (docs/conventions.md) instead of text; notes
+        /// on files written go to standard error.
+        #[arg(long)]
+        json: bool,
         /// Which Kane kernel evaluates the equations of motion.
         #[arg(long, value_enum, default_value = "generated")]
         kernel: KernelArg,
@@ -365,13 +369,14 @@ fn try_main() -> Result<ExitCode> {
         scene: None,
         out: None,
         plot: None,
+        json: false,
         kernel: KernelArg(KernelChoice::Generated),
         solver: SolverOverrides::default(),
     });
     match command {
-        Command::Run { scene, out, plot, kernel: choice, solver } => {
+        Command::Run { scene, out, plot, json, kernel: choice, solver } => {
             let model = load_model_with(scene.as_ref(), &solver)?;
-            let failed = commands::run(&model, &choice.factory(), out.as_deref(), plot.as_deref())?;
+            let failed = commands::run(&model, &choice.factory(), out.as_deref(), plot.as_deref(), json)?;
             Ok(if failed { ExitCode::from(EXIT_NUMERICAL_FAILURE) } else { ExitCode::SUCCESS })
         }
         Command::Eval { scene, state, kernel: choice } => {

@@ -329,3 +329,64 @@ fn a_closed_pipe_ends_the_output_quietly() {
     assert!(!stderr.contains("panicked"), "{stderr}");
     assert_ne!(out.status.code(), Some(101), "{stderr}");
 }
+
+#[test]
+fn run_json_is_the_documented_summary() {
+    let dir = temp_dir("run-json");
+    let scene = short_scene(&dir);
+    let csv = dir.join("h.csv");
+    let out = kanestop().arg("run").arg(&scene).arg("--json").arg("--out").arg(&csv).output().unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).expect("stdout is one JSON object");
+    for key in [
+        "scene",
+        "bodies",
+        "method",
+        "dt",
+        "kernel",
+        "status",
+        "stopping_time",
+        "paper_stopping_time",
+        "stopping_distance",
+        "ship_displacement",
+        "anchor_drag_distance",
+        "anchor_start",
+        "peak_tension",
+        "chain_peak",
+        "cable_peak",
+        "rod_peak",
+        "initial_energy",
+        "work",
+        "energy_drift",
+        "t_end",
+        "steps",
+        "rhs_evaluations",
+        "wall_time",
+        "failure",
+    ] {
+        assert!(v.get(key).is_some(), "missing key {key}");
+    }
+    assert_eq!(v["bodies"], 46);
+    assert_eq!(v["method"], "rk4");
+    assert_eq!(v["status"], "end time");
+    assert!(v["failure"].is_null() && v["stopping_distance"].is_null());
+    assert!(v["work"]["friction"].as_f64().is_some());
+    assert!(v["ship_displacement"].as_f64().unwrap() > 0.1, "the ship moves at 3 m/s for 0.05 s");
+    let rod = &v["rod_peak"];
+    assert_eq!(rod["joint"], 46);
+    assert!(rod["break_utilisation"].as_f64().unwrap() > 0.0 && rod["proof_utilisation"].is_null());
+    // The note on the CSV goes to standard error, keeping standard output pure JSON.
+    assert!(String::from_utf8_lossy(&out.stderr).contains("written"));
+    assert!(csv.exists());
+
+    // A numerical failure: status and the worded diagnostic.
+    let refused = dir.join("refused.toml");
+    let text = std::fs::read_to_string(&scene).unwrap().replace("dt = 0.0005", "dt = 0.05");
+    std::fs::write(&refused, text.replace("output_interval = 0.01", "output_interval = 0.05")).unwrap();
+    let out = kanestop().arg("run").arg(&refused).arg("--json").output().unwrap();
+    assert_eq!(out.status.code(), Some(3));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["status"], "failed");
+    assert!(v["failure"]["message"].as_str().unwrap().contains("stability limit"), "{}", v["failure"]);
+    assert!(v["peak_tension"].is_null(), "a refused run has no peak");
+}

@@ -467,7 +467,9 @@ fn render() -> String {
     ));
     o.push_str("| claim (section) | cases | measured (chain peaks, kN) | spread | criterion | verdict |\n");
     o.push_str("| --- | --- | --- | --- | --- | --- |\n");
-    let groups: [(&str, &[usize], fn(&[f64]) -> bool, &str); 9] = [
+    /// A claim, its cases, the test on their chain peaks and the test's wording.
+    type Claim = (&'static str, &'static [usize], fn(&[f64]) -> bool, &'static str);
+    let groups: [Claim; 9] = [
         ("significant: friction (4.3.7)", &FRICTION, significant, "≥ 10 %"),
         ("significant: anchor mass (4.3.7)", &ANCHOR_MASS, significant, "≥ 10 %"),
         ("significant: water depth (4.3.7)", &DEPTH, significant, "≥ 10 %"),

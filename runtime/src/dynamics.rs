@@ -72,6 +72,8 @@ impl LoadModel for Recording<'_> {
 }
 
 impl Dynamics {
+    /// The right-hand side for `kernel` under the loads `forces`, the anchor starting in
+    /// state `anchor` (without friction until [`Dynamics::slide_anchor`] sets a direction).
     pub fn new(kernel: Box<dyn Kernel>, forces: Forces, anchor: AnchorDof) -> Self {
         let n = kernel.body_count();
         Dynamics {
@@ -106,6 +108,7 @@ impl Dynamics {
         self.kernel.accelerations(q, u, qdd, out);
     }
 
+    /// Whether the anchor is held or sliding now.
     pub fn anchor(&self) -> AnchorDof {
         self.anchor
     }

@@ -123,6 +123,7 @@ impl GeneratedKernel {
         self
     }
 
+    /// How the accelerations are solved for.
     pub fn solve_path(&self) -> SolvePath {
         self.solve_path
     }

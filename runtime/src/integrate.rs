@@ -59,6 +59,8 @@ pub struct Rk4 {
 }
 
 impl Rk4 {
+    /// An RK4 stepper with stage storage for systems of dimension `dim` (resized on the
+    /// first step if the state's length differs).
     pub fn new(dim: usize) -> Self {
         Rk4 { k1: vec![0.0; dim], k2: vec![0.0; dim], k3: vec![0.0; dim], k4: vec![0.0; dim], tmp: vec![0.0; dim] }
     }
@@ -71,21 +73,23 @@ impl Integrator for Rk4 {
             *self = Rk4::new(n);
         }
         let h2 = 0.5 * dt;
+        // Every buffer has length n here, so the zips below visit exactly 0..n.
         sys.rhs(t, y, &mut self.k1)?;
-        for i in 0..n {
-            self.tmp[i] = y[i] + h2 * self.k1[i];
+        for ((tmp, &yi), &k1) in self.tmp.iter_mut().zip(y.iter()).zip(&self.k1) {
+            *tmp = yi + h2 * k1;
         }
         sys.rhs(t + h2, &self.tmp, &mut self.k2)?;
-        for i in 0..n {
-            self.tmp[i] = y[i] + h2 * self.k2[i];
+        for ((tmp, &yi), &k2) in self.tmp.iter_mut().zip(y.iter()).zip(&self.k2) {
+            *tmp = yi + h2 * k2;
         }
         sys.rhs(t + h2, &self.tmp, &mut self.k3)?;
-        for i in 0..n {
-            self.tmp[i] = y[i] + dt * self.k3[i];
+        for ((tmp, &yi), &k3) in self.tmp.iter_mut().zip(y.iter()).zip(&self.k3) {
+            *tmp = yi + dt * k3;
         }
         sys.rhs(t + dt, &self.tmp, &mut self.k4)?;
-        for i in 0..n {
-            y[i] += dt / 6.0 * (self.k1[i] + 2.0 * self.k2[i] + 2.0 * self.k3[i] + self.k4[i]);
+        let ks = self.k1.iter().zip(&self.k2).zip(&self.k3).zip(&self.k4);
+        for (yi, (((&k1, &k2), &k3), &k4)) in y.iter_mut().zip(ks) {
+            *yi += dt / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
         }
         Ok(())
     }
@@ -97,8 +101,9 @@ impl Integrator for Rk4 {
 /// the driver locates events inside [t, t + dt] on them ([`Integrator::dense_state`]).
 #[derive(Clone, Debug)]
 pub struct Adaptive<M> {
+    /// The error-controlled method doing the sub-steps.
     pub method: M,
-    /// The step to try next; `None` before the first step (then Hairer's starting step).
+    /// The step to try next; `None` before the first step (then the whole interval is tried).
     pub h_next: Option<f64>,
     /// Interpolants of the last `step` call's sub-steps, in order: the first `used` of them
     /// (the vectors are reused from call to call).
@@ -107,6 +112,8 @@ pub struct Adaptive<M> {
 }
 
 impl<M: AdaptiveIntegrator> Adaptive<M> {
+    /// Wraps `method`; while [`Adaptive::h_next`] is `None`, the first call tries the whole
+    /// interval `dt` as one sub-step.
     pub fn new(method: M) -> Self {
         Adaptive { method, h_next: None, dense: Vec::new(), used: 0 }
     }

@@ -60,8 +60,9 @@ pub struct BodyState {
     pub z: f64,
     /// Absolute angle θ_k about y, rad.
     pub theta: f64,
-    /// Centroid velocity, m/s.
+    /// Centroid velocity along x, m/s.
     pub vx: f64,
+    /// Centroid velocity along z (up), m/s.
     pub vz: f64,
     /// Angular velocity ω_2^(0k) about y, rad/s.
     pub omega: f64,
@@ -70,8 +71,9 @@ pub struct BodyState {
 /// The resultant applied load on a body, at its centroid, inertial components.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Load {
-    /// Force, N.
+    /// Force along x, N.
     pub fx: f64,
+    /// Force along z (up), N.
     pub fz: f64,
     /// Moment about y, N·m.
     pub my: f64,
@@ -123,8 +125,9 @@ pub struct AnchorReaction {
 /// Accelerations of one body (Eq. 17), inertial components.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct BodyAcceleration {
-    /// Centroid acceleration, m/s².
+    /// Centroid acceleration along x, m/s².
     pub ax: f64,
+    /// Centroid acceleration along z (up), m/s².
     pub az: f64,
     /// Angular acceleration about y, rad/s².
     pub alpha: f64,
@@ -132,6 +135,8 @@ pub struct BodyAcceleration {
 
 /// The force models, seen from a kernel: given every body's state, fill every body's load.
 pub trait LoadModel {
+    /// Writes the resultant applied load on every body (at its centroid, inertial
+    /// components) for the body states `bodies` into `loads`, B_1 first.
     fn loads(&mut self, bodies: &[BodyState], loads: &mut [Load]);
 }
 
@@ -223,7 +228,7 @@ pub fn solve_assembled(
 /// Refuses a sliding problem that friction makes ill-posed: 1 + k ∂N/∂F ≤ 0 means the
 /// friction's own effect on the normal force outgrows it (Painlevé's paradox).
 pub fn check_friction_factor(factor: f64) -> Result<(), RhsError> {
-    if !(factor <= 0.0) {
+    if factor > 0.0 || factor.is_nan() {
         Ok(()) // NaN is left to the caller's finiteness check
     } else {
         Err(RhsError::IllPosedFriction { factor })

@@ -10,6 +10,8 @@
 //! Equation numbers refer to Liu, Hearn, Chen, Jiang & Wu, "Analysis of Dynamic Response of
 //! a Restraining System for a Powerless Advancing Ship Based on the Kane Method".
 
+#![warn(missing_docs)]
+
 pub mod catenary;
 pub mod chain;
 pub mod dynamics;

@@ -3,9 +3,9 @@
 //!
 //! The Jacobian ∂ẏ/∂y of the (q, u) part of the right-hand side ([`crate::dynamics`]) is
 //! formed by central differences at t = 0 and its eigenvalues λ found by a real Schur
-//! decomposition. RK4 is stable for a mode when |R(hλ)| ≤ 1 with R(z) = 1 + z + z²/2 + z³/6
-//! + z⁴/24; the limit is the smallest such h over all modes (2.83/|λ| for an undamped
-//! oscillation, 2.79/|λ| for a purely damped mode). Modes with Re λ > 0 (physically
+//! decomposition. RK4 is stable for a mode when |R(hλ)| ≤ 1 with
+//! R(z) = 1 + z + z²/2 + z³/6 + z⁴/24; the limit is the smallest such h over all modes
+//! (2.83/|λ| for an undamped oscillation, 2.79/|λ| for a purely damped mode). Modes with Re λ > 0 (physically
 //! unstable, or round-off around an undamped one) are taken as undamped.
 //!
 //! The limit belongs to the initial configuration: seabed contacts, tension and the anchor's

@@ -8,7 +8,8 @@
 //!   with [`progress`] reporting;
 //! - [`batch`]: a folder of scenes as one table ([`validation`] against the paper's Table 3);
 //! - [`accuracy`]: the work–precision study (error against run time);
-//! - reports that only read results: [`summary`] (the one-screen text), [`diagnostic`] (a
+//! - reports that only read results: [`summary`] (the one-screen text), [`record`] (the
+//!   machine-readable summary of `run --json`), [`diagnostic`] (a
 //!   failure in words, with advice), [`history`] (the CSV time history), [`checks`] (peaks
 //!   against load limits) and [`plot`] (SVG charts);
 //! - [`output`]: files written whole or not at all.
@@ -28,6 +29,7 @@ pub mod output;
 pub mod parallel;
 pub mod plot;
 pub mod progress;
+pub mod record;
 pub mod summary;
 pub mod validation;
 

@@ -42,6 +42,7 @@ impl Tolerances {
         Ok(Tolerances { rtol, atol })
     }
 
+    /// The absolute tolerance of component i (the single value when only one is given).
     #[inline]
     pub fn atol(&self, i: usize) -> f64 {
         if self.atol.len() == 1 {
@@ -139,8 +140,11 @@ pub struct StepOutcome {
 /// Counters over the life of an adaptive integrator.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct AdaptiveStats {
+    /// Accepted steps.
     pub accepted: u64,
+    /// Rejected attempts (error test or Newton failure).
     pub rejected: u64,
+    /// Right-hand-side evaluations, Jacobians and starting-step estimates included.
     pub rhs_evaluations: u64,
     /// Finite-difference Jacobians (stiff methods).
     pub jacobians: u64,

@@ -131,6 +131,7 @@ impl Dp5 {
         }
     }
 
+    /// The tolerances the error test uses.
     pub fn tolerances(&self) -> &Tolerances {
         &self.tol
     }
@@ -178,6 +179,7 @@ impl Dp5 {
 
     /// Stages 2–7 and the error vector of one attempt of size h from (t, y); k1 is set.
     /// The candidate is in `ynew`.
+    #[allow(clippy::needless_range_loop)] // y and seven k vectors share i: kept as written for identical rounding
     fn attempt(&mut self, sys: &mut dyn OdeSystem, t: f64, y: &[f64], h: f64) -> Result<(), RhsError> {
         let n = self.dim;
         macro_rules! stage {
@@ -221,6 +223,7 @@ impl Dp5 {
     }
 
     /// Accepts the attempt: dense output, FSAL cache, y ← ynew.
+    #[allow(clippy::needless_range_loop)] // y, ynew, k and rcont share i: kept as written for identical rounding
     fn accept(&mut self, t: f64, y: &mut [f64], h: f64) {
         let n = self.dim;
         for i in 0..n {

@@ -194,10 +194,13 @@ pub struct Sdirk4 {
 }
 
 impl Sdirk4 {
+    /// An SDIRK4 integrator for systems of dimension `dim` with the given tolerances.
     pub fn new(dim: usize, rtol: f64, atol: f64) -> Result<Self, StepError> {
         Ok(Self::with_tolerances(dim, Tolerances::new(rtol, atol)?))
     }
 
+    /// As [`Sdirk4::new`] with checked [`Tolerances`] (e.g. one atol per component); the
+    /// Newton tolerance κ is min(0.03, √rtol), at least 1e-4.
     pub fn with_tolerances(dim: usize, tol: Tolerances) -> Self {
         let z = || vec![0.0; dim];
         let kappa = 0.03f64.min(tol.rtol.sqrt()).max(1e-4);
@@ -229,6 +232,7 @@ impl Sdirk4 {
         }
     }
 
+    /// The tolerances the error test uses.
     pub fn tolerances(&self) -> &Tolerances {
         &self.tol
     }
@@ -246,6 +250,7 @@ impl Sdirk4 {
         self.jac_state = JacobianState::Refresh;
     }
 
+    /// The interpolant of the last accepted step at θ as a new vector.
     pub fn dense(&self, theta: f64) -> Vec<f64> {
         let mut out = vec![0.0; self.dim];
         self.dense_into(theta, &mut out);
@@ -402,6 +407,7 @@ impl Sdirk4 {
 
     /// Simplified Newton on z = s + hγ f(t + c h, y + z) for stage `st` from the predictor in
     /// `w.z`; returns (η, θ) of the last iteration.
+    #[allow(clippy::needless_range_loop)] // loops run over 0..self.dim on several buffers: kept for identical rounding
     fn newton(
         &mut self,
         sys: &mut dyn OdeSystem,

@@ -2,9 +2,9 @@
 //! bisection that finds where one first holds inside a step, to round-off.
 //!
 //! - the anchor's stick–slip switch (discussion after Eq. 26 and Eq. 37): held until the
-//!   holding force exceeds μN ([`releases`]), then sliding with friction −μN until its
-//!   velocity returns to zero ([`reversed`]);
-//! - the ship stopping: the first zero of its surge velocity ([`ship_stopped`]).
+//!   holding force exceeds μN (`releases`), then sliding with friction −μN until its
+//!   velocity returns to zero (`reversed`);
+//! - the ship stopping: the first zero of its surge velocity (`ship_stopped`).
 
 use super::observe::Observation;
 use crate::integrate::{Integrator, OdeSystem, StepError};

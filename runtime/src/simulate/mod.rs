@@ -1,11 +1,11 @@
 //! One run: integrate a model from t = 0 until the ship stops, the end time, or a
 //! numerical failure, checking every step.
 //!
-//! After every accepted step the state is *observed* ([`observe`]): body states and
-//! accelerations, the joint forces (Eq. 52), the seabed's normal and holding forces on the
-//! anchor (Eqs. 37, 50) and the energy balance (Eq. 63). Two kinds of event are located to
-//! round-off by bisection on the integrator's dense output or on re-integrated partial
-//! steps, not merely detected at the next step ([`events`]):
+//! After every accepted step the state is *observed* (the private `observe` module): body
+//! states and accelerations, the joint forces (Eq. 52), the seabed's normal and holding
+//! forces on the anchor (Eqs. 37, 50) and the energy balance (Eq. 63). Two kinds of event
+//! are located to round-off by bisection on the integrator's dense output or on
+//! re-integrated partial steps, not merely detected at the next step ([`events`]):
 //!
 //! - the anchor's stick–slip switch (discussion after Eq. 26 and Eq. 37): held until the
 //!   holding force exceeds μN, then sliding with friction −μN (N implicit, from the same
@@ -54,6 +54,26 @@ pub fn run_checked(model: &Model, kernel: Box<dyn Kernel>, residual_kernel: Box<
 }
 
 /// Integrates `model` with `kernel`.
+///
+/// Case 1 of the paper (the embedded default scene) for its first 0.1 s with the generated
+/// kernel:
+///
+/// ```
+/// use kanestop_runtime::generated::GeneratedKernel;
+/// use kanestop_runtime::model::Model;
+/// use kanestop_runtime::paper::DEFAULT_SCENE;
+/// use kanestop_runtime::scene::Scene;
+/// use kanestop_runtime::simulate::{self, Stop};
+///
+/// let mut scene = Scene::from_toml(DEFAULT_SCENE, "case01.toml").unwrap();
+/// scene.solver.end_time = 0.1; // s; the full case runs until the ship stops
+/// let model = Model::new(&scene).unwrap();
+/// let kernel = GeneratedKernel::new(&model.chain).unwrap();
+/// let result = simulate::run(&model, Box::new(kernel));
+/// assert_eq!(result.stop, Stop::EndTime);
+/// assert_eq!(result.steps, 50); // dt = 0.002 s
+/// assert!(!result.samples.is_empty());
+/// ```
 pub fn run(model: &Model, kernel: Box<dyn Kernel>) -> RunResult {
     let mut stepper = Stepper::new(model, kernel);
     let mut result = RunResult::empty(&stepper, model.body_count());

@@ -122,6 +122,29 @@ impl Machine {
 }
 
 /// One run of a model, advanced interval by interval.
+///
+/// A few steps of case 1 (the embedded default scene) with the generated kernel:
+///
+/// ```
+/// use kanestop_runtime::generated::GeneratedKernel;
+/// use kanestop_runtime::model::Model;
+/// use kanestop_runtime::paper::DEFAULT_SCENE;
+/// use kanestop_runtime::scene::Scene;
+/// use kanestop_runtime::simulate::{Stepper, Stopped};
+///
+/// let mut scene = Scene::from_toml(DEFAULT_SCENE, "case01.toml").unwrap();
+/// scene.solver.end_time = 0.1; // s
+/// let model = Model::new(&scene).unwrap();
+/// let kernel = GeneratedKernel::new(&model.chain).unwrap();
+/// let mut stepper = Stepper::new(&model, Box::new(kernel));
+/// stepper.start().unwrap();
+/// for _ in 0..3 {
+///     assert_eq!(stepper.step().unwrap(), Stopped::Step);
+/// }
+/// assert_eq!(stepper.steps(), 3);
+/// assert!((stepper.t() - 3.0 * scene.solver.dt).abs() < 1e-12);
+/// assert_eq!(stepper.tensions().len(), model.body_count() - 1);
+/// ```
 pub struct Stepper<'a> {
     model: &'a Model,
     m: Machine,

@@ -1,0 +1,176 @@
+//! The machine-readable summary of a run (`run --json`, the Python package's
+//! `result.summary`, the rows of a sweep): one flat, documented record, computed from the
+//! results only. Its field names and units are a contract (docs/conventions.md).
+
+use std::collections::BTreeMap;
+
+use kanestop_chain::BodyKind;
+use kanestop_runtime::model::Model;
+use kanestop_runtime::scene::Method;
+use kanestop_runtime::simulate::{RunResult, Stop};
+use serde::{Deserialize, Serialize};
+
+use crate::batch::Status;
+use crate::diagnostic;
+
+/// What one run produced, in SI units.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct RunSummary {
+    /// The scene's `meta.name`.
+    pub scene: String,
+    /// N, the number of bodies.
+    pub bodies: usize,
+    /// The integrator.
+    pub method: Method,
+    /// `solver.dt`: RK4's step or the adaptive methods' observation interval, s.
+    pub dt: f64,
+    /// The kernel that evaluated the equations: `generated` or `reference`.
+    pub kernel: String,
+    /// How the run ended: `stopped`, `end time` or `failed`.
+    pub status: Status,
+    /// First zero of the ship's surge speed, s.
+    pub stopping_time: Option<f64>,
+    /// Table 3's stopping time when the scene is a paper case, s.
+    pub paper_stopping_time: Option<f64>,
+    /// The ship's surge displacement from t = 0 to its stop (when the run ended there), m.
+    pub stopping_distance: Option<f64>,
+    /// The ship's surge displacement at the end of the run, m.
+    pub ship_displacement: f64,
+    /// How far the anchor was dragged by the end of the run, m.
+    pub anchor_drag_distance: f64,
+    /// When the anchor first slid, s.
+    pub anchor_start: Option<f64>,
+    /// The largest joint tension of the run.
+    pub peak_tension: Option<Peak>,
+    /// The largest tension at a joint of the chain (a chain link on either side).
+    pub chain_peak: Option<Peak>,
+    /// The largest tension at a joint of the cable (cable elements, the rod's foot included).
+    pub cable_peak: Option<Peak>,
+    /// The tension at the rod–ship joint (the fairlead): its peak.
+    pub rod_peak: Option<Peak>,
+    /// Energy balance at t = 0 (Eq. 63), J.
+    pub initial_energy: f64,
+    /// Work done on the system by each term of the energy balance by the end of the run
+    /// (negative: dissipated), J, by name: buoyancy, seabed, friction, drag, hydrostatic,
+    /// added_mass.
+    pub work: BTreeMap<String, f64>,
+    /// Largest relative drift |E − E_0|/E_0 of the energy balance.
+    pub energy_drift: f64,
+    /// Simulated time reached, s.
+    pub t_end: f64,
+    /// Intervals of `dt` completed.
+    pub steps: u64,
+    /// Right-hand-side evaluations.
+    pub rhs_evaluations: u64,
+    /// Wall time of the run, s.
+    pub wall_time: f64,
+    /// The numerical failure, when the run ended in one.
+    pub failure: Option<FailureRecord>,
+}
+
+/// A peak joint tension.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Peak {
+    /// Tension, N.
+    pub tension: f64,
+    /// The joint k (between B_{k−1} and B_k).
+    pub joint: usize,
+    /// When, s.
+    pub t: f64,
+    /// Tension over the joint's proof load, when it has one.
+    pub proof_utilisation: Option<f64>,
+    /// Tension over the joint's break load, when it has one.
+    pub break_utilisation: Option<f64>,
+}
+
+/// A numerical failure: its data and its words.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct FailureRecord {
+    /// Time of the first bad step, s.
+    pub t: f64,
+    /// The body most involved (1-based, B_k).
+    pub body: usize,
+    /// The diagnostic as the summary prints it.
+    pub message: String,
+}
+
+/// Which part of the line a joint belongs to, for the per-segment peaks.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Segment {
+    Chain,
+    Cable,
+    Rod,
+}
+
+fn segment(model: &Model, k: usize) -> Segment {
+    let (inner, outer) = (model.chain.bodies[k - 2].kind, model.chain.bodies[k - 1].kind);
+    match (inner, outer) {
+        (_, BodyKind::Ship) => Segment::Rod,
+        (BodyKind::ChainLink, _) | (_, BodyKind::ChainLink) => Segment::Chain,
+        _ => Segment::Cable,
+    }
+}
+
+impl RunSummary {
+    /// The summary of `result`, a run of `model`.
+    pub fn of(model: &Model, result: &RunResult) -> RunSummary {
+        let n = model.body_count();
+        let ran = result.steps > 0;
+        let displacement = |body: usize| match (result.samples.first(), result.samples.last()) {
+            (Some(a), Some(b)) => b.bodies[body].x - a.bodies[body].x,
+            _ => 0.0,
+        };
+        let peak_over = |keep: &dyn Fn(usize) -> bool| -> Option<Peak> {
+            let (i, p) = result
+                .peak_tensions
+                .iter()
+                .enumerate()
+                .filter(|(i, _)| keep(i + 2))
+                .max_by(|a, b| a.1.tension.total_cmp(&b.1.tension))?;
+            let k = i + 2;
+            let limits = model.joint_limits(k);
+            Some(Peak {
+                tension: p.tension,
+                joint: k,
+                t: p.t,
+                proof_utilisation: limits.proof.map(|l| p.tension / l),
+                break_utilisation: limits.breaking.map(|l| p.tension / l),
+            })
+        };
+        let peak_in = |s: Segment| if ran { peak_over(&|k| segment(model, k) == s) } else { None };
+        let last = result.samples.last();
+        RunSummary {
+            scene: model.scene.meta.name.clone(),
+            bodies: n,
+            method: model.scene.solver.integrator,
+            dt: model.scene.solver.dt,
+            kernel: result.kernel.to_string(),
+            status: Status::of(&result.stop),
+            stopping_time: result.stopping_time,
+            paper_stopping_time: model.scene.meta.paper_stopping_time,
+            stopping_distance: (result.stop == Stop::ShipStopped).then(|| displacement(n - 1)),
+            ship_displacement: displacement(n - 1),
+            anchor_drag_distance: displacement(0),
+            anchor_start: result.anchor_start(),
+            peak_tension: if ran { peak_over(&|_| true) } else { None },
+            chain_peak: peak_in(Segment::Chain),
+            cable_peak: peak_in(Segment::Cable),
+            rod_peak: peak_in(Segment::Rod),
+            initial_energy: result.energy0,
+            work: last
+                .map(|s| s.energy.work_terms().map(|(name, work)| (name.to_string(), work)).collect())
+                .unwrap_or_default(),
+            energy_drift: result.max_energy_drift,
+            t_end: result.t_end,
+            steps: result.steps,
+            rhs_evaluations: result.rhs_evaluations,
+            wall_time: result.wall_time.as_secs_f64(),
+            failure: match &result.stop {
+                Stop::Failed(f) => {
+                    Some(FailureRecord { t: f.t, body: f.body, message: diagnostic::describe(model, f) })
+                }
+                Stop::ShipStopped | Stop::EndTime => None,
+            },
+        }
+    }
+}
