@@ -44,7 +44,11 @@ fn render(source: &str) -> String {
          Scenes are TOML. Every field is required unless marked optional, unknown keys are\n\
          rejected, and every value is checked (finite, in range) before a run; an error names the\n\
          file, the field, the value and the valid range. The paper's 19 cases are in\n\
-         `scenes/paper/`, generated from `runtime/src/paper.rs`.\n",
+         `scenes/paper/`, generated from `runtime/src/paper.rs`.\n\n\
+         A scene can be a few lines over another: `extends = \"base.toml\"` (a path relative to the\n\
+         file; chains allowed) takes every table of the base and lays the file's own over it, key\n\
+         by key; an array such as `[[cable.stages]]` replaces the base's whole. Sweeps and the\n\
+         Python package set single fields by dotted path: `ship.mass`, `cable.stages[1].elements`.\n",
     );
     for (table, name) in TABLES {
         out.push_str(&format!("\n## `[{table}]`\n\n| field | meaning and unit |\n| --- | --- |\n"));
@@ -55,7 +59,11 @@ fn render(source: &str) -> String {
             out.push_str(&format!("| `{field}` | {} |\n", doc.replace('|', "\\|")));
         }
     }
-    out.push_str("\nThe integrators a scene can name: `rk4` (classic fourth-order Runge–Kutta, fixed step).\n");
+    out.push_str(
+        "\nThe integrators a scene can name: `rk4` (classic fourth-order Runge–Kutta, fixed step), `dp5`\n\
+         (Dormand–Prince 5(4), adaptive) and `sdirk4` (L-stable SDIRK of order 4, adaptive, for stiff\n\
+         scenes); see docs/integrators.md.\n",
+    );
     out
 }
 

@@ -23,6 +23,7 @@ pub mod geometry;
 pub mod integrate;
 pub mod kernel;
 pub mod model;
+pub mod overrides;
 pub mod paper;
 pub mod reference;
 pub mod scene;

@@ -10,6 +10,8 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
+use crate::overrides::{self, OverrideError};
+
 /// One simulation: the bodies, their initial layout, the environment and the solver.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -293,6 +295,13 @@ pub enum SceneError {
         /// Every out-of-range value, in field order.
         problems: Vec<Problem>,
     },
+    /// An `extends` chain or a dotted-path override could not be applied.
+    Override {
+        /// The file (or the scene's name, with the overrides).
+        file: String,
+        /// What went wrong.
+        error: OverrideError,
+    },
 }
 
 /// One out-of-range value.
@@ -324,6 +333,7 @@ impl fmt::Display for SceneError {
                 }
                 Ok(())
             }
+            SceneError::Override { file, error } => write!(f, "scene {file}: {error}"),
         }
     }
 }
@@ -331,7 +341,9 @@ impl fmt::Display for SceneError {
 impl std::error::Error for SceneError {}
 
 impl Scene {
-    /// Reads and checks a scene file.
+    /// Reads and checks a scene file. A file with `extends = "base.toml"` is laid over its
+    /// base (a path relative to it; chains allowed): its tables merge key by key into the
+    /// base's, and an array (such as `cable.stages`) replaces the base's whole.
     ///
     /// ```
     /// use kanestop_runtime::scene::{Scene, SceneError};
@@ -348,8 +360,60 @@ impl Scene {
     /// ```
     pub fn load(path: &Path) -> Result<Scene, SceneError> {
         let file = path.display().to_string();
-        let text = std::fs::read_to_string(path).map_err(|source| SceneError::Io { file: file.clone(), source })?;
-        Scene::from_toml(&text, &file)
+        fn io(p: &Path) -> impl FnOnce(std::io::Error) -> SceneError {
+            let file = p.display().to_string();
+            move |source| SceneError::Io { file, source }
+        }
+        let text = std::fs::read_to_string(path).map_err(io(path))?;
+        if !text.parse::<toml::Table>().is_ok_and(|t| t.contains_key("extends")) {
+            // A whole file: parsed as text, so that errors point at its lines.
+            return Scene::from_toml(&text, &file);
+        }
+        let mut read = |p: &Path| std::fs::read_to_string(p).map_err(io(p));
+        let mut parse = |p: &Path, text: &str| {
+            text.parse::<toml::Table>()
+                .map(toml::Value::Table)
+                .map_err(|e| SceneError::Parse { file: p.display().to_string(), message: e.to_string() })
+        };
+        let wrap = |p: &Path, error| SceneError::Override { file: p.display().to_string(), error };
+        let value = overrides::resolve(path, &mut read, &mut parse, &wrap)?;
+        Scene::from_value(value, &file)
+    }
+
+    /// Checks a scene given as a TOML value (a file's tables after `extends`, or a table
+    /// built in code); `file` names it in errors.
+    pub fn from_value(value: toml::Value, file: &str) -> Result<Scene, SceneError> {
+        let scene: Scene = value
+            .try_into()
+            .map_err(|e: toml::de::Error| SceneError::Parse { file: file.to_string(), message: e.to_string() })?;
+        scene.checked(file)
+    }
+
+    /// The scene as a TOML value, every field present.
+    pub fn to_value(&self) -> toml::Value {
+        toml::Value::try_from(self).expect("a scene is plain tables of numbers, strings and booleans")
+    }
+
+    /// The same scene with each (dotted path, value) set, checked as a whole file would be:
+    /// `[("ship.mass", 1e6.into()), ("cable.stages[1].elements", 20.into())]`.
+    pub fn with_overrides(&self, values: &[(&str, toml::Value)]) -> Result<Scene, SceneError> {
+        let file = format!("{} (with overrides)", self.meta.name);
+        let mut value = self.to_value();
+        for (path, v) in values {
+            overrides::set(&mut value, path, v.clone())
+                .map_err(|error| SceneError::Override { file: file.clone(), error })?;
+        }
+        Scene::from_value(value, &file)
+    }
+
+    /// The scene when [`Scene::problems`] finds none, else every problem.
+    fn checked(self, file: &str) -> Result<Scene, SceneError> {
+        let problems = self.problems();
+        if problems.is_empty() {
+            Ok(self)
+        } else {
+            Err(SceneError::Invalid { file: file.to_string(), problems })
+        }
     }
 
     /// Parses and checks scene text; `file` names it in errors.
@@ -369,12 +433,7 @@ impl Scene {
     pub fn from_toml(text: &str, file: &str) -> Result<Scene, SceneError> {
         let scene: Scene =
             toml::from_str(text).map_err(|e| SceneError::Parse { file: file.to_string(), message: e.to_string() })?;
-        let problems = scene.problems();
-        if problems.is_empty() {
-            Ok(scene)
-        } else {
-            Err(SceneError::Invalid { file: file.to_string(), problems })
-        }
+        scene.checked(file)
     }
 
     /// The scene as TOML text.

@@ -1,0 +1,250 @@
+//! Scenes built from other scenes: `extends = "base.toml"` with overrides, and values set by
+//! dotted path (`ship.mass`, `cable.stages[1].elements`), as sweeps and the Python package
+//! set them.
+//!
+//! Both work on the TOML value before it becomes a [`crate::scene::Scene`], so the result is
+//! checked exactly as a whole file would be: a variant of a few lines gives the same scene,
+//! field for field, as the full file it stands for.
+
+use std::path::{Path, PathBuf};
+
+use toml::Value;
+
+/// Why a dotted path or an `extends` chain could not be applied.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum OverrideError {
+    /// The path is not `table.field`, `table.array[index].field`, ….
+    #[error("{path}: not a field path (write it as table.field or table.array[index].field)")]
+    Syntax {
+        /// The path as given.
+        path: String,
+    },
+    /// A part of the path names no field of the scene.
+    #[error("{path}: no field `{part}` here (valid: {valid})")]
+    NoSuchField {
+        /// The path as given.
+        path: String,
+        /// The part that was not found.
+        part: String,
+        /// The keys that exist at that level.
+        valid: String,
+    },
+    /// An index past the end of an array.
+    #[error("{path}: index {index} is out of range (the array has {len} entries)")]
+    Index {
+        /// The path as given.
+        path: String,
+        /// The index given.
+        index: usize,
+        /// The array's length.
+        len: usize,
+    },
+    /// A part of the path indexes into a value that is not a table or an array.
+    #[error("{path}: `{part}` is a value, not a table or an array")]
+    NotAContainer {
+        /// The path as given.
+        path: String,
+        /// The part that is a plain value.
+        part: String,
+    },
+    /// `extends` is not a string.
+    #[error("extends must be a file name, e.g. extends = \"base.toml\"")]
+    ExtendsType,
+    /// A file extends itself, directly or round a chain.
+    #[error("extends chain loops back to {0}")]
+    ExtendsCycle(PathBuf),
+}
+
+/// One step of a dotted path.
+#[derive(Debug, PartialEq)]
+enum Step<'a> {
+    Key(&'a str),
+    Index(usize),
+}
+
+/// `cable.stages[1].elements` → [Key(cable), Key(stages), Index(1), Key(elements)].
+fn steps(path: &str) -> Result<Vec<Step<'_>>, OverrideError> {
+    let syntax = || OverrideError::Syntax { path: path.to_string() };
+    let mut out = Vec::new();
+    for part in path.split('.') {
+        let (key, mut rest) = match part.find('[') {
+            Some(i) => (&part[..i], &part[i..]),
+            None => (part, ""),
+        };
+        let is_key = !key.is_empty() && key.chars().all(|c| c.is_ascii_alphanumeric() || c == '_');
+        if !is_key {
+            return Err(syntax());
+        }
+        out.push(Step::Key(key));
+        while !rest.is_empty() {
+            let close = rest.find(']').ok_or_else(syntax)?;
+            let index = rest[1..close].parse::<usize>().map_err(|_| syntax())?;
+            out.push(Step::Index(index));
+            rest = &rest[close + 1..];
+            if !rest.is_empty() && !rest.starts_with('[') {
+                return Err(syntax());
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// Sets the existing field at `path` of `root` to `value`. A path that names no field of
+/// `root` is refused with the keys that exist there (a scene has no optional fields, so a
+/// new key is always a typing error).
+pub fn set(root: &mut Value, path: &str, value: Value) -> Result<(), OverrideError> {
+    let steps = steps(path)?;
+    let mut node = root;
+    for step in &steps {
+        node = match (step, node) {
+            (Step::Key(k), Value::Table(t)) => {
+                let valid = t.keys().cloned().collect::<Vec<_>>().join(", ");
+                t.get_mut(*k).ok_or_else(|| OverrideError::NoSuchField {
+                    path: path.to_string(),
+                    part: k.to_string(),
+                    valid,
+                })?
+            }
+            (Step::Index(i), Value::Array(a)) => {
+                let len = a.len();
+                a.get_mut(*i).ok_or(OverrideError::Index { path: path.to_string(), index: *i, len })?
+            }
+            (step, _) => {
+                let part = match step {
+                    Step::Key(k) => k.to_string(),
+                    Step::Index(i) => format!("[{i}]"),
+                };
+                return Err(OverrideError::NotAContainer { path: path.to_string(), part });
+            }
+        };
+    }
+    *node = value;
+    Ok(())
+}
+
+/// The value at `path` of `root`, if there is one.
+pub fn get<'a>(root: &'a Value, path: &str) -> Option<&'a Value> {
+    let mut node = root;
+    for step in steps(path).ok()? {
+        node = match step {
+            Step::Key(k) => node.as_table()?.get(k)?,
+            Step::Index(i) => node.as_array()?.get(i)?,
+        };
+    }
+    Some(node)
+}
+
+/// Lays `over` onto `base`: tables merge key by key, recursively; anything else (values,
+/// arrays such as `cable.stages`) replaces what `base` had.
+pub fn merge(base: &mut Value, over: Value) {
+    match (base, over) {
+        (Value::Table(b), Value::Table(o)) => {
+            for (k, v) in o {
+                match b.get_mut(&k) {
+                    Some(existing) => merge(existing, v),
+                    None => {
+                        b.insert(k, v);
+                    }
+                }
+            }
+        }
+        (b, o) => *b = o,
+    }
+}
+
+/// Reads a scene file's TOML and resolves its `extends` chain: each file's tables are laid
+/// over the file it extends (a path relative to the extending file). `read` reads a file's
+/// text (the file system, or a test's table); its error is passed through.
+pub fn resolve<E>(
+    path: &Path,
+    read: &mut dyn FnMut(&Path) -> Result<String, E>,
+    parse: &mut dyn FnMut(&Path, &str) -> Result<Value, E>,
+    wrap: &dyn Fn(&Path, OverrideError) -> E,
+) -> Result<Value, E> {
+    let mut chain: Vec<(PathBuf, Value)> = Vec::new();
+    let mut next = Some(path.to_path_buf());
+    while let Some(file) = next.take() {
+        if chain.iter().any(|(p, _)| p == &file) {
+            return Err(wrap(path, OverrideError::ExtendsCycle(file)));
+        }
+        let mut value = parse(&file, &read(&file)?)?;
+        if let Some(table) = value.as_table_mut() {
+            if let Some(base) = table.remove("extends") {
+                let base = base.as_str().ok_or_else(|| wrap(&file, OverrideError::ExtendsType))?;
+                let dir = file.parent().unwrap_or(Path::new(""));
+                next = Some(dir.join(base));
+            }
+        }
+        chain.push((file, value));
+    }
+    let (_, mut merged) = chain.pop().expect("at least the file itself");
+    while let Some((_, over)) = chain.pop() {
+        merge(&mut merged, over);
+    }
+    Ok(merged)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn value(text: &str) -> Value {
+        text.parse::<toml::Table>().map(Value::Table).unwrap()
+    }
+
+    #[test]
+    fn dotted_paths_set_fields_and_array_entries() {
+        let mut v = value("[ship]\nmass = 1.0\n[[cable.stages]]\nelements = 3\n[[cable.stages]]\nelements = 12\n");
+        set(&mut v, "ship.mass", Value::Float(2.5)).unwrap();
+        set(&mut v, "cable.stages[1].elements", Value::Integer(20)).unwrap();
+        assert_eq!(get(&v, "ship.mass"), Some(&Value::Float(2.5)));
+        assert_eq!(get(&v, "cable.stages[1].elements"), Some(&Value::Integer(20)));
+        assert_eq!(get(&v, "cable.stages[0].elements"), Some(&Value::Integer(3)));
+    }
+
+    #[test]
+    fn bad_paths_are_refused_with_what_exists() {
+        let mut v = value("[ship]\nmass = 1.0\nlength = 2.0\n[[cable.stages]]\nelements = 3\n");
+        let e = set(&mut v, "ship.mas", Value::Float(1.0)).unwrap_err();
+        assert_eq!(e.to_string(), "ship.mas: no field `mas` here (valid: length, mass)");
+        let e = set(&mut v, "cable.stages[4].elements", Value::Integer(1)).unwrap_err();
+        assert_eq!(e, OverrideError::Index { path: "cable.stages[4].elements".into(), index: 4, len: 1 });
+        let e = set(&mut v, "ship.mass.x", Value::Integer(1)).unwrap_err();
+        assert!(matches!(e, OverrideError::NotAContainer { .. }), "{e}");
+        for bad in ["", "ship..mass", "ship.mass[", "ship.mass[x]", "ship mass", "cable.stages[0]x"] {
+            assert!(matches!(set(&mut v, bad, Value::Integer(1)), Err(OverrideError::Syntax { .. })), "{bad}");
+        }
+    }
+
+    #[test]
+    fn merge_lays_tables_over_tables_and_replaces_the_rest() {
+        let mut base = value("[ship]\nmass = 1.0\nlength = 2.0\n[[cable.stages]]\nelements = 3\n");
+        merge(&mut base, value("[ship]\nmass = 5.0\n[[cable.stages]]\nelements = 7\n[[cable.stages]]\nelements = 8\n"));
+        assert_eq!(get(&base, "ship.mass"), Some(&Value::Float(5.0)));
+        assert_eq!(get(&base, "ship.length"), Some(&Value::Float(2.0)));
+        assert_eq!(get(&base, "cable.stages").and_then(Value::as_array).map(Vec::len), Some(2));
+    }
+
+    #[test]
+    fn extends_chains_resolve_and_loops_are_refused() {
+        let files = [
+            ("dir/c.toml", "extends = \"b.toml\"\n[ship]\nmass = 3.0\n"),
+            ("dir/b.toml", "extends = \"sub/a.toml\"\n[ship]\nlength = 9.0\n"),
+            ("dir/sub/a.toml", "[ship]\nmass = 1.0\nlength = 2.0\nwidth = 4.0\n"),
+            ("dir/loop1.toml", "extends = \"loop2.toml\"\n"),
+            ("dir/loop2.toml", "extends = \"loop1.toml\"\n"),
+        ];
+        let mut read = |p: &Path| -> Result<String, String> {
+            let key = p.to_string_lossy().replace('\\', "/");
+            files.iter().find(|(n, _)| *n == key).map(|(_, t)| t.to_string()).ok_or(format!("no {key}"))
+        };
+        let mut parse = |_: &Path, t: &str| -> Result<Value, String> { Ok(value(t)) };
+        let wrap = |p: &Path, e: OverrideError| format!("{}: {e}", p.display());
+        let v = resolve(Path::new("dir/c.toml"), &mut read, &mut parse, &wrap).unwrap();
+        assert_eq!(v, value("[ship]\nmass = 3.0\nlength = 9.0\nwidth = 4.0\n"));
+        let e = resolve(Path::new("dir/loop1.toml"), &mut read, &mut parse, &wrap).unwrap_err();
+        assert!(e.contains("loops back to dir/loop1.toml"), "{e}");
+        let e = resolve(Path::new("dir/missing.toml"), &mut read, &mut parse, &wrap).unwrap_err();
+        assert_eq!(e, "no dir/missing.toml");
+    }
+}

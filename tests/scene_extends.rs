@@ -1,0 +1,96 @@
+//! Scenes from scenes: `extends` with overrides, and dotted-path overrides, give exactly the
+//! scene (and the run) of the full file they stand for.
+
+use std::path::PathBuf;
+
+use kanestop_runtime::generated::GeneratedKernel;
+use kanestop_runtime::model::Model;
+use kanestop_runtime::paper::DEFAULT_SCENE;
+use kanestop_runtime::scene::{Scene, SceneError};
+use kanestop_runtime::simulate;
+
+fn temp_dir(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("kanestop-extends-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// Case 1 as a file, cut to 2 s of simulated time.
+fn base_text() -> String {
+    DEFAULT_SCENE.replace("end_time = 60.0", "end_time = 2.0")
+}
+
+fn run_key(scene: &Scene) -> (u64, Vec<u64>) {
+    let model = Model::new(scene).unwrap();
+    let r = simulate::run(&model, Box::new(GeneratedKernel::new(&model.chain).unwrap()));
+    let last = r.samples.last().unwrap();
+    (r.steps, last.bodies.iter().flat_map(|b| [b.x.to_bits(), b.vx.to_bits()]).collect())
+}
+
+#[test]
+fn a_variant_of_a_few_lines_is_the_full_file() {
+    let dir = temp_dir("variant");
+    std::fs::create_dir_all(dir.join("base")).unwrap();
+    std::fs::write(dir.join("base/case01.toml"), base_text()).unwrap();
+    std::fs::write(
+        dir.join("heavy.toml"),
+        "extends = \"base/case01.toml\"\n\n[ship]\nmass = 750000.0\n\n[initial]\nship_speed = 4.0\n",
+    )
+    .unwrap();
+    let full =
+        base_text().replace("mass = 500000.0", "mass = 750000.0").replace("ship_speed = 3.0", "ship_speed = 4.0");
+    assert_ne!(full, base_text(), "the replacements hit the ship's fields");
+    std::fs::write(dir.join("full.toml"), &full).unwrap();
+
+    let variant = Scene::load(&dir.join("heavy.toml")).unwrap();
+    let whole = Scene::load(&dir.join("full.toml")).unwrap();
+    assert_eq!(variant, whole);
+    assert_eq!(variant.ship.mass, 750000.0);
+    assert_eq!(run_key(&variant), run_key(&whole), "the same run, bit for bit");
+
+    // The same by dotted paths.
+    let base = Scene::load(&dir.join("base/case01.toml")).unwrap();
+    let overridden =
+        base.with_overrides(&[("ship.mass", 750000.0.into()), ("initial.ship_speed", 4.0.into())]).unwrap();
+    assert_eq!(overridden, whole);
+}
+
+#[test]
+fn overrides_are_checked_like_a_file() {
+    let base = Scene::from_toml(&base_text(), "case01.toml").unwrap();
+    let e = base.with_overrides(&[("anchor.mass", (-1.0).into())]).unwrap_err();
+    assert!(matches!(&e, SceneError::Invalid { problems, .. } if problems[0].field == "anchor.mass"), "{e}");
+    let e = base.with_overrides(&[("ship.mas", 1.0.into())]).unwrap_err();
+    assert!(e.to_string().contains("ship.mas: no field `mas` here (valid: "), "{e}");
+    let e = base.with_overrides(&[("cable.stages[9].elements", 3.into())]).unwrap_err();
+    assert!(e.to_string().contains("index 9 is out of range (the array has 3 entries)"), "{e}");
+    let e = base.with_overrides(&[("ship.mass", "heavy".into())]).unwrap_err();
+    assert!(matches!(e, SceneError::Parse { .. }), "{e}");
+    // 12 instead of 13 top-stage elements of 2 m: 150 m of cable, still reaching x_L = 148 m.
+    let staged = base.with_overrides(&[("cable.stages[2].elements", 12.into())]).unwrap();
+    assert_eq!(staged.cable.stages[2].elements, 12);
+    // Two more 10 m elements in the middle stage: 172 m of cable cannot end at x_L = 148 m
+    // with h_L = 6 m and still lie on the seabed; the cross-field check says so.
+    let e = base.with_overrides(&[("cable.stages[1].elements", 14.into())]).unwrap_err();
+    assert!(e.to_string().contains("initial.horizontal_projection"), "{e}");
+}
+
+#[test]
+fn extends_errors_name_the_file() {
+    let dir = temp_dir("errors");
+    std::fs::write(dir.join("a.toml"), "extends = \"b.toml\"\n").unwrap();
+    std::fs::write(dir.join("b.toml"), "extends = \"a.toml\"\n").unwrap();
+    let e = Scene::load(&dir.join("a.toml")).unwrap_err();
+    assert!(e.to_string().contains("extends chain loops back to"), "{e}");
+    std::fs::write(dir.join("c.toml"), "extends = \"missing.toml\"\n").unwrap();
+    let e = Scene::load(&dir.join("c.toml")).unwrap_err();
+    assert!(matches!(&e, SceneError::Io { file, .. } if file.ends_with("missing.toml")), "{e}");
+    std::fs::write(dir.join("d.toml"), "extends = 3\n").unwrap();
+    let e = Scene::load(&dir.join("d.toml")).unwrap_err();
+    assert!(e.to_string().contains("extends must be a file name"), "{e}");
+    // A base with a key the scene does not have is refused as a file would be.
+    std::fs::write(dir.join("base.toml"), base_text()).unwrap();
+    std::fs::write(dir.join("e.toml"), "extends = \"base.toml\"\n[ship]\nmas = 1.0\n").unwrap();
+    let e = Scene::load(&dir.join("e.toml")).unwrap_err();
+    assert!(e.to_string().contains("mas"), "{e}");
+}
