@@ -30,16 +30,40 @@ pub enum SolvePath {
 }
 
 /// Why a chain has no generated kernel.
-#[derive(Clone, Debug, PartialEq)]
-pub struct GeneratedError(pub String);
-
-impl std::fmt::Display for GeneratedError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(&self.0)
-    }
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum GeneratedError {
+    /// Fewer than an anchor, one rod and a ship.
+    #[error("a chain of {bodies} bodies has no generated kernel (N ≥ 3)")]
+    TooFewBodies {
+        /// N.
+        bodies: usize,
+    },
+    /// No kernel of this shape was generated into this build.
+    #[error(
+        "no generated kernel for N = {bodies} bodies ({}): it is built for the scenes under scenes/ \
+         and KANESTOP_EXTRA_BODY_COUNTS; use --kernel reference or rebuild with \
+         KANESTOP_EXTRA_BODY_COUNTS={bodies}",
+        if *wet { "water on" } else { "water off" }
+    )]
+    NotBuilt {
+        /// N.
+        bodies: usize,
+        /// Whether the added-mass variant was wanted.
+        wet: bool,
+    },
+    /// The chain has a non-zero value where the kernels fold a structural zero.
+    #[error("B_{} ({kind}) has {field} = {value}, which the generated kernels fold to zero; use --kernel reference", body + 1)]
+    FoldedParameter {
+        /// 0-based body index.
+        body: usize,
+        /// Its kind.
+        kind: kanestop_chain::BodyKind,
+        /// The parameter.
+        field: ParamField,
+        /// Its value.
+        value: f64,
+    },
 }
-
-impl std::error::Error for GeneratedError {}
 
 /// Every (N, water on) with a generated kernel in this build.
 pub fn available() -> Vec<(usize, bool)> {
@@ -65,18 +89,11 @@ impl GeneratedKernel {
     pub fn new(chain: &Chain) -> Result<Self, GeneratedError> {
         let n = chain.len();
         if n < 3 {
-            return Err(GeneratedError(format!("a chain of {n} bodies has no generated kernel (N ≥ 3)")));
+            return Err(GeneratedError::TooFewBodies { bodies: n });
         }
         let wet = chain.bodies.iter().any(|b| b.added_mass != 0.0);
         let variant = Variant::new(n, if wet { Water::On } else { Water::Off });
-        let kernel = kanestop_generated::find(n, wet).ok_or_else(|| {
-            GeneratedError(format!(
-                "no generated kernel for N = {n} bodies ({}): it is built for the scenes under scenes/ \
-                 and KANESTOP_EXTRA_BODY_COUNTS; use --kernel reference or rebuild with \
-                 KANESTOP_EXTRA_BODY_COUNTS={n}",
-                if wet { "water on" } else { "water off" }
-            ))
-        })?;
+        let kernel = kanestop_generated::find(n, wet).ok_or(GeneratedError::NotBuilt { bodies: n, wet })?;
         let params: Vec<BodyParams> = chain
             .bodies
             .iter()
@@ -96,12 +113,7 @@ impl GeneratedKernel {
                 ParamField::AddedMass => b.added_mass,
             };
             if value != 0.0 {
-                return Err(GeneratedError(format!(
-                    "B_{} ({}) has {field} = {value}, which the generated kernels fold to zero; \
-                     use --kernel reference",
-                    k + 1,
-                    chain.bodies[k].kind
-                )));
+                return Err(GeneratedError::FoldedParameter { body: k, kind: chain.bodies[k].kind, field, value });
             }
         }
         Ok(GeneratedKernel {
