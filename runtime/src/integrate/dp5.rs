@@ -352,27 +352,11 @@ impl Integrator for Dp5 {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// ẏ = −y.
-    struct Decay;
-    impl OdeSystem for Decay {
-        fn dim(&self) -> usize {
-            1
-        }
-        fn rhs(&mut self, _t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), RhsError> {
-            dy[0] = -y[0];
-            Ok(())
-        }
-    }
+    use crate::integrate::test_problems::{decay_error, Decay};
 
     /// Error at t = 1 of `steps` fixed DP5 steps on ẏ = −y from y = 1.
     fn fixed_error(steps: usize) -> f64 {
-        let mut dp = Dp5::new(1, 1e-6, 1e-9).expect("tolerances");
-        let (mut y, dt) = ([1.0], 1.0 / steps as f64);
-        for i in 0..steps {
-            Integrator::step(&mut dp, &mut Decay, i as f64 * dt, &mut y, dt).expect("step");
-        }
-        (y[0] - (-1.0f64).exp()).abs()
+        decay_error(&mut Dp5::new(1, 1e-6, 1e-9).expect("tolerances"), steps)
     }
 
     #[test]

@@ -641,6 +641,7 @@ impl Integrator for Sdirk4 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::integrate::test_problems::{decay_error, Decay};
 
     /// ẏ = A y with eigenvalues −1 and −10⁴: y1' = −y1, y2' = −10⁴ (y2 − y1).
     struct Stiff;
@@ -655,26 +656,9 @@ mod tests {
         }
     }
 
-    /// ẏ = −y.
-    struct Decay;
-    impl OdeSystem for Decay {
-        fn dim(&self) -> usize {
-            1
-        }
-        fn rhs(&mut self, _t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), RhsError> {
-            dy[0] = -y[0];
-            Ok(())
-        }
-    }
-
     fn fixed_error(steps: usize) -> f64 {
         // Tight tolerances: in fixed-step mode they only stop Newton.
-        let mut sd = Sdirk4::new(1, 1e-12, 1e-14).expect("tolerances");
-        let (mut y, dt) = ([1.0], 1.0 / steps as f64);
-        for i in 0..steps {
-            Integrator::step(&mut sd, &mut Decay, i as f64 * dt, &mut y, dt).expect("step");
-        }
-        (y[0] - (-1.0f64).exp()).abs()
+        decay_error(&mut Sdirk4::new(1, 1e-12, 1e-14).expect("tolerances"), steps)
     }
 
     #[test]
