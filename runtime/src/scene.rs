@@ -10,6 +10,8 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
+use crate::catenary;
+
 /// One simulation: the bodies, their initial layout, the environment and the solver.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -135,7 +137,8 @@ pub struct Cable {
     /// Break load, N.
     pub break_load: f64,
     /// The stages from the chain toward the ship (`[[cable.stages]]` tables; at least one:
-    /// an absent list is reported by the range check, not the parser).
+    /// an absent list is reported by the range check, not the parser; at least 2 elements
+    /// in all, since one rigid element cannot lie on the seabed and reach (x_L, h_L)).
     #[serde(default)]
     pub stages: Vec<CableStage>,
 }
@@ -186,9 +189,18 @@ pub struct Ship {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Initial {
-    /// x_L, horizontal projection of the whole cable, m.
+    /// x_L, horizontal projection of the whole cable, m. Joined with the cable's length L_c
+    /// and `vertical_projection` h_L: the line must lay as the paper lays it (Section 3.1),
+    /// grounded from o, then the catenary of Eqs. 30–34 up to (x_L, h_L), so
+    /// L_c − h_L < x_L ≤ a asinh(L_c/a) with a = (L_c² − h_L²)/(2 h_L) (below: no tension,
+    /// the cable would hang vertically; above: nothing on the seabed, the cable would leave o
+    /// with a slope and lift the chain; for case 1, (146, 151.842056] m); the rigid elements
+    /// may raise the lower end (case 1: by less than 1e-5 m), found by laying them. The laid
+    /// elements end at (x_L, h_L) to 1e-9 m, or the scene is refused with the range.
     pub horizontal_projection: f64,
-    /// h_L, vertical projection of the cable (seabed line to cable top), m.
+    /// h_L, vertical projection of the cable (seabed line to cable top), m. Must be below the
+    /// cable's length L_c; with x_L, see `horizontal_projection`. Sets the water depth
+    /// d = h_L + the cable's resting height.
     pub vertical_projection: f64,
     /// The ship's initial surge speed, m/s.
     pub ship_speed: f64,
@@ -491,23 +503,66 @@ impl Scene {
         }
     }
 
-    /// `[initial]`: a catenary with a grounded part (Eq. 30) must exist.
+    /// `[initial]`: each value in range, then the line must lay as the paper lays it (checked
+    /// when the cable and the initial values are valid): see [`Scene::check_geometry`].
     fn check_initial(&self, c: &mut Checker) {
         let ini = &self.initial;
+        c.positive("initial.horizontal_projection", ini.horizontal_projection, "m");
         c.positive("initial.vertical_projection", ini.vertical_projection, "m");
         c.range("initial.ship_speed", ini.ship_speed, 0.0, 20.0, true, "m/s");
-        let lc = self.cable_length();
-        if lc.is_finite() && lc > 0.0 && ini.vertical_projection.is_finite() && ini.vertical_projection > 0.0 {
-            // Eq. 30 has a root with a grounded part iff 0 < L_c − x_L < h_L.
-            let (lo, hi) = (lc - ini.vertical_projection, lc);
-            c.range_open(
-                "initial.horizontal_projection",
-                ini.horizontal_projection,
-                lo.max(0.0),
-                hi,
-                &format!("m: between L_c − h_L and L_c (cable length L_c = {} m), so that the cable lies partly on the seabed and Eq. 30 has a root", fmt_value(lc)),
-            );
+        let joined = |f: &Problem| f.field.starts_with("cable.") || f.field.starts_with("initial.");
+        if !c.problems.iter().any(joined) {
+            self.check_geometry(c);
         }
+    }
+
+    /// The initial line exists (Section 3.1, Eqs. 30–35): chain on the seabed, the cable
+    /// grounded from o and then on the catenary up to (x_L, h_L), its rigid elements ending
+    /// there to 1e-9 m. For a continuous cable of length L_c this holds for
+    /// L_c − h_L < x_L ≤ a asinh(L_c/a) with a = (L_c² − h_L²)/(2 h_L) (below: no tension, the
+    /// cable would hang vertically; above: nothing left on the seabed, the cable would leave o
+    /// with a slope and lift the chain), and needs h_L < L_c; the rigid elements raise the lower
+    /// end a little ([`catenary::laid_range`]). A single cable element cannot lie on the seabed
+    /// and reach (x_L, h_L).
+    fn check_geometry(&self, c: &mut Checker) {
+        let (x, h, lc) = (self.initial.horizontal_projection, self.initial.vertical_projection, self.cable_length());
+        let lengths = self.cable_element_lengths();
+        if h >= lc {
+            let why = format!("< L_c = {} m, the cable length (it must reach h_L and lie partly on the seabed)", fmt_value(lc));
+            c.push("initial.vertical_projection", &fmt_value(h), &why);
+            return;
+        }
+        if lengths.len() == 1 {
+            let why = "at least 2 cable elements in all: one rigid element cannot lie on the seabed at o and reach (x_L, h_L)";
+            c.push("cable.stages", "1 element", why);
+            return;
+        }
+        if catenary::lay_elements(&lengths, x, h).is_ok() {
+            return;
+        }
+        let expected = match catenary::laid_range(&lengths, h) {
+            Some((lo, hi)) => format!(
+                "in [{}, {}] m for cable length L_c = {} m and h_L = {} m: the cable grounded from o, then the \
+                 catenary of Eqs. 30–34 up to (x_L, h_L) (L_c − h_L < x_L ≤ a asinh(L_c/a), a = (L_c² − h_L²)/(2 h_L); \
+                 the rigid elements raise the lower end){}",
+                (lo * 1e6).ceil() / 1e6,
+                (hi * 1e6).floor() / 1e6,
+                fmt_value(lc),
+                fmt_value(h),
+                vertical_hint(lc, x),
+            ),
+            None => format!(
+                "a value for which the {} cable elements lay on the catenary of Eqs. 30–34 (none does for h_L = {} m)",
+                lengths.len(),
+                fmt_value(h)
+            ),
+        };
+        c.push("initial.horizontal_projection", &fmt_value(x), &expected);
+    }
+
+    /// The length of every cable element, from the chain toward the ship, m.
+    pub fn cable_element_lengths(&self) -> Vec<f64> {
+        self.cable.stages.iter().flat_map(|s| std::iter::repeat_n(s.element_length, s.elements)).collect()
     }
 
     /// `[solver]`: step, end time, output interval and tolerances.
@@ -525,6 +580,28 @@ impl Scene {
         c.range("solver.rtol", so.rtol, 0.0, 0.1, false, "(relative tolerance)");
         c.range("solver.atol", so.atol, 0.0, 1.0, false, "(absolute tolerance)");
     }
+}
+
+/// "; or, for this x_L, initial.vertical_projection in (L_c − x_L, h_max] m": the h_L range of
+/// a continuous cable of length `lc` (m) with horizontal projection `x` (m), when there is one.
+fn vertical_hint(lc: f64, x: f64) -> String {
+    if !(x < lc) {
+        return String::new();
+    }
+    // max_horizontal falls as h_L rises: bisect for max_horizontal(L_c, h) = x.
+    let (mut lo, mut hi) = (1e-9 * lc, lc * (1.0 - 1e-12));
+    if catenary::max_horizontal(lc, lo) < x {
+        return String::new();
+    }
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if catenary::max_horizontal(lc, mid) >= x {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    format!("; or, for this x_L, initial.vertical_projection in ({}, {:.6}] m", fmt_value(lc - x), lo)
 }
 
 /// Formats a value the way a user would write it in the TOML file.
@@ -565,12 +642,6 @@ impl Checker {
             let open = if closed_low { "[" } else { "(" };
             let hi_text = if hi == f64::MAX { "∞)".to_string() } else { format!("{}]", fmt_value(hi)) };
             self.push(field, &fmt_value(v), &format!("in {open}{}, {hi_text} {unit}", fmt_value(lo)));
-        }
-    }
-
-    fn range_open(&mut self, field: &str, v: f64, lo: f64, hi: f64, why: &str) {
-        if !(v.is_finite() && v > lo && v < hi) {
-            self.push(field, &fmt_value(v), &format!("in ({}, {}) {why}", fmt_value(lo), fmt_value(hi)));
         }
     }
 }
