@@ -66,7 +66,10 @@ pub struct Environment {
     pub kinematic_viscosity: f64,
     /// Seabed on: foundation reaction (Eq. 41) and anchor friction act.
     pub seabed: bool,
-    /// k_z, normal counter-force coefficient of the seabed foundation, N/m³ (Eq. 41).
+    /// k_z, normal counter-force coefficient of the seabed foundation, N/m³ (Eq. 41). With
+    /// water and seabed on, must exceed ρ g + (m' − ρ π R²) g/(π R²) for the chain and the
+    /// cable (m', R their `mass_per_length` and `radius`): softer, the foundation cannot carry
+    /// them and they would sink whole.
     pub seabed_stiffness: f64,
     /// μ, anchor–seabed sliding friction coefficient, dimensionless (Eq. 37).
     pub seabed_friction: f64,
@@ -98,13 +101,13 @@ pub struct Hydrodynamics {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Anchor {
-    /// m_1, kg.
+    /// m_1, kg. With water on, must exceed ρ L_1 w_1 h_1 (the anchor sinks: N > 0 in Eq. 37).
     pub mass: f64,
     /// L_1, along x, m.
     pub length: f64,
     /// w_1, across the line, m.
     pub width: f64,
-    /// h_1, m.
+    /// h_1, m. Must be below the water depth d ≈ h_L + `rod.length` − `ship.hinge_z`.
     pub height: f64,
 }
 
@@ -118,9 +121,10 @@ pub struct ChainSpec {
     pub element_length: f64,
     /// R_CE, equivalent radius of the 2D element, m (Table 1).
     pub radius: f64,
-    /// Mass per metre of the 2D element, kg/m.
+    /// Mass per metre of the 2D element, kg/m. With water on, must exceed ρ π R_CE² (the chain
+    /// sinks).
     pub mass_per_length: f64,
-    /// Proof load, N (Table 1).
+    /// Proof load, N (Table 1). At most `break_load`.
     pub proof_load: f64,
     /// Break load, N (Table 1).
     pub break_load: f64,
@@ -132,7 +136,8 @@ pub struct ChainSpec {
 pub struct Cable {
     /// R_RE, equivalent radius, m.
     pub radius: f64,
-    /// m_RU-based mass per metre of the 2D element, kg/m.
+    /// m_RU-based mass per metre of the 2D element, kg/m. With water on, must exceed ρ π R_RE²
+    /// (the cable sinks: w_c > 0 in Eqs. 30–31).
     pub mass_per_length: f64,
     /// Break load, N.
     pub break_load: f64,
@@ -157,7 +162,8 @@ pub struct CableStage {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Rod {
-    /// L_{N-1}, m.
+    /// L_{N-1}, m. At most `ship.hinge_z`: the rod stands on the cable top up to the hinge and
+    /// is in air (Section 3.2.2).
     pub length: f64,
     /// Radius, m.
     pub radius: f64,
@@ -169,7 +175,8 @@ pub struct Rod {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Ship {
-    /// m_N, kg.
+    /// m_N, kg. Must float: the draught T = m_N/(ρ L_N w_N) below `depth` and, with water
+    /// on, below the water depth d ≈ h_L + `rod.length` − `hinge_z`.
     pub mass: f64,
     /// L_N, m.
     pub length: f64,
@@ -181,7 +188,8 @@ pub struct Ship {
     pub hull_roughness: f64,
     /// d_x: the rod hinge's position forward of the water-plane centre, m (negative: aft).
     pub hinge_x: f64,
-    /// d_z: the rod hinge's height above the water plane, m.
+    /// d_z: the rod hinge's height above the water plane, m. At least `rod.length`; sets the
+    /// water depth with h_L (see `ship.mass`, `anchor.height`).
     pub hinge_z: f64,
 }
 
@@ -414,7 +422,77 @@ impl Scene {
         self.check_rod_and_ship(&mut c);
         self.check_initial(&mut c);
         self.check_solver(&mut c);
+        if c.problems.is_empty() {
+            self.check_joined(&mut c);
+        }
         c.problems
+    }
+
+    /// Rules between fields of different tables, checked when every value alone is valid;
+    /// each is documented beside the fields it joins.
+    fn check_joined(&self, c: &mut Checker) {
+        let ch = &self.chain;
+        if ch.proof_load > ch.break_load {
+            c.push("chain.proof_load", &fmt_value(ch.proof_load), &format!("≤ chain.break_load = {} N", fmt_value(ch.break_load)));
+        }
+        self.check_depth(c);
+        if self.environment.water {
+            self.check_sinking(c);
+        }
+    }
+
+    /// The water depth d ≈ h_L + rod.length − ship.hinge_z (the model's layout, to the cable's
+    /// resting height) holds the anchor and the floating ship; the rod is above the water.
+    fn check_depth(&self, c: &mut Checker) {
+        let (rod, ship) = (&self.rod, &self.ship);
+        if rod.length > ship.hinge_z + 1e-9 {
+            let why = format!(
+                "≤ ship.hinge_z = {} m: the rod stands on the cable top up to the hinge and is in air (Section 3.2.2), so its foot must not be under the water plane",
+                fmt_value(ship.hinge_z)
+            );
+            c.push("rod.length", &fmt_value(rod.length), &why);
+        }
+        // Without the cable's resting height (a few mm, within ± its radius).
+        let depth = self.initial.vertical_projection + rod.length - ship.hinge_z;
+        let needs = [("anchor.height", self.anchor.height, "the anchor's top"), ("ship.mass", self.ship_draught(), "the ship's keel (draught)")];
+        for (field, height, what) in needs {
+            if self.environment.water && height >= depth {
+                let value = if field == "ship.mass" { fmt_value(ship.mass) } else { fmt_value(height) };
+                let why = format!(
+                    "such that {what} ({height:.3} m) is below the water depth d ≈ h_L + rod.length − ship.hinge_z = {depth:.3} m (raise initial.vertical_projection)"
+                );
+                c.push(field, &value, &why);
+            }
+        }
+    }
+
+    /// In water the anchor, the chain and the cable sink (w_c > 0 in Eqs. 30–31; N > 0 in
+    /// Eq. 37), and on a seabed the foundation carries the links and the cable (Eqs. 41, 42).
+    fn check_sinking(&self, c: &mut Checker) {
+        let e = &self.environment;
+        let rho = e.water_density;
+        let a = &self.anchor;
+        let displaced = rho * a.length * a.width * a.height;
+        if a.mass <= displaced {
+            c.push("anchor.mass", &fmt_value(a.mass), &format!("> ρ L_1 w_1 h_1 = {} kg (the anchor would float)", fmt_value(displaced)));
+        }
+        let lines = [
+            ("chain", self.chain.radius, self.chain.mass_per_length, self.chain.elements > 0),
+            ("cable", self.cable.radius, self.cable.mass_per_length, true),
+        ];
+        for (name, radius, mpl, _) in lines.into_iter().filter(|l| l.3) {
+            let area = std::f64::consts::PI * radius * radius;
+            if mpl <= rho * area {
+                let why = format!("> ρ π R² = {:.3} kg/m (the {name} would float: no catenary, Eqs. 30–31)", rho * area);
+                c.push(&format!("{name}.mass_per_length"), &fmt_value(mpl), &why);
+            } else if e.seabed {
+                let least = rho * e.gravity + (mpl - rho * area) * e.gravity / area;
+                if e.seabed_stiffness <= least {
+                    let why = format!("> ρ g + (m' − ρ π R²) g / (π R²) = {least:.4e} N/m³ for the {name} (softer, the foundation of Eq. 41 cannot carry it: it would sink whole)");
+                    c.push("environment.seabed_stiffness", &fmt_value(e.seabed_stiffness), &why);
+                }
+            }
+        }
     }
 
     /// `[environment]`: constants in their physical ranges.
