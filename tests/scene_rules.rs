@@ -79,3 +79,41 @@ fn seabed_too_soft() {
     s.environment.seabed_stiffness = 1.0e4;
     assert_refused(&s, "environment.seabed_stiffness", "cannot carry");
 }
+
+#[test]
+fn a_million_chain_links_are_refused_before_allocating() {
+    let mut s = case1();
+    s.chain.elements = 1_000_000;
+    assert_refused(&s, "chain.elements", "bytes");
+    let mut s = case1();
+    s.cable.stages[1].elements = 100_000;
+    assert_refused(&s, "cable.stages", "at most 4000 bodies");
+}
+
+#[test]
+fn steps_beyond_the_limit_are_refused_with_the_estimate() {
+    for dt in [1e-300, 1e-6] {
+        let mut s = case1();
+        s.solver.dt = dt;
+        s.solver.output_interval = 0.01;
+        assert_refused(&s, "solver.dt", "steps exceed the limit of 1e7");
+    }
+    let mut s = case1();
+    s.solver.dt = 1e-5; // 6e6 steps: allowed
+    assert!(Scene::from_toml(&s.to_toml(), "fine.toml").is_ok());
+}
+
+/// The command line refuses an impossible geometry with exit 2, naming the field.
+#[test]
+fn cli_refuses_the_h_l_60_scene_with_exit_2() {
+    let dir = std::env::temp_dir().join(format!("kanestop-rules-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("bad60.toml");
+    std::fs::write(&path, DEFAULT_SCENE.replace("vertical_projection = 6.0", "vertical_projection = 60.0")).unwrap();
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_kanestop")).arg("run").arg(&path).output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains("bad60.toml") && err.contains("initial.horizontal_projection = 148"), "{err}");
+    assert!(err.contains("[95.") && err.contains("135.68"), "{err}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}

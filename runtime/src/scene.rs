@@ -12,6 +12,28 @@ use serde::{Deserialize, Serialize};
 
 use crate::catenary;
 
+/// The most bodies N a scene may have: the start-up stability analysis and the reference
+/// kernel hold dense matrices of about [`bytes_for_bodies`]`(N)` (≈ 1.7 GB at 4000) and cost
+/// O(N³); larger scenes are refused before anything is allocated.
+pub const MAX_BODIES: usize = 4000;
+
+/// The most steps (`solver.end_time / solver.dt`) a scene may ask for: 1e7, about 6 min of
+/// RK4 at N = 46 (36 µs per step on the project's machine) and an hour at N = 500; smaller
+/// steps are refused with the estimate.
+pub const MAX_STEPS: f64 = 1e7;
+
+/// Wall time per body and right-hand-side evaluation of the generated kernels, measured for
+/// case 1 (0.354 s for 40 243 evaluations at N = 46), s: the basis of the time estimates.
+pub const SECONDS_PER_BODY_EVALUATION: f64 = 1.9e-7;
+
+/// Bytes of the dense matrices a run of N bodies holds at start-up: the reference kernel's
+/// N × N mass matrix and the stability analysis's (2N)² Jacobian with its eigen-decomposition
+/// workspace (about three copies), 8 bytes each.
+pub fn bytes_for_bodies(n: usize) -> f64 {
+    let n = n as f64;
+    8.0 * (n * n + 3.0 * (2.0 * n) * (2.0 * n))
+}
+
 /// One simulation: the bodies, their initial layout, the environment and the solver.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -115,7 +137,8 @@ pub struct Anchor {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ChainSpec {
-    /// Number of links (may be 0).
+    /// Number of links (may be 0). With the cable's elements, at most `MAX_BODIES` = 4000
+    /// bodies in all (N = links + cable elements + 3), refused with the memory estimate.
     pub elements: usize,
     /// Length of one link element, m.
     pub element_length: f64,
@@ -152,7 +175,8 @@ pub struct Cable {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct CableStage {
-    /// Number of elements (≥ 1).
+    /// Number of elements (≥ 1; at least 2 over all stages). See `chain.elements` for the
+    /// limit on bodies.
     pub elements: usize,
     /// Length of one element, m.
     pub element_length: f64,
@@ -222,7 +246,8 @@ pub struct Solver {
     pub integrator: Method,
     /// Time step of `rk4`, s. For the adaptive methods, the observation interval: events,
     /// stability checks and peak tensions are evaluated every `dt`, and the method takes its
-    /// own error-controlled steps (never longer) in between.
+    /// own error-controlled steps (never longer) in between. At least `end_time` / 1e7: more
+    /// steps are refused with the time estimate (`MAX_STEPS`).
     pub dt: f64,
     /// Relative tolerance of the adaptive methods (`dp5`, `sdirk4`), dimensionless.
     pub rtol: f64,
@@ -419,6 +444,7 @@ impl Scene {
         self.check_hydrodynamics(&mut c);
         self.check_anchor_and_chain(&mut c);
         self.check_cable(&mut c);
+        self.check_size(&mut c);
         self.check_rod_and_ship(&mut c);
         self.check_initial(&mut c);
         self.check_solver(&mut c);
@@ -581,6 +607,30 @@ impl Scene {
         }
     }
 
+    /// Bodies N = 1 (anchor) + chain links + cable elements + 2 (rod, ship).
+    pub fn body_count(&self) -> usize {
+        let cable: usize = self.cable.stages.iter().map(|s| s.elements).fold(0, usize::saturating_add);
+        cable.saturating_add(self.chain.elements).saturating_add(3)
+    }
+
+    /// At most [`MAX_BODIES`], refused with the memory estimate before anything is allocated.
+    fn check_size(&self, c: &mut Checker) {
+        let n = self.body_count();
+        if n > MAX_BODIES {
+            let why = format!(
+                "with the cable stages at most {MAX_BODIES} bodies in all (N = {n}: the dense matrices of the start-up \
+                 stability analysis and the reference kernel would need about {:.3e} bytes)",
+                bytes_for_bodies(n)
+            );
+            let cable = n.saturating_sub(3).saturating_sub(self.chain.elements);
+            if self.chain.elements >= cable {
+                c.push("chain.elements", &self.chain.elements.to_string(), &why);
+            } else {
+                c.push("cable.stages", &format!("{cable} elements"), &why);
+            }
+        }
+    }
+
     /// `[initial]`: each value in range, then the line must lay as the paper lays it (checked
     /// when the cable and the initial values are valid): see [`Scene::check_geometry`].
     fn check_initial(&self, c: &mut Checker) {
@@ -588,7 +638,9 @@ impl Scene {
         c.positive("initial.horizontal_projection", ini.horizontal_projection, "m");
         c.positive("initial.vertical_projection", ini.vertical_projection, "m");
         c.range("initial.ship_speed", ini.ship_speed, 0.0, 20.0, true, "m/s");
-        let joined = |f: &Problem| f.field.starts_with("cable.") || f.field.starts_with("initial.");
+        let joined = |f: &Problem| {
+            f.field.starts_with("cable.") || f.field.starts_with("initial.") || f.field == "chain.elements"
+        };
         if !c.problems.iter().any(joined) {
             self.check_geometry(c);
         }
@@ -653,6 +705,17 @@ impl Scene {
             if so.end_time.is_finite() && so.end_time < so.dt {
                 c.push("solver.end_time", &fmt_value(so.end_time), &format!("≥ solver.dt = {} s", fmt_value(so.dt)));
             }
+        }
+        let steps = so.end_time / so.dt;
+        if so.dt > 0.0 && so.end_time > 0.0 && so.end_time.is_finite() && steps > MAX_STEPS {
+            let seconds = steps * 4.0 * self.body_count() as f64 * SECONDS_PER_BODY_EVALUATION;
+            let why = format!(
+                "≥ solver.end_time / {MAX_STEPS:e} = {:.3e} s: {steps:.3e} steps exceed the limit of {MAX_STEPS:e} \
+                 (about {seconds:.1e} s of RK4 wall time at N = {})",
+                so.end_time / MAX_STEPS,
+                self.body_count()
+            );
+            c.push("solver.dt", &fmt_value(so.dt), &why);
         }
         c.range("solver.max_energy_drift", so.max_energy_drift, 0.0, 10.0, false, "(relative)");
         c.range("solver.rtol", so.rtol, 0.0, 0.1, false, "(relative tolerance)");

@@ -5,7 +5,7 @@
 //! scene field or flag to change for the method the scene uses.
 
 use kanestop_runtime::model::Model;
-use kanestop_runtime::scene::Method;
+use kanestop_runtime::scene::{Method, MAX_STEPS};
 use kanestop_runtime::simulate::{Failure, FailureKind, SPIKE_FACTOR};
 use kanestop_runtime::stability::StabilityLimit;
 
@@ -73,6 +73,21 @@ fn refusal(dt: f64, limit: &StabilityLimit) -> (String, String, String) {
     (what, cause, suggestion)
 }
 
+/// Reduce the step 16-fold, never below the smallest step a scene may ask for
+/// (end_time / `MAX_STEPS`); at that floor, the adaptive methods instead.
+fn rk4_suggestion(dt: f64, end_time: f64, kept: &str) -> String {
+    let floor = end_time / MAX_STEPS;
+    if dt / 16.0 >= floor {
+        format!("reduce solver.dt (try {:.1e} s) or use integrator = \"dp5\"; {kept}", dt / 16.0)
+    } else if dt > floor {
+        format!("reduce solver.dt (try {floor:.1e} s, the smallest for end_time {end_time} s) or use integrator = \"dp5\"; {kept}")
+    } else {
+        format!(
+            "a smaller step is not sensible (solver.dt ≥ end_time / {MAX_STEPS:e}): use integrator = \"dp5\" or \"sdirk4\", or check the initial state; {kept}"
+        )
+    }
+}
+
 /// The likely cause and what to try for a failure at `t` (s) whose unstable mode lives at
 /// body `k` (1-based), for the scene's method.
 fn advice(model: &Model, t: f64, k: usize) -> (String, String) {
@@ -88,7 +103,7 @@ fn advice(model: &Model, t: f64, k: usize) -> (String, String) {
     match solver.integrator {
         Method::Rk4 => (
             format!("the explicit step dt = {dt} s is beyond the stability limit of {mode}"),
-            format!("reduce solver.dt (try {:.1e} s) or use integrator = \"dp5\"; {kept}", dt / 16.0),
+            rk4_suggestion(dt, solver.end_time, &kept),
         ),
         Method::Dp5 => (
             format!("the error-controlled steps could not follow {mode}"),
