@@ -49,6 +49,48 @@ pub enum CatenaryError {
     /// No curve length makes the chord polygon end at (x_L, h_L).
     #[error("elements cannot be laid to end at (x_L, h_L)")]
     CannotEnd,
+    /// The curve through o and (x_L, h_L) would not touch the seabed at o: its lowest point
+    /// lies behind o (a negative grounded length), so the cable would leave o with a slope and
+    /// lift the chain. Needs x_L ≤ [`max_horizontal`].
+    #[error(
+        "no touchdown: x_L = {horizontal} m exceeds the fully suspended span {max} m for L_c = {length} m, h_L = {vertical} m"
+    )]
+    NoTouchdown {
+        /// L_c, m.
+        length: f64,
+        /// x_L, m.
+        horizontal: f64,
+        /// h_L, m.
+        vertical: f64,
+        /// The largest x_L with touchdown, m.
+        max: f64,
+    },
+    /// The laid chord polygon ends farther than [`END_TOLERANCE`] from (x_L, h_L).
+    #[error("the laid elements end {gap:.3e} m from (x_L, h_L)")]
+    EndMissed {
+        /// Distance between the polygon's end and (x_L, h_L), m.
+        gap: f64,
+    },
+}
+
+/// How close the laid elements must end to (x_L, h_L), m.
+pub const END_TOLERANCE: f64 = 1e-9;
+
+/// The largest x_L for which a cable of length L_c with vertical projection h_L < L_c still
+/// touches the seabed at o: the whole cable suspended, tangent to the seabed at o. From
+/// Eq. 34 with S_c = L_c and Eq. 33, S_c² = h_L² + 2 a h_L gives a = (L_c² − h_L²)/(2 h_L),
+/// and then x_s = a asinh(L_c/a) (Eq. 34 inverted), m.
+pub fn max_horizontal(length: f64, vertical: f64) -> f64 {
+    let a = (length * length - vertical * vertical) / (2.0 * vertical);
+    a * (length / a).asinh()
+}
+
+/// The x_L for which a continuous cable of length L_c lies as the paper lays it (Section 3.1):
+/// grounded from o, then the catenary of Eqs. 30–34 up to (x_L, h_L). Open below (x_L →
+/// L_c − h_L: no tension, the cable hangs vertically), closed above (x_L =
+/// [`max_horizontal`]: nothing grounded); empty (`None`) when h_L ≥ L_c, m.
+pub fn continuous_range(length: f64, vertical: f64) -> Option<(f64, f64)> {
+    (vertical > 0.0 && vertical < length).then(|| ((length - vertical).max(0.0), max_horizontal(length, vertical)))
 }
 
 impl Catenary {
@@ -84,7 +126,12 @@ impl Catenary {
         }
         let b = 0.5 * (lo + hi);
         let a = slack / (b.sinh() - b); // Eq. 31 divided by w_c
-        Ok(Catenary { length, horizontal, vertical, b, a })
+        let cat = Catenary { length, horizontal, vertical, b, a };
+        if cat.grounded_length() < -END_TOLERANCE {
+            let max = max_horizontal(length, vertical);
+            return Err(CatenaryError::NoTouchdown { length, horizontal, vertical, max });
+        }
+        Ok(cat)
     }
 
     /// x_s = a b, horizontal extent of the suspended part, m.
@@ -116,9 +163,54 @@ impl Catenary {
 }
 
 /// Joint points of rigid elements of the given lengths laid from o along a catenary
-/// through (x_L, h_L): `lengths.len() + 1` points, the first (0, 0), the last (x_L, h_L)
-/// to round-off. Returns the curve used (its `length` is L' ≥ L_c) and the points.
+/// through (x_L, h_L): `lengths.len() + 1` points, the first (0, 0), the last within
+/// [`END_TOLERANCE`] of (x_L, h_L), or an error. Returns the curve used (its `length` is
+/// L' ≥ L_c) and the points.
 pub fn lay_elements(
+    lengths: &[f64],
+    horizontal: f64,
+    vertical: f64,
+) -> Result<(Catenary, Vec<[f64; 2]>), CatenaryError> {
+    let (cat, points) = lay_chords(lengths, horizontal, vertical)?;
+    let end = points.last().copied().unwrap_or([0.0, 0.0]);
+    let gap = (end[0] - horizontal).hypot(end[1] - vertical);
+    if !(gap <= END_TOLERANCE) {
+        return Err(CatenaryError::EndMissed { gap });
+    }
+    Ok((cat, points))
+}
+
+/// The x_L range, m, in which [`lay_elements`] lays these elements for this h_L: the
+/// continuous range of [`continuous_range`] for L_c = Σ lengths, its lower end raised by
+/// the rigid chords (near x_L = L_c − h_L the curve has a sharp corner the chords cannot
+/// follow). Found by bisection on the laying itself (to 1e-9 of L_c), so a point inside lays
+/// and a point outside does not. `None` when no x_L lays (h_L ≥ L_c, a single element).
+pub fn laid_range(lengths: &[f64], vertical: f64) -> Option<(f64, f64)> {
+    let total: f64 = lengths.iter().sum();
+    let (lo, hi) = continuous_range(total, vertical)?;
+    let lays = |x: f64| lay_elements(lengths, x, vertical).is_ok();
+    // A point that lays: from the fully suspended end down towards the corner.
+    let inside = [0.0, 1e-6, 1e-4, 1e-3, 1e-2, 0.1, 0.3, 0.5, 0.7, 0.9]
+        .iter()
+        .map(|f| hi - f * (hi - lo))
+        .find(|&x| lays(x))?;
+    let edge = |mut good: f64, mut bad: f64| {
+        while (good - bad).abs() > 1e-9 * total {
+            let mid = 0.5 * (good + bad);
+            if lays(mid) {
+                good = mid;
+            } else {
+                bad = mid;
+            }
+        }
+        good
+    };
+    let upper = if lays(hi) { hi } else { edge(inside, hi) };
+    Some((edge(inside, lo), upper))
+}
+
+/// [`lay_elements`] before the check of its end.
+fn lay_chords(
     lengths: &[f64],
     horizontal: f64,
     vertical: f64,

@@ -177,8 +177,7 @@ struct LaidLine {
 impl LaidLine {
     fn new(scene: &Scene) -> Result<LaidLine, CatenaryError> {
         // Element lengths along the line.
-        let cable_lengths: Vec<f64> =
-            scene.cable.stages.iter().flat_map(|s| std::iter::repeat_n(s.element_length, s.elements)).collect();
+        let cable_lengths = scene.cable_element_lengths();
         let (catenary, cable_points) =
             lay_elements(&cable_lengths, scene.initial.horizontal_projection, scene.initial.vertical_projection)?;
 
@@ -194,8 +193,11 @@ impl LaidLine {
         let line_height = cable_height;
         let step = chain_height - cable_height;
         let mut points = cable_points;
+        // The first element keeps its length from its upper joint (grounded or not) to the
+        // chain's height.
         let first_len = cable_lengths[0];
-        points[0] = [points[1][0] - (first_len * first_len - step * step).sqrt(), step];
+        let rise = points[1][1] - step;
+        points[0] = [points[1][0] - (first_len * first_len - rise * rise).sqrt(), step];
         let chain_length = scene.chain.elements as f64 * scene.chain.element_length;
         let anchor_origin = [points[0][0] - chain_length - scene.anchor.length, 0.0];
         Ok(LaidLine { catenary, points, chain_height, line_height, anchor_origin })

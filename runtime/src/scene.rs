@@ -10,7 +10,30 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
+use crate::catenary;
 use crate::overrides::{self, OverrideError};
+
+/// The most bodies N a scene may have: the start-up stability analysis and the reference
+/// kernel hold dense matrices of about [`bytes_for_bodies`]`(N)` (≈ 1.7 GB at 4000) and cost
+/// O(N³); larger scenes are refused before anything is allocated.
+pub const MAX_BODIES: usize = 4000;
+
+/// The most steps (`solver.end_time / solver.dt`) a scene may ask for: 1e7, about 6 min of
+/// RK4 at N = 46 (36 µs per step on the project's machine) and an hour at N = 500; smaller
+/// steps are refused with the estimate.
+pub const MAX_STEPS: f64 = 1e7;
+
+/// Wall time per body and right-hand-side evaluation of the generated kernels, measured for
+/// case 1 (0.354 s for 40 243 evaluations at N = 46), s: the basis of the time estimates.
+pub const SECONDS_PER_BODY_EVALUATION: f64 = 1.9e-7;
+
+/// Bytes of the dense matrices a run of N bodies holds at start-up: the reference kernel's
+/// N × N mass matrix and the stability analysis's (2N)² Jacobian with its eigen-decomposition
+/// workspace (about three copies), 8 bytes each.
+pub fn bytes_for_bodies(n: usize) -> f64 {
+    let n = n as f64;
+    8.0 * (n * n + 3.0 * (2.0 * n) * (2.0 * n))
+}
 
 /// One simulation: the bodies, their initial layout, the environment and the solver.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -66,7 +89,10 @@ pub struct Environment {
     pub kinematic_viscosity: f64,
     /// Seabed on: foundation reaction (Eq. 41) and anchor friction act.
     pub seabed: bool,
-    /// k_z, normal counter-force coefficient of the seabed foundation, N/m³ (Eq. 41).
+    /// k_z, normal counter-force coefficient of the seabed foundation, N/m³ (Eq. 41). With
+    /// water and seabed on, must exceed ρ g + (m' − ρ π R²) g/(π R²) for the chain and the
+    /// cable (m', R their `mass_per_length` and `radius`): softer, the foundation cannot carry
+    /// them and they would sink whole.
     pub seabed_stiffness: f64,
     /// μ, anchor–seabed sliding friction coefficient, dimensionless (Eq. 37).
     pub seabed_friction: f64,
@@ -98,13 +124,13 @@ pub struct Hydrodynamics {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Anchor {
-    /// m_1, kg.
+    /// m_1, kg. With water on, must exceed ρ L_1 w_1 h_1 (the anchor sinks: N > 0 in Eq. 37).
     pub mass: f64,
     /// L_1, along x, m.
     pub length: f64,
     /// w_1, across the line, m.
     pub width: f64,
-    /// h_1, m.
+    /// h_1, m. Must be below the water depth d ≈ h_L + `rod.length` − `ship.hinge_z`.
     pub height: f64,
 }
 
@@ -112,15 +138,17 @@ pub struct Anchor {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ChainSpec {
-    /// Number of links (may be 0).
+    /// Number of links (may be 0). With the cable's elements, at most `MAX_BODIES` = 4000
+    /// bodies in all (N = links + cable elements + 3), refused with the memory estimate.
     pub elements: usize,
     /// Length of one link element, m.
     pub element_length: f64,
     /// R_CE, equivalent radius of the 2D element, m (Table 1).
     pub radius: f64,
-    /// Mass per metre of the 2D element, kg/m.
+    /// Mass per metre of the 2D element, kg/m. With water on, must exceed ρ π R_CE² (the chain
+    /// sinks).
     pub mass_per_length: f64,
-    /// Proof load, N (Table 1).
+    /// Proof load, N (Table 1). At most `break_load`.
     pub proof_load: f64,
     /// Break load, N (Table 1).
     pub break_load: f64,
@@ -132,12 +160,14 @@ pub struct ChainSpec {
 pub struct Cable {
     /// R_RE, equivalent radius, m.
     pub radius: f64,
-    /// m_RU-based mass per metre of the 2D element, kg/m.
+    /// m_RU-based mass per metre of the 2D element, kg/m. With water on, must exceed ρ π R_RE²
+    /// (the cable sinks: w_c > 0 in Eqs. 30–31).
     pub mass_per_length: f64,
     /// Break load, N.
     pub break_load: f64,
     /// The stages from the chain toward the ship (`[[cable.stages]]` tables; at least one:
-    /// an absent list is reported by the range check, not the parser).
+    /// an absent list is reported by the range check, not the parser; at least 2 elements
+    /// in all, since one rigid element cannot lie on the seabed and reach (x_L, h_L)).
     #[serde(default)]
     pub stages: Vec<CableStage>,
 }
@@ -146,7 +176,8 @@ pub struct Cable {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct CableStage {
-    /// Number of elements (≥ 1).
+    /// Number of elements (≥ 1; at least 2 over all stages). See `chain.elements` for the
+    /// limit on bodies.
     pub elements: usize,
     /// Length of one element, m.
     pub element_length: f64,
@@ -156,7 +187,8 @@ pub struct CableStage {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Rod {
-    /// L_{N-1}, m.
+    /// L_{N-1}, m. At most `ship.hinge_z`: the rod stands on the cable top up to the hinge and
+    /// is in air (Section 3.2.2).
     pub length: f64,
     /// Radius, m.
     pub radius: f64,
@@ -168,7 +200,8 @@ pub struct Rod {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Ship {
-    /// m_N, kg.
+    /// m_N, kg. Must float: the draught T = m_N/(ρ L_N w_N) below `depth` and, with water
+    /// on, below the water depth d ≈ h_L + `rod.length` − `hinge_z`.
     pub mass: f64,
     /// L_N, m.
     pub length: f64,
@@ -180,7 +213,8 @@ pub struct Ship {
     pub hull_roughness: f64,
     /// d_x: the rod hinge's position forward of the water-plane centre, m (negative: aft).
     pub hinge_x: f64,
-    /// d_z: the rod hinge's height above the water plane, m.
+    /// d_z: the rod hinge's height above the water plane, m. At least `rod.length`; sets the
+    /// water depth with h_L (see `ship.mass`, `anchor.height`).
     pub hinge_z: f64,
 }
 
@@ -188,9 +222,18 @@ pub struct Ship {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Initial {
-    /// x_L, horizontal projection of the whole cable, m.
+    /// x_L, horizontal projection of the whole cable, m. Joined with the cable's length L_c
+    /// and `vertical_projection` h_L: the line must lay as the paper lays it (Section 3.1),
+    /// grounded from o, then the catenary of Eqs. 30–34 up to (x_L, h_L), so
+    /// L_c − h_L < x_L ≤ a asinh(L_c/a) with a = (L_c² − h_L²)/(2 h_L) (below: no tension,
+    /// the cable would hang vertically; above: nothing on the seabed, the cable would leave o
+    /// with a slope and lift the chain; for case 1, (146, 151.842056] m); the rigid elements
+    /// may raise the lower end (case 1: by less than 1e-5 m), found by laying them. The laid
+    /// elements end at (x_L, h_L) to 1e-9 m, or the scene is refused with the range.
     pub horizontal_projection: f64,
-    /// h_L, vertical projection of the cable (seabed line to cable top), m.
+    /// h_L, vertical projection of the cable (seabed line to cable top), m. Must be below the
+    /// cable's length L_c; with x_L, see `horizontal_projection`. Sets the water depth
+    /// d = h_L + the cable's resting height.
     pub vertical_projection: f64,
     /// The ship's initial surge speed, m/s.
     pub ship_speed: f64,
@@ -204,7 +247,8 @@ pub struct Solver {
     pub integrator: Method,
     /// Time step of `rk4`, s. For the adaptive methods, the observation interval: events,
     /// stability checks and peak tensions are evaluated every `dt`, and the method takes its
-    /// own error-controlled steps (never longer) in between.
+    /// own error-controlled steps (never longer) in between. At least `end_time` / 1e7: more
+    /// steps are refused with the time estimate (`MAX_STEPS`).
     pub dt: f64,
     /// Relative tolerance of the adaptive methods (`dp5`, `sdirk4`), dimensionless.
     pub rtol: f64,
@@ -458,10 +502,81 @@ impl Scene {
         self.check_hydrodynamics(&mut c);
         self.check_anchor_and_chain(&mut c);
         self.check_cable(&mut c);
+        self.check_size(&mut c);
         self.check_rod_and_ship(&mut c);
         self.check_initial(&mut c);
         self.check_solver(&mut c);
+        if c.problems.is_empty() {
+            self.check_joined(&mut c);
+        }
         c.problems
+    }
+
+    /// Rules between fields of different tables, checked when every value alone is valid;
+    /// each is documented beside the fields it joins.
+    fn check_joined(&self, c: &mut Checker) {
+        let ch = &self.chain;
+        if ch.proof_load > ch.break_load {
+            c.push("chain.proof_load", &fmt_value(ch.proof_load), &format!("≤ chain.break_load = {} N", fmt_value(ch.break_load)));
+        }
+        self.check_depth(c);
+        if self.environment.water {
+            self.check_sinking(c);
+        }
+    }
+
+    /// The water depth d ≈ h_L + rod.length − ship.hinge_z (the model's layout, to the cable's
+    /// resting height) holds the anchor and the floating ship; the rod is above the water.
+    fn check_depth(&self, c: &mut Checker) {
+        let (rod, ship) = (&self.rod, &self.ship);
+        if rod.length > ship.hinge_z + 1e-9 {
+            let why = format!(
+                "≤ ship.hinge_z = {} m: the rod stands on the cable top up to the hinge and is in air (Section 3.2.2), so its foot must not be under the water plane",
+                fmt_value(ship.hinge_z)
+            );
+            c.push("rod.length", &fmt_value(rod.length), &why);
+        }
+        // Without the cable's resting height (a few mm, within ± its radius).
+        let depth = self.initial.vertical_projection + rod.length - ship.hinge_z;
+        let needs = [("anchor.height", self.anchor.height, "the anchor's top"), ("ship.mass", self.ship_draught(), "the ship's keel (draught)")];
+        for (field, height, what) in needs {
+            if self.environment.water && height >= depth {
+                let value = if field == "ship.mass" { fmt_value(ship.mass) } else { fmt_value(height) };
+                let why = format!(
+                    "such that {what} ({height:.3} m) is below the water depth d ≈ h_L + rod.length − ship.hinge_z = {depth:.3} m (raise initial.vertical_projection)"
+                );
+                c.push(field, &value, &why);
+            }
+        }
+    }
+
+    /// In water the anchor, the chain and the cable sink (w_c > 0 in Eqs. 30–31; N > 0 in
+    /// Eq. 37), and on a seabed the foundation carries the links and the cable (Eqs. 41, 42).
+    fn check_sinking(&self, c: &mut Checker) {
+        let e = &self.environment;
+        let rho = e.water_density;
+        let a = &self.anchor;
+        let displaced = rho * a.length * a.width * a.height;
+        if a.mass <= displaced {
+            c.push("anchor.mass", &fmt_value(a.mass), &format!("> ρ L_1 w_1 h_1 = {} kg (the anchor would float)", fmt_value(displaced)));
+        }
+        let lines = [
+            ("chain", self.chain.radius, self.chain.mass_per_length, self.chain.elements > 0),
+            ("cable", self.cable.radius, self.cable.mass_per_length, true),
+        ];
+        for (name, radius, mpl, _) in lines.into_iter().filter(|l| l.3) {
+            let area = std::f64::consts::PI * radius * radius;
+            if mpl <= rho * area {
+                let why = format!("> ρ π R² = {:.3} kg/m (the {name} would float: no catenary, Eqs. 30–31)", rho * area);
+                c.push(&format!("{name}.mass_per_length"), &fmt_value(mpl), &why);
+            } else if e.seabed {
+                let least = rho * e.gravity + (mpl - rho * area) * e.gravity / area;
+                if e.seabed_stiffness <= least {
+                    let why = format!("> ρ g + (m' − ρ π R²) g / (π R²) = {least:.4e} N/m³ for the {name} (softer, the foundation of Eq. 41 cannot carry it: it would sink whole)");
+                    c.push("environment.seabed_stiffness", &fmt_value(e.seabed_stiffness), &why);
+                }
+            }
+        }
     }
 
     /// `[environment]`: constants in their physical ranges.
@@ -550,23 +665,92 @@ impl Scene {
         }
     }
 
-    /// `[initial]`: a catenary with a grounded part (Eq. 30) must exist.
+    /// Bodies N = 1 (anchor) + chain links + cable elements + 2 (rod, ship).
+    pub fn body_count(&self) -> usize {
+        let cable: usize = self.cable.stages.iter().map(|s| s.elements).fold(0, usize::saturating_add);
+        cable.saturating_add(self.chain.elements).saturating_add(3)
+    }
+
+    /// At most [`MAX_BODIES`], refused with the memory estimate before anything is allocated.
+    fn check_size(&self, c: &mut Checker) {
+        let n = self.body_count();
+        if n > MAX_BODIES {
+            let why = format!(
+                "with the cable stages at most {MAX_BODIES} bodies in all (N = {n}: the dense matrices of the start-up \
+                 stability analysis and the reference kernel would need about {:.3e} bytes)",
+                bytes_for_bodies(n)
+            );
+            let cable = n.saturating_sub(3).saturating_sub(self.chain.elements);
+            if self.chain.elements >= cable {
+                c.push("chain.elements", &self.chain.elements.to_string(), &why);
+            } else {
+                c.push("cable.stages", &format!("{cable} elements"), &why);
+            }
+        }
+    }
+
+    /// `[initial]`: each value in range, then the line must lay as the paper lays it (checked
+    /// when the cable and the initial values are valid): see [`Scene::check_geometry`].
     fn check_initial(&self, c: &mut Checker) {
         let ini = &self.initial;
+        c.positive("initial.horizontal_projection", ini.horizontal_projection, "m");
         c.positive("initial.vertical_projection", ini.vertical_projection, "m");
         c.range("initial.ship_speed", ini.ship_speed, 0.0, 20.0, true, "m/s");
-        let lc = self.cable_length();
-        if lc.is_finite() && lc > 0.0 && ini.vertical_projection.is_finite() && ini.vertical_projection > 0.0 {
-            // Eq. 30 has a root with a grounded part iff 0 < L_c − x_L < h_L.
-            let (lo, hi) = (lc - ini.vertical_projection, lc);
-            c.range_open(
-                "initial.horizontal_projection",
-                ini.horizontal_projection,
-                lo.max(0.0),
-                hi,
-                &format!("m: between L_c − h_L and L_c (cable length L_c = {} m), so that the cable lies partly on the seabed and Eq. 30 has a root", fmt_value(lc)),
-            );
+        let joined = |f: &Problem| {
+            f.field.starts_with("cable.") || f.field.starts_with("initial.") || f.field == "chain.elements"
+        };
+        if !c.problems.iter().any(joined) {
+            self.check_geometry(c);
         }
+    }
+
+    /// The initial line exists (Section 3.1, Eqs. 30–35): chain on the seabed, the cable
+    /// grounded from o and then on the catenary up to (x_L, h_L), its rigid elements ending
+    /// there to 1e-9 m. For a continuous cable of length L_c this holds for
+    /// L_c − h_L < x_L ≤ a asinh(L_c/a) with a = (L_c² − h_L²)/(2 h_L) (below: no tension, the
+    /// cable would hang vertically; above: nothing left on the seabed, the cable would leave o
+    /// with a slope and lift the chain), and needs h_L < L_c; the rigid elements raise the lower
+    /// end a little ([`catenary::laid_range`]). A single cable element cannot lie on the seabed
+    /// and reach (x_L, h_L).
+    fn check_geometry(&self, c: &mut Checker) {
+        let (x, h, lc) = (self.initial.horizontal_projection, self.initial.vertical_projection, self.cable_length());
+        let lengths = self.cable_element_lengths();
+        if h >= lc {
+            let why = format!("< L_c = {} m, the cable length (it must reach h_L and lie partly on the seabed)", fmt_value(lc));
+            c.push("initial.vertical_projection", &fmt_value(h), &why);
+            return;
+        }
+        if lengths.len() == 1 {
+            let why = "at least 2 cable elements in all: one rigid element cannot lie on the seabed at o and reach (x_L, h_L)";
+            c.push("cable.stages", "1 element", why);
+            return;
+        }
+        if catenary::lay_elements(&lengths, x, h).is_ok() {
+            return;
+        }
+        let expected = match catenary::laid_range(&lengths, h) {
+            Some((lo, hi)) => format!(
+                "in [{}, {}] m for cable length L_c = {} m and h_L = {} m: the cable grounded from o, then the \
+                 catenary of Eqs. 30–34 up to (x_L, h_L) (L_c − h_L < x_L ≤ a asinh(L_c/a), a = (L_c² − h_L²)/(2 h_L); \
+                 the rigid elements raise the lower end){}",
+                (lo * 1e6).ceil() / 1e6,
+                (hi * 1e6).floor() / 1e6,
+                fmt_value(lc),
+                fmt_value(h),
+                vertical_hint(lc, x),
+            ),
+            None => format!(
+                "a value for which the {} cable elements lay on the catenary of Eqs. 30–34 (none does for h_L = {} m)",
+                lengths.len(),
+                fmt_value(h)
+            ),
+        };
+        c.push("initial.horizontal_projection", &fmt_value(x), &expected);
+    }
+
+    /// The length of every cable element, from the chain toward the ship, m.
+    pub fn cable_element_lengths(&self) -> Vec<f64> {
+        self.cable.stages.iter().flat_map(|s| std::iter::repeat_n(s.element_length, s.elements)).collect()
     }
 
     /// `[solver]`: step, end time, output interval and tolerances.
@@ -580,10 +764,43 @@ impl Scene {
                 c.push("solver.end_time", &fmt_value(so.end_time), &format!("≥ solver.dt = {} s", fmt_value(so.dt)));
             }
         }
+        let steps = so.end_time / so.dt;
+        if so.dt > 0.0 && so.end_time > 0.0 && so.end_time.is_finite() && steps > MAX_STEPS {
+            let seconds = steps * 4.0 * self.body_count() as f64 * SECONDS_PER_BODY_EVALUATION;
+            let why = format!(
+                "≥ solver.end_time / {MAX_STEPS:e} = {:.3e} s: {steps:.3e} steps exceed the limit of {MAX_STEPS:e} \
+                 (about {seconds:.1e} s of RK4 wall time at N = {})",
+                so.end_time / MAX_STEPS,
+                self.body_count()
+            );
+            c.push("solver.dt", &fmt_value(so.dt), &why);
+        }
         c.range("solver.max_energy_drift", so.max_energy_drift, 0.0, 10.0, false, "(relative)");
         c.range("solver.rtol", so.rtol, 0.0, 0.1, false, "(relative tolerance)");
         c.range("solver.atol", so.atol, 0.0, 1.0, false, "(absolute tolerance)");
     }
+}
+
+/// "; or, for this x_L, initial.vertical_projection in (L_c − x_L, h_max] m": the h_L range of
+/// a continuous cable of length `lc` (m) with horizontal projection `x` (m), when there is one.
+fn vertical_hint(lc: f64, x: f64) -> String {
+    if !(x < lc) {
+        return String::new();
+    }
+    // max_horizontal falls as h_L rises: bisect for max_horizontal(L_c, h) = x.
+    let (mut lo, mut hi) = (1e-9 * lc, lc * (1.0 - 1e-12));
+    if catenary::max_horizontal(lc, lo) < x {
+        return String::new();
+    }
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if catenary::max_horizontal(lc, mid) >= x {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    format!("; or, for this x_L, initial.vertical_projection in ({}, {:.6}] m", fmt_value(lc - x), lo)
 }
 
 /// Formats a value the way a user would write it in the TOML file.
@@ -624,12 +841,6 @@ impl Checker {
             let open = if closed_low { "[" } else { "(" };
             let hi_text = if hi == f64::MAX { "∞)".to_string() } else { format!("{}]", fmt_value(hi)) };
             self.push(field, &fmt_value(v), &format!("in {open}{}, {hi_text} {unit}", fmt_value(lo)));
-        }
-    }
-
-    fn range_open(&mut self, field: &str, v: f64, lo: f64, hi: f64, why: &str) {
-        if !(v.is_finite() && v > lo && v < hi) {
-            self.push(field, &fmt_value(v), &format!("in ({}, {}) {why}", fmt_value(lo), fmt_value(hi)));
         }
     }
 }

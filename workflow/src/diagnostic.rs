@@ -5,8 +5,8 @@
 //! scene field or flag to change for the method the scene uses.
 
 use kanestop_runtime::model::Model;
-use kanestop_runtime::scene::Method;
-use kanestop_runtime::simulate::{Failure, FailureKind, SPIKE_FACTOR};
+use kanestop_runtime::scene::{Method, MAX_STEPS};
+use kanestop_runtime::simulate::{Failure, FailureKind, StaticResidual, SPIKE_FACTOR};
 use kanestop_runtime::stability::StabilityLimit;
 
 /// The diagnostic of `failure` in `model`'s run, on several lines.
@@ -18,7 +18,12 @@ pub fn describe(model: &Model, failure: &Failure) -> String {
                 FailureKind::ForceSpike { swinging, .. } => *swinging,
                 _ => failure.body,
             };
-            let (cause, suggestion) = advice(model, failure.t, swinging);
+            let (cause, suggestion) = match failure.initial_residual {
+                Some(r) if r.line.0.max(r.top.0) > NOT_STATIC * model.scene.environment.gravity => {
+                    not_static(failure.t, &r)
+                }
+                _ => advice(model, failure.t, swinging),
+            };
             (what(kind), cause, suggestion)
         }
     };
@@ -27,6 +32,26 @@ pub fn describe(model: &Model, failure: &Failure) -> String {
         failure.t,
         body_name(model, failure.body)
     )
+}
+
+/// An initial static residual above this many g, in a run that fails early, is diagnosed as
+/// a bad initial state rather than a step too large (case 1 of the paper: 0.36 g, the first
+/// cable element bridging the chain's height; the refused h_L = 60 m scene: 0.81 g on the
+/// line and 12 g beside the rod).
+pub const NOT_STATIC: f64 = 0.5;
+
+/// The cause and suggestion of an early failure from an initial state far from static.
+fn not_static(t: f64, r: &StaticResidual) -> (String, String) {
+    let cause = format!(
+        "the initial state is not static: the run failed {t:.3} s after the start, and at rest (t = 0, anchor held) \
+         the line accelerates up to {:.2e} m/s² (B_{}) and {:.2e} m/s² beside the rod (B_{}); the step size is not \
+         the likely cause",
+        r.line.0, r.line.1, r.top.0, r.top.1
+    );
+    let suggestion = "check the initial geometry (initial.horizontal_projection, initial.vertical_projection, the \
+                      cable stages, rod.length and ship.hinge_z) and the line's weights; a smaller step will not help"
+        .to_string();
+    (cause, suggestion)
 }
 
 /// "auxiliary rod (B_45, 13.9 kg, 1.00 m)" for body k (1-based).
@@ -73,6 +98,21 @@ fn refusal(dt: f64, limit: &StabilityLimit) -> (String, String, String) {
     (what, cause, suggestion)
 }
 
+/// Reduce the step 16-fold, never below the smallest step a scene may ask for
+/// (end_time / `MAX_STEPS`); at that floor, the adaptive methods instead.
+fn rk4_suggestion(dt: f64, end_time: f64, kept: &str) -> String {
+    let floor = end_time / MAX_STEPS;
+    if dt / 16.0 >= floor {
+        format!("reduce solver.dt (try {:.1e} s) or use integrator = \"dp5\"; {kept}", dt / 16.0)
+    } else if dt > floor {
+        format!("reduce solver.dt (try {floor:.1e} s, the smallest for end_time {end_time} s) or use integrator = \"dp5\"; {kept}")
+    } else {
+        format!(
+            "a smaller step is not sensible (solver.dt ≥ end_time / {MAX_STEPS:e}): use integrator = \"dp5\" or \"sdirk4\", or check the initial state; {kept}"
+        )
+    }
+}
+
 /// The likely cause and what to try for a failure at `t` (s) whose unstable mode lives at
 /// body `k` (1-based), for the scene's method.
 fn advice(model: &Model, t: f64, k: usize) -> (String, String) {
@@ -88,7 +128,7 @@ fn advice(model: &Model, t: f64, k: usize) -> (String, String) {
     match solver.integrator {
         Method::Rk4 => (
             format!("the explicit step dt = {dt} s is beyond the stability limit of {mode}"),
-            format!("reduce solver.dt (try {:.1e} s) or use integrator = \"dp5\"; {kept}", dt / 16.0),
+            rk4_suggestion(dt, solver.end_time, &kept),
         ),
         Method::Dp5 => (
             format!("the error-controlled steps could not follow {mode}"),

@@ -4,6 +4,7 @@
 
 use crate::integrate::{RhsError, StepError};
 use crate::model::Model;
+use crate::simulate::result::StaticResidual;
 use crate::stability::{StabilityError, StabilityLimit};
 
 /// What went wrong and where; a run that fails keeps its samples up to the last good step.
@@ -18,6 +19,19 @@ pub struct Failure {
     pub body: usize,
     /// What was detected.
     pub kind: FailureKind,
+    /// For a failure within [`EARLY_FAILURE_TIME`] of the start (or 20 steps, whichever is
+    /// longer) of a run that evaluated it ([`super::run_checked`]): how far the initial state
+    /// was from static, the likelier cause than the step.
+    pub initial_residual: Option<StaticResidual>,
+}
+
+/// A failure this soon after the start, s (or within 20 steps), is diagnosed with the
+/// initial state's static residual.
+pub const EARLY_FAILURE_TIME: f64 = 0.5;
+
+/// True when a failure at `t` (s) with step or observation interval `dt` (s) is early.
+pub fn is_early(t: f64, dt: f64) -> bool {
+    t <= EARLY_FAILURE_TIME.max(20.0 * dt)
 }
 
 /// What a [`Failure`] detected. The short `Display` names the kind, for debugging only.
@@ -85,12 +99,12 @@ impl Failure {
             FailureKind::StepAboveLimit { limit, .. } => (limit.body, kind),
             other => (swinging, other),
         };
-        Failure { t, body, kind }
+        Failure { t, body, kind, initial_residual: None }
     }
 
     /// The refusal of an RK4 step `dt` above `limit`, before the run.
     pub fn step_above_limit(dt: f64, limit: StabilityLimit) -> Self {
-        Failure { t: 0.0, body: limit.body, kind: FailureKind::StepAboveLimit { dt, limit } }
+        Failure { t: 0.0, body: limit.body, kind: FailureKind::StepAboveLimit { dt, limit }, initial_residual: None }
     }
 }
 

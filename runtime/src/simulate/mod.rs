@@ -32,7 +32,7 @@ mod observe;
 pub mod result;
 pub mod stepper;
 
-pub use failure::{Failure, FailureKind};
+pub use failure::{is_early, Failure, FailureKind, EARLY_FAILURE_TIME};
 pub use health::SPIKE_FACTOR;
 pub use result::{
     static_residual, trajectory_difference, AnchorEvent, PeakTension, RunResult, Sample, StaticResidual, Stop,
@@ -50,6 +50,11 @@ pub fn run_checked(model: &Model, kernel: Box<dyn Kernel>, residual_kernel: Box<
     let residual = static_residual(model, residual_kernel).ok();
     let mut result = run(model, kernel);
     result.initial_residual = residual;
+    if let Stop::Failed(f) = &mut result.stop {
+        if failure::is_early(f.t, model.scene.solver.dt) {
+            f.initial_residual = residual;
+        }
+    }
     result
 }
 

@@ -1,0 +1,45 @@
+//! True diagnoses (issue 15, item 4): a run failing early from a state far from static says
+//! so instead of blaming the step, and the advice never goes below the smallest sensible step.
+
+use kanestop_runtime::model::Model;
+use kanestop_runtime::paper::DEFAULT_SCENE;
+use kanestop_runtime::scene::{Scene, MAX_STEPS};
+use kanestop_runtime::simulate::{is_early, Failure, FailureKind, StaticResidual};
+use kanestop_workflow::diagnostic::describe;
+
+fn case1() -> Model {
+    Model::new(&Scene::from_toml(DEFAULT_SCENE, "case01.toml").unwrap()).unwrap()
+}
+
+fn runaway(t: f64, residual: Option<StaticResidual>) -> Failure {
+    Failure { t, body: 19, kind: FailureKind::EnergyRunaway { drift: 0.056, limit: 0.05 }, initial_residual: residual }
+}
+
+#[test]
+fn an_early_failure_from_a_state_far_from_static_blames_the_state() {
+    let model = case1();
+    // The residual of the h_L = 60 m scene the issue ran (now refused).
+    let bad = StaticResidual { line: (7.96, 19), top: (115.0, 44) };
+    assert!(is_early(0.25, 0.002));
+    let text = describe(&model, &runaway(0.25, Some(bad)));
+    assert!(text.contains("the initial state is not static"), "{text}");
+    assert!(text.contains("1.15e2 m/s² beside the rod (B_44)"), "{text}");
+    assert!(text.contains("initial.horizontal_projection") && !text.contains("reduce solver.dt"), "{text}");
+    // Case 1's own residual is near static: the step is advised as before.
+    let good = StaticResidual { line: (3.37, 17), top: (3.54, 44) };
+    let text = describe(&model, &runaway(0.25, Some(good)));
+    assert!(text.contains("reduce solver.dt (try 1.3e-4 s)"), "{text}");
+    assert!(!is_early(5.0, 0.002));
+}
+
+#[test]
+fn the_advice_never_goes_below_the_smallest_sensible_step() {
+    let mut model = case1();
+    let floor = model.scene.solver.end_time / MAX_STEPS;
+    model.scene.solver.dt = 4.0 * floor;
+    let text = describe(&model, &runaway(1.0, None));
+    assert!(text.contains(&format!("try {floor:.1e} s, the smallest")), "{text}");
+    model.scene.solver.dt = floor;
+    let text = describe(&model, &runaway(1.0, None));
+    assert!(text.contains("a smaller step is not sensible") && text.contains("dp5"), "{text}");
+}

@@ -1,0 +1,119 @@
+//! Rules between fields (issue 15, item 2): each value may be valid alone and the scene
+//! still impossible; each rule is refused naming the field and what it must be.
+
+use kanestop_runtime::paper::DEFAULT_SCENE;
+use kanestop_runtime::scene::{Scene, SceneError};
+
+fn case1() -> Scene {
+    Scene::from_toml(DEFAULT_SCENE, "case01.toml").unwrap()
+}
+
+/// The fields named by the refusal of `scene` (after a TOML round trip, as a file would be).
+fn refused_fields(scene: &Scene) -> Vec<(String, String)> {
+    match Scene::from_toml(&scene.to_toml(), "edited.toml") {
+        Ok(_) => panic!("accepted"),
+        Err(SceneError::Invalid { problems, .. }) => problems.into_iter().map(|p| (p.field, p.expected)).collect(),
+        Err(e) => panic!("{e}"),
+    }
+}
+
+fn assert_refused(scene: &Scene, field: &str, part: &str) {
+    let p = refused_fields(scene);
+    assert!(p.iter().any(|(f, e)| f == field && e.contains(part)), "{p:?} lacks {field} with {part:?}");
+}
+
+#[test]
+fn proof_load_above_break_load() {
+    let mut s = case1();
+    s.chain.proof_load = 2.0 * s.chain.break_load;
+    assert_refused(&s, "chain.proof_load", "≤ chain.break_load");
+}
+
+#[test]
+fn rod_under_water() {
+    let mut s = case1();
+    s.rod.length = 3.0;
+    assert_refused(&s, "rod.length", "≤ ship.hinge_z = 1 m");
+}
+
+#[test]
+fn anchor_taller_than_the_water() {
+    let mut s = case1();
+    s.initial.vertical_projection = 2.0;
+    s.initial.horizontal_projection = 151.0;
+    assert_refused(&s, "anchor.height", "below the water depth");
+}
+
+#[test]
+fn ship_aground() {
+    let mut s = case1();
+    s.initial.vertical_projection = 2.5;
+    s.initial.horizontal_projection = 151.0;
+    s.anchor.height = 1.0;
+    s.ship.mass = 3.0e6; // draught 5.9 m, depth 10 m: floats, but in 2.5 m of water
+    s.ship.depth = 10.0;
+    assert_refused(&s, "ship.mass", "the ship's keel");
+}
+
+#[test]
+fn floating_anchor_chain_and_cable() {
+    let mut s = case1();
+    s.anchor.mass = 1000.0;
+    assert_refused(&s, "anchor.mass", "would float");
+    let mut s = case1();
+    s.cable.mass_per_length = 1.0;
+    assert_refused(&s, "cable.mass_per_length", "would float");
+    let mut s = case1();
+    s.chain.mass_per_length = 1.0;
+    assert_refused(&s, "chain.mass_per_length", "would float");
+    // Without water, a light line is a valid (vacuum) scene.
+    let mut s = case1();
+    s.environment.water = false;
+    s.cable.mass_per_length = 1.0;
+    assert!(Scene::from_toml(&s.to_toml(), "dry.toml").is_ok());
+}
+
+#[test]
+fn seabed_too_soft() {
+    let mut s = case1();
+    s.environment.seabed_stiffness = 1.0e4;
+    assert_refused(&s, "environment.seabed_stiffness", "cannot carry");
+}
+
+#[test]
+fn a_million_chain_links_are_refused_before_allocating() {
+    let mut s = case1();
+    s.chain.elements = 1_000_000;
+    assert_refused(&s, "chain.elements", "bytes");
+    let mut s = case1();
+    s.cable.stages[1].elements = 100_000;
+    assert_refused(&s, "cable.stages", "at most 4000 bodies");
+}
+
+#[test]
+fn steps_beyond_the_limit_are_refused_with_the_estimate() {
+    for dt in [1e-300, 1e-6] {
+        let mut s = case1();
+        s.solver.dt = dt;
+        s.solver.output_interval = 0.01;
+        assert_refused(&s, "solver.dt", "steps exceed the limit of 1e7");
+    }
+    let mut s = case1();
+    s.solver.dt = 1e-5; // 6e6 steps: allowed
+    assert!(Scene::from_toml(&s.to_toml(), "fine.toml").is_ok());
+}
+
+/// The command line refuses an impossible geometry with exit 2, naming the field.
+#[test]
+fn cli_refuses_the_h_l_60_scene_with_exit_2() {
+    let dir = std::env::temp_dir().join(format!("kanestop-rules-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("bad60.toml");
+    std::fs::write(&path, DEFAULT_SCENE.replace("vertical_projection = 6.0", "vertical_projection = 60.0")).unwrap();
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_kanestop")).arg("run").arg(&path).output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains("bad60.toml") && err.contains("initial.horizontal_projection = 148"), "{err}");
+    assert!(err.contains("[95.") && err.contains("135.68"), "{err}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
