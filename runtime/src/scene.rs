@@ -36,6 +36,9 @@ pub struct Scene {
     pub initial: Initial,
     /// `[solver]`: integrator, step and tolerances, end time, output and stop rules.
     pub solver: Solver,
+    /// `[checks]` (optional): design checks the run's results are held to (docs/sweeps.md).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub checks: Option<crate::design::DesignChecks>,
 }
 
 /// What the scene is.
@@ -461,6 +464,7 @@ impl Scene {
         self.check_rod_and_ship(&mut c);
         self.check_initial(&mut c);
         self.check_solver(&mut c);
+        self.check_checks(&mut c);
         c.problems
     }
 
@@ -587,6 +591,15 @@ impl Scene {
 }
 
 /// Formats a value the way a user would write it in the TOML file.
+impl Scene {
+    /// `[checks]`: limits in their ranges.
+    fn check_checks(&self, c: &mut Checker) {
+        for (field, v, expected) in self.checks.iter().flat_map(|k| k.problems("checks")) {
+            c.push(&field, &fmt_value(v), expected);
+        }
+    }
+}
+
 fn fmt_value(v: f64) -> String {
     if v.is_nan() {
         "nan".into()
