@@ -68,6 +68,9 @@ fn choice(name: &str) -> KernelChoice {
     }
 }
 
+/// Reads one output of a summary.
+type Output<'a> = &'a dyn Fn(&kanestop_workflow::record::RunSummary) -> Option<f64>;
+
 /// `sweep SPEC`: runs every row, prints the table, writes the files; the exit code.
 pub fn sweep(args: &SweepArgs) -> Result<ExitCode> {
     let spec = sweep::Spec::load(&args.spec)?;
@@ -79,7 +82,7 @@ pub fn sweep(args: &SweepArgs) -> Result<ExitCode> {
     bar.finish();
     print!("{}", sweep::table(&rows));
     if spec.sampling.is_some() {
-        let stats: [(&str, &dyn Fn(&kanestop_workflow::record::RunSummary) -> Option<f64>, f64); 3] = [
+        let stats: [(&str, Output, f64); 3] = [
             ("stopping time (s)", &|s| s.stopping_time, 1.0),
             ("stopping distance (m)", &|s| s.stopping_distance, 1.0),
             ("peak tension (kN)", &|s| s.peak_tension.map(|p| p.tension), 1e-3),
@@ -92,7 +95,13 @@ pub fn sweep(args: &SweepArgs) -> Result<ExitCode> {
         }
     }
     let (csv, json) = sweep::write(&rows, &plan, &args.out)?;
-    println!("written   {} and {} ({} rows; scenes in {})", csv.display(), json.display(), rows.len(), args.out.join("scenes").display());
+    println!(
+        "written   {} and {} ({} rows; scenes in {})",
+        csv.display(),
+        json.display(),
+        rows.len(),
+        args.out.join("scenes").display()
+    );
     let (failed, check_failed) = sweep::outcome(&rows);
     if check_failed {
         let n = rows.iter().filter(|r| r.checks_pass == Some(false)).count();
@@ -114,7 +123,9 @@ pub fn sensitivity(args: &SensitivityArgs) -> Result<ExitCode> {
         None => Scene::from_toml(kanestop_runtime::paper::DEFAULT_SCENE, "embedded case01.toml")?,
     };
     let sigmas: Vec<(String, f64)> = match &args.uncertain {
-        Some(p) => sweep::Spec::load(p)?.uncertain.iter().map(|u| (u.path.clone(), u.distribution.sigma_ln())).collect(),
+        Some(p) => {
+            sweep::Spec::load(p)?.uncertain.iter().map(|u| (u.path.clone(), u.distribution.sigma_ln())).collect()
+        }
         None => Vec::new(),
     };
     std::fs::create_dir_all(&args.out).with_context(|| format!("cannot create {}", args.out.display()))?;
@@ -136,7 +147,8 @@ pub fn sensitivity(args: &SensitivityArgs) -> Result<ExitCode> {
         }
     }
     let (c, j) = (args.out.join("sensitivity.csv"), args.out.join("sensitivity.json"));
-    write_atomically(&c, sensitivity::csv(&study).as_bytes()).with_context(|| format!("cannot write {}", c.display()))?;
+    write_atomically(&c, sensitivity::csv(&study).as_bytes())
+        .with_context(|| format!("cannot write {}", c.display()))?;
     write_atomically(&j, serde_json::to_string_pretty(&study)?.as_bytes())
         .with_context(|| format!("cannot write {}", j.display()))?;
     println!("written   {} and {}", c.display(), j.display());

@@ -74,7 +74,8 @@ fn a_3x3_grid_runs_in_spec_order_with_inputs_as_columns_and_checks() {
     let csv = std::fs::read_to_string(out.join("sweep.csv")).unwrap();
     let head: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
     assert_eq!(&head[..6], ["index", "name", "ship.mass", "initial.ship_speed", "status", "checks"]);
-    for col in ["stopping_distance", "anchor_drag_distance", "chain_peak_break_utilisation", "check_safety_factor_pass"] {
+    for col in ["stopping_distance", "anchor_drag_distance", "chain_peak_break_utilisation", "check_safety_factor_pass"]
+    {
         assert!(head.contains(&col), "{col} in {head:?}");
     }
     assert_eq!(csv.lines().count(), 10);
@@ -159,4 +160,43 @@ fn a_failing_check_exits_4_and_a_bad_spec_exits_2_naming_the_field() {
     let help = kanestop().arg("--help").output().unwrap();
     let help = String::from_utf8_lossy(&help.stdout).into_owned();
     assert!(help.contains("4  a design check"), "{help}");
+}
+
+#[test]
+fn sensitivity_on_case_1_reproduces_the_measured_ranking() {
+    let dir = temp_dir("sens");
+    let o = kanestop()
+        .args(["report", "sensitivity", root().join("scenes/paper/case01.toml").to_str().unwrap()])
+        .args(["--out", dir.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let study: Value = serde_json::from_str(&std::fs::read_to_string(dir.join("sensitivity.json")).unwrap()).unwrap();
+    let rows = study["rows"].as_array().unwrap();
+    let effect = |p: &str| -> f64 {
+        let r = rows.iter().find(|r| r["parameter"] == p).unwrap_or_else(|| panic!("{p}"));
+        r["stopping_time"].as_f64().unwrap()
+    };
+    // (parameter, d(stopping time)/d(ln p) in s, tolerance in s): the measurement.
+    for (p, expected, tol) in [
+        ("environment.seabed_friction", -16.0, 1.0),
+        ("ship.mass", 18.0, 1.0),
+        ("anchor.height", 10.0, 1.0),
+        ("anchor.width", 10.0, 1.0),
+        ("environment.water_density", 9.0, 0.5),
+        ("hydrodynamics.anchor_drag_coefficient", -1.7, 0.1),
+        ("hydrodynamics.tangential_drag_coefficient", -0.34, 0.03),
+    ] {
+        assert!((effect(p) - expected).abs() < tol, "{p}: {} against {expected} ± {tol}", effect(p));
+    }
+    for p in [
+        "hydrodynamics.normal_drag_coefficient",
+        "hydrodynamics.added_mass_coefficient",
+        "environment.seabed_stiffness",
+    ] {
+        assert!(effect(p).abs() < 0.1, "{p}: {}", effect(p));
+    }
+    // Ranked by |effect| on the stopping time.
+    let ranked: Vec<f64> = rows.iter().filter_map(|r| r["stopping_time"].as_f64()).map(f64::abs).collect();
+    assert!(ranked.windows(2).all(|w| w[0] >= w[1]));
 }

@@ -85,15 +85,27 @@ fn outputs(s: &RunSummary) -> [Option<f64>; 3] {
 }
 
 /// Runs the base scene and each parameter at p·(1 ± step), `jobs` at a time.
-pub fn study(scene: &Scene, step: f64, kernel: KernelFactory, jobs: Option<usize>, done: &(dyn Fn() + Sync)) -> Result<Study> {
+pub fn study(
+    scene: &Scene,
+    step: f64,
+    kernel: KernelFactory,
+    jobs: Option<usize>,
+    done: &(dyn Fn() + Sync),
+) -> Result<Study> {
     if !(step > 0.0 && step < 0.5) {
-        return Err(crate::Error::Argument { name: "--step", value: step.to_string(), expected: "in (0, 0.5), e.g. 0.05" });
+        return Err(crate::Error::Argument {
+            name: "--step",
+            value: step.to_string(),
+            expected: "in (0, 0.5), e.g. 0.05",
+        });
     }
     let params = parameters(scene);
     let mut scenes: Vec<std::result::Result<Scene, String>> = vec![Ok(scene.clone())];
     for (path, v) in &params {
         for sign in [1.0, -1.0] {
-            scenes.push(scene.with_overrides(&[(path, Value::Float(v * (1.0 + sign * step)))]).map_err(|e| e.to_string()));
+            scenes.push(
+                scene.with_overrides(&[(path, Value::Float(v * (1.0 + sign * step)))]).map_err(|e| e.to_string()),
+            );
         }
     }
     let runs = parallel::map_jobs(jobs, &scenes, |s| {
@@ -105,15 +117,26 @@ pub fn study(scene: &Scene, step: f64, kernel: KernelFactory, jobs: Option<usize
         done();
         r
     })
-    .map_err(|e| crate::Error::Argument { name: "--jobs", value: format!("{jobs:?}"), expected: Box::leak(e.into_boxed_str()) })?;
-    let base = runs[0].clone().map_err(|e| crate::Error::NoReference(e))?;
+    .map_err(|e| crate::Error::Argument {
+        name: "--jobs",
+        value: format!("{jobs:?}"),
+        expected: Box::leak(e.into_boxed_str()),
+    })?;
+    let base = runs[0].clone().map_err(crate::Error::NoReference)?;
     let denom = ((1.0 + step) / (1.0 - step)).ln();
     let mut rows: Vec<Sensitivity> = params
         .iter()
         .enumerate()
         .map(|(i, (path, value))| {
             let (up, down) = (&runs[1 + 2 * i], &runs[2 + 2 * i]);
-            let mut row = Sensitivity { parameter: path.clone(), value: *value, stopping_time: None, stopping_distance: None, peak_tension: None, message: String::new() };
+            let mut row = Sensitivity {
+                parameter: path.clone(),
+                value: *value,
+                stopping_time: None,
+                stopping_distance: None,
+                peak_tension: None,
+                message: String::new(),
+            };
             match (up, down) {
                 (Ok(u), Ok(d)) => {
                     let e = |k: usize| u[k].zip(d[k]).map(|(a, b)| (a - b) / denom);
@@ -121,12 +144,14 @@ pub fn study(scene: &Scene, step: f64, kernel: KernelFactory, jobs: Option<usize
                     row.stopping_distance = e(1);
                     row.peak_tension = e(2);
                 }
-                (Err(m), _) | (_, Err(m)) => row.message = m.lines().next().unwrap_or_default().to_string(),
+                (Err(m), _) | (_, Err(m)) => row.message = m.lines().map(str::trim).collect::<Vec<_>>().join(" | "),
             }
             row
         })
         .collect();
-    rows.sort_by(|a, b| b.stopping_time.map(f64::abs).unwrap_or(-1.0).total_cmp(&a.stopping_time.map(f64::abs).unwrap_or(-1.0)));
+    rows.sort_by(|a, b| {
+        b.stopping_time.map(f64::abs).unwrap_or(-1.0).total_cmp(&a.stopping_time.map(f64::abs).unwrap_or(-1.0))
+    });
     Ok(Study { scene: scene.meta.name.clone(), step, base, rows })
 }
 
@@ -150,7 +175,9 @@ pub fn band(study: &Study, sigmas: &[(String, f64)]) -> ([f64; 3], Vec<String>) 
 
 /// The study as a terminal table.
 pub fn table(study: &Study) -> String {
-    let d = |v: Option<f64>, scale: f64, digits: usize| v.map(|v| format!("{:+.*}", digits, v * scale)).unwrap_or_else(|| "—".into());
+    let d = |v: Option<f64>, scale: f64, digits: usize| {
+        v.map(|v| format!("{:+.*}", digits, v * scale)).unwrap_or_else(|| "—".into())
+    };
     let mut out = format!(
         "sensitivity of {} (central differences at p·(1 ± {})): d(output)/d(ln p)\n{:<4} {:<42} {:>14} {:>12} {:>12} {:>12}\n",
         study.scene, study.step, "rank", "parameter", "value", "stop (s)", "dist (m)", "peak (kN)"

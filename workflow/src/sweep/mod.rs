@@ -109,7 +109,12 @@ pub fn run_row(row: &PlannedRow, kernel: KernelFactory) -> SweepRow {
 
 /// Runs every row of `plan` (on `jobs` threads, or rayon's default), calling `done` as each
 /// finishes; rows come back in spec order.
-pub fn run(plan: &[PlannedRow], kernel: KernelFactory, jobs: Option<usize>, done: &(dyn Fn(&SweepRow) + Sync)) -> Result<Vec<SweepRow>> {
+pub fn run(
+    plan: &[PlannedRow],
+    kernel: KernelFactory,
+    jobs: Option<usize>,
+    done: &(dyn Fn(&SweepRow) + Sync),
+) -> Result<Vec<SweepRow>> {
     parallel::map_jobs(jobs, plan, |row| {
         let r = run_row(row, kernel);
         done(&r);
@@ -144,11 +149,16 @@ fn quote(s: &str) -> String {
     }
 }
 
+/// Reads one peak of a summary.
+type PeakOf<'a> = &'a dyn Fn(&RunSummary) -> Option<Peak>;
+
 /// The rows as CSV: index, name, the inputs (one column per path, in spec order), status,
 /// checks, then the outputs (docs/sweeps.md lists the columns).
 pub fn csv(rows: &[SweepRow]) -> String {
-    let paths: Vec<&str> = rows.first().map(|r| r.inputs.0.iter().map(|(k, _)| k.as_str()).collect()).unwrap_or_default();
-    let works: Vec<String> = rows.iter().find_map(|r| r.summary.as_ref()).map(|s| s.work.keys().cloned().collect()).unwrap_or_default();
+    let paths: Vec<&str> =
+        rows.first().map(|r| r.inputs.0.iter().map(|(k, _)| k.as_str()).collect()).unwrap_or_default();
+    let works: Vec<String> =
+        rows.iter().find_map(|r| r.summary.as_ref()).map(|s| s.work.keys().cloned().collect()).unwrap_or_default();
     let checks: Vec<String> = rows
         .iter()
         .find_map(|r| r.summary.as_ref().filter(|s| !s.checks.is_empty()))
@@ -158,8 +168,15 @@ pub fn csv(rows: &[SweepRow]) -> String {
     head.extend(paths.iter().map(|p| p.to_string()));
     head.extend(["status", "checks"].map(String::from));
     head.extend(
-        ["stopping_time", "paper_stopping_time", "stopping_distance", "ship_displacement", "anchor_drag_distance", "anchor_start"]
-            .map(String::from),
+        [
+            "stopping_time",
+            "paper_stopping_time",
+            "stopping_distance",
+            "ship_displacement",
+            "anchor_drag_distance",
+            "anchor_start",
+        ]
+        .map(String::from),
     );
     for seg in ["peak", "chain_peak", "cable_peak", "rod_peak"] {
         for f in ["tension", "joint", "t", "proof_utilisation", "break_utilisation"] {
@@ -193,8 +210,7 @@ pub fn csv(rows: &[SweepRow]) -> String {
         cells.push(f(&|s| Some(s.ship_displacement)));
         cells.push(f(&|s| Some(s.anchor_drag_distance)));
         cells.push(f(&|s| s.anchor_start));
-        let peaks: [&dyn Fn(&RunSummary) -> Option<Peak>; 4] =
-            [&|s| s.peak_tension, &|s| s.chain_peak, &|s| s.cable_peak, &|s| s.rod_peak];
+        let peaks: [PeakOf; 4] = [&|s| s.peak_tension, &|s| s.chain_peak, &|s| s.cable_peak, &|s| s.rod_peak];
         for peak in peaks {
             let p = s.and_then(peak);
             cells.push(o(p.map(|p| p.tension)));
@@ -225,7 +241,9 @@ pub fn csv(rows: &[SweepRow]) -> String {
 
 /// The rows as a terminal table (the first columns; the files hold every output).
 pub fn table(rows: &[SweepRow]) -> String {
-    let d = |v: Option<f64>, scale: f64, digits: usize| v.map(|v| format!("{:.*}", digits, v * scale)).unwrap_or_else(|| "—".into());
+    let d = |v: Option<f64>, scale: f64, digits: usize| {
+        v.map(|v| format!("{:.*}", digits, v * scale)).unwrap_or_else(|| "—".into())
+    };
     let mut out = format!(
         "{:<12} {:<9} {:>6} {:>9} {:>9} {:>9} {:>10} {:>6}  {}\n",
         "row", "status", "checks", "stop (s)", "dist (m)", "drag (m)", "peak (kN)", "util", "inputs"

@@ -139,9 +139,8 @@ impl Spec {
         let dir = file.parent().unwrap_or(Path::new(""));
         let original = Scene::load(&dir.join(&raw.base))?;
         let mut value = original.to_value();
-        let mut set = |path: &str, v: Value| {
-            overrides::set(&mut value, path, v).map_err(|e| bad(file, path, "", e.to_string()))
-        };
+        let mut set =
+            |path: &str, v: Value| overrides::set(&mut value, path, v).map_err(|e| bad(file, path, "", e.to_string()));
         for (k, v) in raw.solver.into_iter().flatten() {
             set(&format!("solver.{k}"), v)?;
         }
@@ -150,7 +149,8 @@ impl Spec {
         }
         let base = Scene::from_value(value, &format!("{} (base with [solver] and [set])", file.display()))?;
         let base_value = base.to_value();
-        let axes = raw.axis.into_iter().enumerate().map(|(i, a)| axis(file, &base_value, i, a)).collect::<Result<_>>()?;
+        let axes =
+            raw.axis.into_iter().enumerate().map(|(i, a)| axis(file, &base_value, i, a)).collect::<Result<_>>()?;
         let uncertain = raw
             .uncertain
             .into_iter()
@@ -170,7 +170,16 @@ impl Spec {
             }
         }
         let stem = file.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "sweep".into());
-        Ok(Spec { file: file.to_path_buf(), name: raw.name.unwrap_or(stem), base, original, axes, sampling, uncertain, checks: raw.checks })
+        Ok(Spec {
+            file: file.to_path_buf(),
+            name: raw.name.unwrap_or(stem),
+            base,
+            original,
+            axes,
+            sampling,
+            uncertain,
+            checks: raw.checks,
+        })
     }
 
     /// Number of rows: the grid's size times the samples.
@@ -246,7 +255,12 @@ fn axis(file: &Path, base: &Value, i: usize, a: AxisFile) -> Result<Axis> {
                 return Err(bad(file, field("range.steps"), r.steps, "in [1, 100000] (1 only when from = to)"));
             }
             if r.scale == Scale::Log && !(r.from > 0.0 && r.to > 0.0) {
-                return Err(bad(file, field("range"), format!("{}..{}", r.from, r.to), "from and to > 0 for scale = \"log\""));
+                return Err(bad(
+                    file,
+                    field("range"),
+                    format!("{}..{}", r.from, r.to),
+                    "from and to > 0 for scale = \"log\"",
+                ));
             }
             (0..r.steps)
                 .map(|k| {
@@ -259,16 +273,25 @@ fn axis(file: &Path, base: &Value, i: usize, a: AxisFile) -> Result<Axis> {
                 })
                 .collect()
         }
-        _ => return Err(bad(file, field("values"), "", "exactly one of values = [...] or range = { from, to, steps }")),
+        _ => {
+            return Err(bad(file, field("values"), "", "exactly one of values = [...] or range = { from, to, steps }"))
+        }
     };
     let typed = values
         .into_iter()
         .map(|v| match (&v, integer, current.is_float()) {
             (Value::Float(x), true, _) if x.fract() == 0.0 && x.abs() < 9e15 => Ok(Value::Integer(*x as i64)),
-            (Value::Float(x), true, _) => Err(bad(file, field("values"), x, format!("whole numbers: {} is an integer field", a.path))),
+            (Value::Float(x), true, _) => {
+                Err(bad(file, field("values"), x, format!("whole numbers: {} is an integer field", a.path)))
+            }
             (Value::Integer(n), _, true) => Ok(Value::Float(*n as f64)),
             _ if v.same_type(current) => Ok(v),
-            _ => Err(bad(file, field("values"), &v, format!("values of the field's type ({}, e.g. {current})", current.type_str()))),
+            _ => Err(bad(
+                file,
+                field("values"),
+                &v,
+                format!("values of the field's type ({}, e.g. {current})", current.type_str()),
+            )),
         })
         .collect::<Result<_>>()?;
     Ok(Axis { path: a.path, values: typed })
@@ -286,10 +309,11 @@ fn uncertain(file: &Path, base: &Value, i: usize, u: UncertainFile) -> Result<Un
     };
     let finite = |x: f64| x.is_finite();
     let positive = |x: f64| x.is_finite() && x > 0.0;
-    let given: Vec<&str> = [("low", u.low), ("high", u.high), ("mean", u.mean), ("sd", u.sd), ("median", u.median), ("sigma", u.sigma)]
-        .into_iter()
-        .filter_map(|(n, v)| v.map(|_| n))
-        .collect();
+    let given: Vec<&str> =
+        [("low", u.low), ("high", u.high), ("mean", u.mean), ("sd", u.sd), ("median", u.median), ("sigma", u.sigma)]
+            .into_iter()
+            .filter_map(|(n, v)| v.map(|_| n))
+            .collect();
     let (distribution, fields): (Distribution, [&str; 2]) = match u.distribution.as_str() {
         "uniform" => {
             let low = need("low", u.low, finite, "a finite number")?;
@@ -316,7 +340,12 @@ fn uncertain(file: &Path, base: &Value, i: usize, u: UncertainFile) -> Result<Un
         other => return Err(bad(file, field("distribution"), other, "one of uniform, normal, lognormal")),
     };
     if let Some(extra) = given.iter().find(|g| !fields.contains(g)) {
-        return Err(bad(file, field(extra), "set", format!("not a parameter of {} (give {} and {})", u.distribution, fields[0], fields[1])));
+        return Err(bad(
+            file,
+            field(extra),
+            "set",
+            format!("not a parameter of {} (give {} and {})", u.distribution, fields[0], fields[1]),
+        ));
     }
     Ok(Uncertain { path: u.path, distribution })
 }
