@@ -3,6 +3,7 @@
 //! `cargo run --release` runs the paper's case 1 (embedded); see `--help` for the rest.
 
 mod commands;
+mod sweep;
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -19,7 +20,8 @@ use kanestop_workflow::kernels::{self, KernelChoice};
 #[command(
     name = "kanestop",
     version,
-    about = "Kane-method simulator for ship-restraining systems (anchor, chain, cable, rod, ship)"
+    about = "Kane-method simulator for ship-restraining systems (anchor, chain, cable, rod, ship)",
+    after_help = sweep::EXIT_HELP
 )]
 struct Cli {
     #[command(subcommand)]
@@ -104,6 +106,9 @@ enum Command {
         #[arg(long, value_enum, default_value = "generated")]
         kernel: KernelArg,
     },
+    /// Run one scene over grid axes and sampled uncertain inputs (docs/sweeps.md): one row
+    /// per run with its inputs, outputs and design checks, as sweep.csv and sweep.json.
+    Sweep(sweep::SweepArgs),
     /// Show the generated kernels a scene needs (variants, N, operation counts, lines);
     /// `--write` regenerates the checked-in kernels under generated/src/.
     Codegen {
@@ -139,6 +144,9 @@ enum ReportKind {
         #[arg(long, value_enum, default_value = "generated")]
         kernel: KernelArg,
     },
+    /// d(output)/d(ln p) of stopping time, stopping distance and peak tension against every
+    /// continuous physical parameter (central differences, runs in parallel), ranked.
+    Sensitivity(sweep::SensitivityArgs),
 }
 
 /// `--kernel`: which Kane kernel evaluates the equations of motion.
@@ -389,6 +397,8 @@ fn try_main() -> Result<ExitCode> {
             commands::accuracy(&model.scene, &out, repeats, atol_ratio, &choice.factory())?;
             Ok(ExitCode::SUCCESS)
         }
+        Command::Sweep(args) => sweep::sweep(&args),
+        Command::Report { kind: ReportKind::Sensitivity(args) } => sweep::sensitivity(&args),
         Command::Plot { scenes, out, kernel: choice } => {
             commands::plot(&scenes, &out, &choice.factory())?;
             Ok(ExitCode::SUCCESS)

@@ -230,6 +230,7 @@ impl Case {
                 ship_speed: self.ship_speed,
             },
             solver: SOLVER,
+            checks: None,
         }
     }
 

@@ -59,6 +59,9 @@ pub struct Scene {
     pub initial: Initial,
     /// `[solver]`: integrator, step and tolerances, end time, output and stop rules.
     pub solver: Solver,
+    /// `[checks]` (optional): design checks the run's results are held to (docs/sweeps.md).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub checks: Option<crate::design::DesignChecks>,
 }
 
 /// What the scene is.
@@ -506,6 +509,7 @@ impl Scene {
         self.check_rod_and_ship(&mut c);
         self.check_initial(&mut c);
         self.check_solver(&mut c);
+        self.check_checks(&mut c);
         if c.problems.is_empty() {
             self.check_joined(&mut c);
         }
@@ -801,6 +805,15 @@ fn vertical_hint(lc: f64, x: f64) -> String {
         }
     }
     format!("; or, for this x_L, initial.vertical_projection in ({}, {:.6}] m", fmt_value(lc - x), lo)
+}
+
+impl Scene {
+    /// `[checks]`: limits in their ranges.
+    fn check_checks(&self, c: &mut Checker) {
+        for (field, v, expected) in self.checks.iter().flat_map(|k| k.problems("checks")) {
+            c.push(&field, &fmt_value(v), expected);
+        }
+    }
 }
 
 /// Formats a value the way a user would write it in the TOML file.

@@ -1,7 +1,11 @@
-//! What a run's results say against the line's load limits.
+//! What a run's results say against the line's load limits and the design checks of a
+//! scene or sweep (`[checks]`: stopping distance and time, anchor drag, safety factor on the
+//! break load, proof-load utilisation).
 
+use kanestop_runtime::design::DesignChecks;
 use kanestop_runtime::model::Model;
-use kanestop_runtime::simulate::RunResult;
+use kanestop_runtime::simulate::{RunResult, Stop};
+use serde::{Deserialize, Serialize};
 
 /// A joint whose peak tension exceeded its break load.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -26,4 +30,71 @@ pub fn break_exceedances(model: &Model, result: &RunResult) -> Vec<Exceedance> {
             (p.tension > limit).then_some(Exceedance { joint, peak: p.tension, limit })
         })
         .collect()
+}
+
+/// One design check of a run: its value, its limit and whether it passed.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct CheckOutcome {
+    /// The check's field in `[checks]`, e.g. `max_stopping_distance`.
+    pub name: String,
+    /// What the run gave (for the tension checks: the worst joint's utilisation, times the
+    /// safety factor for `safety_factor`); none when it does not exist (the ship did not stop).
+    pub value: Option<f64>,
+    /// The limit it is held to (1 for the tension checks, which are utilisations).
+    pub limit: f64,
+    /// The joint k of the worst utilisation (tension checks).
+    pub joint: Option<usize>,
+    /// Whether it passed.
+    pub pass: bool,
+}
+
+/// Every design check of `checks` against the finished run `result` of `model`, in the
+/// order of the `[checks]` fields. Empty when no check is set.
+pub fn evaluate(checks: &DesignChecks, model: &Model, result: &RunResult) -> Vec<CheckOutcome> {
+    let mut out = Vec::new();
+    let mut upper = |name: &str, value: Option<f64>, limit: Option<f64>, joint: Option<usize>, scale: f64| {
+        if let Some(limit) = limit {
+            let value = value.map(|v| v * scale);
+            let pass = value.is_some_and(|v| v <= limit);
+            out.push(CheckOutcome { name: name.to_string(), value, limit, joint, pass });
+        }
+    };
+    let stopped = result.stop == Stop::ShipStopped;
+    let ship = model.body_count() - 1;
+    let displacement = |body: usize| match (result.samples.first(), result.samples.last()) {
+        (Some(a), Some(b)) => b.bodies[body].x - a.bodies[body].x,
+        _ => 0.0,
+    };
+    let distance = stopped.then(|| displacement(ship));
+    upper("max_stopping_distance", distance, checks.max_stopping_distance, None, 1.0);
+    let time = result.stopping_time.filter(|_| stopped);
+    upper("max_stopping_time", time, checks.max_stopping_time, None, 1.0);
+    let failed = matches!(result.stop, Stop::Failed(_));
+    let drag = (!failed).then(|| displacement(0).abs());
+    upper("max_anchor_drag", drag, checks.max_anchor_drag, None, 1.0);
+    let ran = result.steps > 0 && !failed;
+    let worst = |limit: fn(&Model, usize) -> Option<f64>| -> Option<(usize, f64)> {
+        result
+            .peak_tensions
+            .iter()
+            .enumerate()
+            .filter_map(|(i, p)| limit(model, i + 2).map(|l| (i + 2, p.tension / l)))
+            .max_by(|a, b| a.1.total_cmp(&b.1))
+            .filter(|_| ran)
+    };
+    if let Some(sf) = checks.safety_factor {
+        let w = worst(|m, k| m.joint_limits(k).breaking);
+        upper("safety_factor", w.map(|w| w.1), Some(1.0), w.map(|w| w.0), sf);
+    }
+    if let Some(max) = checks.max_proof_utilisation {
+        let w = worst(|m, k| m.joint_limits(k).proof);
+        upper("max_proof_utilisation", w.map(|w| w.1), Some(max), w.map(|w| w.0), 1.0);
+    }
+    out
+}
+
+/// True when every outcome passed (and there is at least one): `Some(pass)`, none when no
+/// check was made.
+pub fn all_pass(outcomes: &[CheckOutcome]) -> Option<bool> {
+    (!outcomes.is_empty()).then(|| outcomes.iter().all(|o| o.pass))
 }

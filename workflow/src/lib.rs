@@ -8,6 +8,8 @@
 //!   with [`progress`] reporting;
 //! - [`batch`]: a folder of scenes as one table ([`validation`] against the paper's Table 3);
 //! - [`accuracy`]: the work–precision study (error against run time);
+//! - [`sweep`]: one scene over grid axes and sampled uncertain inputs, with design checks;
+//!   [`sensitivity`]: d(output)/d(ln p) for every continuous physical parameter;
 //! - reports that only read results: [`summary`] (the one-screen text), [`record`] (the
 //!   machine-readable summary of `run --json`), [`diagnostic`] (a
 //!   failure in words, with advice), [`history`] (the CSV time history), [`checks`] (peaks
@@ -30,7 +32,9 @@ pub mod parallel;
 pub mod plot;
 pub mod progress;
 pub mod record;
+pub mod sensitivity;
 pub mod summary;
+pub mod sweep;
 pub mod validation;
 
 use std::path::PathBuf;
@@ -72,6 +76,18 @@ pub enum Error {
         value: String,
         /// The valid range.
         expected: &'static str,
+    },
+    /// A sweep spec's field is missing, of the wrong type or out of range.
+    #[error("sweep spec {}: {field} = {value}: {expected}", file.display())]
+    Spec {
+        /// The spec file.
+        file: PathBuf,
+        /// The field, e.g. `axis[1].range.steps`.
+        field: String,
+        /// Its value as given.
+        value: String,
+        /// The valid range, or what went wrong.
+        expected: String,
     },
     /// The accuracy study's reference run did not stop the ship.
     #[error("the reference run did not stop the ship: {0}")]

@@ -19,6 +19,37 @@ pub fn map<T: Sync, R: Send>(items: &[T], f: impl Fn(&T) -> R + Sync + Send) -> 
     items.iter().map(f).collect()
 }
 
+/// [`map`] on a pool of `jobs` threads (rayon's default pool when none); without the
+/// `parallel` feature, one after another whatever `jobs` says.
+#[cfg(feature = "parallel")]
+pub fn map_jobs<T: Sync, R: Send>(
+    jobs: Option<usize>,
+    items: &[T],
+    f: impl Fn(&T) -> R + Sync + Send,
+) -> Result<Vec<R>, String> {
+    match jobs {
+        None => Ok(map(items, f)),
+        Some(0) => Err("must be at least 1".into()),
+        Some(n) => {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(n).build().map_err(|e| e.to_string())?;
+            Ok(pool.install(|| map(items, f)))
+        }
+    }
+}
+
+/// [`map`], one after another (the `parallel` feature is off; `jobs` is checked only).
+#[cfg(not(feature = "parallel"))]
+pub fn map_jobs<T: Sync, R: Send>(
+    jobs: Option<usize>,
+    items: &[T],
+    f: impl Fn(&T) -> R + Sync + Send,
+) -> Result<Vec<R>, String> {
+    if jobs == Some(0) {
+        return Err("must be at least 1".into());
+    }
+    Ok(map(items, f))
+}
+
 /// Runs every model with a kernel from `kernel`, in parallel where the feature allows;
 /// `done` is called (from any thread) as each run finishes. Results in input order.
 pub fn run_models(models: &[Model], kernel: KernelFactory, done: &(dyn Fn(&RunResult) + Sync)) -> Vec<RunResult> {

@@ -11,6 +11,7 @@ use kanestop_runtime::simulate::{RunResult, Stop};
 use serde::{Deserialize, Serialize};
 
 use crate::batch::Status;
+use crate::checks::{self, CheckOutcome};
 use crate::diagnostic;
 
 /// What one run produced, in SI units.
@@ -66,6 +67,13 @@ pub struct RunSummary {
     pub wall_time: f64,
     /// The numerical failure, when the run ended in one.
     pub failure: Option<FailureRecord>,
+    /// The design checks of the scene's `[checks]`, each with its value, limit and pass
+    /// (absent when the scene has none).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub checks: Vec<CheckOutcome>,
+    /// Whether every design check passed (absent when the scene has none).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub checks_pass: Option<bool>,
 }
 
 /// A peak joint tension.
@@ -139,6 +147,7 @@ impl RunSummary {
         };
         let peak_in = |s: Segment| if ran { peak_over(&|k| segment(model, k) == s) } else { None };
         let last = result.samples.last();
+        let outcomes = model.scene.checks.as_ref().map(|c| checks::evaluate(c, model, result)).unwrap_or_default();
         RunSummary {
             scene: model.scene.meta.name.clone(),
             bodies: n,
@@ -171,6 +180,8 @@ impl RunSummary {
                 }
                 Stop::ShipStopped | Stop::EndTime => None,
             },
+            checks_pass: checks::all_pass(&outcomes),
+            checks: outcomes,
         }
     }
 }

@@ -1,0 +1,362 @@
+//! Sweeps: one base scene run over grid axes and sampled uncertain inputs ([`spec`],
+//! [`sampling`]), one row per run in spec order with its inputs as columns, the run's
+//! summary ([`crate::record::RunSummary`], the same numbers as `run --json` of the row's
+//! scene) and its design checks; written as CSV and JSON (docs/sweeps.md).
+
+pub mod sampling;
+pub mod spec;
+
+use std::collections::BTreeMap;
+use std::io::IsTerminal as _;
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+use std::time::{Duration, Instant};
+
+use kanestop_runtime::model::Model;
+use kanestop_runtime::simulate;
+use serde::ser::SerializeMap;
+use serde::{Serialize, Serializer};
+use toml::Value;
+
+pub use spec::{PlannedRow, Spec};
+
+use crate::batch::Status;
+use crate::kernels::KernelFactory;
+use crate::output::write_atomically;
+use crate::record::{Peak, RunSummary};
+use crate::{parallel, Error, Result};
+
+/// A row's inputs in spec order (a JSON object keyed by dotted path).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Inputs(pub Vec<(String, Value)>);
+
+impl Serialize for Inputs {
+    fn serialize<S: Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
+        let mut m = s.serialize_map(Some(self.0.len()))?;
+        for (k, v) in &self.0 {
+            m.serialize_entry(k, v)?;
+        }
+        m.end()
+    }
+}
+
+/// One run of a sweep.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct SweepRow {
+    /// Its index, from 0, in spec order.
+    pub index: usize,
+    /// `name-000`: also the row scene's `meta.name`.
+    pub name: String,
+    /// The inputs, e.g. `ship.mass=750000 initial.ship_speed=3`.
+    pub label: String,
+    /// The swept inputs and their values.
+    pub inputs: Inputs,
+    /// How the run ended (`invalid`: the inputs give no valid scene or model).
+    pub status: Status,
+    /// Whether every design check passed; none when no check is set or the row has no run.
+    pub checks_pass: Option<bool>,
+    /// Energy dissipated by each term over the initial energy (−work / E_0), by name.
+    pub energy_split: BTreeMap<String, f64>,
+    /// The run's summary, as `run --json` prints it for the row's scene (none when invalid).
+    pub summary: Option<RunSummary>,
+    /// Why the row is invalid, or the failure's diagnostic, on one line.
+    pub message: String,
+}
+
+fn label(inputs: &[(String, Value)]) -> String {
+    inputs.iter().map(|(k, v)| format!("{k}={}", fmt_value(v))).collect::<Vec<_>>().join(" ")
+}
+
+fn fmt_value(v: &Value) -> String {
+    match v {
+        Value::String(s) => s.clone(),
+        Value::Float(x) => format!("{x}"),
+        other => other.to_string(),
+    }
+}
+
+/// Runs one planned row.
+pub fn run_row(row: &PlannedRow, kernel: KernelFactory) -> SweepRow {
+    let mut out = SweepRow {
+        index: row.index,
+        name: row.name.clone(),
+        label: label(&row.inputs),
+        inputs: Inputs(row.inputs.clone()),
+        status: Status::Invalid,
+        checks_pass: None,
+        energy_split: BTreeMap::new(),
+        summary: None,
+        message: String::new(),
+    };
+    let model = match row.scene.clone().and_then(|s| Model::new(&s).map_err(|e| e.to_string())) {
+        Ok(m) => m,
+        Err(e) => {
+            out.message = one_line(&e);
+            return out;
+        }
+    };
+    let result = simulate::run(&model, kernel(&model));
+    let summary = RunSummary::of(&model, &result);
+    out.status = summary.status;
+    out.checks_pass = summary.checks_pass;
+    if summary.initial_energy != 0.0 {
+        out.energy_split = summary.work.iter().map(|(k, w)| (k.clone(), -w / summary.initial_energy)).collect();
+    }
+    out.message = summary.failure.as_ref().map(|f| one_line(&f.message)).unwrap_or_default();
+    out.summary = Some(summary);
+    out
+}
+
+/// Runs every row of `plan` (on `jobs` threads, or rayon's default), calling `done` as each
+/// finishes; rows come back in spec order.
+pub fn run(
+    plan: &[PlannedRow],
+    kernel: KernelFactory,
+    jobs: Option<usize>,
+    done: &(dyn Fn(&SweepRow) + Sync),
+) -> Result<Vec<SweepRow>> {
+    parallel::map_jobs(jobs, plan, |row| {
+        let r = run_row(row, kernel);
+        done(&r);
+        r
+    })
+    .map_err(|e| Error::Argument { name: "--jobs", value: format!("{jobs:?}"), expected: leak(e) })
+}
+
+fn leak(s: String) -> &'static str {
+    Box::leak(s.into_boxed_str())
+}
+
+/// A message on one line.
+fn one_line(text: &str) -> String {
+    text.lines().map(str::trim).filter(|l| !l.is_empty()).collect::<Vec<_>>().join(" | ")
+}
+
+/// The outcome of a sweep for the exit code: (some row failed or was invalid, some check failed).
+pub fn outcome(rows: &[SweepRow]) -> (bool, bool) {
+    (rows.iter().any(|r| r.status.is_problem()), rows.iter().any(|r| r.checks_pass == Some(false)))
+}
+
+fn o(v: Option<f64>) -> String {
+    v.map(|v| format!("{v}")).unwrap_or_default()
+}
+
+fn quote(s: &str) -> String {
+    if s.contains([',', '"', '\n']) {
+        format!("\"{}\"", s.replace('"', "\"\""))
+    } else {
+        s.to_string()
+    }
+}
+
+/// Reads one peak of a summary.
+type PeakOf<'a> = &'a dyn Fn(&RunSummary) -> Option<Peak>;
+
+/// The rows as CSV: index, name, the inputs (one column per path, in spec order), status,
+/// checks, then the outputs (docs/sweeps.md lists the columns).
+pub fn csv(rows: &[SweepRow]) -> String {
+    let paths: Vec<&str> =
+        rows.first().map(|r| r.inputs.0.iter().map(|(k, _)| k.as_str()).collect()).unwrap_or_default();
+    let works: Vec<String> =
+        rows.iter().find_map(|r| r.summary.as_ref()).map(|s| s.work.keys().cloned().collect()).unwrap_or_default();
+    let checks: Vec<String> = rows
+        .iter()
+        .find_map(|r| r.summary.as_ref().filter(|s| !s.checks.is_empty()))
+        .map(|s| s.checks.iter().map(|c| c.name.clone()).collect())
+        .unwrap_or_default();
+    let mut head: Vec<String> = vec!["index".into(), "name".into()];
+    head.extend(paths.iter().map(|p| p.to_string()));
+    head.extend(["status", "checks"].map(String::from));
+    head.extend(
+        [
+            "stopping_time",
+            "paper_stopping_time",
+            "stopping_distance",
+            "ship_displacement",
+            "anchor_drag_distance",
+            "anchor_start",
+        ]
+        .map(String::from),
+    );
+    for seg in ["peak", "chain_peak", "cable_peak", "rod_peak"] {
+        for f in ["tension", "joint", "t", "proof_utilisation", "break_utilisation"] {
+            head.push(format!("{seg}_{f}"));
+        }
+    }
+    head.push("initial_energy".into());
+    head.extend(works.iter().map(|w| format!("work_{w}")));
+    head.extend(works.iter().map(|w| format!("dissipated_{w}")));
+    for c in &checks {
+        head.push(format!("check_{c}_value"));
+        head.push(format!("check_{c}_pass"));
+    }
+    head.extend(["energy_drift", "t_end", "steps", "rhs_evaluations", "wall_time", "message"].map(String::from));
+    let mut out = head.iter().map(|h| quote(h)).collect::<Vec<_>>().join(",");
+    out.push('\n');
+    for r in rows {
+        let mut cells: Vec<String> = vec![r.index.to_string(), quote(&r.name)];
+        cells.extend(r.inputs.0.iter().map(|(_, v)| quote(&fmt_value(v))));
+        cells.push(r.status.name().into());
+        cells.push(match r.checks_pass {
+            Some(true) => "pass".into(),
+            Some(false) => "fail".into(),
+            None => String::new(),
+        });
+        let s = r.summary.as_ref();
+        let f = |g: &dyn Fn(&RunSummary) -> Option<f64>| o(s.and_then(g));
+        cells.push(f(&|s| s.stopping_time));
+        cells.push(f(&|s| s.paper_stopping_time));
+        cells.push(f(&|s| s.stopping_distance));
+        cells.push(f(&|s| Some(s.ship_displacement)));
+        cells.push(f(&|s| Some(s.anchor_drag_distance)));
+        cells.push(f(&|s| s.anchor_start));
+        let peaks: [PeakOf; 4] = [&|s| s.peak_tension, &|s| s.chain_peak, &|s| s.cable_peak, &|s| s.rod_peak];
+        for peak in peaks {
+            let p = s.and_then(peak);
+            cells.push(o(p.map(|p| p.tension)));
+            cells.push(p.map(|p| p.joint.to_string()).unwrap_or_default());
+            cells.push(o(p.map(|p| p.t)));
+            cells.push(o(p.and_then(|p| p.proof_utilisation)));
+            cells.push(o(p.and_then(|p| p.break_utilisation)));
+        }
+        cells.push(f(&|s| Some(s.initial_energy)));
+        cells.extend(works.iter().map(|w| o(s.and_then(|s| s.work.get(w).copied()))));
+        cells.extend(works.iter().map(|w| o(r.energy_split.get(w).copied())));
+        for c in &checks {
+            let outcome = s.and_then(|s| s.checks.iter().find(|x| &x.name == c));
+            cells.push(o(outcome.and_then(|x| x.value)));
+            cells.push(outcome.map(|x| if x.pass { "pass" } else { "fail" }.to_string()).unwrap_or_default());
+        }
+        cells.push(f(&|s| Some(s.energy_drift)));
+        cells.push(f(&|s| Some(s.t_end)));
+        cells.push(s.map(|s| s.steps.to_string()).unwrap_or_default());
+        cells.push(s.map(|s| s.rhs_evaluations.to_string()).unwrap_or_default());
+        cells.push(f(&|s| Some(s.wall_time)));
+        cells.push(quote(&r.message));
+        out.push_str(&cells.join(","));
+        out.push('\n');
+    }
+    out
+}
+
+/// The rows as a terminal table (the first columns; the files hold every output).
+pub fn table(rows: &[SweepRow]) -> String {
+    let d = |v: Option<f64>, scale: f64, digits: usize| {
+        v.map(|v| format!("{:.*}", digits, v * scale)).unwrap_or_else(|| "—".into())
+    };
+    let mut out = format!(
+        "{:<12} {:<9} {:>6} {:>9} {:>9} {:>9} {:>10} {:>6}  {}\n",
+        "row", "status", "checks", "stop (s)", "dist (m)", "drag (m)", "peak (kN)", "util", "inputs"
+    );
+    for r in rows {
+        let s = r.summary.as_ref();
+        out.push_str(&format!(
+            "{:<12} {:<9} {:>6} {:>9} {:>9} {:>9} {:>10} {:>6}  {}\n",
+            r.name,
+            r.status.name(),
+            match r.checks_pass {
+                Some(true) => "pass",
+                Some(false) => "FAIL",
+                None => "—",
+            },
+            d(s.and_then(|s| s.stopping_time), 1.0, 3),
+            d(s.and_then(|s| s.stopping_distance), 1.0, 2),
+            d(s.map(|s| s.anchor_drag_distance), 1.0, 2),
+            d(s.and_then(|s| s.peak_tension).map(|p| p.tension), 1e-3, 1),
+            d(s.and_then(|s| s.peak_tension).and_then(|p| p.break_utilisation), 1.0, 2),
+            r.label
+        ));
+        if !r.message.is_empty() {
+            out.push_str(&format!("             {}\n", r.message));
+        }
+    }
+    out
+}
+
+/// Mean, standard deviation, 5 % and 95 % quantiles of an output over the rows that have it.
+pub fn statistics(rows: &[SweepRow], output: impl Fn(&RunSummary) -> Option<f64>) -> Option<[f64; 4]> {
+    let mut v: Vec<f64> = rows.iter().filter_map(|r| r.summary.as_ref().and_then(&output)).collect();
+    if v.len() < 2 {
+        return None;
+    }
+    v.sort_by(f64::total_cmp);
+    let n = v.len() as f64;
+    let mean = v.iter().sum::<f64>() / n;
+    let sd = (v.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1.0)).sqrt();
+    let q = |p: f64| v[((p * (n - 1.0)).round() as usize).min(v.len() - 1)];
+    Some([mean, sd, q(0.05), q(0.95)])
+}
+
+/// Progress: a bar with ETA on a terminal, a plain line every 10 % or 10 s otherwise.
+pub struct Progress {
+    bar: indicatif::ProgressBar,
+    plain: Option<Mutex<(usize, Instant)>>,
+    len: usize,
+    start: Instant,
+}
+
+impl Progress {
+    /// Progress over `len` runs named `unit`.
+    pub fn new(len: usize, unit: &str) -> Progress {
+        let terminal = std::io::stderr().is_terminal();
+        let bar = if terminal { crate::progress::bar(len, unit) } else { indicatif::ProgressBar::hidden() };
+        if terminal {
+            let template = format!("{{bar:40}} {{pos}}/{{len}} {unit}  {{elapsed_precise}}  ETA {{eta}}  {{msg}}");
+            if let Ok(style) = indicatif::ProgressStyle::with_template(&template) {
+                bar.set_style(style);
+            }
+        }
+        let plain = (!terminal).then(|| Mutex::new((0, Instant::now())));
+        Progress { bar, plain, len, start: Instant::now() }
+    }
+
+    /// One more done; `message` shows on the bar.
+    pub fn inc(&self, message: String) {
+        self.bar.set_message(message);
+        self.bar.inc(1);
+        if let Some(state) = &self.plain {
+            let mut s = state.lock().expect("progress lock");
+            s.0 += 1;
+            let step = (self.len / 10).max(1);
+            if s.0 == self.len || s.0 % step == 0 || s.1.elapsed() > Duration::from_secs(10) {
+                let elapsed = self.start.elapsed().as_secs_f64();
+                let eta = elapsed / s.0 as f64 * (self.len - s.0) as f64;
+                eprintln!("progress  {}/{} runs, {elapsed:.1} s elapsed, ETA {eta:.0} s", s.0, self.len);
+                s.1 = Instant::now();
+            }
+        }
+    }
+
+    /// Clears the bar.
+    pub fn finish(&self) {
+        self.bar.finish_and_clear();
+    }
+}
+
+/// Creates `dir` and checks it is writable (before the runs start).
+pub fn check_writable(dir: &Path) -> Result<()> {
+    std::fs::create_dir_all(dir).map_err(Error::io("create", dir))?;
+    let probe = dir.join(format!(".kanestop-write-test{}", std::process::id()));
+    std::fs::write(&probe, b"").map_err(Error::io("write", &probe))?;
+    let _ = std::fs::remove_file(&probe);
+    Ok(())
+}
+
+/// Writes `sweep.csv`, `sweep.json` and each row's scene (`scenes/NAME.toml`, to rerun one
+/// alone) into `dir`, each file whole or not at all. Returns the CSV and JSON paths.
+pub fn write(rows: &[SweepRow], plan: &[PlannedRow], dir: &Path) -> Result<(PathBuf, PathBuf)> {
+    let scenes = dir.join("scenes");
+    std::fs::create_dir_all(&scenes).map_err(Error::io("create", &scenes))?;
+    for row in plan {
+        if let Ok(scene) = &row.scene {
+            let path = scenes.join(format!("{}.toml", row.name));
+            let text = format!("# Row {} of a sweep: {}\n{}", row.index, label(&row.inputs), scene.to_toml());
+            write_atomically(&path, text.as_bytes()).map_err(Error::io("write", &path))?;
+        }
+    }
+    let (c, j) = (dir.join("sweep.csv"), dir.join("sweep.json"));
+    write_atomically(&c, csv(rows).as_bytes()).map_err(Error::io("write", &c))?;
+    let json = serde_json::to_string_pretty(rows).expect("rows serialise: plain numbers and strings");
+    write_atomically(&j, json.as_bytes()).map_err(Error::io("write", &j))?;
+    Ok((c, j))
+}

@@ -1,0 +1,351 @@
+//! The sweep spec (TOML): a base scene, overrides for every row, grid axes and uncertain
+//! inputs over dotted paths, and design checks. [`Spec::load`] checks it whole and
+//! [`Spec::plan`] turns it into one scene per row, in spec order. Format: docs/sweeps.md.
+
+use std::path::{Path, PathBuf};
+
+use kanestop_runtime::design::DesignChecks;
+use kanestop_runtime::overrides;
+use kanestop_runtime::scene::Scene;
+use serde::Deserialize;
+use toml::Value;
+
+use super::sampling::{self, Distribution, Method};
+use crate::{Error, Result};
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SpecFile {
+    base: String,
+    name: Option<String>,
+    solver: Option<toml::Table>,
+    set: Option<toml::Table>,
+    #[serde(default)]
+    axis: Vec<AxisFile>,
+    sampling: Option<SamplingFile>,
+    #[serde(default)]
+    uncertain: Vec<UncertainFile>,
+    checks: Option<DesignChecks>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct AxisFile {
+    path: String,
+    values: Option<Vec<Value>>,
+    range: Option<RangeFile>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RangeFile {
+    from: f64,
+    to: f64,
+    steps: usize,
+    #[serde(default)]
+    scale: Scale,
+}
+
+#[derive(Clone, Copy, Default, Deserialize, PartialEq)]
+#[serde(rename_all = "lowercase")]
+enum Scale {
+    #[default]
+    Linear,
+    Log,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SamplingFile {
+    method: Method,
+    samples: usize,
+    seed: u64,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct UncertainFile {
+    path: String,
+    distribution: String,
+    low: Option<f64>,
+    high: Option<f64>,
+    mean: Option<f64>,
+    sd: Option<f64>,
+    median: Option<f64>,
+    sigma: Option<f64>,
+}
+
+/// One grid axis: a dotted path and its values, in order.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Axis {
+    /// The scene field, e.g. `ship.mass`.
+    pub path: String,
+    /// Its values.
+    pub values: Vec<Value>,
+}
+
+/// One uncertain input.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Uncertain {
+    /// The scene field (a float).
+    pub path: String,
+    /// Its distribution.
+    pub distribution: Distribution,
+}
+
+/// A checked sweep spec.
+#[derive(Clone, Debug)]
+pub struct Spec {
+    /// The spec file.
+    pub file: PathBuf,
+    /// The sweep's name (`name`, or the spec file's stem): rows are `name-000`, ….
+    pub name: String,
+    /// The base scene, with `[solver]` and `[set]` applied.
+    pub base: Scene,
+    /// The base scene as read, before `[solver]` and `[set]`.
+    pub original: Scene,
+    /// Grid axes, combined as a Cartesian product (last fastest).
+    pub axes: Vec<Axis>,
+    /// Sampling of the uncertain inputs: method, samples, seed.
+    pub sampling: Option<(Method, usize, u64)>,
+    /// The uncertain inputs.
+    pub uncertain: Vec<Uncertain>,
+    /// Design checks for every row (over the base scene's own `[checks]`).
+    pub checks: Option<DesignChecks>,
+}
+
+/// One row of a sweep before it runs.
+#[derive(Clone, Debug)]
+pub struct PlannedRow {
+    /// Its index, from 0, in spec order.
+    pub index: usize,
+    /// `name-000`.
+    pub name: String,
+    /// The swept inputs (axes, then uncertain inputs) and their values.
+    pub inputs: Vec<(String, Value)>,
+    /// The row's scene, or why the inputs give none.
+    pub scene: std::result::Result<Scene, String>,
+}
+
+fn bad(file: &Path, field: impl Into<String>, value: impl std::fmt::Display, expected: impl Into<String>) -> Error {
+    Error::Spec { file: file.to_path_buf(), field: field.into(), value: value.to_string(), expected: expected.into() }
+}
+
+impl Spec {
+    /// Reads and checks a spec file; the base scene is relative to it.
+    pub fn load(file: &Path) -> Result<Spec> {
+        let text = std::fs::read_to_string(file).map_err(Error::io("read", file))?;
+        let raw: SpecFile = toml::from_str(&text).map_err(|e| bad(file, "(file)", "", e.to_string()))?;
+        let dir = file.parent().unwrap_or(Path::new(""));
+        let original = Scene::load(&dir.join(&raw.base))?;
+        let mut value = original.to_value();
+        let mut set =
+            |path: &str, v: Value| overrides::set(&mut value, path, v).map_err(|e| bad(file, path, "", e.to_string()));
+        for (k, v) in raw.solver.into_iter().flatten() {
+            set(&format!("solver.{k}"), v)?;
+        }
+        for (k, v) in raw.set.into_iter().flatten() {
+            set(&k, v)?;
+        }
+        let base = Scene::from_value(value, &format!("{} (base with [solver] and [set])", file.display()))?;
+        let base_value = base.to_value();
+        let axes =
+            raw.axis.into_iter().enumerate().map(|(i, a)| axis(file, &base_value, i, a)).collect::<Result<_>>()?;
+        let uncertain = raw
+            .uncertain
+            .into_iter()
+            .enumerate()
+            .map(|(i, u)| uncertain(file, &base_value, i, u))
+            .collect::<Result<Vec<_>>>()?;
+        let sampling = match (raw.sampling, uncertain.is_empty()) {
+            (Some(s), false) if (1..=1_000_000).contains(&s.samples) => Some((s.method, s.samples, s.seed)),
+            (Some(s), false) => return Err(bad(file, "sampling.samples", s.samples, "in [1, 1000000]")),
+            (Some(_), true) => return Err(bad(file, "sampling", "set", "needs at least one [[uncertain]] input")),
+            (None, false) => return Err(bad(file, "uncertain", "set", "needs [sampling] (method, samples, seed)")),
+            (None, true) => None,
+        };
+        if let Some(c) = &raw.checks {
+            if let Some((field, v, expected)) = c.problems("checks").into_iter().next() {
+                return Err(bad(file, field, v, expected));
+            }
+        }
+        let stem = file.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "sweep".into());
+        Ok(Spec {
+            file: file.to_path_buf(),
+            name: raw.name.unwrap_or(stem),
+            base,
+            original,
+            axes,
+            sampling,
+            uncertain,
+            checks: raw.checks,
+        })
+    }
+
+    /// Number of rows: the grid's size times the samples.
+    pub fn rows(&self) -> usize {
+        self.axes.iter().map(|a| a.values.len()).product::<usize>() * self.sampling.map_or(1, |s| s.1)
+    }
+
+    /// Every row's inputs and scene, in spec order: grid points (last axis fastest), and
+    /// for each the samples in draw order (the same samples at every grid point).
+    pub fn plan(&self) -> Vec<PlannedRow> {
+        let grid: usize = self.axes.iter().map(|a| a.values.len()).product();
+        let points = match self.sampling {
+            Some((method, n, seed)) => sampling::unit_points(method, n, self.uncertain.len(), seed),
+            None => vec![vec![]],
+        };
+        let mut rows = Vec::with_capacity(self.rows());
+        for g in 0..grid {
+            let mut inputs = Vec::new();
+            let mut rest = g;
+            for a in self.axes.iter().rev() {
+                inputs.push((a.path.clone(), a.values[rest % a.values.len()].clone()));
+                rest /= a.values.len();
+            }
+            inputs.reverse();
+            for p in &points {
+                let mut inputs = inputs.clone();
+                for (u, x) in self.uncertain.iter().zip(p) {
+                    inputs.push((u.path.clone(), Value::Float(u.distribution.quantile(*x))));
+                }
+                let index = rows.len();
+                let name = format!("{}-{index:03}", self.name);
+                let scene = self.scene(&name, &inputs);
+                rows.push(PlannedRow { index, name, inputs, scene });
+            }
+        }
+        rows
+    }
+
+    /// The scene of one row: the base with `inputs` set, named `name`, with the spec's
+    /// checks; Table 3's time kept only when the physics and solver equal the paper case's.
+    pub fn scene(&self, name: &str, inputs: &[(String, Value)]) -> std::result::Result<Scene, String> {
+        let values: Vec<(&str, Value)> = inputs.iter().map(|(p, v)| (p.as_str(), v.clone())).collect();
+        let mut scene = self.base.with_overrides(&values).map_err(|e| e.to_string())?;
+        let same = |a: &Scene, b: &Scene| {
+            let strip = |s: &Scene| Scene { meta: self.original.meta.clone(), checks: None, ..s.clone() };
+            strip(a) == strip(b)
+        };
+        if !same(&scene, &self.original) {
+            scene.meta.paper_stopping_time = None;
+        }
+        scene.meta.name = name.to_string();
+        if let Some(c) = &self.checks {
+            scene.checks = Some(c.clone());
+        }
+        Ok(scene)
+    }
+}
+
+fn axis(file: &Path, base: &Value, i: usize, a: AxisFile) -> Result<Axis> {
+    let field = |f: &str| format!("axis[{i}].{f}");
+    let current = overrides::get(base, &a.path).ok_or_else(|| {
+        bad(file, field("path"), &a.path, "a field of the scene, e.g. ship.mass or cable.stages[1].elements")
+    })?;
+    let integer = current.is_integer();
+    let values: Vec<Value> = match (a.values, a.range) {
+        (Some(v), None) if !v.is_empty() => v,
+        (Some(_), None) => return Err(bad(file, field("values"), "[]", "at least one value")),
+        (None, Some(r)) => {
+            if !(r.from.is_finite() && r.to.is_finite()) {
+                return Err(bad(file, field("range"), format!("{}..{}", r.from, r.to), "finite from and to"));
+            }
+            if !(1..=100_000).contains(&r.steps) || (r.steps == 1 && r.from != r.to) {
+                return Err(bad(file, field("range.steps"), r.steps, "in [1, 100000] (1 only when from = to)"));
+            }
+            if r.scale == Scale::Log && !(r.from > 0.0 && r.to > 0.0) {
+                return Err(bad(
+                    file,
+                    field("range"),
+                    format!("{}..{}", r.from, r.to),
+                    "from and to > 0 for scale = \"log\"",
+                ));
+            }
+            (0..r.steps)
+                .map(|k| {
+                    let s = if r.steps == 1 { 0.0 } else { k as f64 / (r.steps - 1) as f64 };
+                    let x = match r.scale {
+                        Scale::Linear => r.from + s * (r.to - r.from),
+                        Scale::Log => (r.from.ln() + s * (r.to.ln() - r.from.ln())).exp(),
+                    };
+                    Value::Float(x)
+                })
+                .collect()
+        }
+        _ => {
+            return Err(bad(file, field("values"), "", "exactly one of values = [...] or range = { from, to, steps }"))
+        }
+    };
+    let typed = values
+        .into_iter()
+        .map(|v| match (&v, integer, current.is_float()) {
+            (Value::Float(x), true, _) if x.fract() == 0.0 && x.abs() < 9e15 => Ok(Value::Integer(*x as i64)),
+            (Value::Float(x), true, _) => {
+                Err(bad(file, field("values"), x, format!("whole numbers: {} is an integer field", a.path)))
+            }
+            (Value::Integer(n), _, true) => Ok(Value::Float(*n as f64)),
+            _ if v.same_type(current) => Ok(v),
+            _ => Err(bad(
+                file,
+                field("values"),
+                &v,
+                format!("values of the field's type ({}, e.g. {current})", current.type_str()),
+            )),
+        })
+        .collect::<Result<_>>()?;
+    Ok(Axis { path: a.path, values: typed })
+}
+
+fn uncertain(file: &Path, base: &Value, i: usize, u: UncertainFile) -> Result<Uncertain> {
+    let field = |f: &str| format!("uncertain[{i}].{f}");
+    if !overrides::get(base, &u.path).is_some_and(Value::is_float) {
+        return Err(bad(file, field("path"), &u.path, "a real-valued (float) field of the scene, e.g. ship.mass"));
+    }
+    let need = |name: &str, v: Option<f64>, ok: fn(f64) -> bool, expected: &str| {
+        v.filter(|&x| ok(x)).ok_or_else(|| {
+            bad(file, field(name), v.map(|x| x.to_string()).unwrap_or("(missing)".into()), expected.to_string())
+        })
+    };
+    let finite = |x: f64| x.is_finite();
+    let positive = |x: f64| x.is_finite() && x > 0.0;
+    let given: Vec<&str> =
+        [("low", u.low), ("high", u.high), ("mean", u.mean), ("sd", u.sd), ("median", u.median), ("sigma", u.sigma)]
+            .into_iter()
+            .filter_map(|(n, v)| v.map(|_| n))
+            .collect();
+    let (distribution, fields): (Distribution, [&str; 2]) = match u.distribution.as_str() {
+        "uniform" => {
+            let low = need("low", u.low, finite, "a finite number")?;
+            let high = need("high", u.high, finite, "a finite number")?;
+            if high <= low {
+                return Err(bad(file, field("high"), high, format!("> low = {low}")));
+            }
+            (Distribution::Uniform { low, high }, ["low", "high"])
+        }
+        "normal" => (
+            Distribution::Normal {
+                mean: need("mean", u.mean, finite, "a finite number")?,
+                sd: need("sd", u.sd, positive, "finite and > 0")?,
+            },
+            ["mean", "sd"],
+        ),
+        "lognormal" => (
+            Distribution::Lognormal {
+                median: need("median", u.median, positive, "finite and > 0")?,
+                sigma: need("sigma", u.sigma, positive, "finite and > 0 (the sd of ln x)")?,
+            },
+            ["median", "sigma"],
+        ),
+        other => return Err(bad(file, field("distribution"), other, "one of uniform, normal, lognormal")),
+    };
+    if let Some(extra) = given.iter().find(|g| !fields.contains(g)) {
+        return Err(bad(
+            file,
+            field(extra),
+            "set",
+            format!("not a parameter of {} (give {} and {})", u.distribution, fields[0], fields[1]),
+        ));
+    }
+    Ok(Uncertain { path: u.path, distribution })
+}
