@@ -88,8 +88,10 @@ fn judge_guarded(text: &str) -> Result<&'static str, String> {
 
 /// The values a field is set to.
 fn random_value(rng: &mut StdRng, old: &str) -> String {
-    const EXTREMES: [&str; 16] =
-        ["0", "0.0", "-1.0", "1e-300", "1e300", "nan", "inf", "-inf", "1", "2", "-0.0", "true", "\"x\"", "1e6", "3", "5e-324"];
+    const EXTREMES: [&str; 16] = [
+        "0", "0.0", "-1.0", "1e-300", "1e300", "nan", "inf", "-inf", "1", "2", "-0.0", "true", "\"x\"", "1e6", "3",
+        "5e-324",
+    ];
     let number = old.trim().parse::<f64>().ok();
     match rng.gen_range(0..4) {
         0 => EXTREMES[rng.gen_range(0..EXTREMES.len())].to_string(),
@@ -166,7 +168,8 @@ fn mutate(rng: &mut StdRng, text: &str) -> String {
                         lines.insert(i, copy);
                     }
                     _ => {
-                        let (key, old) = lines[i].split_once(" = ").map(|(k, v)| (k.to_string(), v.to_string())).unwrap();
+                        let (key, old) =
+                            lines[i].split_once(" = ").map(|(k, v)| (k.to_string(), v.to_string())).unwrap();
                         lines[i] = format!("{key} = {}", random_value(rng, &old));
                     }
                 }
