@@ -47,14 +47,14 @@ fn judge(text: &str) -> Result<&'static str, String> {
     };
     let model = Model::new(&scene).map_err(|e| format!("accepted scene has no model: {e}"))?;
     let gap = model.cable_end_error();
-    if !(gap <= 1e-9) {
+    if gap.is_nan() || gap > 1e-9 {
         return Err(format!("accepted scene's line ends {gap} m from (x_L, h_L)"));
     }
     let n = model.body_count();
     let joints = model.initial_joints();
     let ship = &model.chain.bodies[n - 1];
     let centre = [joints[n - 1][0] + ship.centroid[0], joints[n - 1][1] + ship.centroid[1]];
-    if !(centre[0].hypot(centre[1]) <= 1e-9) {
+    if centre[0].is_nan() || centre[1].is_nan() || centre[0].hypot(centre[1]) > 1e-9 {
         return Err(format!("accepted scene's ship starts at {centre:?}"));
     }
     if n > 120 {

@@ -174,7 +174,7 @@ pub fn lay_elements(
     let (cat, points) = lay_chords(lengths, horizontal, vertical)?;
     let end = points.last().copied().unwrap_or([0.0, 0.0]);
     let gap = (end[0] - horizontal).hypot(end[1] - vertical);
-    if !(gap <= END_TOLERANCE) {
+    if gap.is_nan() || gap > END_TOLERANCE {
         return Err(CatenaryError::EndMissed { gap });
     }
     Ok((cat, points))

@@ -741,7 +741,7 @@ impl Scene {
 /// "; or, for this x_L, initial.vertical_projection in (L_c − x_L, h_max] m": the h_L range of
 /// a continuous cable of length `lc` (m) with horizontal projection `x` (m), when there is one.
 fn vertical_hint(lc: f64, x: f64) -> String {
-    if !(x < lc) {
+    if x.is_nan() || x >= lc {
         return String::new();
     }
     // max_horizontal falls as h_L rises: bisect for max_horizontal(L_c, h) = x.
