@@ -47,14 +47,14 @@ fn judge(text: &str) -> Result<&'static str, String> {
     };
     let model = Model::new(&scene).map_err(|e| format!("accepted scene has no model: {e}"))?;
     let gap = model.cable_end_error();
-    if !(gap <= 1e-9) {
+    if gap.is_nan() || gap > 1e-9 {
         return Err(format!("accepted scene's line ends {gap} m from (x_L, h_L)"));
     }
     let n = model.body_count();
     let joints = model.initial_joints();
     let ship = &model.chain.bodies[n - 1];
     let centre = [joints[n - 1][0] + ship.centroid[0], joints[n - 1][1] + ship.centroid[1]];
-    if !(centre[0].hypot(centre[1]) <= 1e-9) {
+    if centre[0].is_nan() || centre[1].is_nan() || centre[0].hypot(centre[1]) > 1e-9 {
         return Err(format!("accepted scene's ship starts at {centre:?}"));
     }
     if n > 120 {
@@ -88,8 +88,10 @@ fn judge_guarded(text: &str) -> Result<&'static str, String> {
 
 /// The values a field is set to.
 fn random_value(rng: &mut StdRng, old: &str) -> String {
-    const EXTREMES: [&str; 16] =
-        ["0", "0.0", "-1.0", "1e-300", "1e300", "nan", "inf", "-inf", "1", "2", "-0.0", "true", "\"x\"", "1e6", "3", "5e-324"];
+    const EXTREMES: [&str; 16] = [
+        "0", "0.0", "-1.0", "1e-300", "1e300", "nan", "inf", "-inf", "1", "2", "-0.0", "true", "\"x\"", "1e6", "3",
+        "5e-324",
+    ];
     let number = old.trim().parse::<f64>().ok();
     match rng.gen_range(0..4) {
         0 => EXTREMES[rng.gen_range(0..EXTREMES.len())].to_string(),
@@ -166,7 +168,8 @@ fn mutate(rng: &mut StdRng, text: &str) -> String {
                         lines.insert(i, copy);
                     }
                     _ => {
-                        let (key, old) = lines[i].split_once(" = ").map(|(k, v)| (k.to_string(), v.to_string())).unwrap();
+                        let (key, old) =
+                            lines[i].split_once(" = ").map(|(k, v)| (k.to_string(), v.to_string())).unwrap();
                         lines[i] = format!("{key} = {}", random_value(rng, &old));
                     }
                 }

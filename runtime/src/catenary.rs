@@ -174,7 +174,7 @@ pub fn lay_elements(
     let (cat, points) = lay_chords(lengths, horizontal, vertical)?;
     let end = points.last().copied().unwrap_or([0.0, 0.0]);
     let gap = (end[0] - horizontal).hypot(end[1] - vertical);
-    if !(gap <= END_TOLERANCE) {
+    if gap.is_nan() || gap > END_TOLERANCE {
         return Err(CatenaryError::EndMissed { gap });
     }
     Ok((cat, points))
@@ -190,10 +190,8 @@ pub fn laid_range(lengths: &[f64], vertical: f64) -> Option<(f64, f64)> {
     let (lo, hi) = continuous_range(total, vertical)?;
     let lays = |x: f64| lay_elements(lengths, x, vertical).is_ok();
     // A point that lays: from the fully suspended end down towards the corner.
-    let inside = [0.0, 1e-6, 1e-4, 1e-3, 1e-2, 0.1, 0.3, 0.5, 0.7, 0.9]
-        .iter()
-        .map(|f| hi - f * (hi - lo))
-        .find(|&x| lays(x))?;
+    let inside =
+        [0.0, 1e-6, 1e-4, 1e-3, 1e-2, 0.1, 0.3, 0.5, 0.7, 0.9].iter().map(|f| hi - f * (hi - lo)).find(|&x| lays(x))?;
     let edge = |mut good: f64, mut bad: f64| {
         while (good - bad).abs() > 1e-9 * total {
             let mid = 0.5 * (good + bad);
@@ -210,11 +208,7 @@ pub fn laid_range(lengths: &[f64], vertical: f64) -> Option<(f64, f64)> {
 }
 
 /// [`lay_elements`] before the check of its end.
-fn lay_chords(
-    lengths: &[f64],
-    horizontal: f64,
-    vertical: f64,
-) -> Result<(Catenary, Vec<[f64; 2]>), CatenaryError> {
+fn lay_chords(lengths: &[f64], horizontal: f64, vertical: f64) -> Result<(Catenary, Vec<[f64; 2]>), CatenaryError> {
     let total: f64 = lengths.iter().sum();
     // Arc length reached by the chord polygon on the curve of length `curve_length`.
     let polygon = |curve_length: f64| -> Result<(Catenary, Vec<[f64; 2]>, f64), CatenaryError> {

@@ -521,7 +521,11 @@ impl Scene {
     fn check_joined(&self, c: &mut Checker) {
         let ch = &self.chain;
         if ch.proof_load > ch.break_load {
-            c.push("chain.proof_load", &fmt_value(ch.proof_load), &format!("≤ chain.break_load = {} N", fmt_value(ch.break_load)));
+            c.push(
+                "chain.proof_load",
+                &fmt_value(ch.proof_load),
+                &format!("≤ chain.break_load = {} N", fmt_value(ch.break_load)),
+            );
         }
         self.check_depth(c);
         if self.environment.water {
@@ -542,7 +546,10 @@ impl Scene {
         }
         // Without the cable's resting height (a few mm, within ± its radius).
         let depth = self.initial.vertical_projection + rod.length - ship.hinge_z;
-        let needs = [("anchor.height", self.anchor.height, "the anchor's top"), ("ship.mass", self.ship_draught(), "the ship's keel (draught)")];
+        let needs = [
+            ("anchor.height", self.anchor.height, "the anchor's top"),
+            ("ship.mass", self.ship_draught(), "the ship's keel (draught)"),
+        ];
         for (field, height, what) in needs {
             if self.environment.water && height >= depth {
                 let value = if field == "ship.mass" { fmt_value(ship.mass) } else { fmt_value(height) };
@@ -562,7 +569,11 @@ impl Scene {
         let a = &self.anchor;
         let displaced = rho * a.length * a.width * a.height;
         if a.mass <= displaced {
-            c.push("anchor.mass", &fmt_value(a.mass), &format!("> ρ L_1 w_1 h_1 = {} kg (the anchor would float)", fmt_value(displaced)));
+            c.push(
+                "anchor.mass",
+                &fmt_value(a.mass),
+                &format!("> ρ L_1 w_1 h_1 = {} kg (the anchor would float)", fmt_value(displaced)),
+            );
         }
         let lines = [
             ("chain", self.chain.radius, self.chain.mass_per_length, self.chain.elements > 0),
@@ -571,7 +582,8 @@ impl Scene {
         for (name, radius, mpl, _) in lines.into_iter().filter(|l| l.3) {
             let area = std::f64::consts::PI * radius * radius;
             if mpl <= rho * area {
-                let why = format!("> ρ π R² = {:.3} kg/m (the {name} would float: no catenary, Eqs. 30–31)", rho * area);
+                let why =
+                    format!("> ρ π R² = {:.3} kg/m (the {name} would float: no catenary, Eqs. 30–31)", rho * area);
                 c.push(&format!("{name}.mass_per_length"), &fmt_value(mpl), &why);
             } else if e.seabed {
                 let least = rho * e.gravity + (mpl - rho * area) * e.gravity / area;
@@ -720,7 +732,10 @@ impl Scene {
         let (x, h, lc) = (self.initial.horizontal_projection, self.initial.vertical_projection, self.cable_length());
         let lengths = self.cable_element_lengths();
         if h >= lc {
-            let why = format!("< L_c = {} m, the cable length (it must reach h_L and lie partly on the seabed)", fmt_value(lc));
+            let why = format!(
+                "< L_c = {} m, the cable length (it must reach h_L and lie partly on the seabed)",
+                fmt_value(lc)
+            );
             c.push("initial.vertical_projection", &fmt_value(h), &why);
             return;
         }
@@ -788,7 +803,7 @@ impl Scene {
 /// "; or, for this x_L, initial.vertical_projection in (L_c − x_L, h_max] m": the h_L range of
 /// a continuous cable of length `lc` (m) with horizontal projection `x` (m), when there is one.
 fn vertical_hint(lc: f64, x: f64) -> String {
-    if !(x < lc) {
+    if x.is_nan() || x >= lc {
         return String::new();
     }
     // max_horizontal falls as h_L rises: bisect for max_horizontal(L_c, h) = x.
