@@ -123,7 +123,11 @@ fn outcome_lines(out: &mut Lines, model: &Model, result: &RunResult) {
                 None => "end time reached; the ship did not stop".to_string(),
             },
         ),
-        Stop::Failed(f) => out.line("FAILED", crate::diagnostic::describe(model, f).replace('\n', "\n          ")),
+        Stop::Failed(f) => {
+            let text = crate::diagnostic::describe(model, f);
+            let first = text.lines().next().unwrap_or_default();
+            out.line("FAILED", format!("{first} (diagnostic on standard error)"))
+        }
     }
     let anchor = match (model.anchor, result.anchor_start()) {
         (_, Some(t)) => {
