@@ -54,7 +54,7 @@ impl RunFiles<'_> {
 /// `run`: one scene, its summary (text, or JSON with `json`) on standard output, a failure's
 /// diagnostic on standard error, optionally its CSV history and plots (none for a run that
 /// never started). The targets are checked before the run.
-pub fn run(model: &Model, kernel: KernelFactory, files: &RunFiles, json: bool) -> Result<RunOutcome> {
+pub fn run(model: &Model, kernel: KernelFactory, files: &RunFiles, json: bool, verbose: bool) -> Result<RunOutcome> {
     files.check()?;
     let channels =
         history::select(model.body_count(), files.channels).map_err(|e| anyhow::anyhow!("--channels: {e}"))?;
@@ -62,7 +62,7 @@ pub fn run(model: &Model, kernel: KernelFactory, files: &RunFiles, json: bool) -
     if json {
         println!("{}", serde_json::to_string_pretty(&RunSummary::of(model, &result))?);
     } else {
-        print!("{}", summary::summary(model, &result));
+        print!("{}", summary::summary_with(model, &result, verbose));
     }
     let outcome = match &result.stop {
         Stop::Failed(f) => {

@@ -50,6 +50,10 @@ enum Command {
         /// on files written go to standard error.
         #[arg(long)]
         json: bool,
+        /// Add the solver internals to the summary: physics, bodies, initial state,
+        /// catenary residuals, stability eigenvalues, final state.
+        #[arg(long, short)]
+        verbose: bool,
         /// Which Kane kernel evaluates the equations of motion.
         #[arg(long, value_enum, default_value = "generated")]
         kernel: KernelArg,
@@ -416,14 +420,15 @@ fn try_main() -> Result<Exit> {
         plot: None,
         channels: Vec::new(),
         json: false,
+        verbose: false,
         kernel: KernelArg(KernelChoice::Generated),
         solver: SolverOverrides::default(),
     });
     match command {
-        Command::Run { scene, out, plot, channels, json, kernel: choice, solver } => {
+        Command::Run { scene, out, plot, channels, json, verbose, kernel: choice, solver } => {
             let model = load_model_with(scene.as_ref(), &solver)?;
             let files = commands::RunFiles { out: out.as_deref(), plot: plot.as_deref(), channels: &channels };
-            Ok(match commands::run(&model, &choice.factory(), &files, json)? {
+            Ok(match commands::run(&model, &choice.factory(), &files, json, verbose)? {
                 RunOutcome::Done => Exit::Done,
                 RunOutcome::Refused => Exit::BadInput,
                 RunOutcome::NumericalFailure => Exit::NumericalFailure,
