@@ -64,7 +64,7 @@ fn energy_share_line(out: &mut Lines, result: &RunResult) {
     let mut shares: Vec<(f64, String)> =
         last.energy.work_terms().filter(|(_, w)| *w < 0.0).map(|(name, w)| (-w / k0, word(name).to_string())).collect();
     shares.push(((last.energy.kinetic + last.energy.added_kinetic) / k0, "still kinetic".into()));
-    shares.push(((last.energy.potential - first.energy.potential) / k0, "raised the line (potential)".into()));
+    shares.push(((last.energy.potential - first.energy.potential) / k0, "potential energy change".into()));
     shares.retain(|(f, _)| f.abs() >= 0.0005);
     shares.sort_by(|a, b| b.0.total_cmp(&a.0));
     let parts: Vec<String> = shares.iter().map(|(f, what)| format!("{:.1} % {what}", 100.0 * f)).collect();
