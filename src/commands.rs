@@ -8,33 +8,108 @@ use kanestop_runtime::eval::{evaluate, StateFile};
 use kanestop_runtime::model::Model;
 use kanestop_runtime::reference::ReferenceKernel;
 use kanestop_runtime::scene::Scene;
-use kanestop_runtime::simulate::{self, RunResult, Stop};
+use kanestop_runtime::simulate::{self, FailureKind, RunResult, Stop};
 use kanestop_workflow::kernels::KernelFactory;
 use kanestop_workflow::record::RunSummary;
-use kanestop_workflow::{accuracy, batch, history, parallel, plot, progress, summary, validation};
+use kanestop_workflow::{
+    accuracy, batch, checks, diagnostic, history, output, parallel, plot, progress, summary, validation,
+};
 
-/// `run`: one scene, its summary (text, or JSON with `json`), optionally its CSV history and
-/// plots. Returns whether the run ended in a numerical failure.
-pub fn run(model: &Model, kernel: KernelFactory, out: Option<&Path>, plot: Option<&Path>, json: bool) -> Result<bool> {
+/// How a run ended, for the exit code.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RunOutcome {
+    /// The run completed and every design check passed.
+    Done,
+    /// The run was refused before its first step (a step above the stability limit).
+    Refused,
+    /// The run ended in a numerical failure.
+    NumericalFailure,
+    /// The run completed, but a design check failed (a break load exceeded, or a limit of the
+    /// scene's `[checks]`).
+    CheckFailed,
+}
+
+/// Where `run` writes, checked before the run starts.
+pub struct RunFiles<'a> {
+    /// The CSV time history.
+    pub out: Option<&'a Path>,
+    /// The folder of plots.
+    pub plot: Option<&'a Path>,
+    /// The channels of the CSV history (names and groups; empty: all).
+    pub channels: &'a [String],
+}
+
+impl RunFiles<'_> {
+    /// Checks that every target can be written, before any work.
+    pub fn check(&self) -> Result<()> {
+        if let Some(path) = self.out {
+            output::check_file_target(path).with_context(|| format!("cannot write {}", path.display()))?;
+        }
+        if let Some(dir) = self.plot {
+            output::check_dir_target(dir).with_context(|| format!("cannot write plots into {}", dir.display()))?;
+        }
+        Ok(())
+    }
+}
+
+/// `run`: one scene, its summary (text, or JSON with `json`) on standard output, a failure's
+/// diagnostic on standard error, optionally its CSV history and plots (none for a run that
+/// never started). The targets are checked before the run.
+pub fn run(model: &Model, kernel: KernelFactory, files: &RunFiles, json: bool, verbose: bool) -> Result<RunOutcome> {
+    files.check()?;
+    let channels =
+        history::select(model.body_count(), files.channels).map_err(|e| anyhow::anyhow!("--channels: {e}"))?;
     let result = simulate::run_checked(model, kernel(model), Box::new(ReferenceKernel::new(&model.chain)));
     if json {
         println!("{}", serde_json::to_string_pretty(&RunSummary::of(model, &result))?);
     } else {
-        print!("{}", summary::summary(model, &result));
+        print!("{}", summary::summary_with(model, &result, verbose));
     }
+    let outcome = match &result.stop {
+        Stop::Failed(f) => {
+            let refused = matches!(f.kind, FailureKind::StepAboveLimit { .. });
+            eprintln!("{}: {}", if refused { "error" } else { "failed" }, diagnostic::describe(model, f));
+            if refused {
+                RunOutcome::Refused
+            } else {
+                RunOutcome::NumericalFailure
+            }
+        }
+        Stop::ShipStopped | Stop::EndTime
+            if !checks::break_exceedances(model, &result).is_empty()
+                || RunSummary::of(model, &result).checks_pass == Some(false) =>
+        {
+            RunOutcome::CheckFailed
+        }
+        Stop::ShipStopped | Stop::EndTime => RunOutcome::Done,
+    };
     // With JSON on standard output, the notes go to standard error.
     let note = |text: String| if json { eprintln!("{text}") } else { println!("{text}") };
-    if let Some(path) = out {
-        history::write_csv(&result, path).with_context(|| format!("cannot write {}", path.display()))?;
-        note(format!("{:<10}{} ({} samples)", "written", path.display(), result.samples.len()));
+    if result.samples.is_empty() {
+        for path in files.out.iter().chain(&files.plot) {
+            eprintln!("{:<10}{} (the run never started)", "skipped", path.display());
+        }
+        return Ok(outcome);
     }
-    if let Some(dir) = plot {
+    if let Some(path) = files.out {
+        let [csv, units] = history::write_channels(&result, &channels, path)
+            .with_context(|| format!("cannot write {}", path.display()))?;
+        note(format!(
+            "{:<10}{} ({} samples, {} channels)",
+            "written",
+            csv.display(),
+            result.samples.len(),
+            channels.len()
+        ));
+        note(format!("{:<10}{} (units)", "written", units.display()));
+    }
+    if let Some(dir) = files.plot {
         let runs = [(model, &result)];
         for f in plot::write_plots(&runs, dir)? {
             note(format!("written   {}", f.display()));
         }
     }
-    Ok(matches!(result.stop, Stop::Failed(_)))
+    Ok(outcome)
 }
 
 /// `eval`: the equations of motion at the initial state or at the state in `state`, as JSON.
@@ -67,6 +142,7 @@ pub fn batch(
 ) -> Result<bool> {
     let files = batch::scene_files(dir).with_context(|| format!("cannot read scene folder {}", dir.display()))?;
     anyhow::ensure!(!files.is_empty(), "no *.toml scene in {}", dir.display());
+    check_dir(out)?;
     let bar = progress::bar(files.len() * configures.len(), "scenes");
     let mut rows = Vec::new();
     for configure in configures {
@@ -102,6 +178,7 @@ pub fn batch(
 
 /// `plot SCENE…`: runs the scenes and writes overlaid plots into `out`.
 pub fn plot(scenes: &[PathBuf], out: &Path, kernel: KernelFactory) -> Result<Vec<PathBuf>> {
+    check_dir(out)?;
     let models: Vec<Model> =
         scenes.iter().map(|p| -> Result<Model> { Ok(Model::new(&Scene::load(p)?)?) }).collect::<Result<_>>()?;
     let bar = progress::bar(models.len(), "scenes");
@@ -127,6 +204,7 @@ pub fn accuracy(scene: &Scene, out: &Path, repeats: usize, atol_ratio: f64, kern
         atol_ratio.is_finite() && atol_ratio > 0.0,
         "--atol-ratio {atol_ratio}: must be finite and > 0 (atol = ratio × rtol)"
     );
+    check_dir(out)?;
     let plan = accuracy::default_plan();
     let study = accuracy::study(scene, &plan, atol_ratio, kernel, repeats)?;
     print!("{}", accuracy::table(&study));
@@ -134,4 +212,9 @@ pub fn accuracy(scene: &Scene, out: &Path, repeats: usize, atol_ratio: f64, kern
         println!("written   {}", f.display());
     }
     Ok(())
+}
+
+/// Checks, before any run, that files can be written into the folder `dir`.
+fn check_dir(dir: &Path) -> Result<()> {
+    output::check_dir_target(dir).with_context(|| format!("cannot write into {}", dir.display()))
 }

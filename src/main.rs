@@ -5,6 +5,8 @@
 mod commands;
 mod sweep;
 
+use commands::RunOutcome;
+
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -21,7 +23,7 @@ use kanestop_workflow::kernels::{self, KernelChoice};
     name = "kanestop",
     version,
     about = "Kane-method simulator for ship-restraining systems (anchor, chain, cable, rod, ship)",
-    after_help = sweep::EXIT_HELP
+    after_help = EXIT_CODES_HELP
 )]
 struct Cli {
     #[command(subcommand)]
@@ -40,10 +42,19 @@ enum Command {
         /// Write plots (SVG) of the run into this folder.
         #[arg(long)]
         plot: Option<PathBuf>,
+        /// Channels of the CSV history, by name or group, e.g. `ship_x,tension_fairlead` or
+        /// `ship,anchor,tension` (groups: ship, anchor, tension, energy, bodies, joints);
+        /// default: all. The units go beside it in <name>.units.csv (docs/conventions.md).
+        #[arg(long, value_delimiter = ',', requires = "out")]
+        channels: Vec<String>,
         /// Print the summary as one JSON object (docs/conventions.md) instead of text; notes
         /// on files written go to standard error.
         #[arg(long)]
         json: bool,
+        /// Add the solver internals to the summary: physics, bodies, initial state,
+        /// catenary residuals, stability eigenvalues, final state.
+        #[arg(long, short)]
+        verbose: bool,
         /// Which Kane kernel evaluates the equations of motion.
         #[arg(long, value_enum, default_value = "generated")]
         kernel: KernelArg,
@@ -252,6 +263,12 @@ struct SolverOverrides {
     /// Absolute tolerance of the adaptive methods (overrides solver.atol).
     #[arg(long)]
     atol: Option<f64>,
+    /// Interval of the recorded samples, s (overrides solver.output_interval).
+    #[arg(long)]
+    output_interval: Option<f64>,
+    /// Time at which the run ends if the ship has not stopped, s (overrides solver.end_time).
+    #[arg(long)]
+    end_time: Option<f64>,
 }
 
 /// `--integrator`: a [`Method`], with the help text of each.
@@ -316,6 +333,8 @@ impl SolverOverrides {
         s.dt = self.dt.unwrap_or(s.dt);
         s.rtol = self.rtol.unwrap_or(s.rtol);
         s.atol = self.atol.unwrap_or(s.atol);
+        s.output_interval = self.output_interval.unwrap_or(s.output_interval);
+        s.end_time = self.end_time.unwrap_or(s.end_time);
         let problems = scene.problems();
         if problems.is_empty() {
             Ok(())
@@ -357,51 +376,88 @@ fn restore_sigpipe() {
     }
 }
 
-/// Exit code of a run that ended in a numerical failure.
-const EXIT_NUMERICAL_FAILURE: u8 = 3;
+/// The exit codes, as `--help` lists them.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Exit {
+    /// Done.
+    Done = 0,
+    /// `batch`: a scene was invalid or failed, or `--tolerance` validation missed.
+    BatchMissed = 1,
+    /// Bad input: arguments, scene, state file, output path, or a step refused before the run.
+    BadInput = 2,
+    /// A run ended in a numerical failure.
+    NumericalFailure = 3,
+    /// A run completed but a design check failed (a break load exceeded, or a `[checks]` limit).
+    CheckFailed = 4,
+}
+
+/// The exit codes in words, for `--help`.
+const EXIT_CODES_HELP: &str = "Exit codes:
+  0  done
+  1  batch: a scene was invalid or failed, or --tolerance validation missed
+  2  bad input: arguments, scene, state file, an output path that cannot be written, or a
+     step refused before the run (the diagnostic is printed on standard error)
+  3  numerical failure during a run (the diagnostic is printed on standard error)
+  4  a design check failed: a break load was exceeded, or a limit of the scene's or the sweep
+     spec's [checks] (sweep: in some row); 3 takes precedence over 4
+
+Summaries and tables go to standard output; errors, diagnostics and progress to standard error.";
+
+impl From<Exit> for ExitCode {
+    fn from(e: Exit) -> ExitCode {
+        ExitCode::from(e as u8)
+    }
+}
 
 fn main() -> ExitCode {
     restore_sigpipe();
     match try_main() {
-        Ok(code) => code,
+        Ok(code) => code.into(),
         Err(e) => {
             eprintln!("error: {e:#}");
-            ExitCode::from(2)
+            Exit::BadInput.into()
         }
     }
 }
 
-fn try_main() -> Result<ExitCode> {
+fn try_main() -> Result<Exit> {
     let cli = Cli::parse();
     let command = cli.command.unwrap_or(Command::Run {
         scene: None,
         out: None,
         plot: None,
+        channels: Vec::new(),
         json: false,
+        verbose: false,
         kernel: KernelArg(KernelChoice::Generated),
         solver: SolverOverrides::default(),
     });
     match command {
-        Command::Run { scene, out, plot, json, kernel: choice, solver } => {
+        Command::Run { scene, out, plot, channels, json, verbose, kernel: choice, solver } => {
             let model = load_model_with(scene.as_ref(), &solver)?;
-            let failed = commands::run(&model, &choice.factory(), out.as_deref(), plot.as_deref(), json)?;
-            Ok(if failed { ExitCode::from(EXIT_NUMERICAL_FAILURE) } else { ExitCode::SUCCESS })
+            let files = commands::RunFiles { out: out.as_deref(), plot: plot.as_deref(), channels: &channels };
+            Ok(match commands::run(&model, &choice.factory(), &files, json, verbose)? {
+                RunOutcome::Done => Exit::Done,
+                RunOutcome::Refused => Exit::BadInput,
+                RunOutcome::NumericalFailure => Exit::NumericalFailure,
+                RunOutcome::CheckFailed => Exit::CheckFailed,
+            })
         }
         Command::Eval { scene, state, kernel: choice } => {
             let model = load_model(scene.as_ref())?;
             commands::eval(&model, &choice.factory(), state.as_deref())?;
-            Ok(ExitCode::SUCCESS)
+            Ok(Exit::Done)
         }
         Command::Report { kind: ReportKind::Accuracy { scene, out, repeats, atol_ratio, kernel: choice } } => {
             let model = load_model(scene.as_ref())?;
             commands::accuracy(&model.scene, &out, repeats, atol_ratio, &choice.factory())?;
-            Ok(ExitCode::SUCCESS)
+            Ok(Exit::Done)
         }
         Command::Sweep(args) => sweep::sweep(&args),
         Command::Report { kind: ReportKind::Sensitivity(args) } => sweep::sensitivity(&args),
         Command::Plot { scenes, out, kernel: choice } => {
             commands::plot(&scenes, &out, &choice.factory())?;
-            Ok(ExitCode::SUCCESS)
+            Ok(Exit::Done)
         }
         Command::Batch { dir, out, tolerance, kernel: choice, solver, methods, error_estimate } => {
             if let Some(t) = tolerance {
@@ -414,11 +470,11 @@ fn try_main() -> Result<ExitCode> {
             let per_method = configurations(&solver, &methods);
             let configures: Vec<kanestop_workflow::batch::Configure> = per_method.iter().map(|c| c.as_ref()).collect();
             let ok = commands::batch(&dir, &out, &configures, &choice.factory(), error_estimate, tolerance)?;
-            Ok(if ok { ExitCode::SUCCESS } else { ExitCode::from(1) })
+            Ok(if ok { Exit::Done } else { Exit::BatchMissed })
         }
         Command::Codegen { scene, write, root } => {
             codegen(scene.as_ref(), write, &root)?;
-            Ok(ExitCode::SUCCESS)
+            Ok(Exit::Done)
         }
     }
 }

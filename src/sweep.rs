@@ -2,27 +2,15 @@
 //! exit codes) of `kanestop_workflow::sweep` and `kanestop_workflow::sensitivity`.
 
 use std::path::PathBuf;
-use std::process::ExitCode;
 
 use anyhow::{Context, Result};
+
+use crate::Exit;
 use kanestop_runtime::scene::Scene;
 use kanestop_workflow::kernels::{self, KernelChoice};
 use kanestop_workflow::output::write_atomically;
 use kanestop_workflow::sweep::Progress;
 use kanestop_workflow::{sensitivity, sweep};
-
-/// Exit codes of the commands (also in `--help`).
-pub const EXIT_HELP: &str = "Exit codes:
-  0  done (every run finished and every design check passed)
-  1  batch --tolerance: a validation against Table 3 missed
-  2  bad input (a scene, a sweep spec or an argument), nothing run
-  3  numerical failure: the run failed (sweep: some row failed or its inputs gave no valid scene)
-  4  a design check ([checks]) failed; 3 takes precedence over 4";
-
-/// Exit code: some run failed numerically.
-pub const EXIT_FAILED: u8 = 3;
-/// Exit code: a design check failed.
-pub const EXIT_CHECK_FAILED: u8 = 4;
 
 /// `sweep SPEC`.
 #[derive(clap::Args)]
@@ -72,7 +60,7 @@ fn choice(name: &str) -> KernelChoice {
 type Output<'a> = &'a dyn Fn(&kanestop_workflow::record::RunSummary) -> Option<f64>;
 
 /// `sweep SPEC`: runs every row, prints the table, writes the files; the exit code.
-pub fn sweep(args: &SweepArgs) -> Result<ExitCode> {
+pub fn sweep(args: &SweepArgs) -> Result<Exit> {
     let spec = sweep::Spec::load(&args.spec)?;
     sweep::check_writable(&args.out)?;
     let plan = spec.plan();
@@ -108,16 +96,16 @@ pub fn sweep(args: &SweepArgs) -> Result<ExitCode> {
         println!("checks    FAIL in {n} of {} rows", rows.len());
     }
     Ok(if failed {
-        ExitCode::from(EXIT_FAILED)
+        Exit::NumericalFailure
     } else if check_failed {
-        ExitCode::from(EXIT_CHECK_FAILED)
+        Exit::CheckFailed
     } else {
-        ExitCode::SUCCESS
+        Exit::Done
     })
 }
 
 /// `report sensitivity [SCENE]`.
-pub fn sensitivity(args: &SensitivityArgs) -> Result<ExitCode> {
+pub fn sensitivity(args: &SensitivityArgs) -> Result<Exit> {
     let scene = match &args.scene {
         Some(p) => Scene::load(p)?,
         None => Scene::from_toml(kanestop_runtime::paper::DEFAULT_SCENE, "embedded case01.toml")?,
@@ -152,5 +140,5 @@ pub fn sensitivity(args: &SensitivityArgs) -> Result<ExitCode> {
     write_atomically(&j, serde_json::to_string_pretty(&study)?.as_bytes())
         .with_context(|| format!("cannot write {}", j.display()))?;
     println!("written   {} and {}", c.display(), j.display());
-    Ok(ExitCode::SUCCESS)
+    Ok(Exit::Done)
 }

@@ -85,19 +85,46 @@ fn run_prints_a_summary_and_writes_the_csv_whole() {
     let out = kanestop().arg("run").arg(&scene).arg("--out").arg(&csv).output().unwrap();
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert!(out.status.success(), "{stdout}\n{}", String::from_utf8_lossy(&out.stderr));
-    for label in ["scene", "physics", "bodies", "N = 46", "solver", "run", "stopped", "final", "energy"] {
+    for label in ["scene", "stopped", "anchor", "tension", "checks    PASS", "energy", "run"] {
         assert!(stdout.contains(label), "summary lacks {label}: {stdout}");
+    }
+    assert!(!stdout.contains("catenary"), "solver internals only with --verbose: {stdout}");
+    let out = kanestop().arg("run").arg(&scene).arg("--verbose").output().unwrap();
+    let verbose = String::from_utf8_lossy(&out.stdout);
+    for label in ["physics", "bodies", "N = 46", "catenary", "stability", "final", "balance"] {
+        assert!(verbose.contains(label), "--verbose lacks {label}: {verbose}");
     }
     let text = std::fs::read_to_string(&csv).unwrap();
     let mut lines = text.lines();
     let header: Vec<&str> = lines.next().unwrap().split(',').collect();
-    assert_eq!(header.len(), 12 + 6 * 46 + 45, "t, anchor, 3 energies, 6 works, balance; 6 per body; 45 tensions");
-    assert_eq!(&header[..5], ["t", "anchor_sliding", "E_kinetic", "E_added_kinetic", "E_potential"]);
-    assert_eq!(header[12], "x_1");
-    assert_eq!(header[header.len() - 1], "T_46");
+    assert_eq!(
+        header.len(),
+        1 + 7 + 4 + 3 + 10 + 6 * 46 + 45,
+        "t, ship, anchor, tension, energy; 6 per body; 45 joints"
+    );
+    assert_eq!(&header[..4], ["t", "ship_x", "ship_z", "ship_theta"]);
+    for name in
+        ["ship_displacement", "anchor_drag", "anchor_sliding", "tension_fairlead", "tension_anchor", "work_friction"]
+    {
+        assert!(header.contains(&name), "no channel {name}");
+    }
+    assert!(header.contains(&"body46_x") && header.contains(&"body1_vx"));
+    assert_eq!(header[header.len() - 1], "tension_joint46");
     let rows: Vec<Vec<f64>> = lines.map(|l| l.split(',').map(|v| v.parse().unwrap()).collect()).collect();
     assert_eq!(rows.len(), 6, "samples at 0, 0.01, …, 0.05 s");
     assert!(rows.iter().all(|r| r.len() == header.len()));
+    let col = |name: &str| header.iter().position(|h| *h == name).unwrap();
+    // Derived channels: displacements from t = 0, the fairlead tension is joint N's.
+    assert_eq!(rows[0][col("ship_displacement")], 0.0);
+    let last = rows.last().unwrap();
+    assert!((last[col("ship_displacement")] - (last[col("ship_x")] - rows[0][col("ship_x")])).abs() < 1e-9);
+    assert_eq!(last[col("tension_fairlead")], last[col("tension_joint46")]);
+    assert_eq!(last[col("tension_anchor")], last[col("tension_joint2")]);
+    // The units sidecar lists every column in order.
+    let units = std::fs::read_to_string(dir.join("history.units.csv")).unwrap();
+    let listed: Vec<&str> = units.lines().skip(1).map(|l| l.split(',').next().unwrap()).collect();
+    assert_eq!(listed, header);
+    assert!(units.contains("tension_fairlead,N,") && units.contains("ship_x,m,") && units.contains("t,s,"));
     assert!((rows.last().unwrap()[0] - 0.05).abs() < 1e-12);
     // No temporary file is left behind.
     let leftovers: Vec<_> = std::fs::read_dir(&dir)
@@ -116,6 +143,8 @@ fn unwritable_output_is_an_error_and_leaves_nothing() {
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("cannot write"));
     assert!(!dir.join("missing-dir").exists());
+    // Checked before the run: no summary was printed.
+    assert!(out.stdout.is_empty(), "{}", String::from_utf8_lossy(&out.stdout));
 }
 
 #[test]
@@ -142,13 +171,14 @@ fn stiff_gravity_only_chain_diverges_with_a_diagnostic() {
         .replace("end_time = 60.0", "end_time = 10.0")
         .replace("stop_when_ship_stops = true", "stop_when_ship_stops = false");
     std::fs::write(&path, text).unwrap();
-    let out = kanestop().arg("run").arg(&path).output().unwrap();
+    let out = kanestop().arg("run").arg(&path).arg("--verbose").output().unwrap();
     let stdout = String::from_utf8_lossy(&out.stdout);
+    let stderr = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(3), "{stdout}");
-    for part in
-        ["physics   gravity\n", "numerical failure at t =", "body:", "likely cause:", "suggestion: reduce solver.dt"]
-    {
-        assert!(stdout.contains(part), "missing {part:?} in {stdout}");
+    assert!(stdout.contains("physics   gravity\n") && stdout.contains("FAILED"), "{stdout}");
+    // The diagnostic goes to standard error.
+    for part in ["numerical failure at t =", "body:", "likely cause:", "suggestion: reduce solver.dt"] {
+        assert!(stderr.contains(part), "missing {part:?} in {stderr}");
     }
 }
 
@@ -159,12 +189,15 @@ fn default_run_reports_the_stopping_time_against_the_paper() {
     assert!(out.status.success(), "{stdout}");
     for part in [
         "scene     case01",
-        "ship surge speed reached zero at t =",
+        "(ship surge speed reached zero)",
         "paper (Table 3): 20.010 s",
         "anchor    started to slide",
+        "checks    PASS",
+        "seabed friction",
     ] {
         assert!(stdout.contains(part), "missing {part:?} in {stdout}");
     }
+    println!("{stdout}");
 }
 
 #[test]
@@ -384,9 +417,53 @@ fn run_json_is_the_documented_summary() {
     let text = std::fs::read_to_string(&scene).unwrap().replace("dt = 0.0005", "dt = 0.05");
     std::fs::write(&refused, text.replace("output_interval = 0.01", "output_interval = 0.05")).unwrap();
     let out = kanestop().arg("run").arg(&refused).arg("--json").output().unwrap();
-    assert_eq!(out.status.code(), Some(3));
+    assert_eq!(out.status.code(), Some(2), "a step refused before the run is bad input");
+    assert!(String::from_utf8_lossy(&out.stderr).contains("stability limit"));
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(v["status"], "failed");
     assert!(v["failure"]["message"].as_str().unwrap().contains("stability limit"), "{}", v["failure"]);
     assert!(v["peak_tension"].is_null(), "a refused run has no peak");
+}
+
+#[test]
+fn run_selects_channels_and_overrides_end_time_and_output_interval() {
+    let dir = temp_dir("channels");
+    let scene = short_scene(&dir);
+    let csv = dir.join("sel.csv");
+    let out = kanestop()
+        .arg("run")
+        .arg(&scene)
+        .args(["--channels", "tension_fairlead,ship", "--end-time", "0.02", "--output-interval", "0.005", "--out"])
+        .arg(&csv)
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let text = std::fs::read_to_string(&csv).unwrap();
+    let header = text.lines().next().unwrap();
+    assert_eq!(header, "t,ship_x,ship_z,ship_theta,ship_vx,ship_vz,ship_omega,ship_displacement,tension_fairlead");
+    assert_eq!(text.lines().count(), 1 + 5, "samples at 0, 0.005, …, 0.02 s");
+    // An unknown channel is bad input, found before the run; nothing is written.
+    let bad = dir.join("bad.csv");
+    let out = kanestop().arg("run").arg(&scene).args(["--channels", "x_46", "--out"]).arg(&bad).output().unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("unknown channel \"x_46\""));
+    assert!(out.stdout.is_empty() && !bad.exists());
+    let out = kanestop().arg("run").arg(&scene).args(["--end-time=-1"]).output().unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("solver.end_time"));
+}
+
+#[test]
+fn a_variant_of_a_paper_case_is_not_compared_with_the_paper() {
+    let dir = temp_dir("variant");
+    let heavier = dir.join("heavier.toml");
+    std::fs::write(&heavier, kanestop_runtime::paper::DEFAULT_SCENE.replace("mass = 500000.0", "mass = 600000.0"))
+        .unwrap();
+    let out = kanestop().arg("run").arg(&heavier).output().unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{stdout}");
+    assert!(!stdout.contains("paper (Table 3)"), "a 600 t ship is not case 1: {stdout}");
+    // Another solver on the same physics still is case 1.
+    let out = kanestop().args(["run", "--dt", "0.001"]).output().unwrap();
+    assert!(String::from_utf8_lossy(&out.stdout).contains("paper (Table 3): 20.010 s"));
 }

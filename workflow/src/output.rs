@@ -20,3 +20,62 @@ pub fn write_atomically(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
     }
     result
 }
+
+/// Checks, before any work, that a file can be written at `path`: its folder exists and
+/// accepts a new file. Nothing is left behind.
+pub fn check_file_target(path: &Path) -> std::io::Result<()> {
+    if path.file_name().is_none() || path.is_dir() {
+        return Err(std::io::Error::other("not a file name"));
+    }
+    let dir = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    check_writable_dir(dir)
+}
+
+/// Checks, before any work, that files can be written into the folder `dir`: it is a
+/// writable folder, or it does not exist yet and its parent is one (it is created later).
+pub fn check_dir_target(dir: &Path) -> std::io::Result<()> {
+    if dir.is_dir() {
+        return check_writable_dir(dir);
+    }
+    if dir.exists() {
+        return Err(std::io::Error::other("exists and is not a folder"));
+    }
+    // The nearest existing ancestor must accept the folders to be created.
+    let mut parent = dir.parent();
+    while let Some(p) = parent.filter(|p| !p.as_os_str().is_empty()) {
+        if p.exists() {
+            return check_writable_dir(p);
+        }
+        parent = p.parent();
+    }
+    check_writable_dir(Path::new("."))
+}
+
+fn check_writable_dir(dir: &Path) -> std::io::Result<()> {
+    if !dir.is_dir() {
+        return Err(std::io::Error::new(std::io::ErrorKind::NotFound, format!("no folder {}", dir.display())));
+    }
+    let probe = dir.join(format!(".kanestop-probe{}", std::process::id()));
+    std::fs::File::create(&probe)?;
+    let _ = std::fs::remove_file(&probe);
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn targets_are_checked_before_any_work() {
+        let dir = std::env::temp_dir().join(format!("kanestop-output-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        assert!(check_file_target(&dir.join("a.csv")).is_ok());
+        assert!(check_file_target(&dir.join("missing/a.csv")).is_err());
+        assert!(check_file_target(&dir).is_err(), "a folder is not a file");
+        assert!(check_dir_target(&dir.join("new/deeper")).is_ok(), "created later");
+        std::fs::write(dir.join("file"), "x").unwrap();
+        assert!(check_dir_target(&dir.join("file")).is_err());
+        assert!(!dir.join("new").exists(), "a check creates nothing");
+        assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 1, "no probe left behind");
+    }
+}

@@ -8,15 +8,75 @@ use kanestop_runtime::simulate::{RunResult, Stop};
 
 use crate::checks::break_exceedances;
 
-/// The one-screen summary of a run.
+/// The one-screen summary of a run: the outcome, the anchor, the peak tension, the checks,
+/// where the ship's energy went and the cost.
 pub fn summary(model: &Model, result: &RunResult) -> String {
+    summary_with(model, result, false)
+}
+
+/// The summary; `verbose` adds the solver internals (physics, bodies, initial state,
+/// catenary residuals, stability eigenvalues, final state).
+pub fn summary_with(model: &Model, result: &RunResult, verbose: bool) -> String {
     let mut out = Lines::default();
-    scene_lines(&mut out, model, result);
-    run_lines(&mut out, model, result);
+    let s = &model.scene;
+    out.line("scene", format!("{} — {}", s.meta.name, s.meta.description));
+    if verbose {
+        scene_lines(&mut out, model, result);
+    }
     outcome_lines(&mut out, model, result);
     tension_lines(&mut out, model, result);
-    final_lines(&mut out, model, result);
+    energy_share_line(&mut out, result);
+    run_lines(&mut out, model, result, verbose);
+    if verbose {
+        final_lines(&mut out, model, result);
+    }
     out.0
+}
+
+/// Table 3's stopping time when `scene` is a paper case: its physics equal to a case's (the
+/// solver and the name may differ). A variant (another mass, speed, line) is not.
+pub fn paper_stopping_time(scene: &kanestop_runtime::scene::Scene) -> Option<f64> {
+    scene.meta.paper_stopping_time?;
+    kanestop_runtime::paper::CASES.iter().find_map(|case| {
+        let mut paper = case.scene();
+        paper.solver = scene.solver.clone();
+        paper.meta = scene.meta.clone();
+        (paper == *scene).then_some(paper.meta.paper_stopping_time).flatten()
+    })
+}
+
+/// Where the ship's kinetic energy went: each dissipating work term as a share of the
+/// initial kinetic energy, largest first, and what is left.
+fn energy_share_line(out: &mut Lines, result: &RunResult) {
+    let (Some(first), Some(last)) = (result.samples.first(), result.samples.last()) else { return };
+    let k0 = first.energy.kinetic + first.energy.added_kinetic;
+    if k0 <= 0.0 {
+        return;
+    }
+    let word = |name: &'static str| match name {
+        "friction" => "seabed friction (anchor, grounded line)",
+        "drag" => "water drag (line, anchor, hull resistance)",
+        "seabed" => "seabed contact",
+        "hydrostatic" => "ship hydrostatics",
+        "added_mass" => "entrained water",
+        other => other,
+    };
+    let mut shares: Vec<(f64, String)> =
+        last.energy.work_terms().filter(|(_, w)| *w < 0.0).map(|(name, w)| (-w / k0, word(name).to_string())).collect();
+    shares.push(((last.energy.kinetic + last.energy.added_kinetic) / k0, "still kinetic".into()));
+    shares.push(((last.energy.potential - first.energy.potential) / k0, "potential energy change".into()));
+    shares.retain(|(f, _)| f.abs() >= 0.0005);
+    shares.sort_by(|a, b| b.0.total_cmp(&a.0));
+    let parts: Vec<String> = shares.iter().map(|(f, what)| format!("{:.1} % {what}", 100.0 * f)).collect();
+    out.line(
+        "energy",
+        format!(
+            "of {:.3} MJ kinetic at t = 0: {}; energy balance drift {:.1e}",
+            k0 / 1e6,
+            parts.join(", "),
+            result.max_energy_drift
+        ),
+    );
 }
 
 /// Labelled lines: the label in a column of ten.
@@ -32,7 +92,6 @@ impl Lines {
 /// What was simulated: the scene, its physics, bodies, initial state and catenary.
 fn scene_lines(out: &mut Lines, model: &Model, result: &RunResult) {
     let s = &model.scene;
-    out.line("scene", format!("{} — {}", s.meta.name, s.meta.description));
     out.line("physics", &result.physics);
     let stages: Vec<String> =
         s.cable.stages.iter().map(|st| format!("{}×{} m", st.elements, st.element_length)).collect();
@@ -71,17 +130,23 @@ fn scene_lines(out: &mut Lines, model: &Model, result: &RunResult) {
     out.line("catenary", format!("cable ends {:.1e} m from (x_L, h_L){residual}", model.cable_end_error()));
 }
 
-/// How it was integrated: the solver, its stability limit, the cost.
-fn run_lines(out: &mut Lines, model: &Model, result: &RunResult) {
+/// How it was integrated and what it cost; `verbose` adds the stability limit.
+fn run_lines(out: &mut Lines, model: &Model, result: &RunResult, verbose: bool) {
     let solver = &model.scene.solver;
     out.line(
-        "solver",
+        "run",
         format!(
-            "{}, dt = {} s, end time {} s, kernel {}",
-            solver.integrator, solver.dt, solver.end_time, result.kernel
+            "{}, dt = {} s, kernel {}: {:.3} s simulated in {:.3} s wall ({} steps, {} right-hand-side evaluations)",
+            solver.integrator,
+            solver.dt,
+            result.kernel,
+            result.t_end,
+            result.wall_time.as_secs_f64(),
+            result.steps,
+            result.rhs_evaluations
         ),
     );
-    if let Some(l) = result.stability {
+    if let Some(l) = result.stability.filter(|_| verbose) {
         out.line(
             "stability",
             format!(
@@ -93,54 +158,69 @@ fn run_lines(out: &mut Lines, model: &Model, result: &RunResult) {
             ),
         );
     }
-    out.line(
-        "run",
-        format!(
-            "{:.3} s simulated in {:.3} s wall ({} steps, {} right-hand-side evaluations)",
-            result.t_end,
-            result.wall_time.as_secs_f64(),
-            result.steps,
-            result.rhs_evaluations
-        ),
-    );
 }
 
-/// Why the run ended, against the paper where the scene names Table 3's value, and the anchor.
+/// Why the run ended, with the stopping distance, against the paper when the scene is a
+/// paper case, and the anchor with its drag distance.
 fn outcome_lines(out: &mut Lines, model: &Model, result: &RunResult) {
-    let paper = |t: f64| match model.scene.meta.paper_stopping_time {
+    let paper = |t: f64| match paper_stopping_time(&model.scene) {
         Some(p) => format!("   paper (Table 3): {p:.3} s, difference {:+.2} %", 100.0 * (t - p) / p),
         None => String::new(),
+    };
+    let n = model.body_count();
+    let moved = |k: usize| match (result.samples.first(), result.samples.last()) {
+        (Some(a), Some(b)) => b.bodies[k].x - a.bodies[k].x,
+        _ => 0.0,
     };
     match &result.stop {
         Stop::ShipStopped => {
             let t = result.stopping_time.unwrap_or(result.t_end);
-            out.line("stopped", format!("ship surge speed reached zero at t = {t:.3} s{}", paper(t)))
+            out.line(
+                "stopped",
+                format!("t = {t:.3} s after {:.2} m (ship surge speed reached zero){}", moved(n - 1), paper(t)),
+            )
         }
         Stop::EndTime => out.line(
             "stopped",
             match result.stopping_time {
                 Some(t) => format!("end time reached; ship surge speed first zero at t = {t:.3} s{}", paper(t)),
-                None => "end time reached; the ship did not stop".to_string(),
+                None => format!(
+                    "end time {:.3} s reached; the ship did not stop (moved {:.2} m)",
+                    result.t_end,
+                    moved(n - 1)
+                ),
             },
         ),
-        Stop::Failed(f) => out.line("FAILED", crate::diagnostic::describe(model, f).replace('\n', "\n          ")),
+        Stop::Failed(f) => {
+            let text = crate::diagnostic::describe(model, f);
+            let first = text.lines().next().unwrap_or_default();
+            out.line("FAILED", format!("{first} (diagnostic on standard error)"))
+        }
+    }
+    if result.samples.is_empty() {
+        return;
     }
     let anchor = match (model.anchor, result.anchor_start()) {
-        (_, Some(t)) => {
-            format!("started to slide at t = {t:.3} s ({} stick–slip switches)", result.anchor_events.len())
-        }
+        (_, Some(t)) => format!(
+            "started to slide at t = {t:.3} s; dragged {:.2} m ({} stick–slip switches)",
+            moved(0),
+            result.anchor_events.len()
+        ),
         (AnchorDof::Stuck, None) => "held by friction throughout".to_string(),
-        (AnchorDof::Free, None) => "free (no seabed friction)".to_string(),
+        (AnchorDof::Free, None) => format!("free (no seabed friction); moved {:.2} m", moved(0)),
     };
     out.line("anchor", anchor);
 }
 
-/// The peak tension against its joint's limits, and any break load exceeded.
+/// The peak tension with its utilisation and where, and the break-load check.
 fn tension_lines(out: &mut Lines, model: &Model, result: &RunResult) {
+    if result.steps == 0 {
+        return;
+    }
     let Some((k, peak)) = result.peak_tension() else { return };
     let limits = model.joint_limits(k);
     let limit = |name: &str, v: Option<f64>| {
-        v.map(|v| format!(", {name} {:.0} kN ({:.0} %)", v / 1e3, 100.0 * peak.tension / v)).unwrap_or_default()
+        v.map(|v| format!("; {:.0} % of {name} load {:.0} kN", 100.0 * peak.tension / v, v / 1e3)).unwrap_or_default()
     };
     out.line(
         "tension",
@@ -150,22 +230,33 @@ fn tension_lines(out: &mut Lines, model: &Model, result: &RunResult) {
             model.chain.bodies[k - 2].kind,
             model.chain.bodies[k - 1].kind,
             peak.t,
-            limit("proof", limits.proof),
-            limit("break", limits.breaking)
+            limit("break", limits.breaking),
+            limit("proof", limits.proof)
         ),
     );
     let over = break_exceedances(model, result);
-    if let Some(worst) = over.iter().max_by(|a, b| (a.peak / a.limit).total_cmp(&(b.peak / b.limit))) {
-        out.line(
-            "WARNING",
+    let utilisation = |j: usize| {
+        let p = result.peak_tensions[j - 2].tension;
+        model.joint_limits(j).breaking.map(|b| p / b)
+    };
+    let worst =
+        (2..=model.body_count()).filter_map(|j| utilisation(j).map(|u| (j, u))).max_by(|a, b| a.1.total_cmp(&b.1));
+    match (over.iter().max_by(|a, b| (a.peak / a.limit).total_cmp(&(b.peak / b.limit))), worst) {
+        (Some(w), _) => out.line(
+            "checks",
             format!(
-                "break load exceeded at {} joint(s); worst: joint {}, {:.0} kN > {:.0} kN",
+                "FAIL: break load exceeded at {} joint(s); worst: joint {}, {:.0} kN > {:.0} kN",
                 over.len(),
-                worst.joint,
-                worst.peak / 1e3,
-                worst.limit / 1e3
+                w.joint,
+                w.peak / 1e3,
+                w.limit / 1e3
             ),
-        );
+        ),
+        (None, Some((j, u))) => out.line(
+            "checks",
+            format!("PASS: no break load exceeded (highest utilisation {:.0} % at joint {j})", 100.0 * u),
+        ),
+        (None, None) => {}
     }
 }
 
@@ -189,7 +280,7 @@ fn final_lines(out: &mut Lines, model: &Model, result: &RunResult) {
     let e = &last.energy;
     let works: Vec<String> = e.work_terms().map(|(name, v)| format!("{name} {:.3}", v / 1e6)).collect();
     out.line(
-        "energy",
+        "balance",
         format!(
             "E_0 = {:.4} MJ; kinetic {:.4}, entrained water {:.4}, potential {:.4} MJ; work done (MJ): {}; max balance drift {:.2e}",
             result.energy0 / 1e6,

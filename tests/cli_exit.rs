@@ -1,0 +1,160 @@
+//! Every exit code of `kanestop --help`, and where the words go (standard output for
+//! summaries, standard error for errors and diagnostics), and which files a run writes.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn kanestop() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_kanestop"))
+}
+
+fn temp_dir(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("kanestop-exit-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// Case 1 with a smaller step, ended at 0.05 s, with `edit` applied to its text.
+fn scene(dir: &Path, name: &str, edit: impl Fn(String) -> String) -> PathBuf {
+    let text = kanestop_runtime::paper::DEFAULT_SCENE
+        .replace("dt = 0.002", "dt = 0.0005")
+        .replace("end_time = 60.0", "end_time = 0.05")
+        .replace("output_interval = 0.02", "output_interval = 0.01");
+    let path = dir.join(format!("{name}.toml"));
+    std::fs::write(&path, edit(text)).unwrap();
+    path
+}
+
+/// Case 1's RK4 step raised to 0.05 s: above the stability limit, refused before the run.
+fn refused(dir: &Path) -> PathBuf {
+    scene(dir, "refused", |t| {
+        t.replace("dt = 0.0005", "dt = 0.05").replace("output_interval = 0.01", "output_interval = 0.05")
+    })
+}
+
+fn text(out: &Output) -> (String, String) {
+    (String::from_utf8_lossy(&out.stdout).into_owned(), String::from_utf8_lossy(&out.stderr).into_owned())
+}
+
+#[test]
+fn help_lists_the_exit_codes() {
+    let out = kanestop().arg("--help").output().unwrap();
+    let (stdout, _) = text(&out);
+    assert!(out.status.success());
+    for line in ["0  done", "1  batch", "2  bad input", "3  numerical failure", "4  a design check failed"] {
+        assert!(stdout.contains(line), "--help lacks {line:?}: {stdout}");
+    }
+}
+
+#[test]
+fn exit_0_done() {
+    let dir = temp_dir("done");
+    let out = kanestop().arg("run").arg(scene(&dir, "short", |t| t)).output().unwrap();
+    let (stdout, stderr) = text(&out);
+    assert_eq!(out.status.code(), Some(0), "{stdout}{stderr}");
+    assert!(stderr.is_empty(), "{stderr}");
+}
+
+#[test]
+fn exit_1_batch_missed() {
+    let dir = temp_dir("batch");
+    let scenes = dir.join("scenes");
+    std::fs::create_dir_all(&scenes).unwrap();
+    std::fs::write(scenes.join("bad.toml"), "not a scene").unwrap();
+    let out = kanestop().arg("batch").arg(&scenes).arg("--out").arg(dir.join("out")).output().unwrap();
+    assert_eq!(out.status.code(), Some(1));
+}
+
+#[test]
+fn exit_2_bad_arguments_scene_and_paths() {
+    let dir = temp_dir("bad");
+    let short = scene(&dir, "short", |t| t);
+    for args in [
+        vec!["run", "--dt", "nope"],
+        vec!["run", "--no-such-flag"],
+        vec!["frobnicate"],
+        vec!["run", "/no/such/scene.toml"],
+        vec!["plot", "/no/such/scene.toml", "--out", "/tmp"],
+    ] {
+        let out = kanestop().args(&args).output().unwrap();
+        let (stdout, stderr) = text(&out);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {stdout}{stderr}");
+        assert!(!stderr.is_empty() && !stderr.contains("panicked"), "{args:?}: {stderr}");
+    }
+    // Output targets are checked before the run: nothing printed, nothing written.
+    let file = dir.join("a-file");
+    std::fs::write(&file, "").unwrap();
+    for (flag, target) in [("--out", dir.join("missing/history.csv")), ("--plot", file.join("plots"))] {
+        let out = kanestop().arg("run").arg(&short).arg(flag).arg(&target).output().unwrap();
+        let (stdout, stderr) = text(&out);
+        assert_eq!(out.status.code(), Some(2), "{flag}: {stdout}{stderr}");
+        assert!(stdout.is_empty() && stderr.contains("cannot write"), "{flag}: {stdout}{stderr}");
+    }
+    for sub in [vec!["plot", short.to_str().unwrap()], vec!["report", "accuracy", short.to_str().unwrap()]] {
+        let out = kanestop().args(&sub).arg("--out").arg(file.join("x")).output().unwrap();
+        let (stdout, stderr) = text(&out);
+        assert_eq!(out.status.code(), Some(2), "{sub:?}: {stdout}{stderr}");
+        assert!(stderr.contains("cannot write into"), "{sub:?}: {stderr}");
+    }
+}
+
+#[test]
+fn exit_2_a_step_refused_before_the_run_writes_nothing() {
+    // Regression: exited 3 (numerical failure), printed the diagnostic on standard output
+    // and wrote a header-only CSV.
+    let dir = temp_dir("refused");
+    let csv = dir.join("h.csv");
+    let plots = dir.join("plots");
+    let out =
+        kanestop().arg("run").arg(refused(&dir)).arg("--out").arg(&csv).arg("--plot").arg(&plots).output().unwrap();
+    let (stdout, stderr) = text(&out);
+    assert_eq!(out.status.code(), Some(2), "{stdout}{stderr}");
+    assert!(stderr.contains("stability limit") && stderr.contains("suggestion:"), "{stderr}");
+    assert!(!stdout.contains("suggestion:"), "the diagnostic is on standard error: {stdout}");
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert!(!csv.exists(), "no CSV for a run that never started");
+    assert!(!plots.exists(), "no plots for a run that never started");
+}
+
+#[test]
+fn run_plot_of_the_stress_scene_dt_too_large_does_not_panic() {
+    // Regression: `run --plot` on scenes/stress/dt_too_large.toml panicked.
+    let dir = temp_dir("stress-plot");
+    let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/stress/dt_too_large.toml");
+    let out = kanestop().arg("run").arg(&scene).arg("--plot").arg(dir.join("plots")).output().unwrap();
+    let (stdout, stderr) = text(&out);
+    assert_eq!(out.status.code(), Some(2), "{stdout}{stderr}");
+    assert!(!stderr.contains("panicked"), "{stderr}");
+}
+
+#[test]
+fn exit_3_numerical_failure() {
+    let dir = temp_dir("numerical");
+    let path = scene(&dir, "gravity-only", |t| {
+        t.replace("water = true", "water = false")
+            .replace("seabed = true", "seabed = false")
+            .replace("end_time = 0.05", "end_time = 10.0")
+            .replace("dt = 0.0005", "dt = 0.002")
+            .replace("stop_when_ship_stops = true", "stop_when_ship_stops = false")
+    });
+    let csv = dir.join("h.csv");
+    let out = kanestop().arg("run").arg(&path).arg("--out").arg(&csv).output().unwrap();
+    let (stdout, stderr) = text(&out);
+    assert_eq!(out.status.code(), Some(3), "{stdout}{stderr}");
+    assert!(stderr.contains("numerical failure at t ="), "{stderr}");
+    assert!(csv.exists(), "the history up to the failure is kept");
+}
+
+#[test]
+fn exit_4_a_design_check_failed() {
+    let dir = temp_dir("check");
+    let path = scene(&dir, "weak-cable", |t| t.replace("break_load = 2520000.0", "break_load = 1000.0"));
+    let out = kanestop().arg("run").arg(&path).output().unwrap();
+    let (stdout, stderr) = text(&out);
+    assert_eq!(out.status.code(), Some(4), "{stdout}{stderr}");
+    assert!(stdout.contains("break load exceeded"), "{stdout}");
+    // The JSON summary exits alike.
+    let out = kanestop().arg("run").arg(&path).arg("--json").output().unwrap();
+    assert_eq!(out.status.code(), Some(4));
+}

@@ -1,0 +1,134 @@
+//! Every chart `run --plot`, `plot` and `report accuracy` write, rendered to PNG (resvg) and
+//! checked for its size and for curves (enough coloured pixels), and the regression tests of
+//! the plot defects of issue 16.
+//!
+//! Fonts: the SVGs name `sans-serif`; resvg draws text only with a font. The machine's fonts
+//! are loaded when it has any (then the PNGs show the labels), but the checks look only at
+//! the curves' coloured pixels, so the test passes on a machine with no fonts at all.
+//! The PNGs are kept in `target/chart-png/` for a person to look at.
+
+use std::path::{Path, PathBuf};
+
+use kanestop_runtime::model::Model;
+use kanestop_runtime::scene::Scene;
+use kanestop_runtime::simulate::{self, RunResult};
+use kanestop_workflow::kernels::{self, KernelChoice};
+use kanestop_workflow::plot;
+
+fn png_dir() -> PathBuf {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("target/chart-png");
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// Pixel counts of a rendered chart.
+struct Rendered {
+    width: u32,
+    height: u32,
+    /// Pixels not near white.
+    inked: usize,
+    /// Pixels with a clear hue (curves; axes, text and grid are grey).
+    coloured: usize,
+}
+
+fn render(svg: &str, png: &Path) -> Rendered {
+    let mut options = resvg::usvg::Options::default();
+    let fonts = options.fontdb_mut();
+    fonts.load_system_fonts();
+    // `sans-serif` means Arial to fontdb; take any sans face the machine has.
+    let sans = fonts.faces().flat_map(|f| f.families.iter().map(|(name, _)| name.clone())).find(|n| n.contains("Sans"));
+    if let Some(name) = sans {
+        fonts.set_sans_serif_family(name);
+    }
+    let tree = resvg::usvg::Tree::from_str(svg, &options).expect("a valid SVG");
+    let size = tree.size().to_int_size();
+    let mut pixmap = resvg::tiny_skia::Pixmap::new(size.width(), size.height()).unwrap();
+    resvg::render(&tree, resvg::tiny_skia::Transform::default(), &mut pixmap.as_mut());
+    pixmap.save_png(png).unwrap();
+    let (mut inked, mut coloured) = (0, 0);
+    for p in pixmap.pixels() {
+        let (r, g, b, a) = (p.red() as i32, p.green() as i32, p.blue() as i32, p.alpha() as i32);
+        if a > 0 && r.min(g).min(b) < 230 {
+            inked += 1;
+        }
+        if a > 0 && r.max(g).max(b) - r.min(g).min(b) > 60 {
+            coloured += 1;
+        }
+    }
+    Rendered { width: size.width(), height: size.height(), inked, coloured }
+}
+
+fn assert_chart(svg: &str, name: &str) -> Rendered {
+    let r = render(svg, &png_dir().join(name.replace(".svg", ".png")));
+    assert!(r.width >= 600 && r.height >= 400, "{name}: {}×{}", r.width, r.height);
+    let area = (r.width * r.height) as usize;
+    assert!(r.inked > area / 200, "{name} is blank: {} inked pixels", r.inked);
+    assert!(r.coloured > area / 500, "{name} has no curve: {} coloured pixels", r.coloured);
+    assert!(r.inked < area / 2, "{name} is mostly ink: {} pixels", r.inked);
+    r
+}
+
+fn paper_run(case: &str) -> (Model, RunResult) {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("scenes/paper/{case}.toml"));
+    let model = Model::new(&Scene::load(&path).unwrap()).unwrap();
+    let result = simulate::run(&model, kernels::factory(KernelChoice::Generated)(&model));
+    (model, result)
+}
+
+#[test]
+fn every_chart_of_plot_and_run_plot_renders() {
+    let runs: Vec<(Model, RunResult)> = ["case01", "case15"].into_iter().map(paper_run).collect();
+    let refs: Vec<(&Model, &RunResult)> = runs.iter().map(|(m, r)| (m, r)).collect();
+    let dir = std::env::temp_dir().join(format!("kanestop-png-{}", std::process::id()));
+    // `plot` (two runs overlaid) and `run --plot` (one run).
+    for (tag, set) in [("plot", &refs[..]), ("run", &refs[..1])] {
+        let files = plot::write_plots(set, &dir.join(tag)).unwrap();
+        assert!(files.len() >= 4, "{files:?}");
+        for f in files {
+            let svg = std::fs::read_to_string(&f).unwrap();
+            let name = format!("{tag}-{}", f.file_name().unwrap().to_string_lossy());
+            assert_chart(&svg, &name);
+        }
+    }
+}
+
+#[test]
+fn the_accuracy_chart_renders() {
+    let mut rows = Vec::new();
+    for (i, (method, settings)) in [
+        (kanestop_runtime::scene::Method::Rk4, [0.004, 0.002, 0.001, 0.0005]),
+        (kanestop_runtime::scene::Method::Dp5, [1e-3, 1e-4, 1e-5, 1e-6]),
+        (kanestop_runtime::scene::Method::Sdirk4, [1e-3, 1e-4, 1e-5, 1e-6]),
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        for (j, s) in settings.into_iter().enumerate() {
+            let wall = 0.1 * (1.0 + i as f64) * 2f64.powi(j as i32);
+            let error = 10f64.powi(-2 - 2 * j as i32) * (1.0 + i as f64);
+            rows.push(kanestop_workflow::accuracy::AccuracyRow {
+                method,
+                setting: s,
+                status: "stopped".into(),
+                stopping_time_error: Some(error),
+                ship_displacement_error: Some(error),
+                anchor_displacement_error: Some(error),
+                peak_tension_error: Some(error),
+                trajectory_error: Some(error * 3.0),
+                wall_time: wall,
+                rhs_evaluations: 1000 * (j as u64 + 1),
+                best: j == 3,
+            });
+        }
+    }
+    let study = kanestop_workflow::accuracy::AccuracyStudy {
+        scene: "case01".into(),
+        reference_stopping_time: 19.81,
+        reference_error: 1e-9,
+        reference_trajectory_error: 1e-8,
+        atol_ratio: 1e-2,
+        rows,
+    };
+    let svg = kanestop_workflow::accuracy::work_precision(&study).unwrap();
+    assert_chart(&svg, "accuracy.svg");
+}
