@@ -207,7 +207,7 @@ def eval(
     ``"free"`` (default: the scene's initial state). Raises ``EvalError`` for a state of
     the wrong length or with a non-finite entry.
     """
-    return _eval(_scene(scene), q, u, anchor=anchor, kernel=kernel)  # type: ignore[no-any-return]
+    return _eval(_scene(scene), q, u, anchor=anchor, kernel=kernel)
 
 
 Rows = Iterable[Mapping[str, Any]]
