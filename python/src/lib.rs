@@ -239,9 +239,12 @@ fn _run(
         }
         _ => py.None(),
     };
-    Ok(PyTuple::new(py, [json.into_pyobject(py)?.into_any(), arrays.into_any(), events.into_any(), failure.into_bound(py)])?
-        .into_any()
-        .unbind())
+    Ok(PyTuple::new(
+        py,
+        [json.into_pyobject(py)?.into_any(), arrays.into_any(), events.into_any(), failure.into_bound(py)],
+    )?
+    .into_any()
+    .unbind())
 }
 
 fn anchor_name(a: AnchorDof) -> &'static str {
@@ -373,7 +376,9 @@ fn _sweep(
         let mut done = 0;
         let mut error: Option<PyErr> = None;
         loop {
-            let got = py.allow_threads(|| rx.lock().expect("only this thread locks it").recv_timeout(Duration::from_millis(50)));
+            let got = py.allow_threads(|| {
+                rx.lock().expect("only this thread locks it").recv_timeout(Duration::from_millis(50))
+            });
             match got {
                 Ok(()) => {
                     done += 1;
