@@ -64,18 +64,27 @@ def bench_sweep(cli: str, rows: int, repeats: int) -> None:
         for k, m in enumerate(masses(rows)):
             (folder / f"row{k:03}.toml").write_text(f'extends = "../base.toml"\n[meta]\nname = "row{k:03}"\n[ship]\nmass = {m!r}\n')
         py, cl = [], []
-        for _ in range(repeats):
+        def python_sweep() -> None:
             t0 = time.perf_counter()
             df = kanestop.sweep(scene, plan)
             py.append(time.perf_counter() - t0)
             assert len(df) == rows and set(df["status"]) == {"stopped"}, set(df["status"])
+
+        def cli_batch() -> None:
             t0 = time.perf_counter()
             subprocess.run([cli, "batch", str(folder), "--out", str(Path(tmp) / "out")], check=True, capture_output=True)
             cl.append(time.perf_counter() - t0)
+
+        # Alternate which goes first: the machine's load drifts.
+        for i in range(repeats):
+            for f in (python_sweep, cli_batch) if i % 2 == 0 else (cli_batch, python_sweep):
+                f()
         rows_json = json.loads((Path(tmp) / "out" / "batch.json").read_text())
         assert len(rows_json) == rows
     p, c = min(py), min(cl)
+    each = ", ".join(f"{a:.2f}/{b:.2f}" for a, b in zip(py, cl))
     print(f"sweep of {rows} rows (best of {repeats}): kanestop.sweep {p:.2f} s, CLI batch {c:.2f} s: Python/CLI = {p / c:.3f}")
+    print(f"  each repeat, Python/CLI s: {each}")
 
 
 def main() -> None:
