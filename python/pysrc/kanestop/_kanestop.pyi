@@ -1,0 +1,84 @@
+"""Type stubs of the Rust extension module (python/src/lib.rs)."""
+
+import os
+from typing import Any, Callable, Dict, Iterable, List, Mapping, Optional, Sequence, Tuple, Union
+
+import numpy as np
+import numpy.typing as npt
+
+__version__: str
+
+class SceneError(ValueError):
+    """A scene that could not be read or is not valid."""
+
+    problems: List[Tuple[str, str, str]]
+    """(field, value, expected) for every out-of-range value; empty for io/parse/override."""
+    file: str
+    kind: str
+    """``io``, ``parse``, ``invalid`` or ``override``."""
+
+class ModelError(ValueError):
+    """A valid scene whose model cannot be built."""
+
+class EvalError(ValueError):
+    """A state that ``eval`` cannot evaluate."""
+
+class Scene:
+    """A checked scene: every field present, finite and in range. Immutable."""
+
+    @staticmethod
+    def load(path: Union[str, "os.PathLike[str]"]) -> "Scene":
+        """Reads and checks a scene file (``extends`` resolved). Raises SceneError."""
+    @staticmethod
+    def from_dict(d: Mapping[str, Any], name: str = "<dict>") -> "Scene":
+        """A scene from a dict of its tables (as ``to_dict`` gives). Raises SceneError."""
+    @staticmethod
+    def from_toml(text: str, name: str = "<string>") -> "Scene":
+        """A scene from TOML text. Raises SceneError."""
+    def with_overrides(self, overrides: Mapping[str, Any]) -> "Scene":
+        """The same scene with each dotted path set (``{"ship.mass": 1e6}``), checked."""
+    def to_dict(self) -> Dict[str, Any]:
+        """The scene's tables as a dict, every field present."""
+    def to_toml(self) -> str:
+        """The scene as TOML text."""
+    @property
+    def name(self) -> str:
+        """``meta.name``."""
+    def __reduce__(self) -> Tuple[Callable[[str, str], "Scene"], Tuple[str, str]]: ...
+    def __eq__(self, other: object) -> bool: ...
+
+def _scene_from_toml(text: str, name: str) -> Scene: ...
+def _run(
+    scene: Scene,
+    *,
+    integrator: Optional[str] = None,
+    dt: Optional[float] = None,
+    rtol: Optional[float] = None,
+    atol: Optional[float] = None,
+    end_time: Optional[float] = None,
+    output_interval: Optional[float] = None,
+    kernel: str = "generated",
+) -> Tuple[str, Dict[str, npt.NDArray[np.float64]], List[Dict[str, Any]], Optional[Dict[str, Any]]]: ...
+def eval(
+    scene: Scene,
+    q: Optional[Sequence[float]] = None,
+    u: Optional[Sequence[float]] = None,
+    *,
+    anchor: Optional[str] = None,
+    kernel: str = "generated",
+) -> Dict[str, Any]:
+    """The equations of motion as a dict with NumPy ``M``, ``f``, ``qdd``, ``q``, ``u``."""
+def _sweep(
+    scene: Scene,
+    rows: Iterable[Mapping[str, Any]],
+    *,
+    jobs: Optional[int] = None,
+    progress: Optional[Callable[[int, int], Any]] = None,
+    integrator: Optional[str] = None,
+    dt: Optional[float] = None,
+    rtol: Optional[float] = None,
+    atol: Optional[float] = None,
+    end_time: Optional[float] = None,
+    output_interval: Optional[float] = None,
+    kernel: str = "generated",
+) -> List[Tuple[Optional[str], Optional[str]]]: ...

@@ -1,0 +1,432 @@
+//! The `kanestop._kanestop` extension module: the Rust core behind the `kanestop` Python
+//! package (python/kanestop/__init__.py wraps it; docs/python.md documents it).
+//!
+//! Runs release the GIL; sweeps run on a rayon thread pool while the calling thread waits
+//! with the GIL released, waking only to call the progress callback.
+
+use std::ffi::CString;
+use std::path::PathBuf;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::mpsc;
+use std::time::Duration;
+
+use kanestop_runtime::eval::{evaluate, StateFile};
+use kanestop_runtime::kernel::AnchorDof;
+use kanestop_runtime::model::Model;
+use kanestop_runtime::scene::{Scene, SceneError as RustSceneError};
+use kanestop_runtime::simulate::{self, Stop};
+use kanestop_workflow::kernels::KernelChoice;
+use kanestop_workflow::record::RunSummary;
+use numpy::{PyArray1, PyArrayMethods};
+use pyo3::exceptions::{PyTypeError, PyUserWarning, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList, PyTuple};
+use toml::Value;
+
+mod channels;
+mod convert;
+mod errors;
+
+use errors::{scene_error, EvalError, ModelError, SceneError};
+
+/// A checked scene: every field present, finite and in range. Immutable: `with_overrides`
+/// returns a new scene.
+#[pyclass(module = "kanestop._kanestop", name = "Scene", frozen)]
+#[derive(Clone)]
+pub struct PyScene {
+    inner: Scene,
+}
+
+#[pymethods]
+impl PyScene {
+    /// Reads and checks a scene file (with `extends` resolved). Raises SceneError.
+    #[staticmethod]
+    fn load(py: Python<'_>, path: PathBuf) -> PyResult<Self> {
+        let inner = py.allow_threads(|| Scene::load(&path)).map_err(|e| scene_error(py, e))?;
+        Ok(PyScene { inner })
+    }
+
+    /// A scene from a dict of its tables (as `to_dict` gives). Raises SceneError.
+    #[staticmethod]
+    #[pyo3(signature = (d, name = "<dict>"))]
+    fn from_dict(py: Python<'_>, d: &Bound<'_, PyAny>, name: &str) -> PyResult<Self> {
+        if !d.is_instance_of::<PyDict>() {
+            return Err(PyTypeError::new_err(format!(
+                "Scene.from_dict takes a dict of the scene's tables, not a {}",
+                convert::type_name(d)
+            )));
+        }
+        let value = convert::to_toml(d, "")?;
+        let inner = Scene::from_value(value, name).map_err(|e| scene_error(py, e))?;
+        Ok(PyScene { inner })
+    }
+
+    /// A scene from TOML text. Raises SceneError.
+    #[staticmethod]
+    #[pyo3(signature = (text, name = "<string>"))]
+    fn from_toml(py: Python<'_>, text: &str, name: &str) -> PyResult<Self> {
+        let inner = Scene::from_toml(text, name).map_err(|e| scene_error(py, e))?;
+        Ok(PyScene { inner })
+    }
+
+    /// The same scene with each dotted path set (`{"ship.mass": 1e6,
+    /// "cable.stages[1].elements": 20}`), checked as a whole file would be.
+    fn with_overrides(&self, py: Python<'_>, overrides: &Bound<'_, PyAny>) -> PyResult<Self> {
+        let values = override_list(overrides)?;
+        let refs: Vec<(&str, Value)> = values.iter().map(|(k, v)| (k.as_str(), v.clone())).collect();
+        let inner = self.inner.with_overrides(&refs).map_err(|e| scene_error(py, e))?;
+        Ok(PyScene { inner })
+    }
+
+    /// The scene's tables as a dict (every field present); `Scene.from_dict` reads it back.
+    fn to_dict(&self, py: Python<'_>) -> PyResult<PyObject> {
+        convert::to_py(py, &self.inner.to_value())
+    }
+
+    /// The scene as TOML text; `Scene.from_toml` reads it back.
+    fn to_toml(&self) -> String {
+        self.inner.to_toml()
+    }
+
+    /// `meta.name`.
+    #[getter]
+    fn name(&self) -> String {
+        self.inner.meta.name.clone()
+    }
+
+    fn __reduce__(&self, py: Python<'_>) -> PyResult<(PyObject, (String, String))> {
+        let f = py.import("kanestop._kanestop")?.getattr("_scene_from_toml")?.unbind();
+        Ok((f, (self.inner.to_toml(), self.inner.meta.name.clone())))
+    }
+
+    fn __eq__(&self, other: &Bound<'_, PyAny>) -> bool {
+        other.downcast::<PyScene>().is_ok_and(|o| o.get().inner == self.inner)
+    }
+
+    fn __repr__(&self) -> String {
+        format!("Scene({:?})", self.inner.meta.name)
+    }
+}
+
+/// Unpickles a scene (`Scene.__reduce__`).
+#[pyfunction]
+fn _scene_from_toml(py: Python<'_>, text: &str, name: &str) -> PyResult<PyScene> {
+    PyScene::from_toml(py, text, name)
+}
+
+/// (dotted path, value) pairs of a dict of overrides.
+fn override_list(overrides: &Bound<'_, PyAny>) -> PyResult<Vec<(String, Value)>> {
+    let d = overrides.downcast::<PyDict>().map_err(|_| {
+        PyTypeError::new_err(format!(
+            "overrides must be a dict of dotted paths to values ({{\"ship.mass\": 1e6}}), not a {}",
+            convert::type_name(overrides)
+        ))
+    })?;
+    let mut out = Vec::with_capacity(d.len());
+    for (k, v) in d.iter() {
+        let path: String = k.extract().map_err(|_| {
+            PyTypeError::new_err(format!("override keys must be dotted paths (str), not {}", convert::type_name(&k)))
+        })?;
+        let value = convert::to_toml(&v, &path)?;
+        out.push((path, value));
+    }
+    Ok(out)
+}
+
+/// The `[solver]` keywords of `run` and `sweep`.
+#[derive(Clone, Default)]
+struct SolverArgs {
+    integrator: Option<String>,
+    dt: Option<f64>,
+    rtol: Option<f64>,
+    atol: Option<f64>,
+    end_time: Option<f64>,
+    output_interval: Option<f64>,
+}
+
+impl SolverArgs {
+    fn overrides(&self) -> Vec<(String, Value)> {
+        let mut out = Vec::new();
+        if let Some(m) = &self.integrator {
+            out.push(("solver.integrator".to_string(), Value::String(m.clone())));
+        }
+        let floats = [
+            ("solver.dt", self.dt),
+            ("solver.rtol", self.rtol),
+            ("solver.atol", self.atol),
+            ("solver.end_time", self.end_time),
+            ("solver.output_interval", self.output_interval),
+        ];
+        out.extend(floats.into_iter().filter_map(|(k, v)| v.map(|v| (k.to_string(), Value::Float(v)))));
+        out
+    }
+}
+
+/// `scene` with `values` set (the same scene when there are none).
+fn apply(scene: &Scene, values: &[(String, Value)]) -> Result<Scene, RustSceneError> {
+    if values.is_empty() {
+        return Ok(scene.clone());
+    }
+    let refs: Vec<(&str, Value)> = values.iter().map(|(k, v)| (k.as_str(), v.clone())).collect();
+    scene.with_overrides(&refs)
+}
+
+fn kernel_choice(name: &str) -> PyResult<KernelChoice> {
+    match name {
+        "generated" => Ok(KernelChoice::Generated),
+        "reference" => Ok(KernelChoice::Reference),
+        other => Err(PyValueError::new_err(format!("kernel = {other:?}: must be \"generated\" or \"reference\""))),
+    }
+}
+
+fn model_error(e: impl std::fmt::Display) -> PyErr {
+    ModelError::new_err(e.to_string())
+}
+
+fn warn(py: Python<'_>, note: &str) -> PyResult<()> {
+    let message = CString::new(note.replace('\0', " ")).expect("no NUL left");
+    PyErr::warn(py, &py.get_type::<PyUserWarning>(), &message, 2)
+}
+
+/// Runs a scene: (summary JSON, channels, events, failure). The Python `kanestop.run`
+/// wraps it into a `Result`.
+#[pyfunction]
+#[pyo3(signature = (scene, *, integrator=None, dt=None, rtol=None, atol=None, end_time=None, output_interval=None, kernel="generated"))]
+#[allow(clippy::too_many_arguments)]
+fn _run(
+    py: Python<'_>,
+    scene: &PyScene,
+    integrator: Option<String>,
+    dt: Option<f64>,
+    rtol: Option<f64>,
+    atol: Option<f64>,
+    end_time: Option<f64>,
+    output_interval: Option<f64>,
+    kernel: &str,
+) -> PyResult<PyObject> {
+    let choice = kernel_choice(kernel)?;
+    let solver = SolverArgs { integrator, dt, rtol, atol, end_time, output_interval };
+    let scene = apply(&scene.inner, &solver.overrides()).map_err(|e| scene_error(py, e))?;
+    let model = Model::new(&scene).map_err(model_error)?;
+    let (result, summary, note) = py.allow_threads(|| {
+        let (k, note) = choice.build(&model);
+        let result = simulate::run(&model, k);
+        let summary = RunSummary::of(&model, &result);
+        (result, summary, note)
+    });
+    if let Some(note) = note {
+        warn(py, &note)?;
+    }
+    let json = serde_json::to_string(&summary).map_err(|e| PyValueError::new_err(e.to_string()))?;
+    let arrays = PyDict::new(py);
+    for (name, values) in channels::channels(&result) {
+        arrays.set_item(name, PyArray1::from_vec(py, values))?;
+    }
+    let events = PyList::empty(py);
+    for e in &result.anchor_events {
+        let d = PyDict::new(py);
+        d.set_item("t", e.t)?;
+        d.set_item("anchor", anchor_name(e.now))?;
+        events.append(d)?;
+    }
+    let failure: PyObject = match &result.stop {
+        Stop::Failed(f) => {
+            let d = PyDict::new(py);
+            d.set_item("t", f.t)?;
+            d.set_item("body", f.body)?;
+            d.set_item("kind", f.kind.to_string())?;
+            d.into_any().unbind()
+        }
+        _ => py.None(),
+    };
+    Ok(PyTuple::new(
+        py,
+        [json.into_pyobject(py)?.into_any(), arrays.into_any(), events.into_any(), failure.into_bound(py)],
+    )?
+    .into_any()
+    .unbind())
+}
+
+fn anchor_name(a: AnchorDof) -> &'static str {
+    match a {
+        AnchorDof::Free => "free",
+        AnchorDof::Stuck => "stuck",
+    }
+}
+
+/// The equations of motion at the scene's initial state or at (q, u): the `eval` JSON as a
+/// dict, with `M`, `f`, `qdd`, `q` and `u` as NumPy arrays.
+#[pyfunction]
+#[pyo3(signature = (scene, q=None, u=None, *, anchor=None, kernel="generated"))]
+fn eval(
+    py: Python<'_>,
+    scene: &PyScene,
+    q: Option<Vec<f64>>,
+    u: Option<Vec<f64>>,
+    anchor: Option<&str>,
+    kernel: &str,
+) -> PyResult<PyObject> {
+    let choice = kernel_choice(kernel)?;
+    let anchor = match anchor {
+        None => None,
+        Some("stuck") => Some(AnchorDof::Stuck),
+        Some("free") => Some(AnchorDof::Free),
+        Some(other) => return Err(PyValueError::new_err(format!("anchor = {other:?}: must be \"stuck\" or \"free\""))),
+    };
+    let state = match (q, u) {
+        (Some(q), Some(u)) => Some(StateFile { q, u, anchor }),
+        (None, None) if anchor.is_none() => None,
+        (None, None) => return Err(PyValueError::new_err("anchor is given without a state: pass q and u too")),
+        _ => return Err(PyValueError::new_err("give both q and u (N entries each), or neither")),
+    };
+    let model = Model::new(&scene.inner).map_err(model_error)?;
+    let out = py
+        .allow_threads(|| {
+            let (k, _) = choice.build(&model);
+            evaluate(&model, k, state.as_ref())
+        })
+        .map_err(|e| EvalError::new_err(e.to_string()))?;
+    let json = serde_json::to_string(&out).map_err(|e| PyValueError::new_err(e.to_string()))?;
+    let d = py.import("json")?.call_method1("loads", (json,))?;
+    let n = out.active;
+    let flat: Vec<f64> = out.mass_matrix.iter().flatten().copied().collect();
+    d.set_item("M", PyArray1::from_vec(py, flat).reshape([n, n])?)?;
+    d.set_item("f", PyArray1::from_vec(py, out.f))?;
+    d.set_item("qdd", PyArray1::from_vec(py, out.qdd))?;
+    d.set_item("q", PyArray1::from_vec(py, out.q))?;
+    d.set_item("u", PyArray1::from_vec(py, out.u))?;
+    Ok(d.unbind())
+}
+
+/// One row of a sweep: its summary JSON, or why it could not run.
+type RowOutcome = Result<String, String>;
+
+/// Runs `scene` once per dict of overrides in `rows`, on `jobs` threads (all cores when
+/// None), calling `progress(done, total)` as rows finish. Returns, per row in order, the
+/// summary JSON or None, and the error message or None.
+#[pyfunction]
+#[pyo3(signature = (scene, rows, *, jobs=None, progress=None, integrator=None, dt=None, rtol=None, atol=None, end_time=None, output_interval=None, kernel="generated"))]
+#[allow(clippy::too_many_arguments)]
+fn _sweep(
+    py: Python<'_>,
+    scene: &PyScene,
+    rows: &Bound<'_, PyAny>,
+    jobs: Option<usize>,
+    progress: Option<PyObject>,
+    integrator: Option<String>,
+    dt: Option<f64>,
+    rtol: Option<f64>,
+    atol: Option<f64>,
+    end_time: Option<f64>,
+    output_interval: Option<f64>,
+    kernel: &str,
+) -> PyResult<Vec<(Option<String>, Option<String>)>> {
+    let choice = kernel_choice(kernel)?;
+    if jobs == Some(0) {
+        return Err(PyValueError::new_err("jobs = 0: must be at least 1 (or None for every core)"));
+    }
+    if let Some(p) = &progress {
+        if !p.bind(py).is_callable() {
+            return Err(PyTypeError::new_err("progress must be callable as progress(done, total)"));
+        }
+    }
+    let solver = SolverArgs { integrator, dt, rtol, atol, end_time, output_interval }.overrides();
+    let mut plans: Vec<Vec<(String, Value)>> = Vec::new();
+    for (i, row) in rows.try_iter()?.enumerate() {
+        let row = row?;
+        let mut values = override_list(&row).map_err(|e| {
+            let msg = format!("row {i}: {}", e.value(py));
+            if e.is_instance_of::<PyTypeError>(py) {
+                PyTypeError::new_err(msg)
+            } else {
+                PyValueError::new_err(msg)
+            }
+        })?;
+        values.extend(solver.iter().cloned());
+        plans.push(values);
+    }
+    let total = plans.len();
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(jobs.unwrap_or(0))
+        .build()
+        .map_err(|e| PyValueError::new_err(e.to_string()))?;
+    let base = &scene.inner;
+    let cancel = AtomicBool::new(false);
+    let (tx, rx) = mpsc::channel::<()>();
+    // Receiver is Send but not Sync: the waiting closure borrows it through a mutex.
+    let rx = std::sync::Mutex::new(rx);
+    let run_row = |values: &Vec<(String, Value)>, tx: &mpsc::Sender<()>| -> RowOutcome {
+        if cancel.load(Ordering::Relaxed) {
+            return Err("cancelled".to_string());
+        }
+        let outcome = (|| {
+            let scene = apply(base, values).map_err(|e| e.to_string())?;
+            let model = Model::new(&scene).map_err(|e| e.to_string())?;
+            let (k, _) = choice.build(&model);
+            let result = simulate::run(&model, k);
+            serde_json::to_string(&RunSummary::of(&model, &result)).map_err(|e| e.to_string())
+        })();
+        let _ = tx.send(());
+        outcome
+    };
+    let (outcomes, error) = std::thread::scope(|s| {
+        // The worker owns the sender: the channel disconnects when every row is done (or a
+        // row panicked), which ends the loop below.
+        let worker = s.spawn(move || pool.install(|| kanestop_workflow::parallel::map(&plans, |v| run_row(v, &tx))));
+        let mut done = 0;
+        let mut error: Option<PyErr> = None;
+        loop {
+            let got = py.allow_threads(|| {
+                rx.lock().expect("only this thread locks it").recv_timeout(Duration::from_millis(50))
+            });
+            match got {
+                Ok(()) => {
+                    done += 1;
+                    if let (Some(p), None) = (&progress, &error) {
+                        if let Err(e) = p.call1(py, (done, total)) {
+                            cancel.store(true, Ordering::Relaxed);
+                            error = Some(e);
+                        }
+                    }
+                }
+                Err(mpsc::RecvTimeoutError::Timeout) => {}
+                Err(mpsc::RecvTimeoutError::Disconnected) => break,
+            }
+            if error.is_none() {
+                if let Err(e) = py.check_signals() {
+                    cancel.store(true, Ordering::Relaxed);
+                    error = Some(e);
+                }
+            }
+        }
+        let outcomes = py.allow_threads(|| worker.join());
+        (outcomes, error)
+    });
+    if let Some(e) = error {
+        return Err(e);
+    }
+    let outcomes = outcomes.map_err(|_| PyValueError::new_err("a sweep worker panicked"))?;
+    Ok(outcomes
+        .into_iter()
+        .map(|o| match o {
+            Ok(json) => (Some(json), None),
+            Err(msg) => (None, Some(msg)),
+        })
+        .collect())
+}
+
+/// The extension module.
+#[pymodule]
+fn _kanestop(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    let py = m.py();
+    m.add_class::<PyScene>()?;
+    m.add_function(wrap_pyfunction!(_scene_from_toml, m)?)?;
+    m.add_function(wrap_pyfunction!(_run, m)?)?;
+    m.add_function(wrap_pyfunction!(eval, m)?)?;
+    m.add_function(wrap_pyfunction!(_sweep, m)?)?;
+    m.add("SceneError", py.get_type::<SceneError>())?;
+    m.add("ModelError", py.get_type::<ModelError>())?;
+    m.add("EvalError", py.get_type::<EvalError>())?;
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    Ok(())
+}

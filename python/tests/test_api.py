@@ -1,0 +1,135 @@
+"""Scenes, overrides, results, channels, sweeps and pickling."""
+
+from __future__ import annotations
+
+import math
+import pickle
+
+import numpy as np
+import pandas as pd
+import pytest
+
+import kanestop
+from conftest import CASE01, ROOT, without_wall_time
+
+
+def test_scene_round_trips(case01: kanestop.Scene) -> None:
+    d = case01.to_dict()
+    assert d["ship"]["mass"] == 500000.0 and d["meta"]["name"] == "case01"
+    assert kanestop.Scene.from_dict(d) == case01
+    assert kanestop.Scene.from_toml(case01.to_toml()) == case01
+    assert pickle.loads(pickle.dumps(case01)) == case01
+    assert case01.name == "case01"
+
+
+def test_overrides_set_fields_and_are_checked(case01: kanestop.Scene) -> None:
+    s = case01.with_overrides({"ship.mass": 1e6, "cable.stages[2].elements": 12})
+    d = s.to_dict()
+    assert d["ship"]["mass"] == 1e6 and d["cable"]["stages"][2]["elements"] == 12
+    assert case01.to_dict()["ship"]["mass"] == 500000.0  # the original is unchanged
+    d2 = case01.to_dict()
+    d2["ship"]["mass"] = 1e6
+    d2["cable"]["stages"][2]["elements"] = 12
+    assert kanestop.Scene.from_dict(d2) == s
+    # NumPy scalars are numbers.
+    assert case01.with_overrides({"ship.mass": np.float64(1e6), "chain.elements": np.int64(15)}).to_dict()["ship"]["mass"] == 1e6
+
+
+def test_overridden_runs_change_the_result(case01: kanestop.Scene) -> None:
+    light = kanestop.run(case01.with_overrides({"ship.mass": 4e5}))
+    heavy = kanestop.run(case01.with_overrides({"ship.mass": 6e5}))
+    assert light.stopping_time is not None and heavy.stopping_time is not None
+    assert light.stopping_time < heavy.stopping_time
+
+
+def test_scene_error_has_field_value_and_range(case01: kanestop.Scene) -> None:
+    with pytest.raises(kanestop.SceneError) as info:
+        case01.with_overrides({"ship.mass": -1.0, "anchor.mass": float("nan")})
+    e = info.value
+    assert e.kind == "invalid"
+    assert e.problems == [("anchor.mass", "nan", "finite and > 0 kg"), ("ship.mass", "-1", "finite and > 0 kg")]
+    assert "ship.mass = -1: must be finite and > 0 kg" in str(e)
+    assert isinstance(e, ValueError)
+    with pytest.raises(kanestop.SceneError) as info:
+        case01.with_overrides({"ship.nope": 1.0})
+    assert info.value.kind == "override" and "no field `nope`" in str(info.value)
+    with pytest.raises(kanestop.SceneError) as info:
+        kanestop.Scene.load(ROOT / "no-such-scene.toml")
+    assert info.value.kind == "io"
+
+
+def test_channels(case01_result: kanestop.Result) -> None:
+    a = case01_result.arrays
+    n = case01_result.summary["bodies"]
+    for name in ("t", "ship_x", "ship_vx", "anchor_x", "anchor_sliding", "tension_fairlead", "tension_anchor", "E_balance"):
+        assert name in a, name
+    assert f"x_{n}" in a and f"T_{n}" in a and "T_1" not in a
+    assert np.array_equal(a["ship_x"], a[f"x_{n}"]) and np.array_equal(a["tension_fairlead"], a[f"T_{n}"])
+    assert np.array_equal(a["anchor_x"], a["x_1"]) and np.array_equal(a["tension_anchor"], a["T_2"])
+    lengths = {len(v) for v in a.values()}
+    assert len(lengths) == 1 and a["t"][0] == 0.0
+    assert all(v.dtype == np.float64 for v in a.values())
+    assert not a["t"].flags.owndata  # the Rust vector, handed to NumPy without a copy
+    assert math.isclose(a["t"][-1], case01_result.summary["t_end"])
+    df = case01_result.channels
+    assert isinstance(df, pd.DataFrame) and list(df.columns) == list(a)
+    assert case01_result.events and case01_result.events[0]["anchor"] == "free"
+    assert case01_result.events[0]["t"] == case01_result.summary["anchor_start"]
+    assert case01_result.diagnostic is None and not case01_result.failed
+
+
+def test_results_pickle(case01_result: kanestop.Result) -> None:
+    r = pickle.loads(pickle.dumps(case01_result))
+    assert r.summary == case01_result.summary and r.events == case01_result.events
+    assert all(np.array_equal(r.arrays[k], v) for k, v in case01_result.arrays.items())
+    assert r.channels.shape == case01_result.channels.shape
+
+
+def test_sweep_equals_single_runs_in_order(case01: kanestop.Scene) -> None:
+    rows = [{"ship.mass": m} for m in (6e5, 4e5, 5e5)] + [{"ship.mass": -1.0}]
+    seen = []
+    df = kanestop.sweep(case01, rows, jobs=2, end_time=3.0, progress=lambda done, total: seen.append((done, total)))
+    assert seen == [(i, 4) for i in range(1, 5)]
+    assert list(df["ship.mass"]) == [6e5, 4e5, 5e5, -1.0]
+    for i, row in enumerate(rows[:3]):
+        one = kanestop.flatten(kanestop.run(case01.with_overrides(row), end_time=3.0).summary)
+        got = df.iloc[i].to_dict()
+        for k, v in one.items():
+            if k != "wall_time":
+                assert got[k] == v or (v is None and (got[k] is None or got[k] != got[k])), k
+    assert df.iloc[3]["status"] == "invalid" and "ship.mass = -1" in df.iloc[3]["error"]
+
+
+def test_sweep_grid_spec(case01: kanestop.Scene) -> None:
+    spec = {"scene": str(CASE01), "grid": {"ship.mass": [4e5, 5e5], "initial.ship_speed": [2.5, 3.0]}, "solver": {"end_time": 0.5}}
+    df = kanestop.sweep(spec)
+    assert len(df) == 4 and set(df["status"]) == {"end time"}
+    assert list(zip(df["ship.mass"], df["initial.ship_speed"])) == [(4e5, 2.5), (4e5, 3.0), (5e5, 2.5), (5e5, 3.0)]
+
+
+def test_a_progress_callback_that_raises_cancels(case01: kanestop.Scene) -> None:
+    def stop(done: int, total: int) -> None:
+        raise KeyboardInterrupt
+
+    with pytest.raises(KeyboardInterrupt):
+        kanestop.sweep(case01, [{"ship.mass": 5e5}] * 8, jobs=1, end_time=0.2, progress=stop)
+
+
+def test_runs_release_the_gil(case01: kanestop.Scene) -> None:
+    import threading
+    import time
+
+    ticks = []
+    done = threading.Event()
+
+    def tick() -> None:
+        while not done.is_set():
+            ticks.append(time.perf_counter())
+            time.sleep(0.005)
+
+    t = threading.Thread(target=tick)
+    t.start()
+    kanestop.run(case01, end_time=2.0)
+    done.set()
+    t.join()
+    assert len(ticks) > 5

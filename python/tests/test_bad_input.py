@@ -1,0 +1,82 @@
+"""Bad types and values raise TypeError, ValueError or SceneError; nothing crashes."""
+
+from __future__ import annotations
+
+import math
+from typing import Any, Callable
+
+import pytest
+
+import kanestop
+from conftest import CASE01
+
+NAN = float("nan")
+
+
+@pytest.mark.parametrize(
+    "call, error",
+    [
+        (lambda s: kanestop.Scene.load(None), TypeError),
+        (lambda s: kanestop.Scene.load(3.5), TypeError),
+        (lambda s: kanestop.Scene.from_dict(None), TypeError),
+        (lambda s: kanestop.Scene.from_dict("ship"), TypeError),
+        (lambda s: kanestop.Scene.from_dict({}), kanestop.SceneError),
+        (lambda s: kanestop.Scene.from_toml(None), TypeError),
+        (lambda s: kanestop.Scene.from_toml("not [toml"), kanestop.SceneError),
+        (lambda s: s.with_overrides(None), TypeError),
+        (lambda s: s.with_overrides("ship.mass=1"), TypeError),
+        (lambda s: s.with_overrides({"ship.mass": None}), TypeError),
+        (lambda s: s.with_overrides({"ship.mass": "heavy"}), kanestop.SceneError),
+        (lambda s: s.with_overrides({"ship.mass": NAN}), kanestop.SceneError),
+        (lambda s: s.with_overrides({"ship.mass": math.inf}), kanestop.SceneError),
+        (lambda s: s.with_overrides({"ship.mass": object()}), TypeError),
+        (lambda s: s.with_overrides({"ship.mass": 10**30}), ValueError),
+        (lambda s: s.with_overrides({"chain.elements": 2.5}), kanestop.SceneError),
+        (lambda s: s.with_overrides({"cable.stages[9].elements": 2}), kanestop.SceneError),
+        (lambda s: s.with_overrides({"ship": None}), TypeError),
+        (lambda s: s.with_overrides({None: 1.0}), TypeError),
+        (lambda s: kanestop.run(None), TypeError),
+        (lambda s: kanestop.run(42), TypeError),
+        (lambda s: kanestop.run(s, dt="0.002"), TypeError),
+        (lambda s: kanestop.run(s, dt=NAN), kanestop.SceneError),
+        (lambda s: kanestop.run(s, dt=-1.0), kanestop.SceneError),
+        (lambda s: kanestop.run(s, integrator="rk5"), kanestop.SceneError),
+        (lambda s: kanestop.run(s, integrator=4), TypeError),
+        (lambda s: kanestop.run(s, kernel="fast"), ValueError),
+        (lambda s: kanestop.run(s, kernel=None), TypeError),
+        (lambda s: kanestop.eval(s, None, [0.0] * 46), ValueError),
+        (lambda s: kanestop.eval(s, "abc", "def"), TypeError),
+        (lambda s: kanestop.eval(s, [0.0] * 3, [0.0] * 3), kanestop.EvalError),
+        (lambda s: kanestop.eval(s, [NAN] * 46, [0.0] * 46), kanestop.EvalError),
+        (lambda s: kanestop.eval(s, [None] * 46, [0.0] * 46), TypeError),
+        (lambda s: kanestop.eval(s, anchor="loose"), ValueError),
+        (lambda s: kanestop.sweep(s, None), ValueError),
+        (lambda s: kanestop.sweep(s, [None]), TypeError),
+        (lambda s: kanestop.sweep(s, [{"ship.mass": None}]), TypeError),
+        (lambda s: kanestop.sweep(s, [{}], jobs=0), ValueError),
+        (lambda s: kanestop.sweep(s, [{}], jobs="2"), TypeError),
+        (lambda s: kanestop.sweep(s, [{}], jobs=-1), (OverflowError, ValueError)),
+        (lambda s: kanestop.sweep(s, [{}], progress="yes"), TypeError),
+        (lambda s: kanestop.sweep({"scene": s, "grid": 3}), TypeError),
+        (lambda s: kanestop.sweep({"scene": s, "rows": [], "bogus": 1}), ValueError),
+    ],
+)
+def test_bad_input_raises(case01: kanestop.Scene, call: Callable[[kanestop.Scene], Any], error: Any) -> None:
+    with pytest.raises(error):
+        call(case01)
+
+
+def test_a_bad_sweep_row_is_a_row_not_an_exception(case01: kanestop.Scene) -> None:
+    df = kanestop.sweep(case01, [{"ship.mass": NAN}, {"ship.mass": "x"}, {"ship.nope": 1}], end_time=0.1)
+    assert list(df["status"]) == ["invalid"] * 3
+    assert all(isinstance(e, str) and e for e in df["error"])
+
+
+def test_the_state_of_eval_takes_numpy(case01: kanestop.Scene) -> None:
+    e0 = kanestop.eval(case01)
+    e1 = kanestop.eval(case01, e0["q"], e0["u"], anchor=e0["anchor"])
+    assert (e1["qdd"] == e0["qdd"]).all()
+
+
+def test_path_objects_and_strings_load(case01: kanestop.Scene) -> None:
+    assert kanestop.Scene.load(str(CASE01)) == case01

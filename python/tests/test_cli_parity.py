@@ -1,0 +1,72 @@
+"""Python results equal the command line's, to the last digit of the JSON."""
+
+from __future__ import annotations
+
+import json
+import math
+
+import numpy as np
+
+import kanestop
+from conftest import CASE01, ROOT, cli_json, run_cli, without_wall_time
+
+
+def test_case01_summary_equals_run_json(case01_result: kanestop.Result) -> None:
+    cli = cli_json("run", str(CASE01), "--json")
+    assert without_wall_time(case01_result.summary) == without_wall_time(cli)
+    # Same keys in the same order, and every number prints the same digits.
+    assert list(case01_result.summary) == list(cli)
+    assert json.dumps(without_wall_time(case01_result.summary)) == json.dumps(without_wall_time(cli))
+    assert case01_result.summary["status"] == "stopped"
+    assert round(case01_result.summary["stopping_time"], 3) == 19.808
+
+
+def test_solver_keywords_equal_the_cli_flags(case01: kanestop.Scene) -> None:
+    args = ("run", str(CASE01), "--json", "--integrator", "dp5", "--dt", "0.02", "--rtol", "1e-4", "--atol", "1e-6")
+    cli = cli_json(*args)
+    py = kanestop.run(case01, integrator="dp5", dt=0.02, rtol=1e-4, atol=1e-6).summary
+    assert without_wall_time(py) == without_wall_time(cli)
+
+
+def test_a_failure_is_a_result_with_the_cli_diagnostic() -> None:
+    path = ROOT / "scenes" / "stress" / "dt_too_large.toml"
+    p = run_cli("run", str(path), "--json")
+    assert p.returncode == 3
+    r = kanestop.run(path)
+    assert r.failed and r.status == "failed"
+    assert r.diagnostic == json.loads(p.stdout)["failure"]["message"]
+    assert r.diagnostic is not None and "stability limit" in r.diagnostic
+    assert r.failure is not None and r.failure["kind"] == "RK4 step above the stability limit"
+    assert without_wall_time(r.summary) == without_wall_time(json.loads(p.stdout))
+
+
+def test_eval_equals_the_cli_eval(case01: kanestop.Scene) -> None:
+    cli = cli_json("eval", "--scene", str(CASE01))
+    py = kanestop.eval(case01)
+    assert np.array_equal(py["M"], np.array(cli["M"]))
+    for key in ("f", "qdd", "q", "u"):
+        assert np.array_equal(py[key], np.array(cli[key])), key
+    for key in ("scene", "kernel", "physics", "bodies_count", "anchor", "coordinates", "active", "residual", "cond", "bodies"):
+        assert py[key] == cli[key], key
+    n = py["active"]
+    assert py["M"].shape == (n, n) and py["f"].shape == (n,)
+    assert np.allclose(py["M"] @ py["qdd"], py["f"], rtol=1e-9, atol=1e-9 * np.abs(py["f"]).max())
+    assert math.isfinite(py["cond"])
+
+
+def test_scene_error_names_what_the_cli_names(tmp_path: object) -> None:
+    from pathlib import Path
+
+    bad = Path(str(tmp_path)) / "bad.toml"
+    bad.write_text(CASE01.read_text().replace("[anchor]\nmass =", "[anchor]\nmass = -1.0 #"))
+    p = run_cli("run", str(bad), "--json")
+    assert p.returncode == 2
+    try:
+        kanestop.Scene.load(bad)
+    except kanestop.SceneError as e:
+        assert e.kind == "invalid"
+        assert e.problems == [("anchor.mass", "-1", "finite and > 0 kg")]
+        for line in str(e).splitlines():
+            assert line.strip() in p.stderr, (line, p.stderr)
+    else:
+        raise AssertionError("no SceneError")
