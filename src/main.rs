@@ -44,7 +44,7 @@ enum Command {
         plot: Option<PathBuf>,
         /// Channels of the CSV history, by name or group, e.g. `ship_x,tension_fairlead` or
         /// `ship,anchor,tension` (groups: ship, anchor, tension, energy, bodies, joints);
-        /// default: all. The units go beside it in <name>.units.csv (docs/conventions.md).
+        /// default: all. The units go beside it in `<name>.units.csv` (docs/conventions.md).
         #[arg(long, value_delimiter = ',', requires = "out")]
         channels: Vec<String>,
         /// Print the summary as one JSON object (docs/conventions.md) instead of text; notes

@@ -36,7 +36,7 @@ pub struct SensitivityArgs {
     /// Relative step h of the central differences, p·(1 ± h).
     #[arg(long, default_value_t = sensitivity::DEFAULT_STEP)]
     step: f64,
-    /// A sweep spec whose [[uncertain]] inputs give the parameter uncertainties: prints the
+    /// A sweep spec whose `[[uncertain]]` inputs give the parameter uncertainties: prints the
     /// first-order output band (sample it with `kanestop sweep SPEC`).
     #[arg(long)]
     uncertain: Option<PathBuf>,
