@@ -16,6 +16,14 @@ fn case1() -> Scene {
     Scene::from_toml(DEFAULT_SCENE, "case01.toml").unwrap()
 }
 
+/// Case 1 with a 1 m high anchor, so that h_L down to 2 m leaves it under water (the
+/// cross-field rule of `anchor.height`), and only the geometry decides.
+fn low_anchor() -> Scene {
+    let mut s = case1();
+    s.anchor.height = 1.0;
+    s
+}
+
 /// The problems of a scene built in code (as `Scene::from_toml` would report them).
 fn problems(scene: &Scene) -> Vec<Problem> {
     let text = scene.to_toml();
@@ -82,7 +90,7 @@ fn the_old_taut_cable_is_refused_and_the_new_one_lays() {
 
 /// Case 1 with a single-stage cable of `elements` × `length` m and no chain.
 fn short_line(elements: usize, length: f64, x: f64, h: f64) -> Scene {
-    let mut s = case1();
+    let mut s = low_anchor();
     s.chain.elements = 0;
     s.cable.stages.truncate(1);
     s.cable.stages[0].elements = elements;
@@ -165,7 +173,7 @@ fn sweep_of_x_l_for_case_1() {
 
 #[test]
 fn sweep_of_h_l_from_2_to_30_m() {
-    let base = case1();
+    let base = low_anchor();
     for h in [2.0, 4.0, 8.0, 12.0, 20.0, 30.0] {
         sweep(&base, &x_points(&base, h, 6));
     }
