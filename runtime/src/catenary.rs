@@ -46,6 +46,14 @@ pub enum CatenaryError {
         /// The element's length, m.
         length: f64,
     },
+    /// The first element is shorter than the rise from the chain's height to its upper joint.
+    #[error("the first cable element ({length} m) cannot span the {rise} m rise from the chain to its upper joint")]
+    FirstElementTooShort {
+        /// Its length, m.
+        length: f64,
+        /// The rise it must span, m.
+        rise: f64,
+    },
     /// No curve length makes the chord polygon end at (x_L, h_L).
     #[error("elements cannot be laid to end at (x_L, h_L)")]
     CannotEnd,

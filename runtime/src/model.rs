@@ -197,6 +197,10 @@ impl LaidLine {
         // chain's height.
         let first_len = cable_lengths[0];
         let rise = points[1][1] - step;
+        if first_len <= rise.abs() {
+            // The scene check refuses this first (cable.stages[0].element_length).
+            return Err(CatenaryError::FirstElementTooShort { length: first_len, rise: rise.abs() });
+        }
         points[0] = [points[1][0] - (first_len * first_len - rise * rise).sqrt(), step];
         let chain_length = scene.chain.elements as f64 * scene.chain.element_length;
         let anchor_origin = [points[0][0] - chain_length - scene.anchor.length, 0.0];

@@ -531,6 +531,29 @@ impl Scene {
         if self.environment.water {
             self.check_sinking(c);
         }
+        self.check_first_element(c);
+    }
+
+    /// The first cable element bridges the chain's resting height and its upper joint on the
+    /// laid line: it must be longer than that rise, taken with both radii as the bound of the
+    /// resting heights (a link rests within its radius of the seabed plane).
+    fn check_first_element(&self, c: &mut Checker) {
+        let lengths = self.cable_element_lengths();
+        let (x, h) = (self.initial.horizontal_projection, self.initial.vertical_projection);
+        let Ok((_, points)) = catenary::lay_elements(&lengths, x, h) else { return };
+        let Some(joint) = points.get(1) else { return };
+        let bound = joint[1].abs() + 2.0 * (self.chain.radius + self.cable.radius);
+        if lengths[0] <= bound {
+            c.push(
+                "cable.stages[0].element_length",
+                &fmt_value(lengths[0]),
+                &format!(
+                    "> {bound:.6} m: the first cable element must span the rise from the chain's resting height \
+                     to its upper joint ({:.6} m above the seabed)",
+                    joint[1]
+                ),
+            );
+        }
     }
 
     /// The water depth d ≈ h_L + rod.length − ship.hinge_z (the model's layout, to the cable's
