@@ -15,6 +15,7 @@
 //! - [`emit`]: Rust emission (quote → syn → prettyplease), one file per variant;
 //! - [`scenes`]: the element counts the scene files need, for `build.rs` and the CLI.
 
+pub(crate) mod body;
 pub mod emit;
 pub mod expr;
 pub mod planar;

@@ -32,9 +32,12 @@
 
 use kanestop_chain::{ParamField, Variant};
 
+use crate::body::{
+    acceleration_step, add2, anchor_solve, angle_step, articulated_body, centripetal_step, centroid_kinematics,
+    effective_force, eliminate_hinge, force_sums, hinge_kinematics, name2, outboard_step, outward_step, rot,
+    Articulated, BodySyms, Outboard, V2,
+};
 use crate::expr::{Dag, Id};
-
-type V2 = [Id; 2];
 
 /// The numeric parameters of every body, as DAG inputs with the structural zeros folded.
 struct Params {
@@ -66,46 +69,6 @@ fn params(dag: &mut Dag, variant: Variant) -> Params {
         p.added_mass.push(if folded { zero } else { dag.input(format!("p[{k}].added_mass")) });
     }
     p
-}
-
-/// R(θ) v: body (x, z) components to inertial ones for a rotation θ about y.
-fn rot(dag: &mut Dag, cs: V2, v: V2) -> V2 {
-    let [c, s] = cs;
-    let a = dag.mul(v[0], c);
-    let b = dag.mul(v[1], s);
-    let x = dag.add(a, b);
-    let a = dag.mul(v[0], s);
-    let b = dag.mul(v[1], c);
-    let z = dag.sub(b, a);
-    [x, z]
-}
-
-/// J(v) = (v_z, −v_x): d(R(θ)v)/dθ.
-fn perp(dag: &mut Dag, v: V2) -> V2 {
-    [v[1], dag.neg(v[0])]
-}
-
-fn add2(dag: &mut Dag, a: V2, b: V2) -> V2 {
-    [dag.add(a[0], b[0]), dag.add(a[1], b[1])]
-}
-
-fn sub2(dag: &mut Dag, a: V2, b: V2) -> V2 {
-    [dag.sub(a[0], b[0]), dag.sub(a[1], b[1])]
-}
-
-fn scale2(dag: &mut Dag, s: Id, v: V2) -> V2 {
-    [dag.mul(s, v[0]), dag.mul(s, v[1])]
-}
-
-/// The y component of x × F for planar x, F: x_z F_x − x_x F_z.
-fn cross(dag: &mut Dag, x: V2, f: V2) -> Id {
-    let a = dag.mul(x[1], f[0]);
-    let b = dag.mul(x[0], f[1]);
-    dag.sub(a, b)
-}
-
-fn name2(dag: &mut Dag, v: V2, base: &str) -> V2 {
-    [dag.name(v[0], format!("{base}_x")), dag.name(v[1], format!("{base}_z"))]
 }
 
 /// The kinematic quantities every phase needs, from (cos θ_k, sin θ_k) and u.
@@ -155,73 +118,17 @@ impl Kin {
         cs
     }
 
-    /// t_k = R(θ_k)(1, 0), the body's x axis.
-    fn t(&self, dag: &mut Dag, k: usize) -> V2 {
-        let [c, s] = self.cs[k];
-        [c, dag.neg(s)]
-    }
-
-    /// n_k = R(θ_k)(0, 1), the body's z axis.
-    fn normal(&self, k: usize) -> V2 {
-        let [c, s] = self.cs[k];
-        [s, c]
-    }
-
-    /// A_k v = m v + m_a n (n · v).
-    fn a_times(&self, dag: &mut Dag, k: usize, v: V2) -> V2 {
-        let mv = scale2(dag, self.p.mass[k], v);
-        let n = self.normal(k);
-        let nv = dag.dot2(n, v);
-        let coef = dag.mul(self.p.added_mass[k], nv);
-        let an = scale2(dag, coef, n);
-        add2(dag, mv, an)
-    }
-
-    /// B_k as (xx, xz, zz).
-    fn b_matrix(&self, dag: &mut Dag, k: usize) -> [Id; 3] {
-        let t = self.t(dag, k);
-        let a = self.p.added_mass[k];
-        let m = self.p.mass[k];
-        let txx = dag.mul(t[0], t[0]);
-        let txz = dag.mul(t[0], t[1]);
-        let tzz = dag.mul(t[1], t[1]);
-        let axx = dag.mul(a, txx);
-        let xz = dag.mul(a, txz);
-        let azz = dag.mul(a, tzz);
-        [dag.add(m, axx), xz, dag.add(m, azz)]
-    }
-
-    /// B_k e_k = m e + m_a r_x t (t · e_k = r_x in body axes).
-    fn b_e(&self, dag: &mut Dag, k: usize) -> V2 {
-        let me = scale2(dag, self.p.mass[k], self.e[k]);
-        let t = self.t(dag, k);
-        let coef = dag.mul(self.p.added_mass[k], self.p.centroid[k][0]);
-        let at = scale2(dag, coef, t);
-        add2(dag, me, at)
-    }
-
-    /// e_kᵀ B_k e_k + I_k = m |r|² + m_a r_x² + I, from body-axis components.
-    fn e_b_e_plus_i(&self, dag: &mut Dag, k: usize) -> Id {
-        let r = self.p.centroid[k];
-        let r2 = dag.dot2(r, r);
-        let mr2 = dag.mul(self.p.mass[k], r2);
-        let rx2 = dag.mul(r[0], r[0]);
-        let arx2 = dag.mul(self.p.added_mass[k], rx2);
-        let s = dag.add(mr2, arx2);
-        dag.add(s, self.p.inertia[k])
-    }
-
-    /// dᵀ B d for the link vector d_k and a symmetric (xx, xz, zz); for B = m 1 this is
-    /// m |q_k|² (rotations keep lengths: cos² + sin² = 1 where it arises).
-    fn quad(&self, dag: &mut Dag, k: usize, b: [Id; 3]) -> Id {
-        if dag.is_zero(b[1]) && b[0] == b[2] {
-            let q = self.p.joint[k];
-            let q2 = dag.dot2(q, q);
-            return dag.mul(b[0], q2);
+    /// The symbols of B_{k+1}.
+    fn body(&self, k: usize) -> BodySyms {
+        BodySyms {
+            mass: self.p.mass[k],
+            inertia: self.p.inertia[k],
+            centroid: self.p.centroid[k],
+            added_mass: self.p.added_mass[k],
+            cs: self.cs[k],
+            omega: self.omega[k],
+            e: self.e[k],
         }
-        let d = self.d[k];
-        let bd = [dag.dot2([b[0], b[1]], d), dag.dot2([b[1], b[2]], d)];
-        dag.dot2(d, bd)
     }
 
     /// The velocity-product (centripetal) accelerations of every C_k (Eq. 16 times ẋ):
@@ -231,15 +138,10 @@ impl Kin {
         let mut origin = [zero, zero];
         let mut out = Vec::with_capacity(self.n);
         for k in 0..self.n {
-            if k > 0 {
-                let w2 = dag.mul(self.omega[k - 1], self.omega[k - 1]);
-                let t = scale2(dag, w2, self.d[k]);
-                origin = sub2(dag, origin, t);
-            }
-            let w2 = dag.mul(self.omega[k], self.omega[k]);
-            let t = scale2(dag, w2, self.e[k]);
-            let a = sub2(dag, origin, t);
-            out.push(name2(dag, a, &format!("ac_{}", k + 1)));
+            let hinge = (k > 0).then(|| (self.d[k], self.omega[k - 1]));
+            let [o, a] = centripetal_step(dag, &self.body(k), origin, hinge, &format!("_{}", k + 1));
+            origin = o;
+            out.push(a);
         }
         out
     }
@@ -251,9 +153,7 @@ impl Kin {
             .map(|k| {
                 let f = [dag.input(format!("loads[{k}][0]")), dag.input(format!("loads[{k}][1]"))];
                 let t = dag.input(format!("loads[{k}][2]"));
-                let inertial = self.a_times(dag, k, acc[k]);
-                let fe = sub2(dag, f, inertial);
-                (name2(dag, fe, &format!("fe_{}", k + 1)), t)
+                (effective_force(dag, &self.body(k), acc[k], f, &format!("_{}", k + 1)), t)
             })
             .collect()
     }
@@ -332,11 +232,9 @@ pub fn kinematics(variant: Variant) -> Function {
     let mut cs = vec![[dag.one(), zero]];
     for k in 1..n {
         let q = dag.input(format!("q[{}]", k - 1));
-        theta[k] = dag.add(theta[k - 1], q);
-        dag.name(theta[k], format!("theta_{}", k + 1));
-        let c = dag.cos(theta[k]);
-        let s = dag.sin(theta[k]);
-        cs.push([dag.name(c, format!("c_{}", k + 1)), dag.name(s, format!("s_{}", k + 1))]);
+        let (t, c) = angle_step(&mut dag, theta[k - 1], q, &format!("_{}", k + 1));
+        theta[k] = t;
+        cs.push(c);
     }
     let kin = Kin::new(&mut dag, variant, cs);
     let mut f = Function::new(Dag::new());
@@ -347,19 +245,10 @@ pub fn kinematics(variant: Variant) -> Function {
     let mut origin_v = [s1_dot, zero];
     for (k, &theta_k) in theta.iter().enumerate() {
         if k > 0 {
-            origin = add2(&mut dag, origin, kin.d[k]);
-            origin = name2(&mut dag, origin, &format!("o_{}", k + 1));
-            let jd = perp(&mut dag, kin.d[k]);
-            let t = scale2(&mut dag, kin.omega[k - 1], jd);
-            origin_v = add2(&mut dag, origin_v, t);
-            origin_v = name2(&mut dag, origin_v, &format!("vo_{}", k + 1));
+            [origin, origin_v] =
+                hinge_kinematics(&mut dag, [origin, origin_v], kin.d[k], kin.omega[k - 1], &format!("_{}", k + 1));
         }
-        let pos = add2(&mut dag, origin, kin.e[k]);
-        let pos = name2(&mut dag, pos, &format!("p_{}", k + 1));
-        let je = perp(&mut dag, kin.e[k]);
-        let t = scale2(&mut dag, kin.omega[k], je);
-        let vel = add2(&mut dag, origin_v, t);
-        let vel = name2(&mut dag, vel, &format!("v_{}", k + 1));
+        let [pos, vel] = centroid_kinematics(&mut dag, &kin.body(k), [origin, origin_v], &format!("_{}", k + 1));
         for (j, v) in [pos[0], pos[1], theta_k, vel[0], vel[1], kin.omega[k]].into_iter().enumerate() {
             f.store(Slot::at2("bodies", k, j), v);
         }
@@ -393,34 +282,13 @@ pub fn assemble(variant: Variant) -> Function {
     // Outboard sums from the ship inward: Btot_l = Σ B_k, S_l, J_l (about o_l).
     let mut s_l = vec![[zero, zero]; n];
     let mut j_l = vec![zero; n];
-    let mut next: Option<([Id; 3], V2, Id)> = None;
+    let mut next: Option<Outboard> = None;
     for l in (1..n).rev() {
-        let b = kin.b_matrix(&mut dag, l);
-        let be = kin.b_e(&mut dag, l);
-        let ebe = kin.e_b_e_plus_i(&mut dag, l);
-        let (bt, s, j) = match next {
-            None => (b, be, ebe),
-            Some((bt1, s1, j1)) => {
-                let d = kin.d[l + 1];
-                let bd = [dag.dot2([bt1[0], bt1[1]], d), dag.dot2([bt1[1], bt1[2]], d)];
-                let s = add2(&mut dag, be, s1);
-                let s = add2(&mut dag, s, bd);
-                let ds = dag.dot2(d, s1);
-                let two_ds = dag.add(ds, ds);
-                let dbd = kin.quad(&mut dag, l + 1, bt1);
-                let j = dag.sum(&[ebe, j1, two_ds, dbd]);
-                let bt = [dag.add(b[0], bt1[0]), dag.add(b[1], bt1[1]), dag.add(b[2], bt1[2])];
-                (bt, s, j)
-            }
-        };
-        let bt = [
-            dag.name(bt[0], format!("bt_{}_xx", l + 1)),
-            dag.name(bt[1], format!("bt_{}_xz", l + 1)),
-            dag.name(bt[2], format!("bt_{}_zz", l + 1)),
-        ];
-        s_l[l] = name2(&mut dag, s, &format!("sm_{}", l + 1));
-        j_l[l] = dag.name(j, format!("j_{}", l + 1));
-        next = Some((bt, s_l[l], j_l[l]));
+        let child = next.map(|c| (c, kin.d[l + 1], kin.p.joint[l + 1]));
+        let sums = outboard_step(&mut dag, &kin.body(l), child, &format!("_{}", l + 1));
+        s_l[l] = sums.s;
+        j_l[l] = sums.j;
+        next = Some(sums);
     }
 
     // a_{β_j β_l} = J_l + (o_l − o_j) · S_l = K_l − ō_j · S_l for j < l, with the hinge
@@ -495,14 +363,14 @@ pub fn assemble(variant: Variant) -> Function {
     let mut rhs = vec![zero; n];
     for k in (0..n).rev() {
         let (fe, t) = loads[k];
-        if k > 0 {
-            let arm = cross(&mut dag, kin.e[k], fe);
-            let carry = if k + 1 < n { cross(&mut dag, kin.d[k + 1], g) } else { zero };
-            h = dag.sum(&[h, carry, arm, t]);
+        let e = (k > 0).then_some(kin.e[k]);
+        let d_child = (k > 0 && k + 1 < n).then(|| kin.d[k + 1]);
+        let (g_k, h_k) = force_sums(&mut dag, e, fe, t, (g, h), d_child, &format!("_{}", k + 1));
+        if let Some(h_k) = h_k {
+            h = h_k;
             rhs[k - 1] = dag.name(h, format!("f_{}", k - 1));
         }
-        g = add2(&mut dag, g, fe);
-        g = name2(&mut dag, g, &format!("g_{}", k + 1));
+        g = g_k;
     }
     rhs[n - 1] = dag.name(g[0], format!("f_{}", n - 1));
     for (i, &v) in rhs.iter().enumerate() {
@@ -527,25 +395,9 @@ pub fn accelerations(variant: Variant) -> Function {
     let mut alpha = zero;
     let mut origin_a = [s_dd, zero];
     for k in 0..n {
-        if k > 0 {
-            let jd = perp(&mut dag, kin.d[k]);
-            let t = scale2(&mut dag, alpha, jd);
-            let w2 = dag.mul(kin.omega[k - 1], kin.omega[k - 1]);
-            let c = scale2(&mut dag, w2, kin.d[k]);
-            origin_a = add2(&mut dag, origin_a, t);
-            origin_a = sub2(&mut dag, origin_a, c);
-            origin_a = name2(&mut dag, origin_a, &format!("ao_{}", k + 1));
-            let b = dag.input(format!("qdd[{}]", k - 1));
-            alpha = dag.add(alpha, b);
-            alpha = dag.name(alpha, format!("alpha_{}", k + 1));
-        }
-        let je = perp(&mut dag, kin.e[k]);
-        let t = scale2(&mut dag, alpha, je);
-        let w2 = dag.mul(kin.omega[k], kin.omega[k]);
-        let c = scale2(&mut dag, w2, kin.e[k]);
-        let a = add2(&mut dag, origin_a, t);
-        let a = sub2(&mut dag, a, c);
-        let a = name2(&mut dag, a, &format!("a_{}", k + 1));
+        let hinge = (k > 0).then(|| (kin.d[k], kin.omega[k - 1], dag.input(format!("qdd[{}]", k - 1))));
+        let (al, ao, a) = acceleration_step(&mut dag, &kin.body(k), (alpha, origin_a), hinge, &format!("_{}", k + 1));
+        (alpha, origin_a) = (al, ao);
         f.store(Slot::at2("acc", k, 0), a[0]);
         f.store(Slot::at2("acc", k, 1), a[1]);
         f.store(Slot::at2("acc", k, 2), alpha);
@@ -573,7 +425,7 @@ pub fn solve(variant: Variant, stuck: bool) -> Function {
     let cs = Kin::trig_inputs(&mut dag, n);
     let kin = Kin::new(&mut dag, variant, cs);
     let zero = dag.zero();
-    let one = dag.one();
+    dag.one();
     let loads = raw_loads(&mut dag, n);
     let mut f = Function::new(Dag::new());
 
@@ -582,139 +434,31 @@ pub fn solve(variant: Variant, stuck: bool) -> Function {
     let mut pa: Vec<[Id; 3]> = vec![[zero; 3]; n];
     let mut inv_d = vec![zero; n];
     // Carried from the child: (Xᵀ Ia X) as [00, 01, 02, 11, 12, 22] and Xᵀ(Ia c + pa).
-    let mut carry: Option<([Id; 6], [Id; 3])> = None;
+    let mut carry: Option<Articulated> = None;
     for k in (0..n).rev() {
-        let m = kin.p.mass[k];
-        let am = kin.p.added_mass[k];
-        let r = kin.p.centroid[k];
-        let e = kin.e[k];
-        // Rigid inertia at o_k.
-        let i00 = kin.e_b_e_plus_i(&mut dag, k);
-        let be = kin.b_e(&mut dag, k);
-        let g = perp(&mut dag, be);
-        let [s, c] = kin.normal(k);
-        let ss = dag.mul(s, s);
-        let sc = dag.mul(s, c);
-        let cc = dag.mul(c, c);
-        let a_ss = dag.mul(am, ss);
-        let a11 = dag.add(m, a_ss);
-        let a12 = dag.mul(am, sc);
-        let a_cc = dag.mul(am, cc);
-        let a22 = dag.add(m, a_cc);
-        let mut i = [i00, g[0], g[1], a11, a12, a22];
-        // Bias minus load: centripetal −θ̇² A e at C (moment about o: θ̇² m_a r_x r_z).
-        let w2 = dag.mul(kin.omega[k], kin.omega[k]);
-        let ae = kin.a_times(&mut dag, k, e);
-        let bias_f = scale2(&mut dag, w2, ae);
-        let bias_f = [dag.neg(bias_f[0]), dag.neg(bias_f[1])];
-        let rxz = dag.mul(r[0], r[1]);
-        let arxz = dag.mul(am, rxz);
-        let bias_m = dag.mul(w2, arxz);
-        let (fl, tl) = loads[k];
-        let moment = cross(&mut dag, e, fl);
-        let ext_m = dag.add(tl, moment);
-        let mut p = [dag.sub(bias_m, ext_m), dag.sub(bias_f[0], fl[0]), dag.sub(bias_f[1], fl[1])];
-        if let Some((ci, cp)) = carry {
-            for (x, y) in i.iter_mut().zip(ci) {
-                *x = dag.add(*x, y);
-            }
-            for (x, y) in p.iter_mut().zip(cp) {
-                *x = dag.add(*x, y);
-            }
-        }
-        let names = ["00", "01", "02", "11", "12", "22"];
-        for (x, nm) in i.iter_mut().zip(names) {
-            *x = dag.name(*x, format!("ia_{}_{nm}", k + 1));
-        }
-        for (x, nm) in p.iter_mut().zip(["m", "x", "z"]) {
-            *x = dag.name(*x, format!("pa_{}_{nm}", k + 1));
-        }
+        let tag = format!("_{}", k + 1);
+        let (i, p) = articulated_body(&mut dag, &kin.body(k), loads[k], carry, &tag);
         ia[k] = i;
         pa[k] = p;
         if k == 0 {
             break;
         }
-        // Eliminate hinge k: Ia = IA − U Uᵀ / D, pa = pA − U pA_0 / D (U = IA e_0); the
-        // angular row and column vanish exactly.
-        let inv = dag.div(one, i[0]);
-        inv_d[k] = dag.name(inv, format!("inv_{}", k + 1));
-        let u1 = dag.mul(i[1], inv_d[k]);
-        let u2 = dag.mul(i[2], inv_d[k]);
-        let t11 = dag.mul(u1, i[1]);
-        let t12 = dag.mul(u1, i[2]);
-        let t22 = dag.mul(u2, i[2]);
-        let r11 = dag.sub(i[3], t11);
-        let r12 = dag.sub(i[4], t12);
-        let r22 = dag.sub(i[5], t22);
-        let q1 = dag.mul(u1, p[0]);
-        let q2 = dag.mul(u2, p[0]);
-        let pa1 = dag.sub(p[1], q1);
-        let pa2 = dag.sub(p[2], q2);
-        // Across d_k: X = [[1, 0, 0], [j_x, 1, 0], [j_z, 0, 1]], (j_x, j_z) = J(d_k); the
-        // joint's velocity product c = (0, −θ̇_{k−1}² d_k).
-        let jd = perp(&mut dag, kin.d[k]);
-        let w2p = dag.mul(kin.omega[k - 1], kin.omega[k - 1]);
-        let cv = scale2(&mut dag, w2p, kin.d[k]);
-        let cv = [dag.neg(cv[0]), dag.neg(cv[1])];
-        let z1 = dag.dot2([r11, r12], cv);
-        let z1 = dag.add(z1, pa1);
-        let z2 = dag.dot2([r12, r22], cv);
-        let z2 = dag.add(z2, pa2);
-        let y1 = dag.dot2([r11, r12], jd);
-        let y2 = dag.dot2([r12, r22], jd);
-        let x00 = dag.dot2(jd, [y1, y2]);
-        let xp0 = dag.dot2(jd, [z1, z2]);
-        carry = Some(([x00, y1, y2, r11, r12, r22], [xp0, z1, z2]));
+        let (inv, c) = eliminate_hinge(&mut dag, (i, p), kin.d[k], kin.omega[k - 1], &tag);
+        inv_d[k] = inv;
+        carry = Some(c);
     }
-
-    // The anchor. The seabed supplies the wrench IA_1 (0, ẍ_s, 0) + pA_1 at o_1: its x part
-    // is the holding force (Eq. 50), its z part the normal force N (Eq. 37).
-    let s_dd = if stuck {
-        let holding = dag.name(pa[0][1], "holding_force");
-        let normal = dag.name(pa[0][2], "normal_force");
-        f.ret = vec![holding, normal];
-        zero
-    } else {
-        // Sliding friction −k N along x with k = μ·(direction of sliding), N = IA_xz ẍ_s +
-        // pA_z implicit in ẍ_s: (IA_xx + k IA_xz) ẍ_s = −(pA_x + k pA_z).
-        let k = dag.input("friction");
-        let kz = dag.mul(k, ia[0][4]);
-        let den = dag.add(ia[0][3], kz);
-        let kp = dag.mul(k, pa[0][2]);
-        let num = dag.add(pa[0][1], kp);
-        let v = dag.div(num, den);
-        let v = dag.neg(v);
-        let s_dd = dag.name(v, "s_dd");
-        let nz = dag.mul(ia[0][4], s_dd);
-        let normal = dag.add(nz, pa[0][2]);
-        let normal = dag.name(normal, "normal_force");
-        // den / IA_xx = 1 + k ∂N/∂F_x: positive unless friction locks the anchor's surge
-        // (Painlevé's paradox); the runtime refuses a non-positive value.
-        let factor = dag.div(den, ia[0][3]);
-        let factor = dag.name(factor, "friction_factor");
-        f.ret = vec![normal, factor];
-        s_dd
-    };
+    let (s_dd, ret) = anchor_solve(&mut dag, (ia[0], pa[0]), stuck);
+    f.ret = ret;
     f.store(Slot::at("qdd", n - 1), s_dd);
 
     // Outward pass: (α, a_o) of each body; α_k = −(IA_01 â_x + IA_02 â_z + pA_0) / D.
     let mut alpha = zero;
     let mut acc = [s_dd, zero];
     for k in 1..n {
-        let jd = perp(&mut dag, kin.d[k]);
-        let w2p = dag.mul(kin.omega[k - 1], kin.omega[k - 1]);
-        let cv = scale2(&mut dag, w2p, kin.d[k]);
-        let t = scale2(&mut dag, alpha, jd);
-        let a = add2(&mut dag, acc, t);
-        let a = sub2(&mut dag, a, cv);
-        let a = name2(&mut dag, a, &format!("ao_{}", k + 1));
-        let num = dag.dot2([ia[k][1], ia[k][2]], a);
-        let num = dag.add(num, pa[k][0]);
-        let q = dag.mul(num, inv_d[k]);
-        let new_alpha = dag.neg(q);
-        let new_alpha = dag.name(new_alpha, format!("alpha_{}", k + 1));
-        let beta_dd = dag.sub(new_alpha, alpha);
-        let beta_dd = dag.name(beta_dd, format!("qdd_{}", k - 1));
+        let row = [ia[k][1], ia[k][2], pa[k][0], inv_d[k]];
+        let tags = (format!("_{}", k + 1), format!("_{}", k - 1));
+        let (new_alpha, a, beta_dd) =
+            outward_step(&mut dag, kin.d[k], kin.omega[k - 1], alpha, acc, row, &tags.0, &tags.1);
         f.store(Slot::at("qdd", k - 1), beta_dd);
         alpha = new_alpha;
         acc = a;
