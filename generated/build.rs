@@ -6,8 +6,8 @@
 //! Counts above [`MAX_GENERATED_BODIES`] are not generated: the generator's expression DAG
 //! recurses and overflows the build script's default stack from about N = 490 (with a
 //! 256 MB stack N = 518 builds in 15 min and 3.9 GB). Such a scene, from `../scenes`, is
-//! skipped with a cargo warning and runs on the reference kernel (the workflow's fallback);
-//! in `KANESTOP_EXTRA_BODY_COUNTS` it stops the build with this reason.
+//! skipped with a cargo warning and runs on the rolled kernel (any N, checked in); in
+//! `KANESTOP_EXTRA_BODY_COUNTS` it stops the build with this reason.
 
 use std::path::Path;
 
@@ -34,7 +34,7 @@ fn main() {
     for n in counts.iter().filter(|&&n| n > MAX_GENERATED_BODIES) {
         println!(
             "cargo:warning=a scene under scenes/ has N = {n} bodies, above the {MAX_GENERATED_BODIES} the build script \
-             generates kernels for: it runs on the reference kernel"
+             generates unrolled kernels for: it runs on the rolled kernel"
         );
     }
     counts.retain(|&n| n <= MAX_GENERATED_BODIES);
@@ -45,7 +45,7 @@ fn main() {
                 Ok(n) if n > MAX_GENERATED_BODIES => panic!(
                     "KANESTOP_EXTRA_BODY_COUNTS: {n} bodies is above the build script's limit of {MAX_GENERATED_BODIES} \
                      (the generator's recursion overflows the default stack from about N = 490); such a scene runs \
-                     on the reference kernel"
+                     on the rolled kernel"
                 ),
                 _ => panic!("KANESTOP_EXTRA_BODY_COUNTS: `{part}` is not a body count ≥ 3"),
             }

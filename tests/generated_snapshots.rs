@@ -29,6 +29,44 @@ fn chain5_wet() {
     snapshot(5, Water::On);
 }
 
+fn rolled_snapshot(water: Water) {
+    let file = kanestop_codegen::drivers::generate_rolled(water);
+    insta::assert_snapshot!(file.file_name.trim_end_matches(".rs"), file.source);
+}
+
+#[test]
+fn rolled_dry() {
+    rolled_snapshot(Water::Off);
+}
+
+#[test]
+fn rolled_wet() {
+    rolled_snapshot(Water::On);
+}
+
+/// The rolled steps fold per body kind what the unrolled kernels fold per body: the dry
+/// kernel reads no added mass, no step reads the anchor's inertia, the rods' centroid height
+/// or the ship's added mass, and only B_2 (the first) reads its joint height.
+#[test]
+fn rolled_steps_fold_the_structural_zeros_of_their_kind() {
+    use kanestop_codegen::rolled::{steps, Kind};
+    assert!(!kanestop_codegen::drivers::generate_rolled(Water::Off).source.contains("added_mass"));
+    for step in steps(Water::On) {
+        let text = kanestop_codegen::drivers::generate_rolled(Water::On).source;
+        let start = text.find(&format!("fn {}(", step.name)).expect("every step is emitted");
+        let end = text[start..].find("\n}\n").map_or(text.len(), |e| start + e);
+        let body = &text[start..end];
+        let reads = |field: &str| body.contains(&format!("p.{field}"));
+        match step.kind {
+            Some(Kind::Anchor) => assert!(!reads("inertia") && !reads("added_mass"), "{}", step.name),
+            Some(Kind::Rod) => assert!(!reads("centroid[1]") && !reads("joint[1]"), "{}", step.name),
+            Some(Kind::First) => assert!(!reads("centroid[1]"), "{}", step.name),
+            Some(Kind::Ship) => assert!(!reads("added_mass") && !reads("joint[1]"), "{}", step.name),
+            None => assert!(!body.contains("p."), "{} reads no parameters", step.name),
+        }
+    }
+}
+
 /// Only non-zero entries are emitted: a dry kernel reads no added mass, no rod centroid
 /// height and no joint height beyond B_2.
 #[test]

@@ -1,7 +1,8 @@
 //! The generated kernels against the reference formulation (the oracle), for every variant
 //! (water off and on; anchor free and stuck) and N ∈ {3, 5, 46, 48, 50}, at 100 random
 //! states each: body states, a_lp, f_l and the anchor's heave row entrywise to 1e-12 of
-//! their scale, body accelerations, and both solve paths by the residual of the reference
+//! their scale, for the unrolled kernels and the rolled one (also at N = 4, 11, 51, which no
+//! build has); body accelerations, and both solve paths by the residual of the reference
 //! system, with the anchor stuck, free, or sliding with implicit friction; the normal force
 //! of the heave row against Newton's sum over the bodies (Eq. 52).
 
@@ -11,7 +12,7 @@ use std::path::Path;
 
 use common::*;
 use kanestop_runtime::chain::Chain;
-use kanestop_runtime::generated::{GeneratedError, GeneratedKernel, SolvePath};
+use kanestop_runtime::generated::{Form, GeneratedError, GeneratedKernel, SolvePath};
 use kanestop_runtime::kernel::{
     solve_assembled, AnchorDof, Assembly, BodyAcceleration, BodyState, Kernel, Load, LoadModel, RhsError,
 };
@@ -129,6 +130,10 @@ fn newton_normal(chain: &Chain, bodies: &[BodyState], acc: &[BodyAcceleration], 
 }
 
 fn check_size(n: usize, wet: bool) {
+    check_form(n, wet, Form::Unrolled);
+}
+
+fn check_form(n: usize, wet: bool, form: Form) {
     let mut rng = rng(1000 + n as u64 + wet as u64);
     let chains = chains(n, wet, &mut rng);
     let per_chain = STATES.div_ceil(chains.len());
@@ -136,9 +141,9 @@ fn check_size(n: usize, wet: bool) {
     let mut sliding = 0;
     for chain in &chains {
         let mut reference = ReferenceKernel::new(chain);
-        let mut generated = GeneratedKernel::new(chain).unwrap();
-        assert_eq!(generated.is_wet(), wet);
-        let mut assembled = GeneratedKernel::new(chain).unwrap().with_solve_path(SolvePath::Assembled);
+        let mut generated = GeneratedKernel::with_form(chain, form).unwrap();
+        assert_eq!((generated.is_wet(), generated.form()), (wet, form));
+        let mut assembled = GeneratedKernel::with_form(chain, form).unwrap().with_solve_path(SolvePath::Assembled);
         for trial in 0..per_chain {
             let (q, mut u) = random_state(n, &mut rng);
             let mut loads = random_loads(chain, &mut rng);
@@ -270,10 +275,24 @@ fn check_size(n: usize, wet: bool) {
     // Both solve paths of most sliding trials were checked (not skipped as ill-posed).
     assert!(sliding >= STATES / 4, "N={n}: only {sliding} sliding solves checked");
     eprintln!(
-        "N={n} wet={wet}: worst M {:.1e}, f {:.1e}, residual recursive {:.1e}, assembled {:.1e}, acc {:.1e}, \
+        "N={n} wet={wet} {}: worst M {:.1e}, f {:.1e}, residual recursive {:.1e}, assembled {:.1e}, acc {:.1e}, \
          {sliding} sliding solves",
-        worst[0], worst[1], worst[2], worst[3], worst[4]
+        form.name(),
+        worst[0],
+        worst[1],
+        worst[2],
+        worst[3],
+        worst[4]
     );
+}
+
+/// The rolled kernel (any N) at the unrolled sizes and at sizes no build has.
+#[test]
+fn rolled_matches_reference_at_any_n() {
+    for n in [3, 4, 5, 11, 46, 51] {
+        check_form(n, false, Form::Rolled);
+        check_form(n, true, Form::Rolled);
+    }
 }
 
 #[test]

@@ -14,7 +14,7 @@ use crate::planar::{self, Function, Slot};
 /// What was generated for one function.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct FunctionReport {
-    pub name: &'static str,
+    pub name: String,
     pub ops: OpCount,
     /// `let` statements emitted (one per named or shared value).
     pub statements: usize,
@@ -84,7 +84,7 @@ const ATOM: u8 = 4;
 /// The statements of one function: a `let` per named or shared value, single-use unnamed
 /// values inlined into their user (parenthesised so that Rust evaluates exactly the DAG's
 /// operations in the DAG's order), then the stores.
-fn body(f: &Function) -> (TokenStream, usize) {
+pub(crate) fn body(f: &Function) -> (TokenStream, usize) {
     let dag: &Dag = &f.dag;
     let roots = f.roots();
     let live = dag.reachable(&roots);
@@ -279,7 +279,7 @@ pub fn generate(variant: Variant) -> GeneratedFile {
             prelude.extend(dense_locals(n));
         }
         let (stmts, statements) = body(&f);
-        reports.push(FunctionReport { name, ops, statements });
+        reports.push(FunctionReport { name: name.to_string(), ops, statements });
         let doc_lines: Vec<TokenStream> = doc.lines().map(|l| format!(" {l}")).map(|l| quote!(#[doc = #l])).collect();
         items.extend(quote! {
             #(#doc_lines)*

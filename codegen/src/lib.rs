@@ -16,9 +16,11 @@
 //! - [`scenes`]: the element counts the scene files need, for `build.rs` and the CLI.
 
 pub(crate) mod body;
+pub mod drivers;
 pub mod emit;
 pub mod expr;
 pub mod planar;
+pub mod rolled;
 pub mod scenes;
 
 pub use emit::{generate, GeneratedFile};
@@ -45,8 +47,8 @@ pub fn checked_in_variants(scenes_dir: &std::path::Path) -> Vec<Variant> {
     variants_for(&counts)
 }
 
-/// Every checked-in file as (name under `generated/src/`, text): the kernels and the
-/// registry `kernels.rs`, which lists them.
+/// Every checked-in file as (name under `generated/src/`, text): the unrolled kernels, the
+/// registry `kernels.rs`, which lists them, and the two rolled kernels (any N).
 pub fn checked_in_files(scenes_dir: &std::path::Path) -> Vec<(String, String)> {
     let variants = checked_in_variants(scenes_dir);
     let mut out: Vec<(String, String)> = variants
@@ -57,5 +59,9 @@ pub fn checked_in_files(scenes_dir: &std::path::Path) -> Vec<(String, String)> {
         })
         .collect();
     out.push(("kernels.rs".to_string(), emit::registry(&variants)));
+    for water in [Water::Off, Water::On] {
+        let rolled = drivers::generate_rolled(water);
+        out.push((rolled.file_name, rolled.source));
+    }
     out
 }

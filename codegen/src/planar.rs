@@ -207,12 +207,12 @@ pub struct Function {
 }
 
 impl Function {
-    fn new(dag: Dag) -> Self {
+    pub(crate) fn new(dag: Dag) -> Self {
         Function { dag, stores: Vec::new(), ret: Vec::new(), dense_fill: None }
     }
 
     /// Appends the store `slot = value;`.
-    fn store(&mut self, slot: Slot, value: Id) {
+    pub(crate) fn store(&mut self, slot: Slot, value: Id) {
         self.stores.push(Store { slot, value });
     }
 

@@ -9,10 +9,21 @@
 //! need are checked in (`src/chain*.rs`, listed in `src/kernels.rs`); a test fails when they
 //! are stale. The build script generates any other count a scene under `scenes/` needs, and
 //! the counts in `KANESTOP_EXTRA_BODY_COUNTS` (e.g. `12,24,100,200` for the benchmarks), into
-//! OUT_DIR. This file is written by hand.
+//! OUT_DIR. Besides these unrolled kernels, two rolled ones (`src/rolled_dry.rs`,
+//! `src/rolled_wet.rs`, [`rolled`]) serve a chain of any N without a rebuild. This file is
+//! written by hand.
 
 #[rustfmt::skip]
 mod kernels;
+
+/// The rolled kernel of any N, water off.
+#[rustfmt::skip]
+#[allow(clippy::all, unused_variables, dead_code)]
+mod rolled_dry;
+/// The rolled kernel of any N, water on.
+#[rustfmt::skip]
+#[allow(clippy::all, unused_variables, dead_code)]
+mod rolled_wet;
 
 mod extra {
     include!(concat!(env!("OUT_DIR"), "/extra.rs"));
@@ -63,6 +74,50 @@ pub struct KernelTable {
     pub accelerations: AccelerationsFn,
     pub solve_free: SolveFreeFn,
     pub solve_stuck: SolveStuckFn,
+}
+
+/// Values per body in the scratch rows of the rolled kernels.
+pub const ROLLED_SCRATCH: usize = 8;
+
+/// Rolled a_lp, f_l and heave row: `(p, u, trig, loads, m, f, heave, scratch)`.
+pub type RolledAssembleFn = fn(
+    &[BodyParams],
+    &[f64],
+    &[[f64; 2]],
+    &[[f64; 3]],
+    &mut [f64],
+    &mut [f64],
+    &mut [f64],
+    &mut [[f64; ROLLED_SCRATCH]],
+);
+/// Rolled O(N) solve, anchor free: `(p, u, trig, loads, friction, qdd, scratch)` → `[N, factor]`.
+pub type RolledSolveFreeFn =
+    fn(&[BodyParams], &[f64], &[[f64; 2]], &[[f64; 3]], f64, &mut [f64], &mut [[f64; ROLLED_SCRATCH]]) -> [f64; 2];
+/// Rolled O(N) solve, anchor stuck: `(p, u, trig, loads, qdd, scratch)` → `[holding, N]`.
+pub type RolledSolveStuckFn =
+    fn(&[BodyParams], &[f64], &[[f64; 2]], &[[f64; 3]], &mut [f64], &mut [[f64; ROLLED_SCRATCH]]) -> [f64; 2];
+
+/// A rolled kernel's entry points: the per-body steps generated once per body kind, driven
+/// by loops, for a chain of any N ≥ 3. The arguments are those of [`KernelTable`] plus a
+/// scratch of N rows, which the caller allocates once.
+#[derive(Clone, Copy, Debug)]
+pub struct RolledTable {
+    /// Whether the added mass enters a_lp (water on).
+    pub wet: bool,
+    pub kinematics: KinematicsFn,
+    pub assemble: RolledAssembleFn,
+    pub accelerations: AccelerationsFn,
+    pub solve_free: RolledSolveFreeFn,
+    pub solve_stuck: RolledSolveStuckFn,
+}
+
+/// The rolled kernel for the water switch: any N.
+pub fn rolled(wet: bool) -> RolledTable {
+    if wet {
+        rolled_wet::KERNEL
+    } else {
+        rolled_dry::KERNEL
+    }
 }
 
 /// The kernel for `bodies` bodies and the water switch, checked-in or built for a scene.

@@ -1,6 +1,12 @@
-//! The generated kernel: flat code emitted by `kanestop-codegen` for the chain's body count
-//! and water switch (crate `kanestop-generated`), behind the same [`Kernel`] interface as
-//! the reference.
+//! The generated kernel: code emitted by `kanestop-codegen` (crate `kanestop-generated`),
+//! behind the same [`Kernel`] interface as the reference.
+//!
+//! Two forms ([`Form`]): **unrolled**, flat code for one body count and water switch, built
+//! for the scenes under `scenes/` and `KANESTOP_EXTRA_BODY_COUNTS`; and **rolled**, the same
+//! per-body steps generated once per body kind and driven by loops, for any N.
+//! [`GeneratedKernel::new`] takes the unrolled kernel when the build has one and the rolled
+//! one otherwise, and [`GeneratedKernel::form`] says which. The reference is never a
+//! fallback: it is the oracle and an explicit choice.
 //!
 //! One kernel serves every scene with the same shape: masses, lengths and inertias are
 //! runtime parameters ([`BodyParams`]); only the structurally zero ones are folded into the
@@ -38,11 +44,10 @@ pub enum GeneratedError {
         /// N.
         bodies: usize,
     },
-    /// No kernel of this shape was generated into this build.
+    /// The unrolled form was asked for, and this build has none for this shape.
     #[error(
-        "no generated kernel for N = {bodies} bodies ({}): it is built for the scenes under scenes/ \
-         and KANESTOP_EXTRA_BODY_COUNTS; use --kernel reference or rebuild with \
-         KANESTOP_EXTRA_BODY_COUNTS={bodies}",
+        "no unrolled kernel for N = {bodies} bodies ({}) in this build: they are built for the scenes \
+         under scenes/ and KANESTOP_EXTRA_BODY_COUNTS (up to 400 bodies); the rolled kernel serves any N",
         if *wet { "water on" } else { "water off" }
     )]
     NotBuilt {
@@ -65,14 +70,41 @@ pub enum GeneratedError {
     },
 }
 
-/// Every (N, water on) with a generated kernel in this build.
+/// Every (N, water on) with an unrolled kernel in this build (the rolled one serves any N).
 pub fn available() -> Vec<(usize, bool)> {
     kanestop_generated::available()
 }
 
+/// Which generated code a [`GeneratedKernel`] runs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Form {
+    /// Flat code for this N, from the build.
+    Unrolled,
+    /// Per-body-kind steps in a loop: any N, no rebuild.
+    Rolled,
+}
+
+impl Form {
+    /// `unrolled` or `rolled`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Form::Unrolled => "unrolled",
+            Form::Rolled => "rolled",
+        }
+    }
+}
+
+/// The entry points in use.
+enum Table {
+    Unrolled(kanestop_generated::KernelTable),
+    Rolled(kanestop_generated::RolledTable, Vec<[f64; kanestop_generated::ROLLED_SCRATCH]>),
+}
+
 /// A generated kernel bound to one chain's numbers.
 pub struct GeneratedKernel {
-    kernel: kanestop_generated::KernelTable,
+    table: Table,
+    bodies: usize,
+    wet: bool,
     solve_path: SolvePath,
     params: Vec<BodyParams>,
     trig: Vec<[f64; 2]>,
@@ -85,15 +117,30 @@ pub struct GeneratedKernel {
 }
 
 impl GeneratedKernel {
-    /// The generated kernel for `chain`: water on when any body has added mass.
+    /// The generated kernel for `chain`, water on when any body has added mass: unrolled
+    /// when this build has one for N, rolled otherwise.
     pub fn new(chain: &Chain) -> Result<Self, GeneratedError> {
+        let wet = chain.bodies.iter().any(|b| b.added_mass != 0.0);
+        let form = if kanestop_generated::find(chain.len(), wet).is_some() { Form::Unrolled } else { Form::Rolled };
+        Self::with_form(chain, form)
+    }
+
+    /// The generated kernel of the given form for `chain`.
+    pub fn with_form(chain: &Chain, form: Form) -> Result<Self, GeneratedError> {
         let n = chain.len();
         if n < 3 {
             return Err(GeneratedError::TooFewBodies { bodies: n });
         }
         let wet = chain.bodies.iter().any(|b| b.added_mass != 0.0);
         let variant = Variant::new(n, if wet { Water::On } else { Water::Off });
-        let kernel = kanestop_generated::find(n, wet).ok_or(GeneratedError::NotBuilt { bodies: n, wet })?;
+        let table = match form {
+            Form::Unrolled => {
+                Table::Unrolled(kanestop_generated::find(n, wet).ok_or(GeneratedError::NotBuilt { bodies: n, wet })?)
+            }
+            Form::Rolled => {
+                Table::Rolled(kanestop_generated::rolled(wet), vec![[0.0; kanestop_generated::ROLLED_SCRATCH]; n])
+            }
+        };
         let params: Vec<BodyParams> = chain
             .bodies
             .iter()
@@ -117,7 +164,9 @@ impl GeneratedKernel {
             }
         }
         Ok(GeneratedKernel {
-            kernel,
+            table,
+            bodies: n,
+            wet,
             solve_path: SolvePath::Recursive,
             params,
             trig: vec![[0.0; 2]; n],
@@ -142,11 +191,23 @@ impl GeneratedKernel {
 
     /// True when the added-mass variant is in use.
     pub fn is_wet(&self) -> bool {
-        self.kernel.wet
+        self.wet
+    }
+
+    /// Unrolled or rolled.
+    pub fn form(&self) -> Form {
+        match self.table {
+            Table::Unrolled(_) => Form::Unrolled,
+            Table::Rolled(..) => Form::Rolled,
+        }
     }
 
     fn states(&mut self, q: &[f64], u: &[f64], bodies: &mut [BodyState]) {
-        (self.kernel.kinematics)(&self.params, q, u, &mut self.trig, &mut self.states);
+        let kinematics = match &self.table {
+            Table::Unrolled(t) => t.kinematics,
+            Table::Rolled(t, _) => t.kinematics,
+        };
+        kinematics(&self.params, q, u, &mut self.trig, &mut self.states);
         for (b, s) in bodies.iter_mut().zip(&self.states) {
             *b = BodyState { x: s[0], z: s[1], theta: s[2], vx: s[3], vz: s[4], omega: s[5] };
         }
@@ -166,7 +227,11 @@ impl Kernel for GeneratedKernel {
     }
 
     fn body_count(&self) -> usize {
-        self.kernel.bodies
+        self.bodies
+    }
+
+    fn form(&self) -> Option<&'static str> {
+        Some(GeneratedKernel::form(self).name())
     }
 
     fn kinematics(&mut self, q: &[f64], u: &[f64], bodies: &mut [BodyState]) {
@@ -176,23 +241,25 @@ impl Kernel for GeneratedKernel {
     fn assemble(&mut self, q: &[f64], u: &[f64], model: &mut dyn LoadModel, out: &mut Assembly) {
         self.states(q, u, &mut out.bodies);
         self.loads(model, &out.bodies);
-        (self.kernel.assemble)(
-            &self.params,
-            u,
-            &self.trig,
-            &self.load_array,
-            out.mass.as_mut_slice(),
-            out.rhs.as_mut_slice(),
-            &mut self.heave,
-        );
+        let (m, f, heave) = (out.mass.as_mut_slice(), out.rhs.as_mut_slice(), &mut self.heave);
+        match &mut self.table {
+            Table::Unrolled(t) => (t.assemble)(&self.params, u, &self.trig, &self.load_array, m, f, heave),
+            Table::Rolled(t, scratch) => {
+                (t.assemble)(&self.params, u, &self.trig, &self.load_array, m, f, heave, scratch)
+            }
+        }
         let n = self.heave.len() - 1;
         out.heave.copy_from_slice(&self.heave[..n]);
         out.heave_rhs = self.heave[n];
     }
 
     fn accelerations(&mut self, q: &[f64], u: &[f64], qdd: &[f64], out: &mut [BodyAcceleration]) {
-        (self.kernel.kinematics)(&self.params, q, u, &mut self.trig, &mut self.states);
-        (self.kernel.accelerations)(&self.params, u, &self.trig, qdd, &mut self.acc);
+        let (kinematics, accelerations) = match &self.table {
+            Table::Unrolled(t) => (t.kinematics, t.accelerations),
+            Table::Rolled(t, _) => (t.kinematics, t.accelerations),
+        };
+        kinematics(&self.params, q, u, &mut self.trig, &mut self.states);
+        accelerations(&self.params, u, &self.trig, qdd, &mut self.acc);
         for (o, a) in out.iter_mut().zip(&self.acc) {
             *o = BodyAcceleration { ax: a[0], az: a[1], alpha: a[2] };
         }
@@ -214,15 +281,21 @@ impl Kernel for GeneratedKernel {
         }
         self.states(q, u, &mut scratch.bodies);
         self.loads(model, &scratch.bodies);
-        let reaction = match anchor {
-            AnchorDof::Free => {
-                let [normal, factor] =
-                    (self.kernel.solve_free)(&self.params, u, &self.trig, &self.load_array, friction, qdd);
+        let (p, trig, loads) = (&self.params, &self.trig, &self.load_array);
+        let reaction = match (anchor, &mut self.table) {
+            (AnchorDof::Free, table) => {
+                let [normal, factor] = match table {
+                    Table::Unrolled(t) => (t.solve_free)(p, u, trig, loads, friction, qdd),
+                    Table::Rolled(t, scratch) => (t.solve_free)(p, u, trig, loads, friction, qdd, scratch),
+                };
                 check_friction_factor(factor)?;
                 AnchorReaction { holding: 0.0, normal }
             }
-            AnchorDof::Stuck => {
-                let [holding, normal] = (self.kernel.solve_stuck)(&self.params, u, &self.trig, &self.load_array, qdd);
+            (AnchorDof::Stuck, table) => {
+                let [holding, normal] = match table {
+                    Table::Unrolled(t) => (t.solve_stuck)(p, u, trig, loads, qdd),
+                    Table::Rolled(t, scratch) => (t.solve_stuck)(p, u, trig, loads, qdd, scratch),
+                };
                 AnchorReaction { holding, normal }
             }
         };

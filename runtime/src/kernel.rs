@@ -148,6 +148,12 @@ pub trait Kernel {
     /// N, the number of bodies.
     fn body_count(&self) -> usize;
 
+    /// Which form of the kernel runs, for reports: `unrolled` or `rolled` for the generated
+    /// kernel, none for the reference.
+    fn form(&self) -> Option<&'static str> {
+        None
+    }
+
     /// Body states only (Eqs. 9, 13, 14): for energy, output and diagnostics.
     fn kinematics(&mut self, q: &[f64], u: &[f64], bodies: &mut [BodyState]);
 

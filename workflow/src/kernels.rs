@@ -10,8 +10,9 @@ use kanestop_runtime::reference::ReferenceKernel;
 pub enum KernelChoice {
     /// The generic formulation of the paper's Eqs. 1–27 (slow, the oracle).
     Reference,
-    /// Flat code emitted by `kanestop-codegen` for the chain's N and water switch, with the
-    /// O(N) recursive solve; the reference when no kernel fits the chain (with a note).
+    /// Code emitted by `kanestop-codegen`, with the O(N) recursive solve: the unrolled kernel
+    /// when the build has one for the chain's N, else the rolled kernel (any N). A chain that
+    /// breaks a structural zero (which no scene builds) gets the reference, with a note.
     #[default]
     Generated,
 }

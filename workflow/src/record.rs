@@ -27,6 +27,9 @@ pub struct RunSummary {
     pub dt: f64,
     /// The kernel that evaluated the equations: `generated` or `reference`.
     pub kernel: String,
+    /// The generated kernel's form: `unrolled` (built for this N) or `rolled` (any N); none
+    /// for the reference.
+    pub kernel_form: Option<String>,
     /// How the run ended: `stopped`, `end time` or `failed`.
     pub status: Status,
     /// First zero of the ship's surge speed, s.
@@ -154,6 +157,7 @@ impl RunSummary {
             method: model.scene.solver.integrator,
             dt: model.scene.solver.dt,
             kernel: result.kernel.to_string(),
+            kernel_form: result.kernel_form.map(str::to_string),
             status: Status::of(&result.stop),
             stopping_time: result.stopping_time,
             paper_stopping_time: model.scene.meta.paper_stopping_time,

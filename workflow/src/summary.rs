@@ -136,10 +136,11 @@ fn run_lines(out: &mut Lines, model: &Model, result: &RunResult, verbose: bool) 
     out.line(
         "run",
         format!(
-            "{}, dt = {} s, kernel {}: {:.3} s simulated in {:.3} s wall ({} steps, {} right-hand-side evaluations)",
+            "{}, dt = {} s, kernel {}{}: {:.3} s simulated in {:.3} s wall ({} steps, {} right-hand-side evaluations)",
             solver.integrator,
             solver.dt,
             result.kernel,
+            result.kernel_form.map(|f| format!(" ({f})")).unwrap_or_default(),
             result.t_end,
             result.wall_time.as_secs_f64(),
             result.steps,

@@ -82,6 +82,9 @@ pub struct RunResult {
     pub max_energy_drift: f64,
     /// Kernel used.
     pub kernel: &'static str,
+    /// The generated kernel's form: `unrolled` (built for this N) or `rolled` (any N); none
+    /// for the reference.
+    pub kernel_form: Option<&'static str>,
     /// What the loads included.
     pub physics: String,
     /// How static the initial catenary is under the model's own forces.
@@ -187,6 +190,7 @@ impl RunResult {
             energy0: 0.0,
             max_energy_drift: 0.0,
             kernel: stepper.kernel(),
+            kernel_form: stepper.kernel_form(),
             physics: stepper.physics().to_string(),
             initial_residual: None,
             stability: None,

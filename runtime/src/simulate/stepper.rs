@@ -149,6 +149,7 @@ pub struct Stepper<'a> {
     model: &'a Model,
     m: Machine,
     kernel: &'static str,
+    kernel_form: Option<&'static str>,
     physics: String,
     stability: Option<StabilityLimit>,
     /// The last good state: time (s), y = (q, u, W) and its observation.
@@ -172,6 +173,7 @@ impl<'a> Stepper<'a> {
         let solver = &model.scene.solver;
         let n = model.body_count();
         let kernel_name = kernel.name();
+        let kernel_form = kernel.form();
         let forces = Forces::new(model);
         let physics = forces.description();
         let m = Machine {
@@ -183,6 +185,7 @@ impl<'a> Stepper<'a> {
             model,
             m,
             kernel: kernel_name,
+            kernel_form,
             physics,
             stability: None,
             t: 0.0,
@@ -308,6 +311,11 @@ impl<'a> Stepper<'a> {
     /// The kernel's name.
     pub fn kernel(&self) -> &'static str {
         self.kernel
+    }
+
+    /// The generated kernel's form (`unrolled` or `rolled`), none for the reference.
+    pub fn kernel_form(&self) -> Option<&'static str> {
+        self.kernel_form
     }
 
     /// What the loads include.
