@@ -8,8 +8,9 @@
 //!
 //! Without the variable only the checked-in sizes (3, 5, 46, 48, 50) have generated kernels
 //! and the others are skipped. Medians of 15 batches of at least 20 ms each; the ratios are
-//! measured side by side in one run. Results are recorded in docs/codegen.md. The last table
-//! times whole runs of paper cases 1 and 17 with full physics.
+//! measured side by side in one run. Results are recorded in docs/codegen.md. Then the
+//! rolled kernel (any N) against the unrolled ones, to N = 520, and whole runs of paper cases
+//! 1 and 17 with full physics.
 
 use std::hint::black_box;
 use std::time::Instant;
@@ -17,7 +18,7 @@ use std::time::Instant;
 use kanestop_chain::BodyKind;
 use kanestop_runtime::chain::{box_inertia, Body, Chain, Shape};
 use kanestop_runtime::forces::Forces;
-use kanestop_runtime::generated::{available, GeneratedKernel, SolvePath};
+use kanestop_runtime::generated::{available, Form, GeneratedKernel, SolvePath};
 use kanestop_runtime::kernel::{AnchorDof, Assembly, Kernel};
 use kanestop_runtime::reference::ReferenceKernel;
 
@@ -158,7 +159,69 @@ fn main() {
         println!("{name:>22} {a:>10.2} {b:>10.2}");
     }
 
+    rolled_vs_unrolled();
     whole_runs();
+}
+
+/// CPU time of this thread so far, s (Linux: the first field of schedstat, ns on the CPU).
+fn thread_cpu() -> f64 {
+    std::fs::read_to_string("/proc/thread-self/schedstat")
+        .ok()
+        .and_then(|s| s.split_whitespace().next().and_then(|t| t.parse::<f64>().ok()))
+        .map_or(f64::NAN, |ns| ns * 1e-9)
+}
+
+/// The rolled kernel (any N) against the unrolled one where the build has it, side by side:
+/// µs per solve (wall median, and CPU time over the whole measurement divided by its calls).
+fn rolled_vs_unrolled() {
+    println!("\nrolled vs unrolled kernel, solve with the anchor free, gravity only (µs per call)");
+    println!(
+        "{:>5} {:>10} {:>10} {:>12} {:>12} {:>8}",
+        "N", "rolled", "rolled CPU", "unrolled", "unrolled CPU", "ratio"
+    );
+    let built = available();
+    let mut rolled_at = Vec::new();
+    for n in [12, 24, 46, 100, 200, 520] {
+        let c = chain(n, false);
+        let timed = |form: Form| {
+            let mut k = GeneratedKernel::with_form(&c, form).unwrap();
+            let cpu = thread_cpu();
+            let mut calls = 0u64;
+            let wall = per_solve_counted(&mut k, &c, &mut calls);
+            (wall, (thread_cpu() - cpu) * 1e6 / calls as f64)
+        };
+        let (rolled, rolled_cpu) = timed(Form::Rolled);
+        rolled_at.push((n, rolled));
+        if built.contains(&(n, false)) {
+            let (unrolled, unrolled_cpu) = timed(Form::Unrolled);
+            println!(
+                "{n:>5} {rolled:>10.2} {rolled_cpu:>10.2} {unrolled:>12.2} {unrolled_cpu:>12.2} {:>7.2}×",
+                rolled / unrolled
+            );
+        } else {
+            println!("{n:>5} {rolled:>10.2} {rolled_cpu:>10.2} {:>12} {:>12} {:>8}", "not built", "", "");
+        }
+    }
+    if let (Some(&(n0, t0)), Some(&(n1, t1))) = (rolled_at.iter().find(|x| x.0 == 46), rolled_at.last()) {
+        println!(
+            "growth exponent of the rolled kernel, N = {n0} → {n1}: {:.2}",
+            (t1 / t0).ln() / (n1 as f64 / n0 as f64).ln()
+        );
+    }
+}
+
+/// As [`per_solve`] (anchor free), counting the calls made.
+fn per_solve_counted(kernel: &mut dyn Kernel, chain: &Chain, calls: &mut u64) -> f64 {
+    let n = chain.len();
+    let (q, u) = state(n);
+    let mut forces = Forces::gravity_only(chain, 9.81);
+    let mut scratch = Assembly::new(n);
+    let mut qdd = vec![0.0; n];
+    time(|| {
+        *calls += 1;
+        let f = kernel.solve(black_box(&q), black_box(&u), AnchorDof::Free, 0.0, &mut forces, &mut scratch, &mut qdd);
+        black_box((f.unwrap(), &qdd));
+    })
 }
 
 /// Whole runs of paper cases with full physics (RK4, dt = 0.002 s, generated kernel): wall

@@ -377,6 +377,7 @@ fn run_json_is_the_documented_summary() {
         "method",
         "dt",
         "kernel",
+        "kernel_form",
         "status",
         "stopping_time",
         "paper_stopping_time",
@@ -400,6 +401,7 @@ fn run_json_is_the_documented_summary() {
         assert!(v.get(key).is_some(), "missing key {key}");
     }
     assert_eq!(v["bodies"], 46);
+    assert_eq!((&v["kernel"], &v["kernel_form"]), (&"generated".into(), &"unrolled".into()));
     assert_eq!(v["method"], "rk4");
     assert_eq!(v["status"], "end time");
     assert!(v["failure"].is_null() && v["stopping_distance"].is_null());
@@ -466,4 +468,37 @@ fn a_variant_of_a_paper_case_is_not_compared_with_the_paper() {
     // Another solver on the same physics still is case 1.
     let out = kanestop().args(["run", "--dt", "0.001"]).output().unwrap();
     assert!(String::from_utf8_lossy(&out.stdout).contains("paper (Table 3): 20.010 s"));
+}
+
+/// A chain of 20 links (N = 51) and 500 m of cable in 1 m elements (N = 518): no build has
+/// an unrolled kernel for either, and both run on generated code, the rolled kernel, with no
+/// reference fallback.
+#[test]
+fn any_element_count_runs_on_the_rolled_kernel() {
+    let dir = temp_dir("rolled");
+    let base = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/paper/case01.toml");
+    let base = format!("{:?}", base.display().to_string());
+    for (name, extra, bodies) in [
+        ("chain20", "[chain]\nelements = 20\n", 51),
+        (
+            "line500",
+            "[[cable.stages]]\nelements = 500\nelement_length = 1.0\n[initial]\nhorizontal_projection = 497.0\n",
+            518,
+        ),
+    ] {
+        let path = dir.join(format!("{name}.toml"));
+        let text = format!(
+            "extends = {base}\n[meta]\nname = \"{name}\"\ndescription = \"any N\"\n[solver]\nend_time = 0.2\n{extra}"
+        );
+        std::fs::write(&path, text).unwrap();
+        let out = kanestop().arg("run").arg(&path).arg("--json").output().unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(out.status.success(), "{name}: {stderr}");
+        assert!(!stderr.contains("reference"), "{name}: no fallback note: {stderr}");
+        let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        assert_eq!(v["bodies"], bodies);
+        assert_eq!((&v["kernel"], &v["kernel_form"]), (&"generated".into(), &"rolled".into()), "{name}");
+        assert_eq!(v["status"], "end time", "{name}");
+        assert!(v["energy_drift"].as_f64().unwrap() < 1e-4, "{name}: {}", v["energy_drift"]);
+    }
 }
