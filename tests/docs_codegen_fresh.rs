@@ -1,6 +1,7 @@
-//! `docs/codegen.md`'s operation-count table is rendered from `kanestop_codegen::generate`
-//! (what `kanestop codegen` prints) for case 1's N = 46: a stale table fails this test and is
-//! rewritten between its markers, as `docs_fresh.rs` does for docs/scenes.md.
+//! `docs/codegen.md`'s operation-count tables are rendered from `kanestop_codegen::generate`
+//! (what `kanestop codegen` prints) for case 1's N = 46 and from the rolled kernels' steps: a
+//! stale table fails this test and is rewritten between its markers, as `docs_fresh.rs` does
+//! for docs/scenes.md.
 
 use kanestop_chain::{Variant, Water};
 use kanestop_codegen::generate;
@@ -51,15 +52,63 @@ fn render(n: usize) -> String {
     o
 }
 
+const ROLLED_BEGIN: &str = "<!-- rolled-opcounts:begin";
+const ROLLED_END: &str = "<!-- rolled-opcounts:end -->";
+
+/// The rolled kernels' steps: operations per call (per body of the step's kind), and the
+/// O(N) solve's total at N = 46 against the unrolled kernel's.
+fn render_rolled(n: usize) -> String {
+    use kanestop_codegen::drivers::generate_rolled;
+    let (dry, wet) = (generate_rolled(Water::Off), generate_rolled(Water::On));
+    let mut o = format!(
+        "{ROLLED_BEGIN}: rendered by tests/docs_codegen_fresh.rs from kanestop_codegen::drivers -->\n\n\
+         Operations per call of each rolled step (one call per body of its kind):\n\n\
+         | step | water off | water on |\n| --- | --- | --- |\n"
+    );
+    for (a, b) in dry.steps.iter().zip(&wet.steps) {
+        assert_eq!(a.name, b.name);
+        o.push_str(&format!("| `{}` | {} | {} |\n", a.name, spaced(a.ops.total()), spaced(b.ops.total())));
+    }
+    // solve_free over N bodies: ship, N − 3 rods, the first, the anchor, N − 1 outward steps,
+    // and the N − 1 additions of the angular velocities.
+    let solve = |f: &kanestop_codegen::drivers::RolledFile| {
+        let ops = |name: &str| f.steps.iter().find(|s| s.name == name).expect("step").ops.total();
+        ops("inward_ship")
+            + (n - 3) * ops("inward_rod")
+            + ops("inward_first")
+            + ops("anchor_free")
+            + (n - 1) * (ops("outward") + 1)
+    };
+    let unrolled =
+        |w| generate(Variant::new(n, w)).functions.iter().find(|f| f.name == "solve_free").unwrap().ops.total();
+    o.push_str(&format!(
+        "\n`solve_free` at N = {n}: rolled {} (water off) and {} (water on) operations, unrolled {} and {}.\n\n",
+        spaced(solve(&dry)),
+        spaced(solve(&wet)),
+        spaced(unrolled(Water::Off)),
+        spaced(unrolled(Water::On))
+    ));
+    o.push_str(ROLLED_END);
+    o
+}
+
+/// Rewrites the block between `begin` and `end` with `fresh`; true when it was stale.
+fn refresh(text: &mut String, begin: &str, end: &str, fresh: &str) -> bool {
+    let a = text.find(begin).unwrap_or_else(|| panic!("docs/codegen.md: marker {begin}"));
+    let b = text.find(end).unwrap_or_else(|| panic!("docs/codegen.md: marker {end}")) + end.len();
+    let stale = &text[a..b] != fresh;
+    text.replace_range(a..b, fresh);
+    stale
+}
+
 #[test]
 fn op_count_table_is_fresh() {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/codegen.md");
-    let text = std::fs::read_to_string(&path).unwrap();
-    let a = text.find(BEGIN).expect("docs/codegen.md: op-count begin marker");
-    let b = text.find(END).expect("docs/codegen.md: op-count end marker") + END.len();
-    let fresh = format!("{}{}{}", &text[..a], render(46), &text[b..]);
-    if fresh != text {
-        std::fs::write(&path, &fresh).unwrap();
+    let mut text = std::fs::read_to_string(&path).unwrap();
+    let stale =
+        refresh(&mut text, BEGIN, END, &render(46)) | refresh(&mut text, ROLLED_BEGIN, ROLLED_END, &render_rolled(46));
+    if stale {
+        std::fs::write(&path, &text).unwrap();
         panic!("docs/codegen.md's op counts were stale and have been regenerated: review and commit it");
     }
 }
