@@ -143,6 +143,15 @@ fn sweep(base: &Scene, points: &[(f64, f64)]) {
         if problems(&s).is_empty() {
             assert!(inside, "accepted x_L = {x} outside {range:?} (h_L = {h})");
             let model = assert_physical(&s);
+            // Whole elements lie on the seabed: fewer than the catenary's grounded part, by the
+            // element the catenary touches down in and the one the laying lifts off the
+            // seabed to meet (x_L, h_L) (measured: at most 1.2 of the longest element here).
+            let longest = s.cable_element_lengths().into_iter().fold(0.0, f64::max);
+            let (laid, catenary) = (model.grounded_cable_length(), model.catenary.grounded_length());
+            assert!(
+                laid <= catenary + 1e-9 && catenary - laid < 2.0 * longest,
+                "x_L = {x}: laid {laid} m, catenary {catenary} m"
+            );
             let mut short = model.scene.clone();
             short.solver.end_time = 0.01;
             let model = Model::new(&short).unwrap();

@@ -134,6 +134,21 @@ impl Model {
         out
     }
 
+    /// Length of the laid cable elements that lie on the seabed at t = 0 (both ends at the
+    /// height of the catenary's lower end o, to 1e-9 m), m: the grounded part of the line as
+    /// the rigid elements lay it, which differs from the catenary's grounded length
+    /// ([`Catenary::grounded_length`]) by less than two elements: the one the catenary
+    /// touches down in, and the one the laying lifts to meet (x_L, h_L).
+    pub fn grounded_cable_length(&self) -> f64 {
+        let joints = self.initial_joints();
+        let floor = self.catenary_origin[1] + 1e-9;
+        (0..self.body_count() - 1)
+            .filter(|&k| matches!(self.chain.bodies[k].kind, kanestop_chain::BodyKind::Cable { .. }))
+            .filter(|&k| joints[k][1] <= floor && joints[k + 1][1] <= floor)
+            .map(|k| self.chain.bodies[k].length())
+            .sum()
+    }
+
     /// Water depth d, m.
     pub fn water_depth(&self) -> f64 {
         -self.seabed_z
