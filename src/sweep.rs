@@ -117,14 +117,14 @@ pub fn sweep(args: &SweepArgs) -> Result<Exit> {
     let file = args.spec.as_ref().context("a sweep spec (SPEC.toml) is needed")?;
     let spec = sweep::Spec::load(file)?;
     let plan = spec.plan();
-    if args.slurm {
-        return slurm(args, &spec, &plan);
-    }
     anyhow::ensure!(
         args.checkpoint.is_finite() && args.checkpoint >= 0.0,
         "--checkpoint = {}: a number of seconds ≥ 0",
         args.checkpoint
     );
+    if args.slurm {
+        return slurm(args, &spec, &plan);
+    }
     let shard = match &args.shard {
         Some(text) => Some((Shard::parse(text)?, "--shard")),
         None => shard::from_env(|name| std::env::var(name).ok(), args.shards)?,
@@ -305,6 +305,7 @@ fn slurm(args: &SweepArgs, spec: &sweep::Spec, plan: &[PlannedRow]) -> Result<Ex
         shards,
         cpus,
         kernel: &args.kernel,
+        checkpoint: args.checkpoint,
     };
     print!("{}", script.text());
     Ok(Exit::Done)

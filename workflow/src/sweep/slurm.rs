@@ -24,6 +24,8 @@ pub struct JobScript<'a> {
     pub cpus: usize,
     /// The kernel (`generated` or `reference`).
     pub kernel: &'a str,
+    /// How often a task saves its shard file, s (`--checkpoint`).
+    pub checkpoint: f64,
 }
 
 /// The shard count when `--shards` is not given: one shard per row up to 10.
@@ -46,7 +48,7 @@ impl JobScript<'_> {
         let (n, last) = (self.shards, self.shards - 1);
         let logs = |file: &str| shell_quote(&format!("{}/logs/{file}", self.out.display()));
         let (shard_log, merge_log) = (logs("shard-%a.log"), logs("merge.log"));
-        let (cpus, kernel, rows) = (self.cpus, self.kernel, self.rows);
+        let (cpus, kernel, rows, checkpoint) = (self.cpus, self.kernel, self.rows, self.checkpoint);
         format!(
             r#"#!/usr/bin/env bash
 # The sweep {name} ({rows} rows) as a Slurm job array of {n} shards, then a merge job once
@@ -64,7 +66,7 @@ array=$(sbatch --parsable --output={shard_log} <<'JOB'
 #SBATCH --job-name={job}
 #SBATCH --array=0-{last}
 #SBATCH --cpus-per-task={cpus}
-exec {exe} sweep {spec} --out {out} --shards {n} --resume --jobs "${{SLURM_CPUS_PER_TASK:-{cpus}}}" --kernel {kernel}
+exec {exe} sweep {spec} --out {out} --shards {n} --resume --jobs "${{SLURM_CPUS_PER_TASK:-{cpus}}}" --kernel {kernel} --checkpoint {checkpoint}
 JOB
 )
 array=${{array%%;*}}
@@ -103,6 +105,7 @@ mod tests {
             shards: 7,
             cpus: 2,
             kernel: "generated",
+            checkpoint: 10.0,
         }
         .text();
         assert!(script.contains("#SBATCH --array=0-6\n"), "{script}");
