@@ -336,3 +336,24 @@ fn the_slurm_script_names_the_array_the_task_and_the_merge() {
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("--shard = 7/7: K in [0, 6]"), "{}", stderr(&o));
 }
+
+#[test]
+fn the_plan_hash_depends_on_the_plan_and_kernel_not_on_where_or_how_it_runs() {
+    let hash_of = |dir: &Path, extra: &[&str]| -> String {
+        let (out, spec) = (dir.join("out"), dir.join("spec.toml"));
+        let mut args = vec!["sweep", s(&spec), "--out", s(&out), "--shard", "0/11"];
+        args.extend(extra);
+        let o = run(&args, &[]);
+        assert!(o.status.code() != Some(2), "{}", stderr(&o));
+        let v: Value = serde_json::from_slice(&std::fs::read(out.join("shards/shard-0-of-11.json")).unwrap()).unwrap();
+        v["plan_hash"].as_str().unwrap().to_string()
+    };
+    let (a, b, c) = (temp_dir("hash-a"), temp_dir("hash-b").join("deeper"), temp_dir("hash-c"));
+    std::fs::create_dir_all(&b).unwrap();
+    spec(&a, 3.0);
+    spec(&b, 3.0);
+    spec(&c, 3.0);
+    let h = hash_of(&a, &[]);
+    assert_eq!(hash_of(&b, &["--jobs", "1"]), h, "another folder, another thread count: the same plan");
+    assert_ne!(hash_of(&c, &["--kernel", "reference"]), h, "another kernel");
+}

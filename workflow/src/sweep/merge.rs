@@ -19,7 +19,7 @@ pub struct Merged {
     pub sampling: bool,
     /// Every row, in spec order.
     pub rows: Vec<SweepRow>,
-    /// Every row's scene file (row name, text), for [`super::write`].
+    /// Every row's scene file (row name, text), for [`super::write()`].
     pub scenes: Vec<(String, String)>,
     /// The shard files read.
     pub files: Vec<PathBuf>,

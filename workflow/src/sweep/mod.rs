@@ -377,7 +377,7 @@ pub fn scene_file(row: &PlannedRow) -> Option<String> {
     Some(format!("# Row {} of a sweep: {}\n{}", row.index, label(&row.inputs), scene.to_toml()))
 }
 
-/// Every row's scene file: (row name, text), for [`write`].
+/// Every row's scene file: (row name, text), for [`write()`].
 pub fn scene_files(plan: &[PlannedRow]) -> Vec<(String, String)> {
     plan.iter().filter_map(|row| Some((row.name.clone(), scene_file(row)?))).collect()
 }

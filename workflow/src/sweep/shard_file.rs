@@ -146,7 +146,8 @@ impl ShardFile {
     }
 }
 
-/// A shard as it runs: its file, saved at the start, every `every` and at the end.
+/// A shard as it runs: its file, saved at the start, every `every` (or ten times as long as
+/// the last save took, if longer) and at the end.
 pub struct ShardRun {
     path: PathBuf,
     every: Duration,
@@ -156,7 +157,9 @@ pub struct ShardRun {
 
 struct State {
     file: ShardFile,
+    /// When the file was last saved, and how long that took.
     saved: Instant,
+    cost: Duration,
     error: Option<Error>,
 }
 
@@ -214,7 +217,7 @@ impl ShardRun {
         }
         file.complete = rows.is_empty();
         file.write(&path)?;
-        let state = Mutex::new(State { file, saved: Instant::now(), error: None });
+        let state = Mutex::new(State { file, saved: Instant::now(), cost: Duration::ZERO, error: None });
         Ok((ShardRun { path, every, scenes, state }, Todo { kept, rows }))
     }
 
@@ -228,12 +231,14 @@ impl ShardRun {
         let mut s = self.state.lock().expect("shard file lock");
         let scene = self.scenes.get(&row.index).cloned().flatten();
         s.file.rows.push(ShardRow { row: row.clone(), scene });
-        if s.saved.elapsed() >= self.every && s.error.is_none() {
+        // At most a tenth of the time goes to saving, however large the file grows.
+        if s.saved.elapsed() >= self.every.max(s.cost * 10) && s.error.is_none() {
+            let start = Instant::now();
             s.file.rows.sort_by_key(|r| r.row.index);
             if let Err(e) = s.file.write(&self.path) {
                 s.error = Some(e);
             }
-            s.saved = Instant::now();
+            (s.saved, s.cost) = (Instant::now(), start.elapsed());
         }
     }
 
