@@ -118,7 +118,8 @@ enum Command {
         kernel: KernelArg,
     },
     /// Run one scene over grid axes and sampled uncertain inputs (docs/sweeps.md): one row
-    /// per run with its inputs, outputs and design checks, as sweep.csv and sweep.json.
+    /// per run with its inputs, outputs and design checks, as sweep.csv and sweep.json; in
+    /// shards over a job array (--shard, --slurm) merged by `sweep merge`.
     Sweep(sweep::SweepArgs),
     /// Show the generated kernels a scene needs (variants, N, operation counts, lines);
     /// `--write` regenerates the checked-in kernels under generated/src/.
@@ -396,10 +397,11 @@ const EXIT_CODES_HELP: &str = "Exit codes:
   0  done
   1  batch: a scene was invalid or failed, or --tolerance validation missed
   2  bad input: arguments, scene, state file, an output path that cannot be written, or a
-     step refused before the run (the diagnostic is printed on standard error)
+     step refused before the run (the diagnostic is printed on standard error); sweep
+     merge: shard files of different sweeps, a row missing or twice
   3  numerical failure during a run (the diagnostic is printed on standard error)
   4  a design check failed: a break load was exceeded, or a limit of the scene's or the sweep
-     spec's [checks] (sweep: in some row); 3 takes precedence over 4
+     spec's [checks] (sweep, a shard or a merge: in some row); 3 takes precedence over 4
 
 Summaries and tables go to standard output; errors, diagnostics and progress to standard error.";
 
