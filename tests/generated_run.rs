@@ -58,8 +58,8 @@ fn case1_stopping_time_is_the_same_with_both_kernels() {
 }
 
 /// Case 1 on the rolled kernel (any N) and on the unrolled one built for N = 46: the same
-/// maths in the same order, so the same stopping time to 1e-9 s, and every sample agrees
-/// to rounding.
+/// operations on every value the run depends on, so the same run bit for bit: stopping
+/// time, every sample's body states and tensions.
 #[test]
 fn case1_is_the_same_on_the_rolled_kernel() {
     use kanestop_runtime::generated::Form;
@@ -68,13 +68,11 @@ fn case1_is_the_same_on_the_rolled_kernel() {
     let rolled = simulate::run(&model, Box::new(GeneratedKernel::with_form(&model.chain, Form::Rolled).unwrap()));
     assert_eq!(unrolled.stop, rolled.stop);
     let (a, b) = (unrolled.stopping_time.expect("case 1 stops"), rolled.stopping_time.expect("case 1 stops"));
-    let mut worst: f64 = 0.0;
+    assert_eq!(a.to_bits(), b.to_bits(), "stopping time {a} vs {b}");
+    assert_eq!(unrolled.samples.len(), rolled.samples.len());
     for (x, y) in unrolled.samples.iter().zip(&rolled.samples) {
-        for (p, q) in x.bodies.iter().zip(&y.bodies) {
-            worst = worst.max((p.x - q.x).abs().max((p.z - q.z).abs()).max((p.theta - q.theta).abs()));
-        }
+        assert_eq!(x.t, y.t);
+        assert_eq!(x.bodies, y.bodies, "body states at t = {}", x.t);
+        assert_eq!(x.tensions, y.tensions, "tensions at t = {}", x.t);
     }
-    eprintln!("stopping time unrolled {a} s, rolled {b} s; largest state difference {worst:e}");
-    assert!((a - b).abs() < 1e-9, "stopping time {a} vs {b}");
-    assert!(worst < 1e-9, "largest state difference {worst:e}");
 }

@@ -1,8 +1,8 @@
 //! The generated kernels against the reference formulation (the oracle), for every variant
 //! (water off and on; anchor free and stuck) and N ∈ {3, 5, 46, 48, 50}, at 100 random
-//! states each: body states, a_lp, f_l and the anchor's heave row entrywise to 1e-12 of
-//! their scale, for the unrolled kernels and the rolled one (also at N = 4, 11, 51, which no
-//! build has); body accelerations, and both solve paths by the residual of the reference
+//! states each (the rolled kernel at N ∈ {3, 4, 5, 11, 46, 51}, the last four of which no build
+//! has unrolled): body states and their rotation table, a_lp, f_l and the anchor's heave row
+//! entrywise to 1e-12 of their scale; body accelerations, and both solve paths by the residual of the reference
 //! system, with the anchor stuck, free, or sliding with implicit friction; the normal force
 //! of the heave row against Newton's sum over the bodies (Eq. 52).
 
@@ -40,7 +40,7 @@ impl LoadModel for StateLoads {
             *l = Load {
                 fx: self.fixed[k].fx - 0.3 * m * b.vx - 0.01 * m * b.x,
                 fz: self.fixed[k].fz - G * m - 0.3 * m * b.vz - 0.01 * m * b.z,
-                my: self.fixed[k].my - 0.2 * m * b.omega + 0.1 * m * b.theta.sin(),
+                my: self.fixed[k].my - 0.2 * m * b.omega + 0.1 * m * b.sin,
             };
         }
     }
@@ -169,6 +169,9 @@ fn check_form(n: usize, wet: bool, form: Form) {
                 assert!((r.vx - g.vx).abs() <= 1e-12 * vscale && (r.vz - g.vz).abs() <= 1e-12 * vscale);
                 assert!((r.theta - g.theta).abs() <= 1e-14 * (1.0 + r.theta.abs()), "N={n} θ of B_{k}");
                 assert!((r.omega - g.omega).abs() <= 1e-14 * (1.0 + r.omega.abs()), "N={n} ω of B_{k}");
+                // The rotation table the force models read (cos θ, sin θ of the same θ).
+                assert!((r.cos - g.cos).abs() <= 1e-14 && (r.sin - g.sin).abs() <= 1e-14, "N={n} trig of B_{k}");
+                assert!((g.cos - g.theta.cos()).abs() <= 1e-15 && (g.sin - g.theta.sin()).abs() <= 1e-15);
             }
 
             // a_lp entrywise, scaled by the diagonal (|a_ij| ≤ √(a_ii a_jj)); f by its norm.

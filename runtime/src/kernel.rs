@@ -52,7 +52,7 @@ pub enum AnchorDof {
 }
 
 /// A body's centroid and rotation in the inertial frame.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct BodyState {
     /// Centroid C_k, m (x toward the ship from the ship's initial water-plane centre).
     pub x: f64,
@@ -71,6 +71,13 @@ pub struct BodyState {
     pub vz: f64,
     /// Angular velocity ω_2^(0k) about y, rad/s.
     pub omega: f64,
+}
+
+impl Default for BodyState {
+    /// At rest at the origin, level: θ = 0 with cos θ = 1 and sin θ = 0 (consistent).
+    fn default() -> Self {
+        BodyState { x: 0.0, z: 0.0, theta: 0.0, cos: 1.0, sin: 0.0, vx: 0.0, vz: 0.0, omega: 0.0 }
+    }
 }
 
 /// The resultant applied load on a body, at its centroid, inertial components.

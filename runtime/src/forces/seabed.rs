@@ -9,11 +9,13 @@
 //!
 //! The axis height h = r − δ runs linearly along the rod, so the integral has a closed form
 //! ([`embedded_volume`]): with the antiderivatives F(h) of A and G(h) of h·A, V^S = L (F(h_b)
-//! − F(h_a)) / (h_b − h_a), two `acos` and two `sqrt` per element. A nearly level rod takes
-//! its Taylor series about the mid height instead (the closed form cancels there), and a
-//! nearly level rod at the edge of the section the quadrature
-//! ([`embedded_volume_by_quadrature`], the literal statement of the integral, 8 `acos` and 8
-//! `sqrt`).
+//! − F(h_a)) / (h_b − h_a), one `acos` and one `sqrt` per end. It cancels as the rod levels
+//! out, so a nearly level rod takes its Taylor series about the mid height (one `acos`), and
+//! a nearly level rod close to an edge of the section (barely touching, or nearly buried),
+//! where neither serves, the 8-point quadrature ([`embedded_volume_by_quadrature`], the
+//! literal statement of the integral, 8 `acos` and 8 `sqrt`). The branches agree to 1e-11 of
+//! V where the series meets the closed form, and to the quadrature's own error (measured 5e-6
+//! of a barely touching rod's tiny V) where the quadrature meets them.
 
 use std::f64::consts::PI;
 
@@ -41,44 +43,44 @@ const GAUSS_8: [(f64, f64); 8] = [
     (0.960_289_856_497_536_3, 0.101_228_536_290_376_26),
 ];
 
-/// ∫ A dh: F(h) = r²(h acos(h/r) − √(r² − h²)) + (r² − h²)^{3/2}/3 for |h| < r, 0 above the
-/// rod's top (h ≥ r: nothing embedded), π r² h below (h ≤ −r: the whole section), m³/m.
-fn area_integral(r: f64, h: f64) -> f64 {
-    if h >= r {
-        0.0
-    } else if h <= -r {
-        PI * r * r * h
-    } else {
-        let w = (r * r - h * h).sqrt();
-        r * r * (h * (h / r).acos() - w) + w * w * w / 3.0
-    }
-}
-
-/// ∫ h A dh: G(h) = acos(h/r)(r²h²/2 − r⁴/8) + π r⁴/16 − h (r² + 2h²) √(r² − h²)/8 for
-/// |h| < r, π r⁴/16 above, π r² h²/2 − π r⁴/16 below (continuous), m⁴/m.
-fn moment_integral(r: f64, h: f64) -> f64 {
+/// The antiderivatives at axis height h: (F, G) with F(h) = ∫ A dh = r²(h acos(h/r) −
+/// √(r² − h²)) + (r² − h²)^{3/2}/3 and G(h) = ∫ h A dh = acos(h/r)(r²h²/2 − r⁴/8) + π r⁴/16 −
+/// h (r² + 2h²) √(r² − h²)/8 for |h| < r; above the rod's top (h ≥ r, nothing embedded) F = 0
+/// and G = π r⁴/16; below (h ≤ −r, the whole section) F = π r² h and G = π r² h²/2 − π r⁴/16
+/// (both continuous). One `acos` and one `sqrt`. Units m³/m and m⁴/m.
+fn antiderivatives(r: f64, h: f64) -> (f64, f64) {
     let r4 = r * r * r * r;
     if h >= r {
-        PI * r4 / 16.0
+        (0.0, PI * r4 / 16.0)
     } else if h <= -r {
-        PI * r * r * h * h / 2.0 - PI * r4 / 16.0
+        (PI * r * r * h, PI * r * r * h * h / 2.0 - PI * r4 / 16.0)
     } else {
-        let w = (r * r - h * h).sqrt();
-        (h / r).acos() * (r * r * h * h / 2.0 - r4 / 8.0) + PI * r4 / 16.0 - h * (r * r + 2.0 * h * h) * w / 8.0
+        let (w, acos) = ((r * r - h * h).sqrt(), (h / r).acos());
+        let f = r * r * (h * acos - w) + w * w * w / 3.0;
+        let g = acos * (r * r * h * h / 2.0 - r4 / 8.0) + PI * r4 / 16.0 - h * (r * r + 2.0 * h * h) * w / 8.0;
+        (f, g)
     }
 }
 
-/// Below this tilt, |h_b − h_a| relative to the ends' distance from the section's edges
-/// (h = ±r), a rod is nearly level: its Taylor series about the mid height is exact to
-/// about 1e-12 there, while the closed form loses digits to cancellation.
-const NEARLY_LEVEL: f64 = 1e-3;
+/// A rod is nearly level when |h_b − h_a| ≤ `TAYLOR` × the ends' distance from the section's
+/// edges (h = ±r): its Taylor series about the mid height is then exact to about 3e-12.
+const TAYLOR: f64 = 1e-2;
+
+/// The closed form cancels as the tilt shrinks (its centroid's error grows as (r/Δ)²): it is
+/// used for |h_b − h_a| ≥ `CLOSED` × r, where V is exact to about 1e-13 and s̄ to about 2e-9
+/// of the length.
+const CLOSED: f64 = 1e-3;
 
 /// Embedded volume of a rod of radius `r` whose axis runs from height `h_a` to `h_b`
 /// above the seabed over a length `len`: (V^S in m³, its centroid's axial position s̄ in m
-/// from the `h_a` end). Zero volume when the rod is clear of the seabed. The integral of
-/// [`embedded_volume_by_quadrature`] in closed form (see the module documentation).
+/// from the `h_a` end). Zero volume when the rod is clear of the seabed; NaN for a NaN height.
+/// The integral of [`embedded_volume_by_quadrature`], in closed form or its Taylor series
+/// (see the module documentation).
 pub fn embedded_volume(r: f64, len: f64, h_a: f64, h_b: f64) -> (f64, f64) {
-    let (lo, hi) = (h_a.min(h_b), h_a.max(h_b));
+    if h_a.is_nan() || h_b.is_nan() {
+        return (f64::NAN, f64::NAN);
+    }
+    let (lo, hi) = if h_a <= h_b { (h_a, h_b) } else { (h_b, h_a) };
     if lo >= r {
         return (0.0, 0.0);
     }
@@ -87,29 +89,33 @@ pub fn embedded_volume(r: f64, len: f64, h_a: f64, h_b: f64) -> (f64, f64) {
     }
     let dh = h_b - h_a;
     let inside = r - lo.abs().max(hi.abs()); // > 0: both ends cut the section
-    if dh.abs() <= NEARLY_LEVEL * inside {
+    let h = 0.5 * (h_a + h_b);
+    let w = (r * r - h * h).sqrt();
+    if dh.abs() <= TAYLOR * inside && w > 0.0 {
         // A(h_m + tΔ) about the mid height, t in [−½, ½], with A1 = −2√(r² − h²),
         // A2 = 2h/√(r² − h²) and A3 = 2r²/(r² − h²)^{3/2} its derivatives.
-        let h = 0.5 * (h_a + h_b);
-        let w = (r * r - h * h).sqrt();
         let a = r * r * (h / r).acos() - h * w;
         let (a1, a2, a3) = (-2.0 * w, 2.0 * h / w, 2.0 * r * r / (w * w * w));
         let v = a + a2 * dh * dh / 24.0;
         let m = 0.5 * v + a1 * dh / 12.0 + a3 * dh * dh * dh / 480.0;
         return (len * v, len * m / v);
     }
-    if dh.abs() <= NEARLY_LEVEL * r {
-        // Nearly level across an edge of the section: the closed form would cancel.
+    if dh.abs() < CLOSED * r {
+        // Nearly level at an edge of the section: the literal integral.
         return embedded_volume_by_quadrature(r, len, h_a, h_b);
     }
-    let df = area_integral(r, h_b) - area_integral(r, h_a);
+    let ((fa, ga), (fb, gb)) = (antiderivatives(r, h_a), antiderivatives(r, h_b));
+    let df = fb - fa;
     let v = len * df / dh;
     if v <= 0.0 {
         return (0.0, 0.0);
     }
-    // ∫ A s ds with s = L (h − h_a)/Δ.
-    let dg = moment_integral(r, h_b) - moment_integral(r, h_a) - h_a * df;
-    (v, len * len * dg / (dh * dh) / v)
+    // ∫ A s ds with s = L (h − h_a)/Δ, kept inside the embedded part of the axis: for a rod
+    // that barely touches, G's terms cancel to nothing and only that bound is meaningful.
+    let s_bar = len * len * (gb - ga - h_a * df) / (dh * dh) / v;
+    let s_edge = (len * (r - h_a) / dh).clamp(0.0, len); // where the axis leaves the section's top
+    let (s0, s1) = if h_a < h_b { (0.0, s_edge) } else { (s_edge, len) };
+    (v, s_bar.clamp(s0, s1))
 }
 
 /// The embedded volume and its centroid as in [`embedded_volume`], by 8-point Gauss–Legendre
@@ -172,8 +178,9 @@ mod tests {
         for i in 0..41 {
             let h = -1.2 * r + 2.4 * r * i as f64 / 40.0;
             let e = 1e-7 * r;
-            let fd = (area_integral(r, h + e) - area_integral(r, h - e)) / (2.0 * e);
-            let gd = (moment_integral(r, h + e) - moment_integral(r, h - e)) / (2.0 * e);
+            let (fp, gp) = antiderivatives(r, h + e);
+            let (fm, gm) = antiderivatives(r, h - e);
+            let (fd, gd) = ((fp - fm) / (2.0 * e), (gp - gm) / (2.0 * e));
             let a = segment_area(r, r - h);
             assert!((fd - a).abs() < 1e-8 * r * r, "F'({h}) = {fd} against A = {a}");
             assert!((gd - h * a).abs() < 1e-8 * r * r * r, "G'({h}) = {gd} against h A = {}", h * a);
@@ -202,21 +209,46 @@ mod tests {
     }
 
     #[test]
-    fn closed_form_is_continuous_where_its_branches_meet() {
-        // Across the nearly-level threshold and across an end crossing the top of the section.
+    fn branches_agree_where_they_meet() {
         let (r, len) = (0.0763, 1.0);
-        let h: f64 = 0.03;
-        // The tilt Δ where |Δ| = NEARLY_LEVEL (r − |h| − |Δ|/2): Taylor series below, closed form above.
-        let edge = NEARLY_LEVEL * (r - h.abs()) / (1.0 + NEARLY_LEVEL / 2.0);
-        let below = embedded_volume(r, len, h - edge * (0.5 - 1e-12), h + edge * (0.5 - 1e-12));
-        let above = embedded_volume(r, len, h - edge * (0.5 + 1e-12), h + edge * (0.5 + 1e-12));
-        assert!(
-            (below.0 - above.0).abs() < 1e-12 * below.0 && (below.1 - above.1).abs() < 1e-10,
-            "{below:?} {above:?}"
-        );
+        let at = |h: f64, d: f64| embedded_volume(r, len, h - d / 2.0, h + d / 2.0);
+        // Taylor series → closed form, at mid heights (|h| ≤ 0.9 r: the two are adjacent).
+        for h in [0.0f64, 0.03, -0.05, 0.068] {
+            let d = TAYLOR * (r - h.abs()) / (1.0 + TAYLOR / 2.0);
+            let d = d.max(CLOSED * r);
+            let (below, above) = (at(h, d * (1.0 - 1e-9)), at(h, d * (1.0 + 1e-9)));
+            assert!((below.0 - above.0).abs() < 1e-11 * below.0, "h = {h}: {below:?} {above:?}");
+            // (The closed form's centroid at its lower limit: about 2e-9 of the length.)
+            assert!((below.1 - above.1).abs() < 1e-8 * len, "h = {h}: {below:?} {above:?}");
+        }
+        // Quadrature → closed form near the edges of the section (|Δ| = CLOSED r): the
+        // 8-point rule's own error, measured 5e-6 of V for a rod barely touching, 5e-9 at the
+        // bottom edge.
+        for h in [r - 1e-5, -r + 1e-5] {
+            let d = CLOSED * r;
+            let (below, above) = (at(h, d * (1.0 - 1e-9)), at(h, d * (1.0 + 1e-9)));
+            assert!((below.0 - above.0).abs() < 1e-5 * below.0, "h = {h}: {below:?} {above:?}");
+            assert!((below.1 - above.1).abs() < 1e-3 * len, "h = {h}: {below:?} {above:?}");
+        }
+        // An end crossing the top of the section.
         let (b, a) = (embedded_volume(r, len, 0.0, r - 1e-12), embedded_volume(r, len, 0.0, r + 1e-12));
         // (Moving an end by 2e-12 m changes V by about 3e-11 of itself.)
         assert!((b.0 - a.0).abs() < 1e-10 * b.0 && (b.1 - a.1).abs() < 1e-10, "{b:?} {a:?}");
+    }
+
+    #[test]
+    fn barely_touching_rod_has_its_centroid_on_the_embedded_part_and_nan_propagates() {
+        let (r, len) = (0.0763, 1.0);
+        for (ha, hb) in [(r - 1e-6, r + 0.01), (r + 0.01, r - 1e-6), (r - 1e-9, r + 0.5)] {
+            let (v, s) = embedded_volume(r, len, ha, hb);
+            let edge = len * (r - ha) / (hb - ha);
+            let (s0, s1) = if ha < hb { (0.0, edge) } else { (edge, len) };
+            assert!(v >= 0.0 && s >= s0 && s <= s1, "({ha}, {hb}): V {v}, s̄ {s} outside [{s0}, {s1}]");
+        }
+        let (v, s) = embedded_volume(r, len, f64::NAN, r + 1.0);
+        assert!(v.is_nan() && s.is_nan());
+        let (v, _) = embedded_volume(r, len, 0.03, 0.03);
+        assert!(v > 0.0 && v.is_finite());
     }
 
     #[test]
@@ -231,7 +263,7 @@ mod tests {
 
     #[test]
     fn slightly_tilted_embedded_rod_matches_fine_quadrature() {
-        // A rod resting on the seabed, 6 mm and 9 mm deep at its ends: the 3-point rule
+        // A rod resting on the seabed, 6 mm and 9 mm deep at its ends: the closed form
         // against a 20 000-point midpoint sum.
         let (r, len, ha, hb) = (0.0763, 1.0, 0.0763 - 0.006, 0.0763 - 0.009);
         let (v, s) = embedded_volume(r, len, ha, hb);
