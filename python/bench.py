@@ -131,6 +131,8 @@ def bench_sweep(cli: str, rows: int, repeats: int) -> None:
     print(f"  kanestop.sweep(SPEC)  {pw:.2f} s wall, {pc:.2f} s CPU")
     print(f"  kanestop sweep SPEC   {cw:.2f} s wall, {cc:.2f} s CPU")
     print(f"  Python/CLI: wall {pw / cw:.3f}, CPU {pc / cc:.3f}; the tables are equal (every cell but wall_time)")
+    (mpw, mpc), (mcw, mcc) = ((statistics.median(w), statistics.median(c)) for w, c in (zip(*py), zip(*cl)))
+    print(f"  median of {repeats}: Python {mpw:.2f} s wall, {mpc:.2f} s CPU; CLI {mcw:.2f} s wall, {mcc:.2f} s CPU")
     each = ", ".join(f"{a[0]:.2f}/{b[0]:.2f} ({a[1]:.2f}/{b[1]:.2f} CPU)" for a, b in zip(py, cl))
     print(f"  each repeat, Python/CLI s: {each}")
     print(f"  {load()}")

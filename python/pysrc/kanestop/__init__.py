@@ -262,7 +262,7 @@ def _legacy_spec(spec: Mapping[str, Any], rows: Optional[Rows]) -> "Tuple[Spec, 
         '({"base": scene, "axis": [{"path": …, "values": […]}], "solver": {…}}, a spec file or '
         "a kanestop.Spec), or sweep(scene, rows) (docs/python.md)",
         DeprecationWarning,
-        stacklevel=3,
+        stacklevel=4,
     )
     extra = set(spec) - {"scene", "rows", "grid", "solver"}
     if extra:

@@ -417,3 +417,48 @@ fn uncertain(file: &Path, base: &Value, i: usize, u: UncertainFile) -> Result<Un
     }
     Ok(Uncertain { path: u.path, distribution })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn case01() -> Scene {
+        Scene::from_toml(kanestop_runtime::paper::DEFAULT_SCENE, "case01.toml").unwrap()
+    }
+
+    fn field(e: Error) -> String {
+        match e {
+            Error::Spec { field, .. } => field,
+            other => panic!("not a spec error: {other}"),
+        }
+    }
+
+    #[test]
+    fn a_table_or_text_with_a_given_scene_plans_as_a_file_would() {
+        let text = "[[axis]]\npath = \"ship.mass\"\nvalues = [4e5, 5e5]\n";
+        let spec = Spec::from_toml(text, Path::new("<string>"), Path::new(""), Some(case01())).unwrap();
+        assert_eq!((spec.name.as_str(), spec.rows()), ("sweep", 2));
+        let table: toml::Table = toml::from_str(text).unwrap();
+        let same = Spec::from_table(table, Path::new("<dict>"), Path::new(""), Some(case01())).unwrap();
+        let inputs = |s: &Spec| s.plan().into_iter().map(|r| (r.name, r.inputs)).collect::<Vec<_>>();
+        assert_eq!(inputs(&spec), inputs(&same));
+        assert_eq!(field(Spec::from_toml(text, Path::new("<string>"), Path::new(""), None).unwrap_err()), "base");
+        let bad: toml::Table =
+            toml::from_str("[sampling]\nmethod = \"random\"\nsamples = \"many\"\nseed = 1\n").unwrap();
+        let e = Spec::from_table(bad, Path::new("<dict>"), Path::new(""), Some(case01())).unwrap_err();
+        assert_eq!(field(e), "sampling.samples");
+    }
+
+    #[test]
+    fn explicit_rows_are_named_and_built_as_planned_rows() {
+        let spec = Spec::of_scene(case01(), "case01").with_set(&[("solver.end_time", Value::Float(1.0))]).unwrap();
+        let rows = spec.plan_inputs([
+            vec![("ship.mass".to_string(), Value::Float(4e5))],
+            vec![("ship.nope".to_string(), Value::Float(1.0))],
+        ]);
+        assert_eq!(rows[0].name, "case01-000");
+        let scene = rows[0].scene.as_ref().unwrap();
+        assert_eq!((scene.ship.mass, scene.solver.end_time, scene.meta.name.as_str()), (4e5, 1.0, "case01-000"));
+        assert!(rows[1].scene.as_ref().unwrap_err().contains("nope"));
+    }
+}
