@@ -5,22 +5,31 @@
 1. `kanestop.run` on case 1: the call's wall time against the run's own `wall_time` (the
    summary's, measured inside Rust around the integration): the difference is the Python
    overhead (argument handling, the model, the summary, the channels as NumPy arrays).
-   The CLI's `run --json` process time is shown beside it.
-2. A sweep of `--rows` rows (ship mass 4e5 … 6e5 kg) with `kanestop.sweep` against the CLI's
-   `batch` on a folder of the same scenes (each `extends` case 1 with its mass), both on
-   every core. Best of `--repeats`.
+   The CLI's `run --json` process is shown beside it. Wall and CPU time.
+2. A sweep spec of `--rows` rows (one axis: ship mass 4e5 … 6e5 kg on case 1) run by
+   `kanestop.sweep(SPEC)` in this process and by `kanestop sweep SPEC --out DIR` (the CLI,
+   which also writes sweep.csv, sweep.json and every row's scene), both on every core,
+   alternating which goes first. Wall time and CPU time: `time.process_time()` (every
+   thread of this process) for Python, `resource.getrusage(RUSAGE_CHILDREN)` for the CLI.
+   The two tables are checked equal (every cell but `wall_time`). Best of `--repeats`.
+
+The load average (1 min) is printed before and after each part: the development machine
+is shared.
 """
 
 from __future__ import annotations
 
 import argparse
-import json
+import csv
+import math
+import os
+import resource
 import statistics
 import subprocess
 import tempfile
 import time
 from pathlib import Path
-from typing import List
+from typing import Any, Callable, List, Tuple
 
 import kanestop
 
@@ -28,63 +37,105 @@ ROOT = Path(__file__).resolve().parents[1]
 CASE01 = ROOT / "scenes" / "paper" / "case01.toml"
 
 
-def masses(rows: int) -> List[float]:
-    return [4e5 + 2e5 * i / max(rows - 1, 1) for i in range(rows)]
+def load() -> str:
+    return f"load average {os.getloadavg()[0]:.2f} on {os.cpu_count()} cores"
+
+
+def children_cpu() -> float:
+    r = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return r.ru_utime + r.ru_stime
+
+
+def timed_cli(args: List[str]) -> Tuple[float, float]:
+    """(wall, CPU) of one CLI process."""
+    c0, t0 = children_cpu(), time.perf_counter()
+    subprocess.run(args, check=True, capture_output=True)
+    return time.perf_counter() - t0, children_cpu() - c0
+
+
+def timed_python(f: Callable[[], Any]) -> Tuple[float, float, Any]:
+    """(wall, CPU of this process, result) of one call."""
+    c0, t0 = time.process_time(), time.perf_counter()
+    out = f()
+    return time.perf_counter() - t0, time.process_time() - c0, out
 
 
 def bench_run(cli: str, runs: int) -> None:
+    print(f"run: {load()}")
     scene = kanestop.Scene.load(CASE01)
     kanestop.run(scene)  # warm up (page cache, allocator)
-    overheads, walls, inner = [], [], []
+    overheads, walls, cpus, inner = [], [], [], []
     for _ in range(runs):
-        t0 = time.perf_counter()
-        r = kanestop.run(scene)
-        wall = time.perf_counter() - t0
+        wall, cpu, r = timed_python(lambda: kanestop.run(scene))
         walls.append(wall)
+        cpus.append(cpu)
         inner.append(r.summary["wall_time"])
         overheads.append(wall - r.summary["wall_time"])
-    cli_walls = []
-    for _ in range(runs):
-        t0 = time.perf_counter()
-        subprocess.run([cli, "run", str(CASE01), "--json"], check=True, capture_output=True)
-        cli_walls.append(time.perf_counter() - t0)
-    o, w, i = statistics.median(overheads), statistics.median(walls), statistics.median(inner)
-    print(f"run case01 ×{runs} (median): kanestop.run {w * 1e3:.1f} ms, of which the run's wall_time {i * 1e3:.1f} ms;")
-    print(f"  Python overhead {o * 1e3:.2f} ms = {100 * o / i:.2f} % of the run; CLI run --json process {statistics.median(cli_walls) * 1e3:.1f} ms")
+    cli_runs = [timed_cli([cli, "run", str(CASE01), "--json"]) for _ in range(runs)]
+    o, w, c, i = (statistics.median(x) for x in (overheads, walls, cpus, inner))
+    cw, cc = (statistics.median(x) for x in zip(*cli_runs))
+    print(f"run case01 ×{runs} (median): kanestop.run {w * 1e3:.1f} ms wall, {c * 1e3:.1f} ms CPU; the run's wall_time {i * 1e3:.1f} ms;")
+    print(f"  Python overhead {o * 1e3:.2f} ms = {100 * o / i:.2f} % of the run")
+    print(f"  CLI run --json process {cw * 1e3:.1f} ms wall, {cc * 1e3:.1f} ms CPU")
+    print(f"  {load()}")
+
+
+def same_tables(df: Any, path: Path) -> None:
+    """The CLI's sweep.csv and the DataFrame: the same columns and cells (but wall_time)."""
+    with open(path, newline="") as f:
+        head, *lines = list(csv.reader(f))
+    assert list(df.columns) == head and len(df) == len(lines)
+    for i, line in enumerate(lines):
+        for col, text in zip(head, line):
+            v = df.iloc[i][col]
+            if col == "wall_time":
+                continue
+            if isinstance(v, str):
+                assert v == text, (i, col, v, text)
+            elif text == "":
+                assert v is None or (isinstance(v, float) and math.isnan(v)), (i, col, v)
+            else:
+                assert float(v) == float(text), (i, col, v, text)
 
 
 def bench_sweep(cli: str, rows: int, repeats: int) -> None:
-    scene = kanestop.Scene.load(CASE01)
-    plan = [{"ship.mass": m} for m in masses(rows)]
+    print(f"sweep: {load()}")
     with tempfile.TemporaryDirectory() as tmp:
-        base = Path(tmp) / "base.toml"
-        base.write_text(CASE01.read_text())
-        folder = Path(tmp) / "rows"
-        folder.mkdir()
-        for k, m in enumerate(masses(rows)):
-            (folder / f"row{k:03}.toml").write_text(f'extends = "../base.toml"\n[meta]\nname = "row{k:03}"\n[ship]\nmass = {m!r}\n')
-        py, cl = [], []
+        folder = Path(tmp)
+        (folder / "base.toml").write_text(CASE01.read_text())
+        spec = folder / "bench.toml"
+        spec.write_text(
+            f'base = "base.toml"\n[[axis]]\npath = "ship.mass"\nrange = {{ from = 4e5, to = 6e5, steps = {rows} }}\n'
+        )
+        out = folder / "out"
+        py: List[Tuple[float, float]] = []
+        cl: List[Tuple[float, float]] = []
+        frames: List[Any] = []
+
         def python_sweep() -> None:
-            t0 = time.perf_counter()
-            df = kanestop.sweep(scene, plan)
-            py.append(time.perf_counter() - t0)
+            wall, cpu, df = timed_python(lambda: kanestop.sweep(spec))
+            py.append((wall, cpu))
+            frames.append(df)
             assert len(df) == rows and set(df["status"]) == {"stopped"}, set(df["status"])
 
-        def cli_batch() -> None:
-            t0 = time.perf_counter()
-            subprocess.run([cli, "batch", str(folder), "--out", str(Path(tmp) / "out")], check=True, capture_output=True)
-            cl.append(time.perf_counter() - t0)
+        def cli_sweep() -> None:
+            cl.append(timed_cli([cli, "sweep", str(spec), "--out", str(out)]))
 
         # Alternate which goes first: the machine's load drifts.
         for i in range(repeats):
-            for f in (python_sweep, cli_batch) if i % 2 == 0 else (cli_batch, python_sweep):
+            for f in (python_sweep, cli_sweep) if i % 2 == 0 else (cli_sweep, python_sweep):
                 f()
-        rows_json = json.loads((Path(tmp) / "out" / "batch.json").read_text())
-        assert len(rows_json) == rows
-    p, c = min(py), min(cl)
-    each = ", ".join(f"{a:.2f}/{b:.2f}" for a, b in zip(py, cl))
-    print(f"sweep of {rows} rows (best of {repeats}): kanestop.sweep {p:.2f} s, CLI batch {c:.2f} s: Python/CLI = {p / c:.3f}")
+        same_tables(frames[-1], out / "sweep.csv")
+    (pw, pc), (cw, cc) = min(py), min(cl)
+    print(f"sweep spec of {rows} rows (best of {repeats} by wall):")
+    print(f"  kanestop.sweep(SPEC)  {pw:.2f} s wall, {pc:.2f} s CPU")
+    print(f"  kanestop sweep SPEC   {cw:.2f} s wall, {cc:.2f} s CPU")
+    print(f"  Python/CLI: wall {pw / cw:.3f}, CPU {pc / cc:.3f}; the tables are equal (every cell but wall_time)")
+    (mpw, mpc), (mcw, mcc) = ((statistics.median(w), statistics.median(c)) for w, c in (zip(*py), zip(*cl)))
+    print(f"  median of {repeats}: Python {mpw:.2f} s wall, {mpc:.2f} s CPU; CLI {mcw:.2f} s wall, {mcc:.2f} s CPU")
+    each = ", ".join(f"{a[0]:.2f}/{b[0]:.2f} ({a[1]:.2f}/{b[1]:.2f} CPU)" for a, b in zip(py, cl))
     print(f"  each repeat, Python/CLI s: {each}")
+    print(f"  {load()}")
 
 
 def main() -> None:

@@ -35,10 +35,10 @@ def main(path: str) -> None:
     print(f"eval: {m.shape[0]} active speeds, cond(M) = {e0['cond']:.3e}")
 
     frame = kanestop.sweep(
-        {"scene": scene, "grid": {"ship.mass": [4e5, 5e5, 6e5]}},
+        {"base": scene, "axis": [{"path": "ship.mass", "values": [4e5, 5e5, 6e5]}]},
         progress=lambda done, total: print(f"  {done}/{total}", end="\r"),
     )
-    print(frame)
+    print(frame[["name", "ship.mass", "status", "stopping_time", "peak_tension"]])
 
 
 if __name__ == "__main__":

@@ -1,4 +1,5 @@
-//! The exceptions: `SceneError` (with `problems`, `file`, `kind`), `ModelError`, `EvalError`.
+//! The exceptions: `SceneError` (with `problems`, `file`, `kind`), `SpecError` (with `field`,
+//! `value`, `expected`, `file`), `ModelError`, `EvalError`.
 
 use kanestop_runtime::scene::SceneError as RustSceneError;
 use pyo3::exceptions::PyValueError;
@@ -44,6 +45,50 @@ pub fn scene_error(py: Python<'_>, e: RustSceneError) -> PyErr {
         value.setattr("problems", list)?;
         value.setattr("file", file)?;
         value.setattr("kind", kind)?;
+        Ok(())
+    };
+    match set() {
+        Ok(()) => err,
+        Err(other) => other,
+    }
+}
+
+pyo3::create_exception!(
+    kanestop,
+    SpecError,
+    PyValueError,
+    "A sweep spec that could not be read or is not valid (docs/sweeps.md).\n\n`field` names the spec's field \
+     (`axis[0].range.steps`, `uncertain[1].sd`, `checks.safety_factor`; in a dict the key, e.g. \
+     `sampling.samples`; `(file)` or `(spec)` when the TOML \
+     or the dict does not have the spec's shape, e.g. an unknown key), `value` is its value as given, \
+     `expected` the valid range, `file` the spec; `str(e)` is the command line's message."
+);
+
+/// The Python exception of a workflow error: `SpecError` for a spec's field (and a spec file
+/// that cannot be read), `SceneError` for its base scene or a row's solver keywords.
+pub fn workflow_error(py: Python<'_>, e: kanestop_workflow::Error) -> PyErr {
+    use kanestop_workflow::Error;
+    let (file, field, value, expected) = match &e {
+        Error::Spec { file, field, value, expected } => {
+            (file.display().to_string(), field.clone(), value.clone(), expected.clone())
+        }
+        Error::Io { path, source, .. } => {
+            (path.display().to_string(), "(file)".to_string(), path.display().to_string(), source.to_string())
+        }
+        _ => {
+            return match e {
+                Error::Scene(s) => scene_error(py, s),
+                other => PyValueError::new_err(other.to_string()),
+            }
+        }
+    };
+    let err = SpecError::new_err(e.to_string());
+    let v = err.value(py);
+    let set = || -> PyResult<()> {
+        v.setattr("file", file)?;
+        v.setattr("field", field)?;
+        v.setattr("value", value)?;
+        v.setattr("expected", expected)?;
         Ok(())
     };
     match set() {

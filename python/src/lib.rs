@@ -1,20 +1,20 @@
 //! The `kanestop._kanestop` extension module: the Rust core behind the `kanestop` Python
 //! package (python/kanestop/__init__.py wraps it; docs/python.md documents it).
 //!
-//! Runs release the GIL; sweeps run on a rayon thread pool while the calling thread waits
-//! with the GIL released, waking only to call the progress callback.
+//! Runs release the GIL; sweeps (`sweep.rs`) run the command line's sweep machinery on a
+//! rayon thread pool while the calling thread waits with the GIL released, waking only to
+//! call the progress callback. The channels of a run are the CSV history's
+//! (`kanestop_workflow::history`), by the same names, with their units.
 
 use std::ffi::CString;
 use std::path::PathBuf;
-use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::mpsc;
-use std::time::Duration;
 
 use kanestop_runtime::eval::{evaluate, StateFile};
 use kanestop_runtime::kernel::AnchorDof;
 use kanestop_runtime::model::Model;
 use kanestop_runtime::scene::{Scene, SceneError as RustSceneError};
 use kanestop_runtime::simulate::{self, Stop};
+use kanestop_workflow::history;
 use kanestop_workflow::kernels::KernelChoice;
 use kanestop_workflow::record::RunSummary;
 use numpy::{PyArray1, PyArrayMethods};
@@ -23,11 +23,11 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyTuple};
 use toml::Value;
 
-mod channels;
 mod convert;
 mod errors;
+mod sweep;
 
-use errors::{scene_error, EvalError, ModelError, SceneError};
+use errors::{scene_error, EvalError, ModelError, SceneError, SpecError};
 
 /// A checked scene: every field present, finite and in range. Immutable: `with_overrides`
 /// returns a new scene.
@@ -188,8 +188,8 @@ fn warn(py: Python<'_>, note: &str) -> PyResult<()> {
     PyErr::warn(py, &py.get_type::<PyUserWarning>(), &message, 2)
 }
 
-/// Runs a scene: (summary JSON, channels, events, failure). The Python `kanestop.run`
-/// wraps it into a `Result`.
+/// Runs a scene: (summary JSON, channels, events, failure, channel info as (name, unit,
+/// group, description)). The Python `kanestop.run` wraps it into a `Result`.
 #[pyfunction]
 #[pyo3(signature = (scene, *, integrator=None, dt=None, rtol=None, atol=None, end_time=None, output_interval=None, kernel="generated"))]
 #[allow(clippy::too_many_arguments)]
@@ -219,8 +219,12 @@ fn _run(
     }
     let json = serde_json::to_string(&summary).map_err(|e| PyValueError::new_err(e.to_string()))?;
     let arrays = PyDict::new(py);
-    for (name, values) in channels::channels(&result) {
-        arrays.set_item(name, PyArray1::from_vec(py, values))?;
+    let info = PyList::empty(py);
+    let n = result.samples.first().map_or(0, |s| s.bodies.len());
+    let channels = if n == 0 { Vec::new() } else { history::all_channels(n) };
+    for c in &channels {
+        arrays.set_item(&c.name, PyArray1::from_vec(py, c.values(&result)))?;
+        info.append((c.name.as_str(), c.unit, c.group, c.description.as_str()))?;
     }
     let events = PyList::empty(py);
     for e in &result.anchor_events {
@@ -241,7 +245,13 @@ fn _run(
     };
     Ok(PyTuple::new(
         py,
-        [json.into_pyobject(py)?.into_any(), arrays.into_any(), events.into_any(), failure.into_bound(py)],
+        [
+            json.into_pyobject(py)?.into_any(),
+            arrays.into_any(),
+            events.into_any(),
+            failure.into_bound(py),
+            info.into_any(),
+        ],
     )?
     .into_any()
     .unbind())
@@ -298,123 +308,6 @@ fn eval(
     Ok(d.unbind())
 }
 
-/// One row of a sweep: its summary JSON, or why it could not run.
-type RowOutcome = Result<String, String>;
-
-/// Runs `scene` once per dict of overrides in `rows`, on `jobs` threads (all cores when
-/// None), calling `progress(done, total)` as rows finish. Returns, per row in order, the
-/// summary JSON or None, and the error message or None.
-#[pyfunction]
-#[pyo3(signature = (scene, rows, *, jobs=None, progress=None, integrator=None, dt=None, rtol=None, atol=None, end_time=None, output_interval=None, kernel="generated"))]
-#[allow(clippy::too_many_arguments)]
-fn _sweep(
-    py: Python<'_>,
-    scene: &PyScene,
-    rows: &Bound<'_, PyAny>,
-    jobs: Option<usize>,
-    progress: Option<PyObject>,
-    integrator: Option<String>,
-    dt: Option<f64>,
-    rtol: Option<f64>,
-    atol: Option<f64>,
-    end_time: Option<f64>,
-    output_interval: Option<f64>,
-    kernel: &str,
-) -> PyResult<Vec<(Option<String>, Option<String>)>> {
-    let choice = kernel_choice(kernel)?;
-    if jobs == Some(0) {
-        return Err(PyValueError::new_err("jobs = 0: must be at least 1 (or None for every core)"));
-    }
-    if let Some(p) = &progress {
-        if !p.bind(py).is_callable() {
-            return Err(PyTypeError::new_err("progress must be callable as progress(done, total)"));
-        }
-    }
-    let solver = SolverArgs { integrator, dt, rtol, atol, end_time, output_interval }.overrides();
-    let mut plans: Vec<Vec<(String, Value)>> = Vec::new();
-    for (i, row) in rows.try_iter()?.enumerate() {
-        let row = row?;
-        let mut values = override_list(&row).map_err(|e| {
-            let msg = format!("row {i}: {}", e.value(py));
-            if e.is_instance_of::<PyTypeError>(py) {
-                PyTypeError::new_err(msg)
-            } else {
-                PyValueError::new_err(msg)
-            }
-        })?;
-        values.extend(solver.iter().cloned());
-        plans.push(values);
-    }
-    let total = plans.len();
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(jobs.unwrap_or(0))
-        .build()
-        .map_err(|e| PyValueError::new_err(e.to_string()))?;
-    let base = &scene.inner;
-    let cancel = AtomicBool::new(false);
-    let (tx, rx) = mpsc::channel::<()>();
-    // Receiver is Send but not Sync: the waiting closure borrows it through a mutex.
-    let rx = std::sync::Mutex::new(rx);
-    let run_row = |values: &Vec<(String, Value)>, tx: &mpsc::Sender<()>| -> RowOutcome {
-        if cancel.load(Ordering::Relaxed) {
-            return Err("cancelled".to_string());
-        }
-        let outcome = (|| {
-            let scene = apply(base, values).map_err(|e| e.to_string())?;
-            let model = Model::new(&scene).map_err(|e| e.to_string())?;
-            let (k, _) = choice.build(&model);
-            let result = simulate::run(&model, k);
-            serde_json::to_string(&RunSummary::of(&model, &result)).map_err(|e| e.to_string())
-        })();
-        let _ = tx.send(());
-        outcome
-    };
-    let (outcomes, error) = std::thread::scope(|s| {
-        // The worker owns the sender: the channel disconnects when every row is done (or a
-        // row panicked), which ends the loop below.
-        let worker = s.spawn(move || pool.install(|| kanestop_workflow::parallel::map(&plans, |v| run_row(v, &tx))));
-        let mut done = 0;
-        let mut error: Option<PyErr> = None;
-        loop {
-            let got = py.allow_threads(|| {
-                rx.lock().expect("only this thread locks it").recv_timeout(Duration::from_millis(50))
-            });
-            match got {
-                Ok(()) => {
-                    done += 1;
-                    if let (Some(p), None) = (&progress, &error) {
-                        if let Err(e) = p.call1(py, (done, total)) {
-                            cancel.store(true, Ordering::Relaxed);
-                            error = Some(e);
-                        }
-                    }
-                }
-                Err(mpsc::RecvTimeoutError::Timeout) => {}
-                Err(mpsc::RecvTimeoutError::Disconnected) => break,
-            }
-            if error.is_none() {
-                if let Err(e) = py.check_signals() {
-                    cancel.store(true, Ordering::Relaxed);
-                    error = Some(e);
-                }
-            }
-        }
-        let outcomes = py.allow_threads(|| worker.join());
-        (outcomes, error)
-    });
-    if let Some(e) = error {
-        return Err(e);
-    }
-    let outcomes = outcomes.map_err(|_| PyValueError::new_err("a sweep worker panicked"))?;
-    Ok(outcomes
-        .into_iter()
-        .map(|o| match o {
-            Ok(json) => (Some(json), None),
-            Err(msg) => (None, Some(msg)),
-        })
-        .collect())
-}
-
 /// The extension module.
 #[pymodule]
 fn _kanestop(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -423,8 +316,10 @@ fn _kanestop(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(_scene_from_toml, m)?)?;
     m.add_function(wrap_pyfunction!(_run, m)?)?;
     m.add_function(wrap_pyfunction!(eval, m)?)?;
-    m.add_function(wrap_pyfunction!(_sweep, m)?)?;
+    m.add_class::<sweep::PySpec>()?;
+    m.add_function(wrap_pyfunction!(sweep::_sweep, m)?)?;
     m.add("SceneError", py.get_type::<SceneError>())?;
+    m.add("SpecError", py.get_type::<SpecError>())?;
     m.add("ModelError", py.get_type::<ModelError>())?;
     m.add("EvalError", py.get_type::<EvalError>())?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;

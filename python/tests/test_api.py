@@ -61,11 +61,14 @@ def test_scene_error_has_field_value_and_range(case01: kanestop.Scene) -> None:
 def test_channels(case01_result: kanestop.Result) -> None:
     a = case01_result.arrays
     n = case01_result.summary["bodies"]
-    for name in ("t", "ship_x", "ship_vx", "anchor_x", "anchor_sliding", "tension_fairlead", "tension_anchor", "E_balance"):
+    for name in ("t", "ship_x", "ship_vx", "ship_displacement", "anchor_x", "anchor_drag", "anchor_sliding"):
         assert name in a, name
-    assert f"x_{n}" in a and f"T_{n}" in a and "T_1" not in a
-    assert np.array_equal(a["ship_x"], a[f"x_{n}"]) and np.array_equal(a["tension_fairlead"], a[f"T_{n}"])
-    assert np.array_equal(a["anchor_x"], a["x_1"]) and np.array_equal(a["tension_anchor"], a["T_2"])
+    for name in ("tension_fairlead", "tension_anchor", "tension_max", "energy_kinetic", "work_drag", "energy_balance"):
+        assert name in a, name
+    assert f"body{n}_x" in a and f"tension_joint{n}" in a and "tension_joint1" not in a
+    assert np.array_equal(a["ship_x"], a[f"body{n}_x"]) and np.array_equal(a["tension_fairlead"], a[f"tension_joint{n}"])
+    assert np.array_equal(a["anchor_x"], a["body1_x"]) and np.array_equal(a["tension_anchor"], a["tension_joint2"])
+    assert np.array_equal(a["anchor_drag"], a["anchor_x"] - a["anchor_x"][0])
     lengths = {len(v) for v in a.values()}
     assert len(lengths) == 1 and a["t"][0] == 0.0
     assert all(v.dtype == np.float64 for v in a.values())
@@ -78,9 +81,22 @@ def test_channels(case01_result: kanestop.Result) -> None:
     assert case01_result.diagnostic is None and not case01_result.failed
 
 
+def test_channel_units_and_groups(case01_result: kanestop.Result) -> None:
+    r = case01_result
+    assert list(r.units) == list(r.arrays) == list(r.descriptions) == list(r.groups)
+    assert r.units["t"] == "s" and r.units["ship_x"] == "m" and r.units["tension_fairlead"] == "N"
+    assert r.units["body1_omega"] == "rad/s" and r.units["anchor_sliding"] == "1" and r.units["work_drag"] == "J"
+    assert r.channels.attrs["units"] == r.units
+    assert "rod–ship joint" in r.descriptions["tension_fairlead"]
+    assert r.channels_of("tension") == ["t", "tension_fairlead", "tension_anchor", "tension_max"]
+    with pytest.raises(ValueError, match="unknown channel group"):
+        r.channels_of("nope")
+
+
 def test_results_pickle(case01_result: kanestop.Result) -> None:
     r = pickle.loads(pickle.dumps(case01_result))
     assert r.summary == case01_result.summary and r.events == case01_result.events
+    assert r.units == case01_result.units and r.descriptions == case01_result.descriptions
     assert all(np.array_equal(r.arrays[k], v) for k, v in case01_result.arrays.items())
     assert r.channels.shape == case01_result.channels.shape
 
@@ -91,20 +107,34 @@ def test_sweep_equals_single_runs_in_order(case01: kanestop.Scene) -> None:
     df = kanestop.sweep(case01, rows, jobs=2, end_time=3.0, progress=lambda done, total: seen.append((done, total)))
     assert seen == [(i, 4) for i in range(1, 5)]
     assert list(df["ship.mass"]) == [6e5, 4e5, 5e5, -1.0]
+    assert list(df["index"]) == [0, 1, 2, 3] and list(df["name"]) == [f"case01-{i:03}" for i in range(4)]
     for i, row in enumerate(rows[:3]):
-        one = kanestop.flatten(kanestop.run(case01.with_overrides(row), end_time=3.0).summary)
-        got = df.iloc[i].to_dict()
-        for k, v in one.items():
-            if k != "wall_time":
-                assert got[k] == v or (v is None and (got[k] is None or got[k] != got[k])), k
-    assert df.iloc[3]["status"] == "invalid" and "ship.mass = -1" in df.iloc[3]["error"]
+        one = kanestop.run(case01.with_overrides(row), end_time=3.0).summary
+        got = df.iloc[i]
+        assert got["status"] == one["status"] and got["t_end"] == one["t_end"] and got["steps"] == one["steps"]
+        assert got["peak_tension"] == one["peak_tension"]["tension"] and got["peak_joint"] == one["peak_tension"]["joint"]
+        assert got["work_drag"] == one["work"]["drag"] and got["ship_displacement"] == one["ship_displacement"]
+        assert got["message"] == ""
+    assert df.iloc[3]["status"] == "invalid" and "ship.mass = -1" in df.iloc[3]["message"]
 
 
-def test_sweep_grid_spec(case01: kanestop.Scene) -> None:
-    spec = {"scene": str(CASE01), "grid": {"ship.mass": [4e5, 5e5], "initial.ship_speed": [2.5, 3.0]}, "solver": {"end_time": 0.5}}
-    df = kanestop.sweep(spec)
-    assert len(df) == 4 and set(df["status"]) == {"end time"}
-    assert list(zip(df["ship.mass"], df["initial.ship_speed"])) == [(4e5, 2.5), (4e5, 3.0), (5e5, 2.5), (5e5, 3.0)]
+def test_rows_may_set_different_paths(case01: kanestop.Scene) -> None:
+    df = kanestop.sweep(case01, [{"ship.mass": 4e5}, {"initial.ship_speed": 2.5}], end_time=0.2)
+    assert list(df.columns[:4]) == ["index", "name", "ship.mass", "initial.ship_speed"]
+    assert df.iloc[0]["ship.mass"] == 4e5 and math.isnan(df.iloc[0]["initial.ship_speed"])
+    assert math.isnan(df.iloc[1]["ship.mass"]) and df.iloc[1]["initial.ship_speed"] == 2.5
+
+
+def test_the_old_grid_dict_is_deprecated_and_is_a_spec(case01: kanestop.Scene) -> None:
+    grid = {"ship.mass": [4e5, 5e5], "initial.ship_speed": [2.5, 3.0]}
+    with pytest.warns(DeprecationWarning, match="deprecated"):
+        old = kanestop.sweep({"scene": str(CASE01), "grid": grid, "solver": {"end_time": 0.5}})
+    assert len(old) == 4 and set(old["status"]) == {"end time"}
+    assert list(zip(old["ship.mass"], old["initial.ship_speed"])) == [(4e5, 2.5), (4e5, 3.0), (5e5, 2.5), (5e5, 3.0)]
+    axes = [{"path": p, "values": v} for p, v in grid.items()]
+    new = kanestop.sweep({"base": case01, "axis": axes, "solver": {"end_time": 0.5}})
+    same = [c for c in new.columns if c != "wall_time"]
+    assert list(old.columns) == list(new.columns) and old[same].equals(new[same])
 
 
 def test_a_progress_callback_that_raises_cancels(case01: kanestop.Scene) -> None:

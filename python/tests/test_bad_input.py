@@ -13,6 +13,7 @@ from conftest import CASE01
 NAN = float("nan")
 
 
+@pytest.mark.filterwarnings("ignore::DeprecationWarning")
 @pytest.mark.parametrize(
     "call, error",
     [
@@ -59,6 +60,14 @@ NAN = float("nan")
         (lambda s: kanestop.sweep(s, [{}], progress="yes"), TypeError),
         (lambda s: kanestop.sweep({"scene": s, "grid": 3}), TypeError),
         (lambda s: kanestop.sweep({"scene": s, "rows": [], "bogus": 1}), ValueError),
+        (lambda s: kanestop.sweep(s), ValueError),
+        (lambda s: kanestop.sweep(42), TypeError),
+        (lambda s: kanestop.sweep(s, [{}], end_time=-1.0), kanestop.SceneError),
+        (lambda s: kanestop.sweep({"base": s, "axis": [{"path": "ship.mass", "values": [None]}]}), TypeError),
+        (lambda s: kanestop.sweep({"base": s, "axis": [{"path": "ship.mass", "values": [1e5]}]}, [{}]), ValueError),
+        (lambda s: kanestop.Spec.from_dict(None), TypeError),
+        (lambda s: kanestop.Spec.from_toml(None), TypeError),
+        (lambda s: kanestop.Spec.load(None), TypeError),
     ],
 )
 def test_bad_input_raises(case01: kanestop.Scene, call: Callable[[kanestop.Scene], Any], error: Any) -> None:
@@ -69,7 +78,7 @@ def test_bad_input_raises(case01: kanestop.Scene, call: Callable[[kanestop.Scene
 def test_a_bad_sweep_row_is_a_row_not_an_exception(case01: kanestop.Scene) -> None:
     df = kanestop.sweep(case01, [{"ship.mass": NAN}, {"ship.mass": "x"}, {"ship.nope": 1}], end_time=0.1)
     assert list(df["status"]) == ["invalid"] * 3
-    assert all(isinstance(e, str) and e for e in df["error"])
+    assert all(isinstance(e, str) and e for e in df["message"])
 
 
 def test_the_state_of_eval_takes_numpy(case01: kanestop.Scene) -> None:

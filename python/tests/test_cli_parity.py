@@ -71,3 +71,32 @@ def test_scene_error_names_what_the_cli_names(tmp_path: object) -> None:
             assert line.strip() in p.stderr, (line, p.stderr)
     else:
         raise AssertionError("no SceneError")
+
+
+def test_channels_are_the_cli_history_by_name_unit_and_value(case01_result: kanestop.Result, tmp_path: object) -> None:
+    import csv
+    from pathlib import Path
+
+    history = Path(str(tmp_path)) / "history.csv"
+    p = run_cli("run", str(CASE01), "--out", str(history))
+    assert p.returncode == 0, p.stderr
+    with open(history, newline="") as f:
+        head, *lines = list(csv.reader(f))
+    a = case01_result.arrays
+    assert list(a) == head
+    assert all(len(v) == len(lines) for v in a.values())
+    for j, name in enumerate(head):
+        column = np.array([float(line[j]) for line in lines])
+        assert np.array_equal(a[name], column), name  # the CSV writes the shortest round-trip form
+    with open(history.with_name("history.units.csv"), newline="") as f:
+        units = list(csv.DictReader(f))
+    assert [u["channel"] for u in units] == head
+    assert {u["channel"]: u["unit"] for u in units} == case01_result.units
+    assert {u["channel"]: u["description"] for u in units} == {
+        k: v.replace('"', "'") for k, v in case01_result.descriptions.items()
+    }
+    # A selection by group is the same columns as --channels.
+    picked = Path(str(tmp_path)) / "picked.csv"
+    assert run_cli("run", str(CASE01), "--out", str(picked), "--channels", "ship,tension").returncode == 0
+    with open(picked, newline="") as f:
+        assert next(csv.reader(f)) == case01_result.channels_of("ship", "tension")

@@ -82,6 +82,13 @@ impl Channel {
         Channel { name: name.into(), unit, description: description.into(), group, source }
     }
 
+    /// Its value at every sample of `result`, in order (the numbers the CSV history writes;
+    /// the Python package's `channels`).
+    pub fn values(&self, result: &RunResult) -> Vec<f64> {
+        let Some(first) = result.samples.first() else { return Vec::new() };
+        result.samples.iter().map(|s| self.value(s, first)).collect()
+    }
+
     fn value(&self, s: &Sample, first: &Sample) -> f64 {
         let e = &s.energy;
         match self.source {

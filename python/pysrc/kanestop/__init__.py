@@ -11,24 +11,29 @@ gives it NumPy, pandas and Dask.
 19.808...
 
 See docs/python.md for the API, the channel names and the Dask example.
+
+>>> kanestop.sweep("scenes/sweeps/mass_speed.toml")                    # doctest: +SKIP
+   index           name  ship.mass  initial.ship_speed  status checks  stopping_time ...
 """
 
 from __future__ import annotations
 
-import itertools
 import json
 import os
-from typing import Any, Callable, Dict, Iterable, List, Mapping, Optional, Sequence, Union
+import warnings
+from typing import Any, Callable, Dict, Iterable, List, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
-from ._kanestop import EvalError, ModelError, Scene, SceneError, __version__
+from ._kanestop import EvalError, ModelError, Scene, SceneError, Spec, SpecError, __version__
 from ._kanestop import _run, _sweep
 from ._kanestop import eval as _eval
 
 __all__ = [
     "Scene",
     "SceneError",
+    "Spec",
+    "SpecError",
     "ModelError",
     "EvalError",
     "Result",
@@ -76,7 +81,11 @@ class Result:
 
     - ``summary``: a dict with the same content as ``kanestop run --json`` (docs/conventions.md);
     - ``channels``: the time history, a pandas DataFrame (a dict of NumPy arrays without
-      pandas); ``arrays`` is always the dict, its arrays owned by NumPy without a copy;
+      pandas); ``arrays`` is always the dict, its arrays owned by NumPy without a copy. The
+      names are the CSV history's (``kanestop run --out``; docs/conventions.md): ``t``,
+      ``ship_x``, ``anchor_drag``, ``tension_fairlead``, ``energy_balance``, ``body3_x``,
+      ``tension_joint5``, …; ``units`` and ``descriptions`` map each name to its SI unit
+      and meaning (the DataFrame carries ``attrs["units"]`` too);
     - ``events``: the anchor's located switches, ``[{"t": 3.1, "anchor": "free"}, …]``;
     - ``diagnostic``: the numerical failure in words (None when the run did not fail);
       ``failure`` is its data (``t``, ``body``, ``kind``). A failure is a result, not an
@@ -85,7 +94,7 @@ class Result:
     Results pickle (summary, arrays and events), so Dask and multiprocessing can ship them.
     """
 
-    __slots__ = ("summary", "arrays", "events", "failure", "_frame")
+    __slots__ = ("summary", "arrays", "events", "failure", "units", "descriptions", "groups", "_frame")
 
     def __init__(
         self,
@@ -93,11 +102,19 @@ class Result:
         arrays: Dict[str, "np.ndarray[Any, np.dtype[np.float64]]"],
         events: List[Dict[str, Any]],
         failure: Optional[Dict[str, Any]] = None,
+        channel_info: Sequence[Tuple[str, str, str, str]] = (),
     ) -> None:
         self.summary = summary
         self.arrays = arrays
         self.events = events
         self.failure = failure
+        self.units: Dict[str, str] = {name: unit for name, unit, _, _ in channel_info}
+        """Each channel's SI unit (``"m"``, ``"N"``, ``"rad/s"``; ``"1"`` for a flag)."""
+        self.descriptions: Dict[str, str] = {name: what for name, _, _, what in channel_info}
+        """Each channel's meaning in words, as the CLI's ``<history>.units.csv`` has it."""
+        self.groups: Dict[str, str] = {name: group for name, _, group, _ in channel_info}
+        """Each channel's group (``ship``, ``anchor``, ``tension``, ``energy``, ``bodies``,
+        ``joints``; ``time`` for ``t``), as ``kanestop run --channels`` selects them."""
         self._frame: Any = None
 
     @property
@@ -106,8 +123,20 @@ class Result:
         installed, else the dict of NumPy arrays (``arrays``)."""
         if self._frame is None:
             pd = _pandas()
-            self._frame = pd.DataFrame(self.arrays, copy=False) if pd is not None else self.arrays
+            if pd is None:
+                self._frame = self.arrays
+            else:
+                self._frame = pd.DataFrame(self.arrays, copy=False)
+                self._frame.attrs["units"] = dict(self.units)
         return self._frame
+
+    def channels_of(self, *groups: str) -> List[str]:
+        """The channel names of these groups, in column order (``t`` first), as
+        ``kanestop run --channels ship,tension`` selects them."""
+        unknown = [g for g in groups if g not in set(self.groups.values())]
+        if unknown:
+            raise ValueError(f"unknown channel group(s) {unknown}: valid are {sorted(set(self.groups.values()))}")
+        return [n for n, g in self.groups.items() if g == "time" or g in groups]
 
     @property
     def diagnostic(self) -> Optional[str]:
@@ -132,13 +161,24 @@ class Result:
         return None if t is None else float(t)
 
     def __getstate__(self) -> Dict[str, Any]:
-        return {"summary": self.summary, "arrays": self.arrays, "events": self.events, "failure": self.failure}
+        return {
+            "summary": self.summary,
+            "arrays": self.arrays,
+            "events": self.events,
+            "failure": self.failure,
+            "units": self.units,
+            "descriptions": self.descriptions,
+            "groups": self.groups,
+        }
 
     def __setstate__(self, state: Dict[str, Any]) -> None:
         self.summary = state["summary"]
         self.arrays = state["arrays"]
         self.events = state["events"]
         self.failure = state["failure"]
+        self.units = state.get("units", {})
+        self.descriptions = state.get("descriptions", {})
+        self.groups = state.get("groups", {})
         self._frame = None
 
     def __repr__(self) -> str:
@@ -178,7 +218,7 @@ def run(
     checked as a scene file would be (``SceneError``). ``kernel`` is ``"generated"`` (the
     default) or ``"reference"``.
     """
-    summary, arrays, events, failure = _run(
+    summary, arrays, events, failure, info = _run(
         _scene(scene),
         integrator=integrator,
         dt=dt,
@@ -188,7 +228,7 @@ def run(
         output_interval=output_interval,
         kernel=kernel,
     )
-    return Result(json.loads(summary), arrays, events, failure)
+    return Result(json.loads(summary), arrays, events, failure, info)
 
 
 def eval(
@@ -211,42 +251,60 @@ def eval(
 
 
 Rows = Iterable[Mapping[str, Any]]
-Spec = Union[Scene, PathLike, Mapping[str, Any]]
+SweepSpec = Union[Spec, Scene, PathLike, Mapping[str, Any]]
 
 
-def _rows(spec: Spec, rows: Optional[Rows]) -> "tuple[Scene, List[Dict[str, Any]], Dict[str, Any]]":
-    solver: Dict[str, Any] = {}
+def _legacy_spec(spec: Mapping[str, Any], rows: Optional[Rows]) -> "Tuple[Spec, Optional[Rows]]":
+    """The deprecated ``{"scene": …, "grid"/"rows": …, "solver": …}`` dict as a spec: its
+    grid is the spec's ``[[axis]]`` list, its solver the spec's ``[solver]``."""
+    warnings.warn(
+        'kanestop.sweep({"scene": …, "grid"/"rows": …}) is deprecated: give a sweep spec '
+        '({"base": scene, "axis": [{"path": …, "values": […]}], "solver": {…}}, a spec file or '
+        "a kanestop.Spec), or sweep(scene, rows) (docs/python.md)",
+        DeprecationWarning,
+        stacklevel=4,
+    )
+    extra = set(spec) - {"scene", "rows", "grid", "solver"}
+    if extra:
+        raise ValueError(f"sweep spec: unknown key(s) {sorted(extra)} (valid: scene, rows, grid, solver)")
+    if "rows" in spec and "grid" in spec:
+        raise ValueError("sweep spec: give rows or grid, not both")
+    fields: Dict[str, Any] = {"base": _scene(spec["scene"])}
+    if spec.get("solver"):
+        fields["solver"] = dict(spec["solver"])
+    if "grid" in spec:
+        grid = spec["grid"]
+        if not isinstance(grid, Mapping):
+            raise TypeError("sweep spec: grid is a dict of dotted path -> list of values")
+        fields["axis"] = [{"path": path, "values": list(values)} for path, values in grid.items()]
+        return Spec.from_dict(fields), rows
+    return Spec.from_dict(fields), rows if rows is not None else spec.get("rows")
+
+
+def _spec(spec: SweepSpec, rows: Optional[Rows], base_dir: Optional[PathLike]) -> "Tuple[Spec, Optional[Rows]]":
+    """The spec, and the rows when a scene needs them (``ValueError`` when none are given)."""
+    if isinstance(spec, Spec):
+        return spec, rows
+    if isinstance(spec, (str, os.PathLike)) and rows is None:
+        return Spec.load(spec), None  # a path alone is a sweep spec file
     if isinstance(spec, Mapping) and "scene" in spec:
-        extra = set(spec) - {"scene", "rows", "grid", "solver"}
-        if extra:
-            raise ValueError(f"sweep spec: unknown key(s) {sorted(extra)} (valid: scene, rows, grid, solver)")
-        scene = _scene(spec["scene"])
-        solver = dict(spec.get("solver") or {})
+        the_spec, rows = _legacy_spec(spec, rows)
+        if rows is None and len(the_spec) == 1 and "grid" not in spec:
+            raise ValueError("sweep spec: no rows (give rows=[{...}, …] or grid)")
+        return the_spec, rows
+    if isinstance(spec, Mapping) and "base" in spec:
+        return Spec.from_dict(dict(spec), base_dir=base_dir), rows
+    if isinstance(spec, (Scene, str, os.PathLike, Mapping)):
         if rows is None:
-            if "rows" in spec and "grid" in spec:
-                raise ValueError("sweep spec: give rows or grid, not both")
-            if "grid" in spec:
-                grid = spec["grid"]
-                if not isinstance(grid, Mapping):
-                    raise TypeError("sweep spec: grid is a dict of dotted path -> list of values")
-                keys = list(grid)
-                rows = [dict(zip(keys, combo)) for combo in itertools.product(*(list(grid[k]) for k in keys))]
-            else:
-                rows = spec.get("rows")
-    else:
-        scene = _scene(spec)
-    if rows is None:
-        raise ValueError("sweep: no rows (pass rows=[{...}, …], or a spec with rows or grid)")
-    out = []
-    for i, r in enumerate(rows):
-        if not isinstance(r, Mapping):
-            raise TypeError(f"row {i}: a row is a dict of dotted path -> value, not {type(r).__name__}")
-        out.append(dict(r))
-    return scene, out, solver
+            raise ValueError("sweep: a scene needs rows=[{...}, …] (one dict of overrides per row), or give a sweep spec")
+        return Spec.from_scene(_scene(spec)), rows
+    raise TypeError(
+        f"sweep takes a kanestop.Spec, a spec file, a spec dict (with base) or a scene with rows, not {type(spec).__name__}"
+    )
 
 
 def sweep(
-    spec: Spec,
+    spec: SweepSpec,
     rows: Optional[Rows] = None,
     *,
     jobs: Optional[int] = None,
@@ -258,35 +316,63 @@ def sweep(
     end_time: Optional[float] = None,
     output_interval: Optional[float] = None,
     kernel: str = "generated",
+    records: bool = False,
+    base_dir: Optional[PathLike] = None,
 ) -> Any:
-    """Runs a scene once per row of overrides on the Rust thread pool (``jobs`` threads,
-    every core when None), with the GIL released; ``progress(done, total)`` is called on
-    this thread as rows finish (raise in it to cancel the rows not started).
+    """Runs a sweep as ``kanestop sweep SPEC.toml`` does (docs/sweeps.md), on the Rust
+    thread pool (``jobs`` threads, every core when None) with the GIL released;
+    ``progress(done, total)`` is called on this thread as rows finish (raise in it, or
+    Ctrl-C, to cancel the rows not started).
 
-    ``spec`` is a scene (``Scene``, path or dict) with ``rows=[{"ship.mass": 1e6}, …]``, or
-    a dict ``{"scene": …, "rows": [...]}`` or ``{"scene": …, "grid": {"ship.mass": [...],
-    "initial.ship_speed": [...]}}`` (every combination), optionally with ``"solver":
-    {"dt": …}``. Returns a DataFrame (a list of dicts without pandas), one row per input
-    row in order: the override columns, then the flattened summary (``kanestop.flatten``),
-    then ``error`` (why a row could not run; its ``status`` is ``invalid``).
+    ``spec`` is a sweep spec: a ``kanestop.Spec``, a spec file's path, or a dict of the spec
+    file's fields (``{"base": "case01.toml" or a Scene, "axis": [{"path": "ship.mass",
+    "values": [...]}], "sampling": {...}, "uncertain": [...], "checks": {...}}``; a ``base``
+    path is relative to ``base_dir``, default the current directory). Or, with ``rows``, a
+    scene (``Scene``, path or dict of its tables) and one dict of overrides per row
+    (``[{"ship.mass": 1e6}, …]``; the rows may set different paths).
+
+    The solver keywords are set on the base scene for every row, as the spec's ``[solver]``
+    would (``SceneError`` when out of range). A bad spec raises ``SpecError`` naming the
+    field (or ``SceneError`` for its base scene), before any run.
+
+    Returns the table of ``sweep.csv`` as a DataFrame (a list of dicts without pandas), one
+    row per run in spec order: ``index``, ``name``, one column per input (its dotted path),
+    ``status`` (``invalid``: the inputs give no valid scene; the reason is in ``message``),
+    ``checks``, then the outputs (``stopping_time``, ``peak_tension``, ``work_drag``,
+    ``dissipated_drag``, ``check_<name>_pass``, …, ``message``), the same numbers as the
+    command line's. With ``records=True``, the rows of ``sweep.json`` instead: a list of
+    dicts ``{index, name, label, inputs, status, checks_pass, energy_split, summary,
+    message}`` whose ``summary`` is the row's ``run --json`` record.
     """
-    scene, plan, solver = _rows(spec, rows)
-    keywords: Dict[str, Any] = dict(
-        integrator=integrator, dt=dt, rtol=rtol, atol=atol, end_time=end_time, output_interval=output_interval
+    the_spec, the_rows = _spec(spec, rows, base_dir)
+    plan: Optional[List[Dict[str, Any]]] = None
+    if the_rows is not None:
+        plan = []
+        for i, r in enumerate(the_rows):
+            if not isinstance(r, Mapping):
+                raise TypeError(f"row {i}: a row is a dict of dotted path -> value, not {type(r).__name__}")
+            plan.append(dict(r))
+    out = _sweep(
+        the_spec,
+        plan,
+        jobs=jobs,
+        progress=progress,
+        integrator=integrator,
+        dt=dt,
+        rtol=rtol,
+        atol=atol,
+        end_time=end_time,
+        output_interval=output_interval,
+        kernel=kernel,
+        records=records,
     )
-    for key, value in solver.items():
-        if key not in keywords:
-            raise ValueError(f"sweep spec: solver.{key} is not a sweep keyword (valid: {', '.join(keywords)})")
-        if keywords[key] is None:
-            keywords[key] = value
-    outcomes = _sweep(scene, plan, jobs=jobs, progress=progress, kernel=kernel, **keywords)
-    records = []
-    for overrides, (summary, error) in zip(plan, outcomes):
-        record: Dict[str, Any] = dict(overrides)
-        if summary is not None:
-            record.update(flatten(json.loads(summary)))
-            record["error"] = None
-        else:
-            record.update(status="invalid", error=error)
-        records.append(record)
-    return to_frame(records)
+    if records:
+        assert isinstance(out, str)
+        rows_json: List[Dict[str, Any]] = json.loads(out)
+        return rows_json
+    assert isinstance(out, tuple)
+    columns, table = out
+    pd = _pandas()
+    if pd is not None:
+        return pd.DataFrame.from_records(table, columns=columns)
+    return [dict(zip(columns, row)) for row in table]

@@ -17,6 +17,15 @@ class SceneError(ValueError):
     kind: str
     """``io``, ``parse``, ``invalid`` or ``override``."""
 
+class SpecError(ValueError):
+    """A sweep spec that could not be read or is not valid."""
+
+    field: str
+    """The spec's field, e.g. ``axis[0].range.steps``; ``(file)``/``(spec)`` for its shape."""
+    value: str
+    expected: str
+    file: str
+
 class ModelError(ValueError):
     """A valid scene whose model cannot be built."""
 
@@ -47,6 +56,34 @@ class Scene:
     def __reduce__(self) -> Tuple[Callable[[str, str], "Scene"], Tuple[str, str]]: ...
     def __eq__(self, other: object) -> bool: ...
 
+class Spec:
+    """A checked sweep spec (docs/sweeps.md). Immutable."""
+
+    @staticmethod
+    def load(path: Union[str, "os.PathLike[str]"]) -> "Spec":
+        """Reads and checks a spec file. Raises SpecError or SceneError."""
+    @staticmethod
+    def from_toml(
+        text: str, *, base_dir: Optional[Union[str, "os.PathLike[str]"]] = None, base: Optional[Scene] = None
+    ) -> "Spec":
+        """A spec from TOML text; ``base`` relative to ``base_dir``, or the given scene."""
+    @staticmethod
+    def from_dict(d: Mapping[str, Any], *, base_dir: Optional[Union[str, "os.PathLike[str]"]] = None) -> "Spec":
+        """A spec from a dict of the spec file's fields; ``base`` a path or a Scene."""
+    @staticmethod
+    def from_scene(scene: Scene, name: Optional[str] = None) -> "Spec":
+        """The spec of one scene, no axes: rows are given to ``sweep``."""
+    @property
+    def name(self) -> str: ...
+    @property
+    def base(self) -> Scene:
+        """The base scene with ``[solver]`` and ``[set]`` applied."""
+    @property
+    def file(self) -> str: ...
+    def inputs(self) -> List[Dict[str, Any]]:
+        """Every row's inputs in spec order."""
+    def __len__(self) -> int: ...
+
 def _scene_from_toml(text: str, name: str) -> Scene: ...
 def _run(
     scene: Scene,
@@ -58,7 +95,13 @@ def _run(
     end_time: Optional[float] = None,
     output_interval: Optional[float] = None,
     kernel: str = "generated",
-) -> Tuple[str, Dict[str, npt.NDArray[np.float64]], List[Dict[str, Any]], Optional[Dict[str, Any]]]: ...
+) -> Tuple[
+    str,
+    Dict[str, npt.NDArray[np.float64]],
+    List[Dict[str, Any]],
+    Optional[Dict[str, Any]],
+    List[Tuple[str, str, str, str]],
+]: ...
 def eval(
     scene: Scene,
     q: Optional[Sequence[float]] = None,
@@ -69,8 +112,8 @@ def eval(
 ) -> Dict[str, Any]:
     """The equations of motion as a dict with NumPy ``M``, ``f``, ``qdd``, ``q``, ``u``."""
 def _sweep(
-    scene: Scene,
-    rows: Iterable[Mapping[str, Any]],
+    spec: Spec,
+    rows: Optional[Iterable[Mapping[str, Any]]] = None,
     *,
     jobs: Optional[int] = None,
     progress: Optional[Callable[[int, int], Any]] = None,
@@ -81,4 +124,5 @@ def _sweep(
     end_time: Optional[float] = None,
     output_interval: Optional[float] = None,
     kernel: str = "generated",
-) -> List[Tuple[Optional[str], Optional[str]]]: ...
+    records: bool = False,
+) -> Union[Tuple[List[str], List[List[Any]]], str]: ...

@@ -165,10 +165,6 @@ pub fn outcome(rows: &[SweepRow]) -> (bool, bool) {
     (rows.iter().any(|r| r.status.is_problem()), rows.iter().any(|r| r.checks_pass == Some(false)))
 }
 
-fn o(v: Option<f64>) -> String {
-    v.map(|v| format!("{v}")).unwrap_or_default()
-}
-
 fn quote(s: &str) -> String {
     if s.contains([',', '"', '\n']) {
         format!("\"{}\"", s.replace('"', "\"\""))
@@ -177,14 +173,59 @@ fn quote(s: &str) -> String {
     }
 }
 
+/// One cell of the sweep table ([`cells`]): what `sweep.csv` writes and the Python package
+/// hands over as a typed value.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Cell {
+    /// No value (an output the row does not have): an empty CSV field, None in Python.
+    Empty,
+    /// A real number, written in full (shortest round-trip form).
+    Number(f64),
+    /// A count or an index.
+    Count(u64),
+    /// A word or a message.
+    Text(String),
+    /// An input as the spec (or the row) gave it.
+    Input(Value),
+}
+
+impl Cell {
+    fn csv(&self) -> String {
+        match self {
+            Cell::Empty => String::new(),
+            Cell::Number(v) => format!("{v}"),
+            Cell::Count(n) => n.to_string(),
+            Cell::Text(s) => quote(s),
+            Cell::Input(v) => quote(&fmt_value(v)),
+        }
+    }
+}
+
+fn number(v: Option<f64>) -> Cell {
+    v.map_or(Cell::Empty, Cell::Number)
+}
+
+fn pass(p: Option<bool>) -> Cell {
+    match p {
+        Some(true) => Cell::Text("pass".into()),
+        Some(false) => Cell::Text("fail".into()),
+        None => Cell::Empty,
+    }
+}
+
 /// Reads one peak of a summary.
 type PeakOf<'a> = &'a dyn Fn(&RunSummary) -> Option<Peak>;
 
-/// The rows as CSV: index, name, the inputs (one column per path, in spec order), status,
-/// checks, then the outputs (docs/sweeps.md lists the columns).
-pub fn csv(rows: &[SweepRow]) -> String {
-    let paths: Vec<&str> =
-        rows.first().map(|r| r.inputs.0.iter().map(|(k, _)| k.as_str()).collect()).unwrap_or_default();
+/// The sweep table: its column names and one row of cells per sweep row. Columns: index,
+/// name, the inputs (one column per path, in spec order; rows that set different paths get
+/// the union, in order of appearance), status, checks, then the outputs (docs/sweeps.md).
+pub fn cells(rows: &[SweepRow]) -> (Vec<String>, Vec<Vec<Cell>>) {
+    let mut paths: Vec<&str> = Vec::new();
+    for (k, _) in rows.iter().flat_map(|r| r.inputs.0.iter()) {
+        if !paths.contains(&k.as_str()) {
+            paths.push(k);
+        }
+    }
     let works: Vec<String> =
         rows.iter().find_map(|r| r.summary.as_ref()).map(|s| s.work.keys().cloned().collect()).unwrap_or_default();
     let checks: Vec<String> = rows
@@ -219,49 +260,59 @@ pub fn csv(rows: &[SweepRow]) -> String {
         head.push(format!("check_{c}_pass"));
     }
     head.extend(["energy_drift", "t_end", "steps", "rhs_evaluations", "wall_time", "message"].map(String::from));
+    let body =
+        rows.iter()
+            .map(|r| {
+                let mut cells: Vec<Cell> = vec![Cell::Count(r.index as u64), Cell::Text(r.name.clone())];
+                cells.extend(paths.iter().map(|p| {
+                    r.inputs.0.iter().find(|(k, _)| k == p).map_or(Cell::Empty, |(_, v)| Cell::Input(v.clone()))
+                }));
+                cells.push(Cell::Text(r.status.name().into()));
+                cells.push(pass(r.checks_pass));
+                let s = r.summary.as_ref();
+                let f = |g: &dyn Fn(&RunSummary) -> Option<f64>| number(s.and_then(g));
+                cells.push(f(&|s| s.stopping_time));
+                cells.push(f(&|s| s.paper_stopping_time));
+                cells.push(f(&|s| s.stopping_distance));
+                cells.push(f(&|s| Some(s.ship_displacement)));
+                cells.push(f(&|s| Some(s.anchor_drag_distance)));
+                cells.push(f(&|s| s.anchor_start));
+                let peaks: [PeakOf; 4] = [&|s| s.peak_tension, &|s| s.chain_peak, &|s| s.cable_peak, &|s| s.rod_peak];
+                for peak in peaks {
+                    let p = s.and_then(peak);
+                    cells.push(number(p.map(|p| p.tension)));
+                    cells.push(p.map_or(Cell::Empty, |p| Cell::Count(p.joint as u64)));
+                    cells.push(number(p.map(|p| p.t)));
+                    cells.push(number(p.and_then(|p| p.proof_utilisation)));
+                    cells.push(number(p.and_then(|p| p.break_utilisation)));
+                }
+                cells.push(f(&|s| Some(s.initial_energy)));
+                cells.extend(works.iter().map(|w| number(s.and_then(|s| s.work.get(w).copied()))));
+                cells.extend(works.iter().map(|w| number(r.energy_split.get(w).copied())));
+                for c in &checks {
+                    let outcome = s.and_then(|s| s.checks.iter().find(|x| &x.name == c));
+                    cells.push(number(outcome.and_then(|x| x.value)));
+                    cells.push(pass(outcome.map(|x| x.pass)));
+                }
+                cells.push(f(&|s| Some(s.energy_drift)));
+                cells.push(f(&|s| Some(s.t_end)));
+                cells.push(s.map_or(Cell::Empty, |s| Cell::Count(s.steps)));
+                cells.push(s.map_or(Cell::Empty, |s| Cell::Count(s.rhs_evaluations)));
+                cells.push(f(&|s| Some(s.wall_time)));
+                cells.push(Cell::Text(r.message.clone()));
+                cells
+            })
+            .collect();
+    (head, body)
+}
+
+/// The rows as CSV: [`cells`], a header line and one line per row.
+pub fn csv(rows: &[SweepRow]) -> String {
+    let (head, body) = cells(rows);
     let mut out = head.iter().map(|h| quote(h)).collect::<Vec<_>>().join(",");
     out.push('\n');
-    for r in rows {
-        let mut cells: Vec<String> = vec![r.index.to_string(), quote(&r.name)];
-        cells.extend(r.inputs.0.iter().map(|(_, v)| quote(&fmt_value(v))));
-        cells.push(r.status.name().into());
-        cells.push(match r.checks_pass {
-            Some(true) => "pass".into(),
-            Some(false) => "fail".into(),
-            None => String::new(),
-        });
-        let s = r.summary.as_ref();
-        let f = |g: &dyn Fn(&RunSummary) -> Option<f64>| o(s.and_then(g));
-        cells.push(f(&|s| s.stopping_time));
-        cells.push(f(&|s| s.paper_stopping_time));
-        cells.push(f(&|s| s.stopping_distance));
-        cells.push(f(&|s| Some(s.ship_displacement)));
-        cells.push(f(&|s| Some(s.anchor_drag_distance)));
-        cells.push(f(&|s| s.anchor_start));
-        let peaks: [PeakOf; 4] = [&|s| s.peak_tension, &|s| s.chain_peak, &|s| s.cable_peak, &|s| s.rod_peak];
-        for peak in peaks {
-            let p = s.and_then(peak);
-            cells.push(o(p.map(|p| p.tension)));
-            cells.push(p.map(|p| p.joint.to_string()).unwrap_or_default());
-            cells.push(o(p.map(|p| p.t)));
-            cells.push(o(p.and_then(|p| p.proof_utilisation)));
-            cells.push(o(p.and_then(|p| p.break_utilisation)));
-        }
-        cells.push(f(&|s| Some(s.initial_energy)));
-        cells.extend(works.iter().map(|w| o(s.and_then(|s| s.work.get(w).copied()))));
-        cells.extend(works.iter().map(|w| o(r.energy_split.get(w).copied())));
-        for c in &checks {
-            let outcome = s.and_then(|s| s.checks.iter().find(|x| &x.name == c));
-            cells.push(o(outcome.and_then(|x| x.value)));
-            cells.push(outcome.map(|x| if x.pass { "pass" } else { "fail" }.to_string()).unwrap_or_default());
-        }
-        cells.push(f(&|s| Some(s.energy_drift)));
-        cells.push(f(&|s| Some(s.t_end)));
-        cells.push(s.map(|s| s.steps.to_string()).unwrap_or_default());
-        cells.push(s.map(|s| s.rhs_evaluations.to_string()).unwrap_or_default());
-        cells.push(f(&|s| Some(s.wall_time)));
-        cells.push(quote(&r.message));
-        out.push_str(&cells.join(","));
+    for row in body {
+        out.push_str(&row.iter().map(Cell::csv).collect::<Vec<_>>().join(","));
         out.push('\n');
     }
     out

@@ -1,5 +1,6 @@
 //! The sweep spec (TOML): a base scene, overrides for every row, grid axes and uncertain
-//! inputs over dotted paths, and design checks. [`Spec::load`] checks it whole and
+//! inputs over dotted paths, and design checks. [`Spec::load`] checks a file whole
+//! ([`Spec::from_toml`] text, [`Spec::from_table`] a table, as the Python package gives) and
 //! [`Spec::plan`] turns it into one scene per row, in spec order. Format: docs/sweeps.md.
 
 use std::path::{Path, PathBuf};
@@ -16,7 +17,7 @@ use crate::{Error, Result};
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct SpecFile {
-    base: String,
+    base: Option<String>,
     name: Option<String>,
     solver: Option<toml::Table>,
     set: Option<toml::Table>,
@@ -135,9 +136,61 @@ impl Spec {
     /// Reads and checks a spec file; the base scene is relative to it.
     pub fn load(file: &Path) -> Result<Spec> {
         let text = std::fs::read_to_string(file).map_err(Error::io("read", file))?;
-        let raw: SpecFile = toml::from_str(&text).map_err(|e| bad(file, "(file)", "", e.to_string()))?;
         let dir = file.parent().unwrap_or(Path::new(""));
-        let original = Scene::load(&dir.join(&raw.base))?;
+        Spec::from_toml(&text, file, dir, None)
+    }
+
+    /// Checks a spec given as TOML text. `file` names it in messages (its stem is the default
+    /// `name`; `sweep` for a label such as `<string>`), `base` is relative to `dir`, and
+    /// `scene`, when given, is the base scene instead (the spec then has no `base`).
+    pub fn from_toml(text: &str, file: &Path, dir: &Path, scene: Option<Scene>) -> Result<Spec> {
+        let raw: SpecFile = toml::from_str(text).map_err(|e| bad(file, "(file)", "", e.to_string()))?;
+        Spec::from_raw(raw, file, dir, scene)
+    }
+
+    /// [`Spec::from_toml`] of a spec given as a table of the same fields (a Python dict).
+    pub fn from_table(table: toml::Table, file: &Path, dir: &Path, scene: Option<Scene>) -> Result<Spec> {
+        let raw = SpecFile::deserialize(Value::Table(table)).map_err(|e| {
+            // The message ends "in `sampling.samples`" when the error is at a key: its field.
+            let text = e.to_string();
+            match text.trim_end().rsplit_once("\nin `") {
+                Some((message, key)) => bad(file, key.trim_end_matches('`'), "", message.trim()),
+                None => bad(file, "(spec)", "", text.trim()),
+            }
+        })?;
+        Spec::from_raw(raw, file, dir, scene)
+    }
+
+    /// The spec of one scene with no axis and no sampling: one row, the scene, until rows
+    /// are given to [`Spec::plan_inputs`]. Rows are `name-000`, ….
+    pub fn of_scene(scene: Scene, name: &str) -> Spec {
+        Spec {
+            file: PathBuf::from(format!("<{name}>")),
+            name: name.to_string(),
+            base: scene.clone(),
+            original: scene,
+            axes: Vec::new(),
+            sampling: None,
+            uncertain: Vec::new(),
+            checks: None,
+        }
+    }
+
+    /// The same spec with `values` set on the base scene for every row, as if added to `[set]`.
+    pub fn with_set(mut self, values: &[(&str, Value)]) -> Result<Spec> {
+        if !values.is_empty() {
+            self.base = self.base.with_overrides(values)?;
+        }
+        Ok(self)
+    }
+
+    fn from_raw(raw: SpecFile, file: &Path, dir: &Path, scene: Option<Scene>) -> Result<Spec> {
+        let original = match (raw.base, scene) {
+            (Some(base), None) => Scene::load(&dir.join(base))?,
+            (None, Some(scene)) => scene,
+            (Some(base), Some(_)) => return Err(bad(file, "base", base, "given twice: a file and a scene")),
+            (None, None) => return Err(bad(file, "base", "(missing)", "the base scene, a file relative to the spec")),
+        };
         let mut value = original.to_value();
         let mut set =
             |path: &str, v: Value| overrides::set(&mut value, path, v).map_err(|e| bad(file, path, "", e.to_string()));
@@ -169,7 +222,11 @@ impl Spec {
                 return Err(bad(file, field, v, expected));
             }
         }
-        let stem = file.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "sweep".into());
+        let stem = file
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .filter(|s| !s.starts_with('<'))
+            .unwrap_or_else(|| "sweep".into());
         Ok(Spec {
             file: file.to_path_buf(),
             name: raw.name.unwrap_or(stem),
@@ -195,27 +252,38 @@ impl Spec {
             Some((method, n, seed)) => sampling::unit_points(method, n, self.uncertain.len(), seed),
             None => vec![vec![]],
         };
-        let mut rows = Vec::with_capacity(self.rows());
+        let mut inputs = Vec::with_capacity(self.rows());
         for g in 0..grid {
-            let mut inputs = Vec::new();
+            let mut at = Vec::new();
             let mut rest = g;
             for a in self.axes.iter().rev() {
-                inputs.push((a.path.clone(), a.values[rest % a.values.len()].clone()));
+                at.push((a.path.clone(), a.values[rest % a.values.len()].clone()));
                 rest /= a.values.len();
             }
-            inputs.reverse();
+            at.reverse();
             for p in &points {
-                let mut inputs = inputs.clone();
+                let mut row = at.clone();
                 for (u, x) in self.uncertain.iter().zip(p) {
-                    inputs.push((u.path.clone(), Value::Float(u.distribution.quantile(*x))));
+                    row.push((u.path.clone(), Value::Float(u.distribution.quantile(*x))));
                 }
-                let index = rows.len();
-                let name = format!("{}-{index:03}", self.name);
-                let scene = self.scene(&name, &inputs);
-                rows.push(PlannedRow { index, name, inputs, scene });
+                inputs.push(row);
             }
         }
-        rows
+        self.plan_inputs(inputs)
+    }
+
+    /// One row per entry of `inputs`, in order, named and built as [`Spec::plan`]'s rows are
+    /// (explicit rows, e.g. Python's `sweep(scene, rows)`; the rows may set different paths).
+    pub fn plan_inputs(&self, inputs: impl IntoIterator<Item = Vec<(String, Value)>>) -> Vec<PlannedRow> {
+        inputs
+            .into_iter()
+            .enumerate()
+            .map(|(index, inputs)| {
+                let name = format!("{}-{index:03}", self.name);
+                let scene = self.scene(&name, &inputs);
+                PlannedRow { index, name, inputs, scene }
+            })
+            .collect()
     }
 
     /// The scene of one row: the base with `inputs` set, named `name`, with the spec's
@@ -348,4 +416,49 @@ fn uncertain(file: &Path, base: &Value, i: usize, u: UncertainFile) -> Result<Un
         ));
     }
     Ok(Uncertain { path: u.path, distribution })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn case01() -> Scene {
+        Scene::from_toml(kanestop_runtime::paper::DEFAULT_SCENE, "case01.toml").unwrap()
+    }
+
+    fn field(e: Error) -> String {
+        match e {
+            Error::Spec { field, .. } => field,
+            other => panic!("not a spec error: {other}"),
+        }
+    }
+
+    #[test]
+    fn a_table_or_text_with_a_given_scene_plans_as_a_file_would() {
+        let text = "[[axis]]\npath = \"ship.mass\"\nvalues = [4e5, 5e5]\n";
+        let spec = Spec::from_toml(text, Path::new("<string>"), Path::new(""), Some(case01())).unwrap();
+        assert_eq!((spec.name.as_str(), spec.rows()), ("sweep", 2));
+        let table: toml::Table = toml::from_str(text).unwrap();
+        let same = Spec::from_table(table, Path::new("<dict>"), Path::new(""), Some(case01())).unwrap();
+        let inputs = |s: &Spec| s.plan().into_iter().map(|r| (r.name, r.inputs)).collect::<Vec<_>>();
+        assert_eq!(inputs(&spec), inputs(&same));
+        assert_eq!(field(Spec::from_toml(text, Path::new("<string>"), Path::new(""), None).unwrap_err()), "base");
+        let bad: toml::Table =
+            toml::from_str("[sampling]\nmethod = \"random\"\nsamples = \"many\"\nseed = 1\n").unwrap();
+        let e = Spec::from_table(bad, Path::new("<dict>"), Path::new(""), Some(case01())).unwrap_err();
+        assert_eq!(field(e), "sampling.samples");
+    }
+
+    #[test]
+    fn explicit_rows_are_named_and_built_as_planned_rows() {
+        let spec = Spec::of_scene(case01(), "case01").with_set(&[("solver.end_time", Value::Float(1.0))]).unwrap();
+        let rows = spec.plan_inputs([
+            vec![("ship.mass".to_string(), Value::Float(4e5))],
+            vec![("ship.nope".to_string(), Value::Float(1.0))],
+        ]);
+        assert_eq!(rows[0].name, "case01-000");
+        let scene = rows[0].scene.as_ref().unwrap();
+        assert_eq!((scene.ship.mass, scene.solver.end_time, scene.meta.name.as_str()), (4e5, 1.0, "case01-000"));
+        assert!(rows[1].scene.as_ref().unwrap_err().contains("nope"));
+    }
 }

@@ -1,0 +1,281 @@
+//! Sweeps from Python on the command line's machinery (`kanestop_workflow::sweep`): a spec
+//! read by `Spec::load` / `from_toml` / `from_table`, planned by `Spec::plan` (or
+//! `Spec::plan_inputs` for explicit rows), each row run by `sweep::run_row`, and the rows
+//! handed back as the cells of `sweep.csv` (`sweep::cells`) or the objects of `sweep.json`.
+//!
+//! The rows run on a rayon pool of their own while the calling thread waits with the GIL
+//! released, waking only to call the progress callback and to check for Ctrl-C.
+
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::mpsc;
+use std::time::Duration;
+
+use kanestop_workflow::kernels;
+use kanestop_workflow::sweep::{self, Cell, PlannedRow, Spec, SweepRow};
+use pyo3::exceptions::{PyTypeError, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList};
+use toml::Value;
+
+use crate::errors::workflow_error;
+use crate::{convert, kernel_choice, override_list, PyScene, SolverArgs};
+
+/// A checked sweep spec (docs/sweeps.md): the base scene, grid axes, uncertain inputs and
+/// design checks. Immutable.
+#[pyclass(module = "kanestop._kanestop", name = "Spec", frozen)]
+pub struct PySpec {
+    inner: Spec,
+}
+
+#[pymethods]
+impl PySpec {
+    /// Reads and checks a spec file (`kanestop sweep SPEC.toml`); its `base` is relative to
+    /// it. Raises SpecError (a field of the spec) or SceneError (the base scene).
+    #[staticmethod]
+    fn load(py: Python<'_>, path: PathBuf) -> PyResult<Self> {
+        let inner = py.allow_threads(|| Spec::load(&path)).map_err(|e| workflow_error(py, e))?;
+        Ok(PySpec { inner })
+    }
+
+    /// A spec from TOML text (a spec file's content); `base` is relative to `base_dir`
+    /// (default: the current directory), or `base` is the given `Scene`.
+    #[staticmethod]
+    #[pyo3(signature = (text, *, base_dir = None, base = None))]
+    fn from_toml(py: Python<'_>, text: &str, base_dir: Option<PathBuf>, base: Option<&PyScene>) -> PyResult<Self> {
+        let dir = base_dir.unwrap_or_default();
+        let scene = base.map(|s| s.inner.clone());
+        let inner = Spec::from_toml(text, Path::new("<string>"), &dir, scene).map_err(|e| workflow_error(py, e))?;
+        Ok(PySpec { inner })
+    }
+
+    /// A spec from a dict of the spec file's fields (`{"base": ..., "axis": [{"path": ...,
+    /// "values": [...]}], "checks": {...}}`); `base` is a path relative to `base_dir`
+    /// (default: the current directory) or a `Scene`.
+    #[staticmethod]
+    #[pyo3(signature = (d, *, base_dir = None))]
+    fn from_dict(py: Python<'_>, d: &Bound<'_, PyAny>, base_dir: Option<PathBuf>) -> PyResult<Self> {
+        let d = d.downcast::<PyDict>().map_err(|_| {
+            PyTypeError::new_err(format!(
+                "Spec.from_dict takes a dict of the spec's fields, not a {}",
+                convert::type_name(d)
+            ))
+        })?;
+        let d = d.copy()?;
+        let mut scene = None;
+        if let Some(base) = d.get_item("base")? {
+            if let Ok(s) = base.downcast::<PyScene>() {
+                scene = Some(s.get().inner.clone());
+                d.del_item("base")?;
+            }
+        }
+        let Value::Table(table) = convert::to_toml(d.as_any(), "")? else { unreachable!("a dict converts to a table") };
+        let dir = base_dir.unwrap_or_default();
+        let inner = Spec::from_table(table, Path::new("<dict>"), &dir, scene).map_err(|e| workflow_error(py, e))?;
+        Ok(PySpec { inner })
+    }
+
+    /// The spec of one scene (no axis, no sampling): the rows are given to `sweep`.
+    #[staticmethod]
+    #[pyo3(signature = (scene, name = None))]
+    fn from_scene(scene: &PyScene, name: Option<&str>) -> Self {
+        let name = name.unwrap_or(&scene.inner.meta.name);
+        PySpec { inner: Spec::of_scene(scene.inner.clone(), name) }
+    }
+
+    /// The sweep's name: rows are `name-000`, ….
+    #[getter]
+    fn name(&self) -> String {
+        self.inner.name.clone()
+    }
+
+    /// The base scene with the spec's `[solver]` and `[set]` applied.
+    #[getter]
+    fn base(&self) -> PyScene {
+        PyScene { inner: self.inner.base.clone() }
+    }
+
+    /// The spec file (or `<string>`, `<dict>`, `<scene name>`).
+    #[getter]
+    fn file(&self) -> String {
+        self.inner.file.display().to_string()
+    }
+
+    /// Every row's inputs in spec order, as dicts of dotted path to value.
+    fn inputs(&self, py: Python<'_>) -> PyResult<Vec<PyObject>> {
+        self.inner.plan().iter().map(|row| inputs_dict(py, &row.inputs)).collect()
+    }
+
+    /// The number of rows (the grid's size times the samples).
+    fn __len__(&self) -> usize {
+        self.inner.rows()
+    }
+
+    fn __repr__(&self) -> String {
+        format!("Spec({:?}, {} rows, base {:?})", self.inner.name, self.inner.rows(), self.inner.base.meta.name)
+    }
+}
+
+fn inputs_dict(py: Python<'_>, inputs: &[(String, Value)]) -> PyResult<PyObject> {
+    let d = PyDict::new(py);
+    for (k, v) in inputs {
+        d.set_item(k, convert::to_py(py, v)?)?;
+    }
+    Ok(d.into_any().unbind())
+}
+
+fn cell(py: Python<'_>, c: &Cell) -> PyResult<PyObject> {
+    Ok(match c {
+        Cell::Empty => py.None(),
+        Cell::Number(x) => x.into_pyobject(py)?.into_any().unbind(),
+        Cell::Count(n) => n.into_pyobject(py)?.into_any().unbind(),
+        Cell::Text(s) => s.into_pyobject(py)?.into_any().unbind(),
+        Cell::Input(v) => convert::to_py(py, v)?,
+    })
+}
+
+/// Runs a spec: every planned row (or one row per dict of `rows`, for a spec without axes
+/// and sampling), on `jobs` threads (every core when None), with the solver keywords set
+/// on the base scene as `[solver]` would; `progress(done, total)` is called as rows finish.
+/// Returns `(columns, rows of cells)`, `sweep.csv`'s table, or with `records` the
+/// `sweep.json` text.
+#[pyfunction]
+#[pyo3(signature = (spec, rows=None, *, jobs=None, progress=None, integrator=None, dt=None, rtol=None, atol=None, end_time=None, output_interval=None, kernel="generated", records=false))]
+#[allow(clippy::too_many_arguments)]
+pub fn _sweep(
+    py: Python<'_>,
+    spec: &PySpec,
+    rows: Option<&Bound<'_, PyAny>>,
+    jobs: Option<usize>,
+    progress: Option<PyObject>,
+    integrator: Option<String>,
+    dt: Option<f64>,
+    rtol: Option<f64>,
+    atol: Option<f64>,
+    end_time: Option<f64>,
+    output_interval: Option<f64>,
+    kernel: &str,
+    records: bool,
+) -> PyResult<PyObject> {
+    let choice = kernel_choice(kernel)?;
+    if jobs == Some(0) {
+        return Err(PyValueError::new_err("jobs = 0: must be at least 1 (or None for every core)"));
+    }
+    if let Some(p) = &progress {
+        if !p.bind(py).is_callable() {
+            return Err(PyTypeError::new_err("progress must be callable as progress(done, total)"));
+        }
+    }
+    let solver = SolverArgs { integrator, dt, rtol, atol, end_time, output_interval }.overrides();
+    let values: Vec<(&str, Value)> = solver.iter().map(|(k, v)| (k.as_str(), v.clone())).collect();
+    let spec = spec.inner.clone().with_set(&values).map_err(|e| workflow_error(py, e))?;
+    let plan = match rows {
+        None => spec.plan(),
+        Some(rows) => {
+            if !spec.axes.is_empty() || spec.sampling.is_some() {
+                return Err(PyValueError::new_err(format!(
+                    "rows are given, but the spec {} has axes or sampling: give one or the other",
+                    spec.file.display()
+                )));
+            }
+            spec.plan_inputs(row_list(py, rows)?)
+        }
+    };
+    let done = run_rows(py, &plan, choice, jobs, progress.as_ref())?;
+    if records {
+        let json = serde_json::to_string(&done).map_err(|e| PyValueError::new_err(e.to_string()))?;
+        return Ok(json.into_pyobject(py)?.into_any().unbind());
+    }
+    let (head, body) = sweep::cells(&done);
+    let table = PyList::empty(py);
+    for row in &body {
+        let cells: Vec<PyObject> = row.iter().map(|c| cell(py, c)).collect::<PyResult<_>>()?;
+        table.append(PyList::new(py, cells)?)?;
+    }
+    Ok((head, table).into_pyobject(py)?.into_any().unbind())
+}
+
+/// The rows' overrides, each a dict of dotted path to value; the row's index in errors.
+fn row_list(py: Python<'_>, rows: &Bound<'_, PyAny>) -> PyResult<Vec<Vec<(String, Value)>>> {
+    let mut out = Vec::new();
+    for (i, row) in rows.try_iter()?.enumerate() {
+        let values = override_list(&row?).map_err(|e| {
+            let msg = format!("row {i}: {}", e.value(py));
+            if e.is_instance_of::<PyTypeError>(py) {
+                PyTypeError::new_err(msg)
+            } else {
+                PyValueError::new_err(msg)
+            }
+        })?;
+        out.push(values);
+    }
+    Ok(out)
+}
+
+/// Runs every row with `sweep::run_row` on a pool of `jobs` threads, in plan order; the
+/// calling thread waits with the GIL released and calls `progress`. An exception in
+/// `progress` (or Ctrl-C) cancels the rows not started and is returned.
+fn run_rows(
+    py: Python<'_>,
+    plan: &[PlannedRow],
+    choice: kernels::KernelChoice,
+    jobs: Option<usize>,
+    progress: Option<&PyObject>,
+) -> PyResult<Vec<SweepRow>> {
+    let total = plan.len();
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(jobs.unwrap_or(0))
+        .build()
+        .map_err(|e| PyValueError::new_err(e.to_string()))?;
+    let kernel = kernels::factory(choice);
+    let cancel = AtomicBool::new(false);
+    let (tx, rx) = mpsc::channel::<()>();
+    // Receiver is Send but not Sync: the waiting loop borrows it through a mutex.
+    let rx = std::sync::Mutex::new(rx);
+    let run_row = |row: &PlannedRow, tx: &mpsc::Sender<()>| -> Option<SweepRow> {
+        if cancel.load(Ordering::Relaxed) {
+            return None;
+        }
+        let out = sweep::run_row(row, &kernel);
+        let _ = tx.send(());
+        Some(out)
+    };
+    let (outcomes, error) = std::thread::scope(|s| {
+        // The worker owns the sender: the channel disconnects when every row is done (or a
+        // row panicked), which ends the loop below.
+        let worker = s.spawn(move || pool.install(|| kanestop_workflow::parallel::map(plan, |r| run_row(r, &tx))));
+        let mut done = 0;
+        let mut error: Option<PyErr> = None;
+        loop {
+            let got = py.allow_threads(|| {
+                rx.lock().expect("only this thread locks it").recv_timeout(Duration::from_millis(50))
+            });
+            match got {
+                Ok(()) => {
+                    done += 1;
+                    if let (Some(p), None) = (progress, &error) {
+                        if let Err(e) = p.call1(py, (done, total)) {
+                            cancel.store(true, Ordering::Relaxed);
+                            error = Some(e);
+                        }
+                    }
+                }
+                Err(mpsc::RecvTimeoutError::Timeout) => {}
+                Err(mpsc::RecvTimeoutError::Disconnected) => break,
+            }
+            if error.is_none() {
+                if let Err(e) = py.check_signals() {
+                    cancel.store(true, Ordering::Relaxed);
+                    error = Some(e);
+                }
+            }
+        }
+        let outcomes = py.allow_threads(|| worker.join());
+        (outcomes, error)
+    });
+    if let Some(e) = error {
+        return Err(e);
+    }
+    let outcomes = outcomes.map_err(|_| PyValueError::new_err("a sweep worker panicked"))?;
+    outcomes.into_iter().map(|o| o.ok_or_else(|| PyValueError::new_err("a sweep row was cancelled"))).collect()
+}
