@@ -300,6 +300,17 @@ fn full_stress_set_completes_with_at_least_one_method() {
     };
     let (taut, taut_rk4) = result("taut_cable", 0);
     assert!(!kanestop_workflow::checks::break_exceedances(&model(taut), taut_rk4).is_empty(), "taut cable under RK4");
+    // And on the taut cable, DP5's own error estimate is two orders below RK4's.
+    let stop_estimate = |slot: usize| {
+        let (a, b) = (result("taut_cable", slot).1, result("taut_cable", slot + 1).1);
+        (a.stopping_time.unwrap() - b.stopping_time.unwrap()).abs()
+    };
+    assert!(
+        stop_estimate(0) > 30.0 * stop_estimate(2),
+        "RK4 {} s against DP5 {} s",
+        stop_estimate(0),
+        stop_estimate(2)
+    );
     let (light, case1) = (rk4_limit(result("light_rod", 0).1), rk4_limit(result("dt_too_large", 0).1));
     assert!((light - case1).abs() < 1e-3 * case1, "light rod's RK4 limit {light} s against case 1's {case1} s");
     let rows: Vec<String> = runs

@@ -6,7 +6,7 @@
 //! Each step takes the symbols of one body ([`BodySyms`]) and what the recursion carries
 //! in, and creates DAG nodes in a fixed order (the emitted text of the unrolled kernels is
 //! checked in, so the order is part of the output). `tag` is appended to the names of the
-//! nodes a step names (`_5` for B_5 in an unrolled kernel, empty in a rolled step).
+//! nodes a step names (`_5` for B_5 in an unrolled kernel, `_k` in a rolled step).
 //!
 //! Notation as in [`crate::planar`]: (x, z) inertial components, J(x, z) = (z, −x) the
 //! rotation through +90° about y (Eq. 15), A_k = m_k 1 + m_a,k n_k n_kᵀ (Eq. 46).

@@ -325,7 +325,7 @@ mod tests {
     fn dry_rolled_kernel_reads_no_added_mass() {
         assert!(!generate_rolled(Water::Off).source.contains("added_mass"));
         assert!(generate_rolled(Water::On).source.contains("p.added_mass"));
-        // The anchor's rotational inertia never enters; the ship's added mass is folded.
+        // A child's added mass never enters a step (the child is read for its joint only).
         let wet = generate_rolled(Water::On).source;
         assert!(!wet.contains("pc.added_mass"));
     }

@@ -11,8 +11,11 @@
 //! parameters a kernel folds; it never depends on this crate (docs/architecture.md).
 //!
 //! - [`expr`]: the hash-consed expression DAG (sharing, folding, exact zeros);
-//! - [`planar`]: the expansion of the chain's kinematics, a_lp, f_l and the O(N) solve;
+//! - `body` (private): one body's share of every recursion, the steps both expansions drive;
+//! - [`planar`]: the unrolled expansion of the chain's kinematics, a_lp, f_l and the O(N) solve;
+//! - [`rolled`]: the same steps expanded once per body kind, for a chain of any N;
 //! - [`emit`]: Rust emission (quote → syn → prettyplease), one file per variant;
+//! - [`drivers`]: the rolled kernels' emission: their steps and the loops that drive them;
 //! - [`scenes`]: the element counts the scene files need, for `build.rs` and the CLI.
 
 pub(crate) mod body;

@@ -7,6 +7,12 @@
 //! structural zeros as the unrolled kernels ([`Variant::folds`]), so a rolled kernel reads
 //! exactly the parameters an unrolled one reads.
 //!
+//! `first` and `rod` share the outboard-sum, surge and force steps (`outboard_rod`,
+//! `surge_rod`, `forces_rod` run on B_2 too), and the child's parameters `pc` are read with
+//! the `rod` folds even when the child is the ship: correct because those steps read only
+//! the body's mass, added mass and centroid and the child's joint x, never a joint height or
+//! the ship's centroid height. A step that needs them must get its own kind.
+//!
 //! Each step is a [`Step`]: a DAG [`Function`] with its Rust signature. Its inputs are the
 //! body's parameters `p` (and its child's, `pc`), the rotation tables `t` (this body) and
 //! `tp` (the parent's), angular velocities `w`, `wp`, loads `f`, and the recursion's carry

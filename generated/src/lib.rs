@@ -1,7 +1,7 @@
 //! # kanestop-generated
 //!
-//! Kane kernels emitted by `kanestop-codegen`, one module per variant: N bodies, water off
-//! (no added mass) or on. Each module holds flat, branch-free functions for the body states
+//! Kane kernels emitted by `kanestop-codegen`. The unrolled ones, one module per variant (N
+//! bodies, water off, i.e. no added mass, or on), hold flat, branch-free functions for the body states
 //! (Eqs. 9, 13, 14), a_lp and f_l (Eqs. 25–27), the body accelerations (Eq. 17) and the O(N)
 //! solve with the anchor free or stuck (Eqs. 27, 50); see `docs/codegen.md`.
 //!
