@@ -5,7 +5,7 @@
 //! `x_k`, `z_k`, `theta_k`, `vx_k`, `vz_k`, `omega_k` (k = 1 anchor … N ship) and every
 //! joint's tension `T_k` (k = 2 … N, between B_{k−1} and B_k), as the CSV history has them.
 
-use kanestop_runtime::forces::WORK_TERMS;
+use kanestop_runtime::forces::REPORTED_WORK;
 use kanestop_runtime::kernel::AnchorDof;
 use kanestop_runtime::simulate::{RunResult, Sample};
 
@@ -32,8 +32,8 @@ pub fn channels(result: &RunResult) -> Vec<(String, Vec<f64>)> {
     out.push(("E_kinetic".into(), col(&|s| s.energy.kinetic)));
     out.push(("E_added_kinetic".into(), col(&|s| s.energy.added_kinetic)));
     out.push(("E_potential".into(), col(&|s| s.energy.potential)));
-    for (i, name) in WORK_TERMS.iter().enumerate() {
-        out.push((format!("W_{name}"), col(&|s| s.energy.work[i])));
+    for (i, name) in REPORTED_WORK.iter().enumerate() {
+        out.push((format!("W_{name}"), col(&|s| s.energy.reported_work()[i].1)));
     }
     out.push(("E_balance".into(), col(&|s| s.energy.balance())));
     for k in 0..n {

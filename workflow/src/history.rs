@@ -10,7 +10,7 @@
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use kanestop_runtime::forces::WORK_TERMS;
+use kanestop_runtime::forces::REPORTED_WORK;
 use kanestop_runtime::kernel::AnchorDof;
 use kanestop_runtime::simulate::{RunResult, Sample};
 
@@ -104,7 +104,7 @@ impl Channel {
             Source::Kinetic => e.kinetic,
             Source::AddedKinetic => e.added_kinetic,
             Source::Potential => e.potential,
-            Source::Work(i) => e.work[i],
+            Source::Work(i) => e.reported_work()[i].1,
             Source::Balance => e.balance(),
         }
     }
@@ -164,7 +164,7 @@ pub fn all_channels(n: usize) -> Vec<Channel> {
         Source::AddedKinetic,
     ));
     c.push(Channel::new("energy_potential", "J", "gravitational potential energy", "energy", Source::Potential));
-    for (i, term) in WORK_TERMS.iter().enumerate() {
+    for (i, term) in REPORTED_WORK.iter().enumerate() {
         c.push(Channel::new(
             format!("work_{term}"),
             "J",
