@@ -10,6 +10,7 @@ use kanestop_runtime::scene::Scene;
 use kanestop_workflow::kernels::{self, KernelChoice};
 use kanestop_workflow::output::write_atomically;
 use kanestop_workflow::sweep::Progress;
+use kanestop_workflow::sweep::heatmap;
 use kanestop_workflow::{sensitivity, sweep};
 
 /// `sweep SPEC`.
@@ -26,6 +27,12 @@ pub struct SweepArgs {
     /// Which Kane kernel evaluates the equations of motion (generated or reference).
     #[arg(long, default_value = "generated", value_parser = ["generated", "reference"])]
     kernel: String,
+    /// Heat maps over the two grid axes (a spec with exactly two numeric axes), one
+    /// heatmap-NAME.svg each: stopping_distance, stopping_time, peak_utilisation,
+    /// peak_tension, anchor_drag_distance, ship_displacement, or none [default: the first
+    /// three].
+    #[arg(long, value_delimiter = ',')]
+    heatmap: Vec<String>,
 }
 
 /// `report sensitivity SCENE`.
@@ -62,6 +69,12 @@ type Output<'a> = &'a dyn Fn(&kanestop_workflow::record::RunSummary) -> Option<f
 /// `sweep SPEC`: runs every row, prints the table, writes the files; the exit code.
 pub fn sweep(args: &SweepArgs) -> Result<Exit> {
     let spec = sweep::Spec::load(&args.spec)?;
+    let heat_maps = heatmap::parse_outputs(&args.heatmap)?;
+    if !args.heatmap.is_empty() && !heat_maps.is_empty() {
+        if let Some(why) = heatmap::unsupported(&spec) {
+            anyhow::bail!("--heatmap {}: {why}", args.heatmap.join(","));
+        }
+    }
     sweep::check_writable(&args.out)?;
     let plan = spec.plan();
     let kernel = kernels::factory(choice(&args.kernel));
@@ -90,6 +103,9 @@ pub fn sweep(args: &SweepArgs) -> Result<Exit> {
         rows.len(),
         args.out.join("scenes").display()
     );
+    for f in heatmap::write(&spec, &rows, &heat_maps, &args.out)? {
+        println!("written   {}", f.display());
+    }
     let (failed, check_failed) = sweep::outcome(&rows);
     if check_failed {
         let n = rows.iter().filter(|r| r.checks_pass == Some(false)).count();

@@ -3,6 +3,7 @@
 //! summary ([`crate::record::RunSummary`], the same numbers as `run --json` of the row's
 //! scene) and its design checks; written as CSV and JSON (docs/sweeps.md).
 
+pub mod heatmap;
 pub mod sampling;
 pub mod spec;
 
