@@ -292,7 +292,7 @@ mod tests {
         names.sort_unstable();
         names.dedup();
         assert_eq!(names.len(), all.len());
-        assert_eq!(all.len(), 1 + 7 + 4 + 3 + 10 + 6 * 5 + 4);
+        assert_eq!(all.len(), 1 + 7 + 4 + 3 + 15 + 6 * 5 + 4);
         let sel = select(5, &["tension_fairlead".into(), "ship".into()]).unwrap();
         let names: Vec<&str> = sel.iter().map(|c| c.name.as_str()).collect();
         assert_eq!(names[0], "t");

@@ -4,6 +4,8 @@
 //! scene) and its design checks; written as CSV and JSON (docs/sweeps.md).
 
 pub mod heatmap;
+#[cfg(feature = "parquet")]
+pub mod parquet;
 pub mod sampling;
 pub mod spec;
 
@@ -156,6 +158,20 @@ type PeakOf<'a> = &'a dyn Fn(&RunSummary) -> Option<Peak>;
 /// The rows as CSV: index, name, the inputs (one column per path, in spec order), status,
 /// checks, then the outputs (docs/sweeps.md lists the columns).
 pub fn csv(rows: &[SweepRow]) -> String {
+    let (head, cells) = columns(rows);
+    let line = |cells: &[String]| cells.iter().map(|c| quote(c)).collect::<Vec<_>>().join(",");
+    let mut out = line(&head);
+    out.push('\n');
+    for r in &cells {
+        out.push_str(&line(r));
+        out.push('\n');
+    }
+    out
+}
+
+/// The table of [`csv`]: its header and, per row, its cells as text (unquoted; empty for
+/// none).
+pub fn columns(rows: &[SweepRow]) -> (Vec<String>, Vec<Vec<String>>) {
     let paths: Vec<&str> =
         rows.first().map(|r| r.inputs.0.iter().map(|(k, _)| k.as_str()).collect()).unwrap_or_default();
     let works: Vec<String> =
@@ -191,12 +207,13 @@ pub fn csv(rows: &[SweepRow]) -> String {
         head.push(format!("check_{c}_value"));
         head.push(format!("check_{c}_pass"));
     }
-    head.extend(["energy_drift", "t_end", "steps", "rhs_evaluations", "wall_time", "message"].map(String::from));
-    let mut out = head.iter().map(|h| quote(h)).collect::<Vec<_>>().join(",");
-    out.push('\n');
+    head.extend(
+        ["energy_drift", "t_end", "steps", "rhs_evaluations", "wall_time", "message", "cpu_time"].map(String::from),
+    );
+    let mut table = Vec::with_capacity(rows.len());
     for r in rows {
-        let mut cells: Vec<String> = vec![r.index.to_string(), quote(&r.name)];
-        cells.extend(r.inputs.0.iter().map(|(_, v)| quote(&fmt_value(v))));
+        let mut cells: Vec<String> = vec![r.index.to_string(), r.name.clone()];
+        cells.extend(r.inputs.0.iter().map(|(_, v)| fmt_value(v)));
         cells.push(r.status.name().into());
         cells.push(match r.checks_pass {
             Some(true) => "pass".into(),
@@ -233,11 +250,11 @@ pub fn csv(rows: &[SweepRow]) -> String {
         cells.push(s.map(|s| s.steps.to_string()).unwrap_or_default());
         cells.push(s.map(|s| s.rhs_evaluations.to_string()).unwrap_or_default());
         cells.push(f(&|s| Some(s.wall_time)));
-        cells.push(quote(&r.message));
-        out.push_str(&cells.join(","));
-        out.push('\n');
+        cells.push(r.message.clone());
+        cells.push(f(&|s| s.cpu_time));
+        table.push(cells);
     }
-    out
+    (head, table)
 }
 
 /// The rows as a terminal table (the first columns; the files hold every output).
@@ -356,6 +373,14 @@ pub fn write(rows: &[SweepRow], plan: &[PlannedRow], dir: &Path) -> Result<(Path
         }
     }
     let (c, j) = (dir.join("sweep.csv"), dir.join("sweep.json"));
+    #[cfg(feature = "parquet")]
+    {
+        let (head, cells) = columns(rows);
+        let bytes = parquet::encode(&head, &cells)
+            .map_err(|message| Error::Encode { file: "sweep.parquet".into(), message })?;
+        let p = dir.join("sweep.parquet");
+        write_atomically(&p, &bytes).map_err(Error::io("write", &p))?;
+    }
     write_atomically(&c, csv(rows).as_bytes()).map_err(Error::io("write", &c))?;
     let json = serde_json::to_string_pretty(rows).expect("rows serialise: plain numbers and strings");
     write_atomically(&j, json.as_bytes()).map_err(Error::io("write", &j))?;
