@@ -9,8 +9,8 @@ use crate::Exit;
 use kanestop_runtime::scene::Scene;
 use kanestop_workflow::kernels::{self, KernelChoice};
 use kanestop_workflow::output::write_atomically;
-use kanestop_workflow::sweep::Progress;
 use kanestop_workflow::sweep::heatmap;
+use kanestop_workflow::sweep::Progress;
 use kanestop_workflow::{sensitivity, sweep};
 
 /// `sweep SPEC`.

@@ -152,7 +152,10 @@ fn the_sweep_heat_maps_render_with_the_check_boundary() {
     for f in &files {
         let svg = std::fs::read_to_string(f).unwrap();
         let name = f.file_name().unwrap().to_string_lossy().into_owned();
-        assert!(svg.contains("mass_speed") && svg.contains("ship.mass") && svg.contains("initial.ship_speed"), "{name}");
+        assert!(
+            svg.contains("mass_speed") && svg.contains("ship.mass") && svg.contains("initial.ship_speed"),
+            "{name}"
+        );
         assert!(svg.contains("hatched: fails a design check"), "{name}: the legend");
         let r = render(&svg, &png_dir().join(name.replace(".svg", ".png")));
         assert!(r.width >= 900 && r.height >= 600, "{name}: {}×{}", r.width, r.height);

@@ -199,7 +199,11 @@ fn a_failing_check_exits_4_and_a_bad_spec_exits_2_naming_the_field() {
     };
     let bad = with("speed");
     assert_eq!(bad.status.code(), Some(2));
-    assert!(stderr(&bad).contains("--heatmap = speed") && stderr(&bad).contains("stopping_distance"), "{}", stderr(&bad));
+    assert!(
+        stderr(&bad).contains("--heatmap = speed") && stderr(&bad).contains("stopping_distance"),
+        "{}",
+        stderr(&bad)
+    );
     let bad = with("stopping_time");
     assert_eq!(bad.status.code(), Some(2));
     assert!(stderr(&bad).contains("exactly two grid axes; the spec has 1"), "{}", stderr(&bad));

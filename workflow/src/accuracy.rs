@@ -194,7 +194,8 @@ pub fn study(
     for &(method, dt, rtol) in plan {
         let setting = if method == Method::Rk4 { dt } else { rtol };
         let label = format!("{method} {setting:e}");
-        let (r, wall, cpu) = run(&configured(scene, method, dt, rtol, atol_ratio), kernel, repeats, &|| progress(&label))?;
+        let (r, wall, cpu) =
+            run(&configured(scene, method, dt, rtol, atol_ratio), kernel, repeats, &|| progress(&label))?;
         let stopped = matches!(r.stop, Stop::ShipStopped);
         let status = match &r.stop {
             Stop::ShipStopped => "stopped".to_string(),
@@ -309,7 +310,7 @@ pub fn table(s: &AccuracyStudy) -> String {
     for r in &s.rows {
         out.push_str(&format!(
             "{:<7} {:>9.1e} {:<9} {:>10} {:>10} {:>10} {:>10} {:>10} {:>9} {:>9} {:>9.3} {:>4}\n",
-            r.method,
+            r.method.to_string(),
             r.setting,
             r.status,
             e(r.stopping_time_error),
@@ -324,9 +325,7 @@ pub fn table(s: &AccuracyStudy) -> String {
         ));
     }
     let by = if s.rows.iter().all(|r| r.cpu_time.is_some()) { "CPU time" } else { "wall time (no CPU time here)" };
-    out.push_str(&format!(
-        "best: * = no other run is both more accurate in stopping time and cheaper in {by}\n"
-    ));
+    out.push_str(&format!("best: * = no other run is both more accurate in stopping time and cheaper in {by}\n"));
     if let Some((base, runs)) = matched(s, Method::Rk4, 0.002) {
         let target = base.stopping_time_error.unwrap_or(f64::NAN);
         out.push_str(&format!(
@@ -337,7 +336,7 @@ pub fn table(s: &AccuracyStudy) -> String {
         ));
         for m in &runs {
             out.push_str(&format!(
-                "         {} at {:.0e} and every tighter setting reach it ({:.2e} s) in {:.3} s CPU: {:.2}x the speed, {:.2}x fewer RHS ({:.3} s wall)\n",
+                "         {} at {:.0e} and every tighter setting reach it ({:.2e} s) in {:.3} s CPU: {:.2}x the speed, RHS ratio {:.2} ({:.3} s wall)\n",
                 m.run.method,
                 m.run.setting,
                 m.run.stopping_time_error.unwrap_or(f64::NAN),

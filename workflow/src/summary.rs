@@ -115,12 +115,12 @@ fn scene_lines(out: &mut Lines, model: &Model, result: &RunResult) {
     out.line(
         "initial",
         format!(
-            "x_L = {} m, h_L = {} m, water depth {:.3} m, {:.2} m of cable on the seabed ({} of the catenary), ship {} m/s",
+            "x_L = {} m, h_L = {} m, water depth {:.3} m, {:.2} m of cable on the seabed ({:.2} m of the catenary), ship {} m/s",
             s.initial.horizontal_projection,
             s.initial.vertical_projection,
             model.water_depth(),
             model.grounded_cable_length(),
-            format!("{:.2} m", model.catenary.grounded_length()),
+            model.catenary.grounded_length(),
             s.initial.ship_speed
         ),
     );

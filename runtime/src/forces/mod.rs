@@ -96,7 +96,10 @@ pub fn reported_work(work: &Power) -> [(&'static str, f64); REPORTED_WORK.len()]
     REPORTED_WORK.map(|name| {
         let value = match WORK_TERMS.iter().position(|t| *t == name) {
             Some(i) => work[i],
-            None => LUMPED_WORK.iter().find(|(n, _)| *n == name).map_or(0.0, |(_, parts)| parts.iter().map(|&i| work[i]).sum()),
+            None => LUMPED_WORK
+                .iter()
+                .find(|(n, _)| *n == name)
+                .map_or(0.0, |(_, parts)| parts.iter().map(|&i| work[i]).sum()),
         };
         (name, value)
     })
@@ -251,8 +254,10 @@ impl LoadModel for Forces {
                 BodyKind::Anchor => {
                     let current = self.current.at(s.z);
                     if self.water {
-                        power[term::BUOYANCY] += apply(load, s, [0.0, 0.0], 0.0, self.rho * self.anchor.volume * self.g);
-                        power[term::ANCHOR_DRAG] += apply(load, s, [0.0, 0.0], self.anchor.drag(self.rho, current, s.vx), 0.0);
+                        power[term::BUOYANCY] +=
+                            apply(load, s, [0.0, 0.0], 0.0, self.rho * self.anchor.volume * self.g);
+                        power[term::ANCHOR_DRAG] +=
+                            apply(load, s, [0.0, 0.0], self.anchor.drag(self.rho, current, s.vx), 0.0);
                     }
                 }
                 BodyKind::ChainLink | BodyKind::Cable { .. } => {
@@ -341,7 +346,8 @@ impl Forces {
         load.fx += f_n * ez[0] + f_t * ex[0];
         load.fz += f_n * ez[1] + f_t * ex[1];
         load.my += m_n;
-        power[term::LINE_DRAG] += (f_n * ez[0] + f_t * ex[0]) * s.vx + (f_n * ez[1] + f_t * ex[1]) * s.vz + m_n * s.omega;
+        power[term::LINE_DRAG] +=
+            (f_n * ez[0] + f_t * ex[0]) * s.vx + (f_n * ez[1] + f_t * ex[1]) * s.vz + m_n * s.omega;
 
         // The added-mass force −m_a (a·n) n does work −d(½ m_a v_n²)/dt + m_a ω v_t v_n: the
         // first part is kinetic energy of the entrained water, the second is tracked here.

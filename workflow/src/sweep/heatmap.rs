@@ -205,9 +205,7 @@ fn cells(spec: &Spec, rows: &[SweepRow], output: Output) -> Vec<Vec<Cell>> {
         }
     }
     sums.into_iter()
-        .map(|col| {
-            col.into_iter().map(|(s, n, cell)| Cell { value: (n > 0).then(|| s / n as f64), ..cell }).collect()
-        })
+        .map(|col| col.into_iter().map(|(s, n, cell)| Cell { value: (n > 0).then(|| s / n as f64), ..cell }).collect())
         .collect()
 }
 
@@ -280,7 +278,8 @@ pub fn heat_map(spec: &Spec, rows: &[SweepRow], output: Output) -> std::result::
     {
         let root = SVGBackend::with_string(&mut svg, SIZE).into_drawing_area();
         root.fill(&WHITE).map_err(|e| e.to_string())?;
-        let title = format!("{}: {} over {} and {}", spec.name, output.describe(), spec.axes[0].path, spec.axes[1].path);
+        let title =
+            format!("{}: {} over {} and {}", spec.name, output.describe(), spec.axes[0].path, spec.axes[1].path);
         let root = root.titled(&title, ("sans-serif", 22)).map_err(|e| e.to_string())?;
         let (body, legend) = root.split_vertically(SIZE.1 - 130);
         let (main, scale) = body.split_horizontally(SIZE.0 - 170);
@@ -338,11 +337,12 @@ fn draw_cells<DB: DrawingBackend>(
                 Some(v) => viridis((v - lo) / (hi - lo)),
                 None => RGBColor(200, 200, 200),
             };
-            c.draw_series(std::iter::once(Rectangle::new([(x, y), (x + 1.0, y + 1.0)], fill.filled())))
-                .map_err(err)?;
+            c.draw_series(std::iter::once(Rectangle::new([(x, y), (x + 1.0, y + 1.0)], fill.filled()))).map_err(err)?;
             if cell.pass == Some(false) {
-                c.draw_series(hatch(x, y).into_iter().map(|seg| PathElement::new(seg, WHITE.mix(0.55).stroke_width(2))))
-                    .map_err(err)?;
+                c.draw_series(
+                    hatch(x, y).into_iter().map(|seg| PathElement::new(seg, WHITE.mix(0.55).stroke_width(2))),
+                )
+                .map_err(err)?;
             }
             if annotate {
                 let text = cell.value.map(short).unwrap_or_else(|| "—".into());
@@ -352,7 +352,8 @@ fn draw_cells<DB: DrawingBackend>(
                     plotters::style::text_anchor::HPos::Center,
                     plotters::style::text_anchor::VPos::Center,
                 );
-                let style = TextStyle::from(("sans-serif", 17, FontStyle::Bold).into_font()).color(&colour).pos(centred);
+                let style =
+                    TextStyle::from(("sans-serif", 17, FontStyle::Bold).into_font()).color(&colour).pos(centred);
                 c.draw_series(std::iter::once(Text::new(text, (x + 0.5, y + 0.5), style))).map_err(err)?;
                 if name_failures && !cell.failed.is_empty() {
                     let small = TextStyle::from(("sans-serif", 14).into_font()).color(&colour).pos(centred);
@@ -431,8 +432,7 @@ fn draw_scale<DB: DrawingBackend>(
     .map_err(err)?;
     if let Some((l, _)) = limit.filter(|(l, _)| (lo..=hi).contains(l)) {
         let red = RGBColor(230, 30, 30);
-        c.draw_series(std::iter::once(PathElement::new(vec![(0.0, l), (1.0, l)], red.stroke_width(4))))
-            .map_err(err)?;
+        c.draw_series(std::iter::once(PathElement::new(vec![(0.0, l), (1.0, l)], red.stroke_width(4)))).map_err(err)?;
     }
     Ok(())
 }
@@ -474,12 +474,12 @@ fn draw_legend<DB: DrawingBackend>(
     .map_err(err)?;
     let y2 = y1 + 28;
     area.draw(&Rectangle::new([(x0, y2), (x0 + 26, y2 + 18)], RGBColor(200, 200, 200).filled())).map_err(err)?;
-    let (fail, total) = (
-        grid.iter().flatten().filter(|c| c.pass == Some(false)).count(),
-        grid.iter().flatten().count(),
-    );
+    let (fail, total) =
+        (grid.iter().flatten().filter(|c| c.pass == Some(false)).count(), grid.iter().flatten().count());
     area.draw(&Text::new(
-        format!("grey, —: no value (the ship did not stop, or the row failed or was invalid); {fail} of {total} cells fail"),
+        format!(
+            "grey, —: no value (the ship did not stop, or the row failed or was invalid); {fail} of {total} cells fail"
+        ),
         (x0 + 36, y2 + 2),
         font,
     ))
