@@ -84,7 +84,8 @@ impl Output {
         }
     }
 
-    /// Its value in a row's summary, in the unit of [`Output::describe`].
+    /// Its value in a row's summary, in the unit of its colour scale: m for the distances, s for
+    /// the stopping time, kN for the peak tension, 1 for the utilisation.
     pub fn of(self, s: &RunSummary) -> Option<f64> {
         match self {
             Output::StoppingDistance => s.stopping_distance,
