@@ -118,13 +118,19 @@ enum Command {
         kernel: KernelArg,
     },
     /// Run one scene over grid axes and sampled uncertain inputs (docs/sweeps.md): one row
-    /// per run with its inputs, outputs and design checks, as sweep.csv and sweep.json.
+    /// per run with its inputs, outputs and design checks, as sweep.csv and sweep.json; in
+    /// shards over a job array (--shard, --slurm) merged by `sweep merge`.
     Sweep(sweep::SweepArgs),
-    /// Show the generated kernels a scene needs (variants, N, operation counts, lines);
-    /// `--write` regenerates the checked-in kernels under generated/src/.
+    /// Show what the generator makes of a scene: its signature, the kernel chosen (unrolled or
+    /// rolled) and what it leaves out, operation counts with the parameters kept as inputs and
+    /// folded as the scene's literals; `--write` regenerates the checked-in kernels under
+    /// generated/src/.
     Codegen {
         /// Scene TOML file; omitted: the embedded case 1.
         scene: Option<PathBuf>,
+        /// The scene, as a flag (the same as the positional argument).
+        #[arg(long = "scene", value_name = "SCENE", conflicts_with = "scene")]
+        scene_flag: Option<PathBuf>,
         /// Rewrite every checked-in kernel (the test sizes and the counts of scenes/paper).
         #[arg(long)]
         write: bool,
@@ -190,35 +196,44 @@ impl KernelArg {
 /// `codegen`: what would be generated for a scene, and optionally write the checked-in files.
 fn codegen(scene: Option<&PathBuf>, write: bool, root: &std::path::Path) -> Result<()> {
     use kanestop_chain::{Variant, Water};
-    use kanestop_codegen::generate;
     let model = load_model(scene)?;
     let n = model.body_count();
     let wet = model.chain.bodies.iter().any(|b| b.added_mass != 0.0);
-    println!("scene     {} (N = {n}, water {})", model.scene.meta.name, if wet { "on" } else { "off" });
-    for water in [Water::Off, Water::On] {
-        let start = std::time::Instant::now();
-        let file = generate(Variant::new(n, water));
-        let elapsed = start.elapsed();
-        let used = if (water == Water::On) == wet { "  <- this scene" } else { "" };
-        println!(
-            "{}: {} lines, generated in {:.0} ms{used}",
-            file.file_name,
-            file.lines(),
-            elapsed.as_secs_f64() * 1e3
-        );
-        for f in &file.functions {
-            println!(
-                "  {:<14} {:>6} ops ({} add, {} mul, {} div, {} neg, {} sin/cos), {} statements",
-                f.name,
-                f.ops.total(),
-                f.ops.add,
-                f.ops.mul,
-                f.ops.div,
-                f.ops.neg,
-                f.ops.trig,
-                f.statements
-            );
+    let water = if wet { Water::On } else { Water::Off };
+    let variant = Variant::new(n, water);
+    let t = &model.topology;
+    println!("scene      {} (N = {n})", model.scene.meta.name);
+    println!(
+        "bodies     anchor, {} chain links, {} cable elements in {} stage{}, auxiliary rod, ship",
+        t.chain_links,
+        t.cable_elements(),
+        t.cable_stages.len(),
+        if t.cable_stages.len() == 1 { "" } else { "s" }
+    );
+    let forces = kanestop_runtime::forces::Forces::new(&model);
+    println!("loads      {} (the runtime's force models)", forces.description());
+    let form = kanestop_runtime::generated::GeneratedKernel::new(&model.chain).map(|k| k.form());
+    let kernel = match form {
+        Ok(kanestop_runtime::generated::Form::Unrolled) => {
+            format!("{} (unrolled, built for N = {n})", variant.module())
         }
+        Ok(kanestop_runtime::generated::Form::Rolled) => {
+            format!("rolled_{} (any N; no unrolled kernel for N = {n} in this build)", water.suffix())
+        }
+        Err(e) => format!("none: {e}"),
+    };
+    println!("kernel     {kernel}");
+    let zeros = variant.structural_zeros().count();
+    println!(
+        "left out   {zeros} structurally zero parameters{}",
+        if wet { "" } else { "; every added-mass term (water off)" }
+    );
+    // The unrolled expansion's DAG recurses with N (docs/codegen.md: the build script stops at
+    // 400 bodies for the same reason); above that only the rolled kernel exists.
+    if n <= 400 {
+        unrolled_op_counts(&model, variant);
+    } else {
+        println!("unrolled   not expanded above N = 400 (the rolled kernel's steps: docs/codegen.md)");
     }
     let available = kanestop_runtime::generated::available();
     println!(
@@ -242,6 +257,33 @@ fn codegen(scene: Option<&PathBuf>, write: bool, root: &std::path::Path) -> Resu
         }
     }
     Ok(())
+}
+
+/// The unrolled kernel's operation counts for `model`, parameters kept and folded.
+fn unrolled_op_counts(model: &Model, variant: kanestop_chain::Variant) {
+    let kept = kanestop_codegen::generate(variant);
+    let values: Vec<kanestop_codegen::planar::BodyValues> = model
+        .chain
+        .bodies
+        .iter()
+        .map(|b| kanestop_codegen::planar::BodyValues {
+            mass: b.mass,
+            inertia: b.inertia[1] + b.added_inertia,
+            centroid: b.centroid,
+            joint: b.joint,
+            added_mass: b.added_mass,
+        })
+        .collect();
+    let folded = kanestop_codegen::emit::folded_op_counts(variant, &values);
+    println!("{}: {} lines", kept.file_name, kept.lines());
+    println!(
+        "  {:<14} {:>10} {:>12} {:>8}   (operations; sin/cos in kinematics)",
+        "function", "kept", "folded", "saved"
+    );
+    for (k, f) in kept.functions.iter().zip(&folded) {
+        let (a, b) = (k.ops.total(), f.ops.total());
+        println!("  {:<14} {a:>10} {b:>12} {:>7.1}%", k.name, 100.0 * (a - b) as f64 / a as f64);
+    }
 }
 
 fn load_model(scene: Option<&PathBuf>) -> Result<Model> {
@@ -396,11 +438,12 @@ const EXIT_CODES_HELP: &str = "Exit codes:
   0  done
   1  batch: a scene was invalid or failed, or --tolerance validation missed
   2  bad input: arguments, scene, state file, an output path that cannot be written, or a
-     step refused before the run (the diagnostic is printed on standard error)
+     step refused before the run (the diagnostic is printed on standard error); sweep
+     merge: shard files of different sweeps, a row missing or twice
   3  numerical failure during a run (the diagnostic is printed on standard error)
   4  a design check failed: a break load was exceeded, or a limit of the scene's or the sweep
-     spec's [checks] (sweep, batch: in some row); 3 takes precedence over 4, and in a
-     batch 1 does
+     spec's [checks] (sweep, a shard or a merge, batch: in some row); 3 takes precedence
+     over 4, and in a batch 1 does
 
 Summaries and tables go to standard output; errors, diagnostics and progress to standard error.";
 
@@ -476,8 +519,8 @@ fn try_main() -> Result<Exit> {
                 commands::BatchOutcome::CheckFailed => Exit::CheckFailed,
             })
         }
-        Command::Codegen { scene, write, root } => {
-            codegen(scene.as_ref(), write, &root)?;
+        Command::Codegen { scene, scene_flag, write, root } => {
+            codegen(scene.as_ref().or(scene_flag.as_ref()), write, &root)?;
             Ok(Exit::Done)
         }
     }

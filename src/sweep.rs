@@ -1,24 +1,32 @@
-//! `sweep SPEC` and `report sensitivity SCENE`: the CLI side (arguments, progress, printing,
+//! `sweep SPEC`, `sweep merge DIR…` and `report sensitivity SCENE`: the CLI side (arguments, progress, printing,
 //! exit codes) of `kanestop_workflow::sweep` and `kanestop_workflow::sensitivity`.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
+use std::time::Duration;
 
 use anyhow::{Context, Result};
 
 use crate::Exit;
 use kanestop_runtime::scene::Scene;
 use kanestop_workflow::kernels::{self, KernelChoice};
-use kanestop_workflow::output::write_atomically;
+use kanestop_workflow::output::{self, write_atomically};
 use kanestop_workflow::sweep::heatmap;
-use kanestop_workflow::sweep::Progress;
+use kanestop_workflow::sweep::shard::{self, Shard};
+use kanestop_workflow::sweep::shard_file::{self, ShardFile, ShardRun, SweepId};
+use kanestop_workflow::sweep::{merge, slurm, PlannedRow, Progress, SweepRow};
 use kanestop_workflow::{sensitivity, sweep};
 
-/// `sweep SPEC`.
+/// `sweep SPEC` and `sweep merge DIR…`.
 #[derive(clap::Args)]
+#[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]
 pub struct SweepArgs {
+    #[command(subcommand)]
+    command: Option<SweepCommand>,
     /// Sweep spec (TOML, docs/sweeps.md): base scene, axes, uncertain inputs, checks.
-    spec: PathBuf,
-    /// Folder for sweep.csv, sweep.json and scenes/ (each row's scene, to rerun it alone).
+    #[arg(required = true)]
+    spec: Option<PathBuf>,
+    /// Folder for sweep.csv, sweep.json and scenes/ (each row's scene, to rerun it alone);
+    /// a shard writes shards/shard-K-of-N.json there.
     #[arg(long, default_value = "out/sweep")]
     out: PathBuf,
     /// Runs at once (default: one per core).
@@ -27,12 +35,53 @@ pub struct SweepArgs {
     /// Which Kane kernel evaluates the equations of motion (generated or reference).
     #[arg(long, default_value = "generated", value_parser = ["generated", "reference"])]
     kernel: String,
-    /// Heat maps over the two grid axes (a spec with exactly two numeric axes), one
-    /// heatmap-NAME.svg each: stopping_distance, stopping_time, peak_utilisation,
-    /// peak_tension, anchor_drag_distance, ship_displacement, or none [default: the first
-    /// three].
+    /// Run only shard K of N (numbered from 0: the rows i with i mod N = K) and write
+    /// OUT/shards/shard-K-of-N.json; merge the shards with `sweep merge OUT`. Without it, a
+    /// task of a job array takes its shard from the scheduler: SLURM_ARRAY_TASK_ID and
+    /// SLURM_ARRAY_TASK_COUNT, or JOB_COMPLETION_INDEX (Kubernetes) or PBS_ARRAY_INDEX with
+    /// --shards N.
+    #[arg(long, value_name = "K/N", conflicts_with_all = ["slurm", "shards"])]
+    shard: Option<String>,
+    /// Number of shards: the size of --slurm's job array (default: one per row, up to 10),
+    /// or N beside a Kubernetes or PBS index (checked against SLURM_ARRAY_TASK_COUNT).
+    #[arg(long, value_name = "N")]
+    shards: Option<usize>,
+    /// Rerun only the rows missing or failed in OUT's shard files; without a shard, complete
+    /// every shard in OUT (one shard when there is none), then merge them.
+    #[arg(long)]
+    resume: bool,
+    /// A running shard saves its file (the rows done so far, for --resume) every SECONDS.
+    #[arg(long, value_name = "SECONDS", default_value_t = 10.0)]
+    checkpoint: f64,
+    /// Print a Slurm job script (bash) that submits the sweep as a job array of --shards
+    /// shards and a merge job after it; run it with `bash`.
+    #[arg(long, conflicts_with = "resume")]
+    slurm: bool,
+    /// Heat maps over the two grid axes (a spec with exactly two numeric axes; written by a
+    /// local run), one heatmap-NAME.svg each: stopping_distance, stopping_time,
+    /// peak_utilisation, peak_tension, anchor_drag_distance, ship_displacement, or none
+    /// [default: the first three].
     #[arg(long, value_delimiter = ',')]
     heatmap: Vec<String>,
+}
+
+/// `sweep merge`.
+#[derive(clap::Subcommand)]
+enum SweepCommand {
+    /// Merge a sweep's shard files into sweep.csv, sweep.json and scenes/, as a local run
+    /// writes them; refused when shards are of different sweeps, a row is missing or twice.
+    Merge(MergeArgs),
+}
+
+/// `sweep merge DIR…`.
+#[derive(clap::Args)]
+struct MergeArgs {
+    /// Sweep folders (their shards/shard-K-of-N.json files) or shard files.
+    #[arg(required = true, value_name = "DIR")]
+    dirs: Vec<PathBuf>,
+    /// Folder for sweep.csv, sweep.json and scenes/ (default: the first folder given).
+    #[arg(long)]
+    out: Option<PathBuf>,
 }
 
 /// `report sensitivity SCENE`.
@@ -66,58 +115,217 @@ fn choice(name: &str) -> KernelChoice {
 /// Reads one output of a summary.
 type Output<'a> = &'a dyn Fn(&kanestop_workflow::record::RunSummary) -> Option<f64>;
 
-/// `sweep SPEC`: runs every row, prints the table, writes the files; the exit code.
+/// `sweep SPEC` (the whole sweep, one shard, every shard with `--resume`, or the Slurm
+/// job script) and `sweep merge DIR…`; the exit code.
 pub fn sweep(args: &SweepArgs) -> Result<Exit> {
-    let spec = sweep::Spec::load(&args.spec)?;
+    if let Some(SweepCommand::Merge(m)) = &args.command {
+        return merge(m);
+    }
+    let file = args.spec.as_ref().context("a sweep spec (SPEC.toml) is needed")?;
+    let spec = sweep::Spec::load(file)?;
     let heat_maps = heatmap::parse_outputs(&args.heatmap)?;
     if !args.heatmap.is_empty() && !heat_maps.is_empty() {
         if let Some(why) = heatmap::unsupported(&spec) {
             anyhow::bail!("--heatmap {}: {why}", args.heatmap.join(","));
         }
     }
-    sweep::check_writable(&args.out)?;
     let plan = spec.plan();
-    let kernel = kernels::factory(choice(&args.kernel));
-    let bar = Progress::new(plan.len(), "runs");
-    let rows = sweep::run(&plan, &kernel, args.jobs, &|r| bar.inc(format!("{} {}", r.name, r.status)))?;
-    bar.finish();
-    print!("{}", sweep::table(&rows));
-    if spec.sampling.is_some() {
+    anyhow::ensure!(
+        args.checkpoint.is_finite() && args.checkpoint >= 0.0,
+        "--checkpoint = {}: a number of seconds ≥ 0",
+        args.checkpoint
+    );
+    if args.slurm {
+        return slurm(args, &spec, &plan);
+    }
+    let shard = match &args.shard {
+        Some(text) => Some((Shard::parse(text)?, "--shard")),
+        None => shard::from_env(|name| std::env::var(name).ok(), args.shards)?,
+    };
+    if shard.is_none() {
+        if let Some(n) = args.shards {
+            anyhow::bail!(
+                "--shards = {n}: only with --slurm, or in a job array that gives the index ({}); one shard: --shard K/N",
+                shard::INDEX_VARIABLES.join(", ")
+            );
+        }
+    }
+    let id = SweepId::of(&spec, &plan, &args.kernel);
+    match shard {
+        Some((s, from)) => run_shard(args, &id, &plan, s, from),
+        None if args.resume => resume_all(args, &id, &plan),
+        None => {
+            sweep::check_writable(&args.out)?;
+            let kernel = kernels::factory(choice(&args.kernel));
+            let bar = Progress::new(plan.len(), "runs");
+            let rows = sweep::run(&plan, &kernel, args.jobs, &|r| bar.inc(format!("{} {}", r.name, r.status)))?;
+            bar.finish();
+            let code = report(&rows, id.sampling, &sweep::scene_files(&plan), &args.out)?;
+            for f in heatmap::write(&spec, &rows, &heat_maps, &args.out)? {
+                println!("written   {}", f.display());
+            }
+            Ok(code)
+        }
+    }
+}
+
+/// Prints the table (and, with sampling, the statistics), writes the files, prints the
+/// check summary; the exit code. The same for a local run and a merge.
+fn report(rows: &[SweepRow], sampling: bool, scenes: &[(String, String)], out: &Path) -> Result<Exit> {
+    print!("{}", sweep::table(rows));
+    if sampling {
         let stats: [(&str, Output, f64); 3] = [
             ("stopping time (s)", &|s| s.stopping_time, 1.0),
             ("stopping distance (m)", &|s| s.stopping_distance, 1.0),
             ("peak tension (kN)", &|s| s.peak_tension.map(|p| p.tension), 1e-3),
         ];
         for (name, f, scale) in stats {
-            if let Some([mean, sd, p5, p95]) = sweep::statistics(&rows, f) {
+            if let Some([mean, sd, p5, p95]) = sweep::statistics(rows, f) {
                 let [mean, sd, p5, p95] = [mean, sd, p5, p95].map(|v| v * scale);
                 println!("{name:<22} mean {mean:.3}  sd {sd:.3}  5 % {p5:.3}  95 % {p95:.3}");
             }
         }
     }
-    let (csv, json) = sweep::write(&rows, &plan, &args.out)?;
+    let (csv, json) = sweep::write(rows, scenes, out)?;
     println!(
         "written   {} and {} ({} rows; scenes in {})",
         csv.display(),
         json.display(),
         rows.len(),
-        args.out.join("scenes").display()
+        out.join("scenes").display()
     );
-    for f in heatmap::write(&spec, &rows, &heat_maps, &args.out)? {
-        println!("written   {}", f.display());
-    }
-    let (failed, check_failed) = sweep::outcome(&rows);
+    Ok(exit(rows))
+}
+
+/// The exit code of finished rows (printing how many failed a check): 3 when a row failed
+/// or was invalid, else 4 when a check failed, else 0.
+fn exit(rows: &[SweepRow]) -> Exit {
+    let (failed, check_failed) = sweep::outcome(rows);
     if check_failed {
         let n = rows.iter().filter(|r| r.checks_pass == Some(false)).count();
         println!("checks    FAIL in {n} of {} rows", rows.len());
     }
-    Ok(if failed {
+    if failed {
         Exit::NumericalFailure
     } else if check_failed {
         Exit::CheckFailed
     } else {
         Exit::Done
-    })
+    }
+}
+
+/// Runs the rows of `shard` still to do (all, or with `resume` those missing or failed in
+/// its file), saving its file as it goes; the file at the end and how many rows were kept.
+fn execute_shard(
+    args: &SweepArgs,
+    id: &SweepId,
+    plan: &[PlannedRow],
+    shard: Shard,
+    resume: bool,
+) -> Result<(ShardFile, usize, PathBuf)> {
+    sweep::check_writable(&args.out.join("shards"))?;
+    let every = Duration::from_secs_f64(args.checkpoint);
+    let (run, todo) = ShardRun::start(id, plan, shard, &args.out, resume, every)?;
+    let kernel = kernels::factory(choice(&args.kernel));
+    let bar = Progress::new(todo.rows.len(), "runs");
+    sweep::run(&todo.rows, &kernel, args.jobs, &|r| {
+        run.add(r);
+        bar.inc(format!("{} {}", r.name, r.status));
+    })?;
+    bar.finish();
+    let path = run.path().to_path_buf();
+    Ok((run.finish()?, todo.kept, path))
+}
+
+/// `sweep SPEC --shard K/N` (or K and N from a job array): one shard, its table and file.
+fn run_shard(args: &SweepArgs, id: &SweepId, plan: &[PlannedRow], shard: Shard, from: &str) -> Result<Exit> {
+    let n = shard.rows(plan.len()).len();
+    eprintln!("shard     {shard} (from {from}): {n} of the {} rows of {}", plan.len(), id.name);
+    let (file, kept, path) = execute_shard(args, id, plan, shard, args.resume)?;
+    if args.resume {
+        eprintln!("resume    {kept} rows kept from {}, {} run", path.display(), n - kept);
+    }
+    let rows: Vec<SweepRow> = file.rows.into_iter().map(|r| r.row).collect();
+    print!("{}", sweep::table(&rows));
+    println!("written   {} (shard {shard}: {} of {} rows)", path.display(), rows.len(), plan.len());
+    Ok(exit(&rows))
+}
+
+/// `sweep SPEC --resume` without a shard: completes every shard of the folder (by the shard
+/// count of its files; one shard when it has none), then merges them.
+fn resume_all(args: &SweepArgs, id: &SweepId, plan: &[PlannedRow]) -> Result<Exit> {
+    sweep::check_writable(&args.out)?;
+    let folder = args.out.join("shards");
+    let files = if folder.is_dir() { shard_file::files_in(&args.out)? } else { Vec::new() };
+    let mut counts = std::collections::BTreeSet::new();
+    for f in &files {
+        counts.insert(ShardFile::read(f)?.shard.count);
+    }
+    anyhow::ensure!(
+        counts.len() <= 1,
+        "--resume: {} holds shard files of {} shard counts ({:?}); keep those of one run",
+        folder.display(),
+        counts.len(),
+        counts
+    );
+    let count = counts.into_iter().next().unwrap_or(1);
+    for k in 0..count {
+        let shard = Shard { index: k, count };
+        let (file, kept, _) = execute_shard(args, id, plan, shard, true)?;
+        eprintln!("resume    shard {shard}: {kept} rows kept, {} run", file.rows.len() - kept);
+    }
+    let merged = merge::merge(std::slice::from_ref(&args.out))?;
+    report(&merged.rows, merged.sampling, &merged.scenes, &args.out)
+}
+
+/// `sweep merge DIR…`.
+fn merge(m: &MergeArgs) -> Result<Exit> {
+    let first = &m.dirs[0];
+    let out = m.out.clone().unwrap_or_else(|| {
+        if first.is_dir() {
+            return first.clone();
+        }
+        let parent = first.parent().map(Path::to_path_buf).unwrap_or_default();
+        match parent.file_name() {
+            Some(name) if name == "shards" => parent.parent().map(Path::to_path_buf).unwrap_or_default(),
+            _ => parent,
+        }
+    });
+    output::check_dir_target(&out).with_context(|| format!("cannot write into {}", out.display()))?;
+    let merged = merge::merge(&m.dirs)?;
+    eprintln!(
+        "merged    {} shard files of {} ({} rows, plan {})",
+        merged.files.len(),
+        merged.name,
+        merged.rows.len(),
+        merged.plan_hash
+    );
+    report(&merged.rows, merged.sampling, &merged.scenes, &out)
+}
+
+/// `sweep SPEC --slurm`: prints the job script.
+fn slurm(args: &SweepArgs, spec: &sweep::Spec, plan: &[PlannedRow]) -> Result<Exit> {
+    let rows = plan.len();
+    let shards = args.shards.unwrap_or(slurm::default_shards(rows));
+    anyhow::ensure!((1..=rows).contains(&shards), "--shards = {shards}: in [1, {rows}] (the sweep's rows)");
+    let cpus = args.jobs.unwrap_or(1);
+    anyhow::ensure!(cpus >= 1, "--jobs = 0: at least 1 (each task's CPUs)");
+    let exe = std::env::current_exe().context("cannot find the kanestop binary's path")?;
+    let spec_file = spec.file.canonicalize().with_context(|| format!("cannot resolve {}", spec.file.display()))?;
+    let out = std::path::absolute(&args.out).with_context(|| format!("cannot resolve {}", args.out.display()))?;
+    let script = slurm::JobScript {
+        kanestop: &exe,
+        spec: &spec_file,
+        out: &out,
+        name: &spec.name,
+        rows,
+        shards,
+        cpus,
+        kernel: &args.kernel,
+        checkpoint: args.checkpoint,
+    };
+    print!("{}", script.text());
+    Ok(Exit::Done)
 }
 
 /// `report sensitivity [SCENE]`.

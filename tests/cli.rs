@@ -531,3 +531,25 @@ fn run_json_splits_the_work_by_force() {
         assert!(energy.contains(part), "{energy}");
     }
 }
+
+/// `codegen --scene`: the signature, the kernel chosen and the operation counts with the
+/// parameters kept and folded; a chain no build has gets the rolled kernel.
+#[test]
+fn codegen_reports_the_scene_kernel_and_what_folding_saves() {
+    let out = kanestop().args(["codegen", "--scene", "scenes/paper/case01.toml"]).output().unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(text.contains("kernel     chain46_wet (unrolled, built for N = 46)"), "{text}");
+    assert!(text.contains("seabed foundation") && text.contains("15 chain links, 28 cable elements in 3 stages"));
+    let solve = text.lines().find(|l| l.trim_start().starts_with("solve_free")).expect("solve_free row");
+    let cols: Vec<&str> = solve.split_whitespace().collect();
+    let (kept, folded): (usize, usize) = (cols[1].parse().unwrap(), cols[2].parse().unwrap());
+    assert!(folded < kept, "{solve}");
+    let dir = temp_dir("codegen-rolled");
+    let scene = dir.join("chain20.toml");
+    let base = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/paper/case01.toml");
+    std::fs::write(&scene, format!("extends = {:?}\n[chain]\nelements = 20\n", base.display().to_string())).unwrap();
+    let out = kanestop().arg("codegen").arg(&scene).output().unwrap();
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(text.contains("rolled_wet (any N; no unrolled kernel for N = 51 in this build)"), "{text}");
+}

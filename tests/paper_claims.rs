@@ -562,3 +562,21 @@ fn validation_doc_is_fresh() {
         panic!("docs/validation.md's measured figures were stale and have been regenerated: review and commit it");
     }
 }
+
+/// The README's figures that the code computes: case 1's stopping time against the paper's
+/// (two decimals), the largest relative difference of the 19 cases ("within X %", rounded up
+/// to 0.1 %), and the Python example's printed stopping time, to the last digit.
+#[test]
+fn readme_figures_are_what_the_code_computes() {
+    let readme = std::fs::read_to_string(std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("README.md")).unwrap();
+    let c1 = case(1);
+    let t1 = c1.result.stopping_time.expect("case 1 stops");
+    let quoted = format!("({:.2} s against {:.2} s)", t1, c1.paper);
+    assert!(readme.contains(&quoted), "README should quote case 1 as {quoted}");
+    let worst =
+        runs()[..19].iter().map(|m| (m.result.stopping_time.unwrap() - m.paper).abs() / m.paper).fold(0.0, f64::max);
+    let within = format!("within {:.1} % of", (worst * 1000.0).ceil() / 10.0);
+    assert!(readme.contains(&within), "README should say the 19 cases are {within} Table 3 (worst {worst:.4})");
+    let python = format!("\n# {t1}\n");
+    assert!(readme.contains(&python), "README's Python example should print {t1}");
+}

@@ -367,6 +367,30 @@ pub fn generate(variant: Variant) -> GeneratedFile {
     GeneratedFile { variant, file_name: format!("{}.rs", variant.module()), source, functions: reports }
 }
 
+/// The operations of each function of `variant` with `values` folded in as literals (one
+/// scene's numbers), beside [`generate`]'s with the parameters kept as inputs: what folding
+/// would save (`kanestop codegen --scene`). Nothing is emitted.
+pub fn folded_op_counts(variant: Variant, values: &[planar::BodyValues]) -> Vec<FunctionReport> {
+    let source = planar::ParamSource::Folded(values);
+    let functions = [
+        ("kinematics", planar::kinematics_with(variant, source)),
+        ("assemble", planar::assemble_with(variant, source)),
+        ("accelerations", planar::accelerations_with(variant, source)),
+        ("solve_free", planar::solve_with(variant, false, source)),
+        ("solve_stuck", planar::solve_with(variant, true, source)),
+    ];
+    functions
+        .into_iter()
+        .map(|(name, f)| {
+            let mut ops = f.dag.count(&f.roots());
+            if f.dense_fill.is_some() {
+                ops += dense_ops(variant.bodies);
+            }
+            FunctionReport { name: name.to_string(), ops, statements: 0 }
+        })
+        .collect()
+}
+
 /// The registry `generated/src/kernels.rs` for the checked-in variants.
 pub fn registry(variants: &[Variant]) -> String {
     registry_with(variants, false)

@@ -50,23 +50,56 @@ struct Params {
     added_mass: Vec<Id>,
 }
 
+/// One body's parameter values, for a kernel with a scene's numbers folded in.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct BodyValues {
+    /// m_k, kg.
+    pub mass: f64,
+    /// I_yy plus the added inertia, kg·m².
+    pub inertia: f64,
+    /// r_k in body axes, m.
+    pub centroid: [f64; 2],
+    /// q_k in the inner body's axes, m.
+    pub joint: [f64; 2],
+    /// m_a,k, kg.
+    pub added_mass: f64,
+}
+
+/// Where a kernel's body parameters come from.
+#[derive(Clone, Copy, Debug)]
+pub enum ParamSource<'a> {
+    /// Runtime inputs `p[k].…`: one kernel serves every scene of the variant (the default).
+    Inputs,
+    /// One scene's values as literals, which the DAG folds (`kanestop codegen --scene` reports
+    /// the effect on the operation counts).
+    Folded(&'a [BodyValues]),
+}
+
 /// Which parameters a kernel of `variant` reads; the rest are structurally zero and the
 /// runtime checks that the chain agrees ([`Variant::structural_zeros`]).
-fn params(dag: &mut Dag, variant: Variant) -> Params {
+fn params(dag: &mut Dag, variant: Variant, source: ParamSource) -> Params {
     let n = variant.bodies;
     let zero = dag.zero();
     let mut p = Params { mass: vec![], inertia: vec![], centroid: vec![], joint: vec![], added_mass: vec![] };
+    let value = |dag: &mut Dag, k: usize, name: &str, get: fn(&BodyValues) -> f64| match source {
+        ParamSource::Inputs => dag.input(format!("p[{k}].{name}")),
+        ParamSource::Folded(values) => dag.constant(get(&values[k])),
+    };
     for k in 0..n {
-        p.mass.push(dag.input(format!("p[{k}].mass")));
-        p.inertia.push(if k == 0 { zero } else { dag.input(format!("p[{k}].inertia")) });
-        let cx = dag.input(format!("p[{k}].centroid[0]"));
-        let cz = if variant.folds(k, ParamField::CentroidZ) { zero } else { dag.input(format!("p[{k}].centroid[1]")) };
+        p.mass.push(value(dag, k, "mass", |b| b.mass));
+        p.inertia.push(if k == 0 { zero } else { value(dag, k, "inertia", |b| b.inertia) });
+        let cx = value(dag, k, "centroid[0]", |b| b.centroid[0]);
+        let cz = if variant.folds(k, ParamField::CentroidZ) {
+            zero
+        } else {
+            value(dag, k, "centroid[1]", |b| b.centroid[1])
+        };
         p.centroid.push([cx, cz]);
-        let jx = dag.input(format!("p[{k}].joint[0]"));
-        let jz = if variant.folds(k, ParamField::JointZ) { zero } else { dag.input(format!("p[{k}].joint[1]")) };
+        let jx = value(dag, k, "joint[0]", |b| b.joint[0]);
+        let jz = if variant.folds(k, ParamField::JointZ) { zero } else { value(dag, k, "joint[1]", |b| b.joint[1]) };
         p.joint.push([jx, jz]);
         let folded = variant.folds(k, ParamField::AddedMass);
-        p.added_mass.push(if folded { zero } else { dag.input(format!("p[{k}].added_mass")) });
+        p.added_mass.push(if folded { zero } else { value(dag, k, "added_mass", |b| b.added_mass) });
     }
     p
 }
@@ -86,9 +119,9 @@ struct Kin {
 }
 
 impl Kin {
-    fn new(dag: &mut Dag, variant: Variant, cs: Vec<V2>) -> Kin {
+    fn new(dag: &mut Dag, variant: Variant, source: ParamSource, cs: Vec<V2>) -> Kin {
         let n = variant.bodies;
-        let p = params(dag, variant);
+        let p = params(dag, variant, source);
         let zero = dag.zero();
         let mut omega = vec![zero; n];
         for k in 1..n {
@@ -225,6 +258,11 @@ impl Function {
 /// Body states and the rotation table: θ_k, (cos θ_k, sin θ_k), centroid positions
 /// (Eq. 13) and velocities (Eq. 14), ω_k (Eq. 9).
 pub fn kinematics(variant: Variant) -> Function {
+    kinematics_with(variant, ParamSource::Inputs)
+}
+
+/// [`kinematics`] with the parameters from `source`.
+pub fn kinematics_with(variant: Variant, source: ParamSource) -> Function {
     let n = variant.bodies;
     let mut dag = Dag::new();
     let zero = dag.zero();
@@ -236,7 +274,7 @@ pub fn kinematics(variant: Variant) -> Function {
         theta[k] = t;
         cs.push(c);
     }
-    let kin = Kin::new(&mut dag, variant, cs);
+    let kin = Kin::new(&mut dag, variant, source, cs);
     let mut f = Function::new(Dag::new());
     // o_1 = q_1 + (s_1, 0); o_k = o_{k−1} + d_k; velocities by the same recursion.
     let s1 = dag.input(format!("q[{}]", n - 1));
@@ -261,7 +299,6 @@ pub fn kinematics(variant: Variant) -> Function {
     f
 }
 
-// Long by design: the phases must create DAG nodes in this order (the emitted text is checked in).
 /// a_lp (Eq. 26) over all N speeds, both triangles, and f_l (Eq. 25) with the loads
 /// projected by Eq. 23; plus the row of the anchor's heave speed w = ẋ_{3N+3}, which is
 /// always constrained: `heave[p]` = a_{w,p} for the N active speeds and `heave[N]` = f_w,
@@ -272,10 +309,16 @@ pub fn kinematics(variant: Variant) -> Function {
 /// o_l) = −(S_l)_x (J(−1, 0) = e_z), a_{w,s} = Σ_k (A_k)_xz = Σ m_a,k sin θ_k cos θ_k and
 /// f_w = Σ_k F̃_kz.
 pub fn assemble(variant: Variant) -> Function {
+    assemble_with(variant, ParamSource::Inputs)
+}
+
+// Long by design: the phases must create DAG nodes in this order (the emitted text is checked in).
+/// [`assemble`] with the parameters from `source`.
+pub fn assemble_with(variant: Variant, source: ParamSource) -> Function {
     let n = variant.bodies;
     let mut dag = Dag::new();
     let cs = Kin::trig_inputs(&mut dag, n);
-    let kin = Kin::new(&mut dag, variant, cs);
+    let kin = Kin::new(&mut dag, variant, source, cs);
     let zero = dag.zero();
     let mut f = Function::new(Dag::new());
 
@@ -385,10 +428,15 @@ pub fn assemble(variant: Variant) -> Function {
 /// Body accelerations for generalised accelerations `qdd` (Eq. 17): a_k = v_kl ẍ_l +
 /// v̇_kl ẋ_l, α_k = ω_kl ẍ_l.
 pub fn accelerations(variant: Variant) -> Function {
+    accelerations_with(variant, ParamSource::Inputs)
+}
+
+/// [`accelerations`] with the parameters from `source`.
+pub fn accelerations_with(variant: Variant, source: ParamSource) -> Function {
     let n = variant.bodies;
     let mut dag = Dag::new();
     let cs = Kin::trig_inputs(&mut dag, n);
-    let kin = Kin::new(&mut dag, variant, cs);
+    let kin = Kin::new(&mut dag, variant, source, cs);
     let zero = dag.zero();
     let mut f = Function::new(Dag::new());
     let s_dd = dag.input(format!("qdd[{}]", n - 1));
@@ -406,7 +454,6 @@ pub fn accelerations(variant: Variant) -> Function {
     f
 }
 
-// Long by design: the recursion reads as one inward and one outward pass, in node order.
 /// The O(N) solve of a_lp ẍ_p = f_l by articulated-body recursion.
 ///
 /// At each body origin o_k, with (angular, x, z) components and point accelerations
@@ -420,10 +467,16 @@ pub fn accelerations(variant: Variant) -> Function {
 /// with it stuck ẍ_s = 0 and pA_1x is the holding force of Eq. 50. Both return the seabed's
 /// normal force N = IA_1xz ẍ_s + pA_1z (Eq. 37).
 pub fn solve(variant: Variant, stuck: bool) -> Function {
+    solve_with(variant, stuck, ParamSource::Inputs)
+}
+
+// Long by design: the recursion reads as one inward and one outward pass, in node order.
+/// [`solve`] with the parameters from `source`.
+pub fn solve_with(variant: Variant, stuck: bool, source: ParamSource) -> Function {
     let n = variant.bodies;
     let mut dag = Dag::new();
     let cs = Kin::trig_inputs(&mut dag, n);
-    let kin = Kin::new(&mut dag, variant, cs);
+    let kin = Kin::new(&mut dag, variant, source, cs);
     let zero = dag.zero();
     dag.one();
     let loads = raw_loads(&mut dag, n);
@@ -843,6 +896,38 @@ mod tests {
         assert!((ret[0] - holding).abs() < 1e-9 * holding.abs().max(1.0), "{} vs {holding}", ret[0]);
         let normal: f64 = (0..n).map(|p| heave[p] * qdd[p]).sum::<f64>() - heave[n];
         assert!((ret[1] - normal).abs() < 1e-9 * normal.abs().max(1.0));
+    }
+
+    /// A scene's numbers folded in as literals change no value and save operations.
+    #[test]
+    fn folded_parameters_give_the_same_values_with_fewer_operations() {
+        use super::{solve_with, BodyValues, ParamSource};
+        let v = Variant::new(5, Water::On);
+        let ps = chain(v);
+        let values: Vec<BodyValues> = ps
+            .iter()
+            .map(|p| BodyValues {
+                mass: p.mass,
+                inertia: p.inertia,
+                centroid: p.centroid,
+                joint: p.joint,
+                added_mass: p.added_mass,
+            })
+            .collect();
+        let (q, u) = state(5);
+        let mut i = Inputs::new(&ps);
+        i.array("u", &u);
+        i.trig(&q);
+        i.loads(&(0..5).map(|k| [1.0 + k as f64, -2.0, 0.3 * k as f64]).collect::<Vec<_>>());
+        i.set("friction".to_string(), 0.3);
+        let (kept, folded) = (solve(v, false), solve_with(v, false, ParamSource::Folded(&values)));
+        let ((a, ra), (b, rb)) = (i.run(&kept), i.run(&folded));
+        for (slot, x) in &a {
+            assert!((x - b[slot]).abs() <= 1e-12 * x.abs().max(1.0), "{slot:?}: {x} against {}", b[slot]);
+        }
+        assert!(ra.iter().zip(&rb).all(|(x, y)| (x - y).abs() <= 1e-12 * x.abs().max(1.0)));
+        let count = |f: &Function| f.dag.count(&f.roots()).total();
+        assert!(count(&folded) < count(&kept), "{} against {}", count(&folded), count(&kept));
     }
 
     #[test]

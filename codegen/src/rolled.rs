@@ -1,4 +1,4 @@
-//! The rolled kernels: the per-body recursion steps of `crate::body`, expanded once per
+//! The rolled kernels: the per-body recursion steps of `body.rs`, expanded once per
 //! body kind and driven by loops over the chain, so that one kernel serves every N.
 //!
 //! A chain is always [anchor, first link, rod-like bodies …, ship]: B_1 does not rotate,
@@ -282,7 +282,7 @@ pub fn inward(kind: Kind, water: Water) -> Step {
     )
 }
 
-/// `anchor_free` / `anchor_stuck`: the anchor closes the inward pass (`crate::body::anchor_solve`).
+/// `anchor_free` / `anchor_stuck`: the anchor closes the inward pass (`body.rs`).
 pub fn anchor(water: Water, stuck: bool) -> Step {
     let mut dag = Dag::new();
     let mut f = Function::new(Dag::new());

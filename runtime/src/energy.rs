@@ -37,7 +37,7 @@ impl Energy {
         let mut e = Energy { work, ..Energy::default() };
         for (body, s) in chain.bodies.iter().zip(bodies) {
             e.kinetic += 0.5 * (body.mass * (s.vx * s.vx + s.vz * s.vz) + body.inertia[1] * s.omega * s.omega);
-            let v_n = s.vx * s.theta.sin() + s.vz * s.theta.cos();
+            let v_n = s.vx * s.sin + s.vz * s.cos;
             e.added_kinetic += 0.5 * (body.added_mass * v_n * v_n + body.added_inertia * s.omega * s.omega);
             e.potential += body.mass * g * (s.z - seabed_z);
         }

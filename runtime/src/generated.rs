@@ -208,8 +208,8 @@ impl GeneratedKernel {
             Table::Rolled(t, _) => t.kinematics,
         };
         kinematics(&self.params, q, u, &mut self.trig, &mut self.states);
-        for (b, s) in bodies.iter_mut().zip(&self.states) {
-            *b = BodyState { x: s[0], z: s[1], theta: s[2], vx: s[3], vz: s[4], omega: s[5] };
+        for ((b, s), t) in bodies.iter_mut().zip(&self.states).zip(&self.trig) {
+            *b = BodyState { x: s[0], z: s[1], theta: s[2], cos: t[0], sin: t[1], vx: s[3], vz: s[4], omega: s[5] };
         }
     }
 

@@ -60,6 +60,11 @@ pub struct BodyState {
     pub z: f64,
     /// Absolute angle θ_k about y, rad.
     pub theta: f64,
+    /// cos θ_k, from the kernel's rotation table (Eq. 4), so the force models need no
+    /// transcendental function the kinematics already evaluated.
+    pub cos: f64,
+    /// sin θ_k.
+    pub sin: f64,
     /// Centroid velocity along x, m/s.
     pub vx: f64,
     /// Centroid velocity along z (up), m/s.

@@ -9,7 +9,9 @@
 //! - [`batch`]: a folder of scenes as one table ([`validation`] against the paper's Table 3);
 //! - [`accuracy`]: the work–precision study (error against run time);
 //! - [`sweep`]: one scene over grid axes and sampled uncertain inputs, with design checks;
-//!   [`sensitivity`]: d(output)/d(ln p) for every continuous physical parameter;
+//!   run in shards over a job array and merged ([`sweep::shard`], [`sweep::merge`],
+//!   [`sweep::slurm`]); [`sensitivity`]: d(output)/d(ln p) for every continuous physical
+//!   parameter;
 //! - reports that only read results: [`summary`] (the one-screen text), [`record`] (the
 //!   machine-readable summary of `run --json`), [`diagnostic`] (a
 //!   failure in words, with advice), [`history`] (the CSV time history), [`checks`] (peaks
@@ -97,6 +99,9 @@ pub enum Error {
         /// The valid range, or what went wrong.
         expected: String,
     },
+    /// A sweep's shard cannot be run or its shards cannot be merged.
+    #[error(transparent)]
+    Shard(#[from] sweep::shard::ShardError),
     /// The accuracy study's reference run did not stop the ship.
     #[error("the reference run did not stop the ship: {0}")]
     NoReference(String),

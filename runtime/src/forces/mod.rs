@@ -284,7 +284,7 @@ impl Forces {
     /// Buoyancy (Eq. 42), seabed reaction (Eq. 41) and Morison drag (Eqs. 43–47) on a chain
     /// link or cable element.
     fn element_loads(&self, s: &BodyState, e: &Element, load: &mut Load, power: &mut Power) {
-        let (sin, cos) = s.theta.sin_cos();
+        let (sin, cos) = (s.sin, s.cos);
         let ex = [cos, -sin]; // body x axis
         let ez = [sin, cos]; // body z axis (normal)
         let half = 0.5 * e.length;
@@ -370,7 +370,8 @@ mod tests {
         f.water = true;
         f.rho = 1025.0;
         f.seabed_z = -100.0;
-        let state = BodyState { x: 0.0, z, theta: -FRAC_PI_2, vx: 0.0, vz: 0.0, omega: 0.0 };
+        let (sin, cos) = (-FRAC_PI_2).sin_cos();
+        let state = BodyState { x: 0.0, z, theta: -FRAC_PI_2, cos, sin, vx: 0.0, vz: 0.0, omega: 0.0 };
         let mut loads = [Load::default()];
         f.loads(&[state], &mut loads);
         (loads[0], f.power())

@@ -94,7 +94,8 @@ impl ReferenceKernel {
             }
             let p = partials.position[k];
             let v = partials.velocity(k, x_dot);
-            *body = BodyState { x: p.x, z: p.z, theta, vx: v.x, vz: v.z, omega: partials.omega[k].y };
+            let (sin, cos) = theta.sin_cos();
+            *body = BodyState { x: p.x, z: p.z, theta, cos, sin, vx: v.x, vz: v.z, omega: partials.omega[k].y };
         }
     }
 }

@@ -56,7 +56,7 @@ impl Observer {
         let mut sum = [0.0, 0.0];
         for k in (1..n).rev() {
             let (b, a, l, s) = (&model.chain.bodies[k], &self.acc[k], &dynamics.loads()[k], &bodies[k]);
-            let (sin, cos) = s.theta.sin_cos();
+            let (sin, cos) = (s.sin, s.cos);
             let a_n = a.ax * sin + a.az * cos;
             sum[0] += b.mass * a.ax + b.added_mass * a_n * sin - l.fx;
             sum[1] += b.mass * a.az + b.added_mass * a_n * cos - l.fz;

@@ -1,12 +1,18 @@
 //! Sweeps: one base scene run over grid axes and sampled uncertain inputs ([`spec`],
 //! [`sampling`]), one row per run in spec order with its inputs as columns, the run's
 //! summary ([`crate::record::RunSummary`], the same numbers as `run --json` of the row's
-//! scene) and its design checks; written as CSV and JSON (docs/sweeps.md).
+//! scene) and its design checks; written as CSV and JSON (docs/sweeps.md). A sweep can run
+//! in [`shard`]s, each saved as a [`shard_file`], and be put back together by [`merge`];
+//! [`slurm`] writes the job script that does it on a Slurm cluster.
 
 pub mod heatmap;
+pub mod merge;
 #[cfg(feature = "parquet")]
 pub mod parquet;
 pub mod sampling;
+pub mod shard;
+pub mod shard_file;
+pub mod slurm;
 pub mod spec;
 
 use std::collections::BTreeMap;
@@ -17,8 +23,9 @@ use std::time::{Duration, Instant};
 
 use kanestop_runtime::model::Model;
 use kanestop_runtime::simulate;
+use serde::de::{MapAccess, Visitor};
 use serde::ser::SerializeMap;
-use serde::{Serialize, Serializer};
+use serde::{Deserialize, Deserializer, Serialize, Serializer};
 use toml::Value;
 
 pub use spec::{PlannedRow, Spec};
@@ -43,8 +50,29 @@ impl Serialize for Inputs {
     }
 }
 
+impl<'de> Deserialize<'de> for Inputs {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> std::result::Result<Inputs, D::Error> {
+        /// Reads the object's entries in file order (the spec's order of the inputs).
+        struct InOrder;
+        impl<'de> Visitor<'de> for InOrder {
+            type Value = Inputs;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str("an object of inputs by dotted path")
+            }
+            fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> std::result::Result<Inputs, A::Error> {
+                let mut out = Vec::new();
+                while let Some(entry) = map.next_entry::<String, Value>()? {
+                    out.push(entry);
+                }
+                Ok(Inputs(out))
+            }
+        }
+        d.deserialize_map(InOrder)
+    }
+}
+
 /// One run of a sweep.
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct SweepRow {
     /// Its index, from 0, in spec order.
     pub index: usize,
@@ -360,17 +388,27 @@ pub fn check_writable(dir: &Path) -> Result<()> {
     Ok(())
 }
 
-/// Writes `sweep.csv`, `sweep.json` and each row's scene (`scenes/NAME.toml`, to rerun one
-/// alone) into `dir`, each file whole or not at all. Returns the CSV and JSON paths.
-pub fn write(rows: &[SweepRow], plan: &[PlannedRow], dir: &Path) -> Result<(PathBuf, PathBuf)> {
-    let scenes = dir.join("scenes");
-    std::fs::create_dir_all(&scenes).map_err(Error::io("create", &scenes))?;
-    for row in plan {
-        if let Ok(scene) = &row.scene {
-            let path = scenes.join(format!("{}.toml", row.name));
-            let text = format!("# Row {} of a sweep: {}\n{}", row.index, label(&row.inputs), scene.to_toml());
-            write_atomically(&path, text.as_bytes()).map_err(Error::io("write", &path))?;
-        }
+/// The file `scenes/NAME.toml` of a planned row: its scene, to rerun it alone (none when
+/// its inputs give no valid scene).
+pub fn scene_file(row: &PlannedRow) -> Option<String> {
+    let scene = row.scene.as_ref().ok()?;
+    Some(format!("# Row {} of a sweep: {}\n{}", row.index, label(&row.inputs), scene.to_toml()))
+}
+
+/// Every row's scene file: (row name, text), for [`write()`].
+pub fn scene_files(plan: &[PlannedRow]) -> Vec<(String, String)> {
+    plan.iter().filter_map(|row| Some((row.name.clone(), scene_file(row)?))).collect()
+}
+
+/// Writes `sweep.csv`, `sweep.json` and each row's scene (`scenes/NAME.toml` from `scenes`,
+/// (row name, text) as [`scene_files`] gives them, to rerun one alone) into `dir`, each file
+/// whole or not at all. Returns the CSV and JSON paths.
+pub fn write(rows: &[SweepRow], scenes: &[(String, String)], dir: &Path) -> Result<(PathBuf, PathBuf)> {
+    let folder = dir.join("scenes");
+    std::fs::create_dir_all(&folder).map_err(Error::io("create", &folder))?;
+    for (name, text) in scenes {
+        let path = folder.join(format!("{name}.toml"));
+        write_atomically(&path, text.as_bytes()).map_err(Error::io("write", &path))?;
     }
     let (c, j) = (dir.join("sweep.csv"), dir.join("sweep.json"));
     #[cfg(feature = "parquet")]

@@ -1,0 +1,362 @@
+//! Sharded sweeps (docs/sweeps.md, "Sharded sweeps"): the merge of N shards is the local
+//! run, file for file (every byte but the wall times), for N = 1, 3 and 7 over 11 rows (a
+//! count neither 3 nor 7 divides); a merge refuses shards of another sweep, a missing shard
+//! and a row held twice; a shard killed halfway and resumed gives the same result.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output, Stdio};
+use std::sync::OnceLock;
+use std::time::{Duration, Instant};
+
+use serde_json::Value;
+
+fn kanestop() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_kanestop"))
+}
+
+fn temp_dir(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("kanestop-shards-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// A spec of 11 short rows over case 1: ten anchor masses and one invalid (negative) one;
+/// the drag check fails for the lighter anchors.
+fn spec(dir: &Path, end_time: f64) -> PathBuf {
+    let base = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/paper/case01.toml");
+    let path = dir.join("spec.toml");
+    let text = format!(
+        "base = {:?}\nname = \"shards\"\n[solver]\nend_time = {end_time:?}\n[[axis]]\npath = \"anchor.mass\"\n\
+         values = [30000.0, 32000.0, 34000.0, 36000.0, -1.0, 40000.0, 42000.0, 44000.0, 46000.0, 48000.0, 50000.0]\n\
+         [checks]\nmax_anchor_drag = 3.6\n",
+        base.display().to_string()
+    );
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+fn run(args: &[&str], env: &[(&str, String)]) -> Output {
+    let mut c = kanestop();
+    c.args(args);
+    for v in ["SLURM_ARRAY_TASK_ID", "SLURM_ARRAY_TASK_COUNT", "JOB_COMPLETION_INDEX", "PBS_ARRAY_INDEX"] {
+        c.env_remove(v);
+    }
+    for (k, v) in env {
+        c.env(k, v);
+    }
+    c.output().unwrap()
+}
+
+fn s(p: &Path) -> &str {
+    p.to_str().unwrap()
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// The table and check summary a command printed, without the line naming the files.
+fn table(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stdout).lines().filter(|l| !l.starts_with("written")).collect::<Vec<_>>().join("\n")
+}
+
+/// The local run of the 11-row spec: (folder, its output), made once.
+fn local() -> &'static (PathBuf, Output) {
+    static LOCAL: OnceLock<(PathBuf, Output)> = OnceLock::new();
+    LOCAL.get_or_init(|| {
+        let dir = temp_dir("local");
+        let out = dir.join("out");
+        let o = run(&["sweep", s(&spec(&dir, 3.0)), "--out", s(&out)], &[]);
+        assert_eq!(o.status.code(), Some(3), "an invalid row: exit 3; {}", stderr(&o));
+        (out, o)
+    })
+}
+
+/// `sweep.csv` with the `wall_time` and `cpu_time` columns emptied (quoted cells kept whole).
+fn csv_without_wall_time(path: &Path) -> String {
+    let text = std::fs::read_to_string(path).unwrap();
+    let split = |line: &str| -> Vec<String> {
+        let (mut cells, mut cell, mut quoted) = (Vec::new(), String::new(), false);
+        for c in line.chars() {
+            match c {
+                '"' => {
+                    quoted = !quoted;
+                    cell.push(c);
+                }
+                ',' if !quoted => cells.push(std::mem::take(&mut cell)),
+                _ => cell.push(c),
+            }
+        }
+        cells.push(cell);
+        cells
+    };
+    let mut lines = text.lines();
+    let head = split(lines.next().unwrap());
+    let col = head.iter().position(|h| h == "wall_time").expect("a wall_time column");
+    let cpu = head.iter().position(|h| h == "cpu_time").expect("a cpu_time column");
+    let mut out = vec![head.join(",")];
+    for line in lines {
+        let mut cells = split(line);
+        cells[col].clear();
+        cells[cpu].clear();
+        out.push(cells.join(","));
+    }
+    out.join("\n")
+}
+
+/// `sweep.json` without the `wall_time` and `cpu_time` of each row's summary.
+fn json_without_wall_time(path: &Path) -> Value {
+    let mut rows: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    for r in rows.as_array_mut().unwrap() {
+        if let Some(summary) = r["summary"].as_object_mut() {
+            assert!(summary.remove("wall_time").is_some());
+            assert!(summary.remove("cpu_time").is_some());
+        }
+    }
+    rows
+}
+
+fn files(dir: &Path) -> Vec<(String, Vec<u8>)> {
+    let mut out: Vec<(String, Vec<u8>)> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .map(|p| (p.file_name().unwrap().to_string_lossy().into_owned(), std::fs::read(&p).unwrap()))
+        .collect();
+    out.sort();
+    out
+}
+
+/// The merged folder `merged` (and the merge's output `o`) holds what the local run wrote.
+fn assert_same_as_local(merged: &Path, o: &Output, local: &Path, local_output: &Output) {
+    assert_eq!(o.status.code(), local_output.status.code(), "exit code; {}", stderr(o));
+    assert_eq!(table(o), table(local_output), "the printed table and check summary");
+    assert_eq!(csv_without_wall_time(&merged.join("sweep.csv")), csv_without_wall_time(&local.join("sweep.csv")));
+    assert_eq!(json_without_wall_time(&merged.join("sweep.json")), json_without_wall_time(&local.join("sweep.json")));
+    let scenes = files(&merged.join("scenes"));
+    assert_eq!(scenes.len(), 10, "one scene per valid row");
+    assert_eq!(scenes, files(&local.join("scenes")), "every scene file, byte for byte");
+}
+
+/// Runs every shard of `n` into `out`, shard k as `how(k)` says (flag or environment).
+fn run_shards(spec: &Path, out: &Path, n: usize, how: impl Fn(usize) -> (Vec<String>, Vec<(&'static str, String)>)) {
+    for k in 0..n {
+        let (extra, env) = how(k);
+        let mut args = vec!["sweep", s(spec), "--out", s(out)];
+        args.extend(extra.iter().map(String::as_str));
+        let o = run(&args, &env);
+        assert!(matches!(o.status.code(), Some(0 | 3 | 4)), "shard {k}/{n}: {}", stderr(&o));
+        let file: Value =
+            serde_json::from_slice(&std::fs::read(out.join(format!("shards/shard-{k}-of-{n}.json"))).unwrap()).unwrap();
+        let expected: Vec<usize> = (k..11).step_by(n).collect();
+        assert_eq!(file["row_indices"], serde_json::json!(expected));
+        assert_eq!(file["complete"], true);
+        assert_eq!(file["rows_total"], 11);
+    }
+}
+
+fn merge(dirs: &[&Path]) -> Output {
+    let mut args = vec!["sweep", "merge"];
+    args.extend(dirs.iter().map(|d| s(d)));
+    run(&args, &[])
+}
+
+#[test]
+fn one_shard_merged_is_the_local_run() {
+    let (local_out, local_output) = local();
+    let dir = temp_dir("n1");
+    let out = dir.join("out");
+    run_shards(&spec(&dir, 3.0), &out, 1, |k| (vec!["--shard".into(), format!("{k}/1")], vec![]));
+    let o = merge(&[&out]);
+    assert_same_as_local(&out, &o, local_out, local_output);
+}
+
+#[test]
+fn three_shards_merged_are_the_local_run_whichever_index_variable_gives_the_shard() {
+    let (local_out, local_output) = local();
+    let dir = temp_dir("n3");
+    let out = dir.join("out");
+    run_shards(&spec(&dir, 3.0), &out, 3, |k| match k {
+        0 => (vec!["--shard".into(), "0/3".into()], vec![]),
+        1 => (vec!["--shards".into(), "3".into()], vec![("JOB_COMPLETION_INDEX", "1".into())]),
+        _ => (vec!["--shards".into(), "3".into()], vec![("PBS_ARRAY_INDEX", "2".into())]),
+    });
+    let merged = dir.join("merged");
+    let mut o = merge(&[&out]);
+    assert!(o.status.code() != Some(2), "{}", stderr(&o));
+    // Into another folder, from the shard files named one by one.
+    let files: Vec<PathBuf> = (0..3).map(|k| out.join(format!("shards/shard-{k}-of-3.json"))).collect();
+    let mut args = vec!["sweep", "merge", "--out", s(&merged)];
+    args.extend(files.iter().rev().map(|f| s(f)));
+    o = run(&args, &[]);
+    assert_same_as_local(&merged, &o, local_out, local_output);
+    assert_same_as_local(&out, &o, local_out, local_output);
+}
+
+#[test]
+fn seven_shards_of_a_slurm_array_merged_are_the_local_run() {
+    let (local_out, local_output) = local();
+    let dir = temp_dir("n7");
+    let out = dir.join("out");
+    // An array submitted as --array=1-7: the index is relative to SLURM_ARRAY_TASK_MIN.
+    run_shards(&spec(&dir, 3.0), &out, 7, |k| {
+        let env = vec![
+            ("SLURM_ARRAY_TASK_ID", (k + 1).to_string()),
+            ("SLURM_ARRAY_TASK_MIN", "1".to_string()),
+            ("SLURM_ARRAY_TASK_COUNT", "7".to_string()),
+        ];
+        (vec!["--jobs".into(), "1".into()], env)
+    });
+    let o = merge(&[&out]);
+    assert_same_as_local(&out, &o, local_out, local_output);
+}
+
+#[test]
+fn a_merge_refuses_another_sweep_a_missing_shard_and_a_row_twice() {
+    let dir = temp_dir("refuse");
+    let out = dir.join("out");
+    let spec_a = spec(&dir, 3.0);
+    run_shards(&spec_a, &out, 3, |k| (vec!["--shard".into(), format!("{k}/3")], vec![]));
+    let other = temp_dir("refuse-other");
+    let o = run(&["sweep", s(&spec(&other, 2.5)), "--out", s(&other), "--shard", "1/3"], &[]);
+    assert!(o.status.code() != Some(2), "{}", stderr(&o));
+    let (a1, b1) = (out.join("shards/shard-1-of-3.json"), other.join("shards/shard-1-of-3.json"));
+    let hash = |p: &Path| -> String {
+        let v: Value = serde_json::from_slice(&std::fs::read(p).unwrap()).unwrap();
+        v["plan_hash"].as_str().unwrap().to_string()
+    };
+    assert!(hash(&a1).starts_with("sha256:") && hash(&a1).len() == 7 + 64);
+    assert_ne!(hash(&a1), hash(&b1), "another end time, another plan");
+
+    // Another sweep's shard.
+    let o = run(
+        &["sweep", "merge", s(&out.join("shards/shard-0-of-3.json")), s(&b1), s(&out.join("shards/shard-2-of-3.json"))],
+        &[],
+    );
+    assert_eq!(o.status.code(), Some(2));
+    let e = stderr(&o);
+    assert!(e.contains("belong to different sweeps"), "{e}");
+    for part in [hash(&a1), hash(&b1), s(&b1).to_string(), "shard-0-of-3.json".to_string()] {
+        assert!(e.contains(&part), "{part} in {e}");
+    }
+    assert!(!out.join("sweep.csv").exists(), "a refused merge writes nothing");
+
+    // A missing shard.
+    let o = run(
+        &["sweep", "merge", s(&out.join("shards/shard-0-of-3.json")), s(&out.join("shards/shard-2-of-3.json"))],
+        &[],
+    );
+    assert_eq!(o.status.code(), Some(2));
+    let e = stderr(&o);
+    assert!(e.contains("4 of the sweep's 11 rows are missing (row 1, 4, 7, 10): no file shard-1-of-3.json"), "{e}");
+
+    // A row twice: the whole sweep as one shard beside its three shards.
+    let o = run(&["sweep", s(&spec_a), "--out", s(&out), "--shard", "0/1"], &[]);
+    assert!(o.status.code() != Some(2), "{}", stderr(&o));
+    let o = merge(&[&out]);
+    assert_eq!(o.status.code(), Some(2));
+    let e = stderr(&o);
+    assert!(e.contains("row 0 (shards-000) is there twice: in "), "{e}");
+    assert!(e.contains("shard-0-of-1.json") && e.contains("shard-0-of-3.json"), "{e}");
+
+    // Not a shard file; no shard file at all.
+    let o = run(&["sweep", "merge", s(&spec_a)], &[]);
+    assert!(o.status.code() == Some(2) && stderr(&o).contains("not JSON"), "{}", stderr(&o));
+    let o = merge(&[&temp_dir("refuse-empty")]);
+    assert!(o.status.code() == Some(2) && stderr(&o).contains("no shard file in"), "{}", stderr(&o));
+}
+
+#[test]
+fn a_shard_killed_halfway_resumes_to_the_same_result() {
+    // Rows of about 0.3 s each, one at a time, saved after every row.
+    let dir = temp_dir("kill");
+    let spec = spec(&dir, 15.0);
+    let local = dir.join("local");
+    let local_output = run(&["sweep", s(&spec), "--out", s(&local)], &[]);
+    let out = dir.join("out");
+    let file = out.join("shards/shard-0-of-2.json");
+    let mut child = kanestop()
+        .args(["sweep", s(&spec), "--out", s(&out), "--shard", "0/2", "--jobs", "1", "--checkpoint", "0"])
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    let start = Instant::now();
+    let done = |v: &Value| v["rows"].as_array().map_or(0, Vec::len);
+    loop {
+        let saved = std::fs::read(&file).ok().and_then(|b| serde_json::from_slice::<Value>(&b).ok());
+        if saved.as_ref().is_some_and(|v| done(v) >= 2) {
+            break;
+        }
+        assert!(start.elapsed() < Duration::from_secs(60), "no row saved within 60 s");
+        std::thread::sleep(Duration::from_millis(5));
+    }
+    child.kill().unwrap();
+    child.wait().unwrap();
+    // Whatever the moment of the kill, the file is whole: valid, incomplete.
+    let saved: Value = serde_json::from_slice(&std::fs::read(&file).unwrap()).unwrap();
+    assert_eq!(saved["complete"], false, "killed before its last row");
+    assert!((2..6).contains(&done(&saved)), "{} of 6 rows", done(&saved));
+    // Rows 0, 2, 4, … of which row 4 is invalid: kept only when it ran and did not fail.
+    let kept = saved["rows"].as_array().unwrap().iter().filter(|r| r["row"]["status"] != "invalid").count();
+    let names: Vec<String> = std::fs::read_dir(out.join("shards"))
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| !n.starts_with('.'))
+        .collect();
+    assert_eq!(names, ["shard-0-of-2.json"], "the shard file alone (besides a hidden temporary file of the kill)");
+
+    let o = merge(&[&out]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("shard-0-of-2.json is incomplete"), "{}", stderr(&o));
+
+    // The shard resumed: only its missing rows run.
+    let o = run(&["sweep", s(&spec), "--out", s(&out), "--shard", "0/2", "--resume"], &[]);
+    assert!(stderr(&o).contains(&format!("resume    {kept} rows kept from ")), "{}", stderr(&o));
+    assert!(stderr(&o).contains(&format!(", {} run", 6 - kept)), "{}", stderr(&o));
+    // Without a shard: every shard of the folder completed (here the absent 1/2), merged.
+    let o = run(&["sweep", s(&spec), "--out", s(&out), "--resume"], &[]);
+    assert!(stderr(&o).contains("resume    shard 0/2: 5 rows kept, 1 run"), "the invalid row again; {}", stderr(&o));
+    assert!(stderr(&o).contains("resume    shard 1/2: 0 rows kept, 5 run"), "{}", stderr(&o));
+    assert_same_as_local(&out, &o, &local, &local_output);
+}
+
+#[test]
+fn the_slurm_script_names_the_array_the_task_and_the_merge() {
+    let dir = temp_dir("slurm");
+    let o = run(&["sweep", s(&spec(&dir, 3.0)), "--slurm", "--shards", "4", "--out", s(&dir.join("out"))], &[]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let script = String::from_utf8_lossy(&o.stdout);
+    assert!(script.starts_with("#!/usr/bin/env bash\n"));
+    assert!(script.contains("#SBATCH --array=0-3\n"), "{script}");
+    assert!(script.contains("--shards 4 --resume"), "{script}");
+    assert!(script.contains("--dependency=afterany:\"$array\""), "{script}");
+    assert!(script.contains(" sweep merge "), "{script}");
+    let o = run(&["sweep", s(&spec(&dir, 3.0)), "--slurm", "--shards", "12"], &[]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("--shards = 12: in [1, 11]"), "{}", stderr(&o));
+    let o = run(&["sweep", s(&spec(&dir, 3.0)), "--shard", "7/7"], &[]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("--shard = 7/7: K in [0, 6]"), "{}", stderr(&o));
+}
+
+#[test]
+fn the_plan_hash_depends_on_the_plan_and_kernel_not_on_where_or_how_it_runs() {
+    let hash_of = |dir: &Path, extra: &[&str]| -> String {
+        let (out, spec) = (dir.join("out"), dir.join("spec.toml"));
+        let mut args = vec!["sweep", s(&spec), "--out", s(&out), "--shard", "0/11"];
+        args.extend(extra);
+        let o = run(&args, &[]);
+        assert!(o.status.code() != Some(2), "{}", stderr(&o));
+        let v: Value = serde_json::from_slice(&std::fs::read(out.join("shards/shard-0-of-11.json")).unwrap()).unwrap();
+        v["plan_hash"].as_str().unwrap().to_string()
+    };
+    let (a, b, c) = (temp_dir("hash-a"), temp_dir("hash-b").join("deeper"), temp_dir("hash-c"));
+    std::fs::create_dir_all(&b).unwrap();
+    spec(&a, 3.0);
+    spec(&b, 3.0);
+    spec(&c, 3.0);
+    let h = hash_of(&a, &[]);
+    assert_eq!(hash_of(&b, &["--jobs", "1"]), h, "another folder, another thread count: the same plan");
+    assert_ne!(hash_of(&c, &["--kernel", "reference"]), h, "another kernel");
+}

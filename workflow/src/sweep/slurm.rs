@@ -1,0 +1,119 @@
+//! The Slurm job script of a sharded sweep (`kanestop sweep SPEC --slurm`): a short bash
+//! driver that submits the sweep as a job array of N shards (task k runs shard k of N, read
+//! from `SLURM_ARRAY_TASK_ID` and `SLURM_ARRAY_TASK_COUNT`) and a merge job that starts when
+//! every task has ended. Submitting it again reruns only the rows still missing or failed.
+
+use std::path::Path;
+
+/// What the script runs.
+#[derive(Clone, Debug)]
+pub struct JobScript<'a> {
+    /// The `kanestop` binary (an absolute path the compute nodes see).
+    pub kanestop: &'a Path,
+    /// The sweep spec (absolute).
+    pub spec: &'a Path,
+    /// The sweep folder (absolute): shard files, the merged result, the jobs' logs.
+    pub out: &'a Path,
+    /// The sweep's name (the jobs' names).
+    pub name: &'a str,
+    /// Its number of rows.
+    pub rows: usize,
+    /// N, the array's size.
+    pub shards: usize,
+    /// CPUs per task (its runs at once).
+    pub cpus: usize,
+    /// The kernel (`generated` or `reference`).
+    pub kernel: &'a str,
+    /// How often a task saves its shard file, s (`--checkpoint`).
+    pub checkpoint: f64,
+}
+
+/// The shard count when `--shards` is not given: one shard per row up to 10.
+pub fn default_shards(rows: usize) -> usize {
+    rows.clamp(1, 10)
+}
+
+/// `text` quoted for a POSIX shell.
+pub fn shell_quote(text: &str) -> String {
+    format!("'{}'", text.replace('\'', r"'\''"))
+}
+
+impl JobScript<'_> {
+    /// The driver script.
+    pub fn text(&self) -> String {
+        let q = |p: &Path| shell_quote(&p.display().to_string());
+        let (exe, spec, out) = (q(self.kanestop), q(self.spec), q(self.out));
+        let job: String =
+            self.name.chars().map(|c| if c.is_ascii_alphanumeric() || "-_.".contains(c) { c } else { '_' }).collect();
+        let (n, last) = (self.shards, self.shards - 1);
+        let logs = |file: &str| shell_quote(&format!("{}/logs/{file}", self.out.display()));
+        let (shard_log, merge_log) = (logs("shard-%a.log"), logs("merge.log"));
+        let (cpus, kernel, rows, checkpoint) = (self.cpus, self.kernel, self.rows, self.checkpoint);
+        format!(
+            r#"#!/usr/bin/env bash
+# The sweep {name} ({rows} rows) as a Slurm job array of {n} shards, then a merge job once
+# every shard has ended. Written by `kanestop sweep SPEC --slurm`; submit it with
+#     bash THIS_FILE
+# Partition, time limit, account: add #SBATCH lines to the two jobs below, or export
+# SBATCH_PARTITION, SBATCH_TIMELIMIT, SBATCH_ACCOUNT before submitting.
+# Submitting it again reruns only the rows still missing or failed (--resume).
+set -euo pipefail
+mkdir -p {out}/logs
+
+# Task k of the array runs shard k of {n}: rows k, k + {n}, k + 2·{n}, …
+array=$(sbatch --parsable --output={shard_log} <<'JOB'
+#!/bin/bash
+#SBATCH --job-name={job}
+#SBATCH --array=0-{last}
+#SBATCH --cpus-per-task={cpus}
+exec {exe} sweep {spec} --out {out} --shards {n} --resume --jobs "${{SLURM_CPUS_PER_TASK:-{cpus}}}" --kernel {kernel} --checkpoint {checkpoint}
+JOB
+)
+array=${{array%%;*}}
+
+# The merge: after every task, whatever its exit code (a shard whose rows fail a design
+# check exits 4); it refuses, naming them, shards that are missing or incomplete.
+merge=$(sbatch --parsable --dependency=afterany:"$array" --output={merge_log} <<'JOB'
+#!/bin/bash
+#SBATCH --job-name={job}-merge
+exec {exe} sweep merge {out}
+JOB
+)
+merge=${{merge%%;*}}
+
+echo "submitted array job $array ({n} shards of {name}) and merge job $merge (after it)"
+echo "merged result: {out_text}/sweep.csv and sweep.json (log: {out_text}/logs/merge.log)"
+"#,
+            name = self.name,
+            out_text = self.out.display(),
+        )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_script_submits_an_array_of_n_and_a_merge_after_it() {
+        let script = JobScript {
+            kanestop: Path::new("/opt/bin/kanestop"),
+            spec: Path::new("/home/a b/spec.toml"),
+            out: Path::new("/scratch/it's"),
+            name: "mass speed",
+            rows: 23,
+            shards: 7,
+            cpus: 2,
+            kernel: "generated",
+            checkpoint: 10.0,
+        }
+        .text();
+        assert!(script.contains("#SBATCH --array=0-6\n"), "{script}");
+        assert!(script.contains("#SBATCH --job-name=mass_speed\n"));
+        assert!(script.contains("exec '/opt/bin/kanestop' sweep '/home/a b/spec.toml' --out '/scratch/it'\\''s' --shards 7 --resume --jobs \"${SLURM_CPUS_PER_TASK:-2}\""), "{script}");
+        assert!(script.contains("--dependency=afterany:\"$array\""));
+        assert!(script.contains("exec '/opt/bin/kanestop' sweep merge '/scratch/it'\\''s'\n"));
+        assert_eq!(default_shards(3), 3);
+        assert_eq!(default_shards(500), 10);
+    }
+}
