@@ -132,8 +132,8 @@ pub fn eval(model: &Model, kernel: KernelFactory, state: Option<&Path>) -> Resul
 
 /// `batch DIR`: runs every scene once per configuration (one per method compared), prints
 /// the table, writes batch.csv and batch.json; with `error_estimate`, each run is repeated
-/// refined; with a `tolerance`, validates against Table 3 and returns whether every check
-/// passed.
+/// refined; with a `tolerance`, validates against Table 3. Returns how it went for the exit
+/// code.
 pub fn batch(
     dir: &Path,
     out: &Path,
@@ -141,7 +141,7 @@ pub fn batch(
     kernel: KernelFactory,
     error_estimate: bool,
     tolerance: Option<f64>,
-) -> Result<bool> {
+) -> Result<BatchOutcome> {
     let files = batch::scene_files(dir).with_context(|| format!("cannot read scene folder {}", dir.display()))?;
     anyhow::ensure!(!files.is_empty(), "no *.toml scene in {}", dir.display());
     check_dir(out)?;
@@ -175,7 +175,26 @@ pub fn batch(
         ok &= v.problems.is_empty() && v.discordant.is_empty();
         println!("validate  {} (tolerance {:.1} %)", if ok { "PASS" } else { "FAIL" }, 100.0 * tol);
     }
-    Ok(ok)
+    let check_failed = rows.iter().any(|r| r.checks_pass == Some(false) || r.break_exceedances > 0);
+    Ok(if !ok {
+        BatchOutcome::Missed
+    } else if check_failed {
+        BatchOutcome::CheckFailed
+    } else {
+        BatchOutcome::Done
+    })
+}
+
+/// How a batch went, for the exit code.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BatchOutcome {
+    /// Every scene ran, every check passed (and the validation, when asked).
+    Done,
+    /// A scene was invalid or failed, or the validation missed (takes precedence).
+    Missed,
+    /// Every scene ran, but in some row a design check failed (a break load exceeded, or a
+    /// limit of the scene's `[checks]`).
+    CheckFailed,
 }
 
 /// `plot SCENE…`: runs the scenes and writes overlaid plots into `out`.
@@ -208,7 +227,13 @@ pub fn accuracy(scene: &Scene, out: &Path, repeats: usize, atol_ratio: f64, kern
     );
     check_dir(out)?;
     let plan = accuracy::default_plan();
-    let study = accuracy::study(scene, &plan, atol_ratio, kernel, repeats)?;
+    let bar = progress::bar(accuracy::run_count(&plan, repeats), "runs");
+    let study = accuracy::study(scene, &plan, atol_ratio, kernel, repeats, &|what| {
+        bar.set_message(what.to_string());
+        bar.inc(1);
+    });
+    bar.finish_and_clear();
+    let study = study?;
     print!("{}", accuracy::table(&study));
     for f in accuracy::write(&study, out)? {
         println!("written   {}", f.display());

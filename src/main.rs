@@ -442,7 +442,8 @@ const EXIT_CODES_HELP: &str = "Exit codes:
      merge: shard files of different sweeps, a row missing or twice
   3  numerical failure during a run (the diagnostic is printed on standard error)
   4  a design check failed: a break load was exceeded, or a limit of the scene's or the sweep
-     spec's [checks] (sweep, a shard or a merge: in some row); 3 takes precedence over 4
+     spec's [checks] (sweep, a shard or a merge, batch: in some row); 3 takes precedence
+     over 4, and in a batch 1 does
 
 Summaries and tables go to standard output; errors, diagnostics and progress to standard error.";
 
@@ -512,8 +513,11 @@ fn try_main() -> Result<Exit> {
             );
             let per_method = configurations(&solver, &methods);
             let configures: Vec<kanestop_workflow::batch::Configure> = per_method.iter().map(|c| c.as_ref()).collect();
-            let ok = commands::batch(&dir, &out, &configures, &choice.factory(), error_estimate, tolerance)?;
-            Ok(if ok { Exit::Done } else { Exit::BatchMissed })
+            Ok(match commands::batch(&dir, &out, &configures, &choice.factory(), error_estimate, tolerance)? {
+                commands::BatchOutcome::Done => Exit::Done,
+                commands::BatchOutcome::Missed => Exit::BatchMissed,
+                commands::BatchOutcome::CheckFailed => Exit::CheckFailed,
+            })
         }
         Command::Codegen { scene, scene_flag, write, root } => {
             codegen(scene.as_ref().or(scene_flag.as_ref()), write, &root)?;

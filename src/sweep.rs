@@ -10,6 +10,7 @@ use crate::Exit;
 use kanestop_runtime::scene::Scene;
 use kanestop_workflow::kernels::{self, KernelChoice};
 use kanestop_workflow::output::{self, write_atomically};
+use kanestop_workflow::sweep::heatmap;
 use kanestop_workflow::sweep::shard::{self, Shard};
 use kanestop_workflow::sweep::shard_file::{self, ShardFile, ShardRun, SweepId};
 use kanestop_workflow::sweep::{merge, slurm, PlannedRow, Progress, SweepRow};
@@ -56,6 +57,12 @@ pub struct SweepArgs {
     /// shards and a merge job after it; run it with `bash`.
     #[arg(long, conflicts_with = "resume")]
     slurm: bool,
+    /// Heat maps over the two grid axes (a spec with exactly two numeric axes; written by a
+    /// local run), one heatmap-NAME.svg each: stopping_distance, stopping_time,
+    /// peak_utilisation, peak_tension, anchor_drag_distance, ship_displacement, or none
+    /// [default: the first three].
+    #[arg(long, value_delimiter = ',')]
+    heatmap: Vec<String>,
 }
 
 /// `sweep merge`.
@@ -116,6 +123,12 @@ pub fn sweep(args: &SweepArgs) -> Result<Exit> {
     }
     let file = args.spec.as_ref().context("a sweep spec (SPEC.toml) is needed")?;
     let spec = sweep::Spec::load(file)?;
+    let heat_maps = heatmap::parse_outputs(&args.heatmap)?;
+    if !args.heatmap.is_empty() && !heat_maps.is_empty() {
+        if let Some(why) = heatmap::unsupported(&spec) {
+            anyhow::bail!("--heatmap {}: {why}", args.heatmap.join(","));
+        }
+    }
     let plan = spec.plan();
     anyhow::ensure!(
         args.checkpoint.is_finite() && args.checkpoint >= 0.0,
@@ -147,7 +160,11 @@ pub fn sweep(args: &SweepArgs) -> Result<Exit> {
             let bar = Progress::new(plan.len(), "runs");
             let rows = sweep::run(&plan, &kernel, args.jobs, &|r| bar.inc(format!("{} {}", r.name, r.status)))?;
             bar.finish();
-            report(&rows, id.sampling, &sweep::scene_files(&plan), &args.out)
+            let code = report(&rows, id.sampling, &sweep::scene_files(&plan), &args.out)?;
+            for f in heatmap::write(&spec, &rows, &heat_maps, &args.out)? {
+                println!("written   {}", f.display());
+            }
+            Ok(code)
         }
     }
 }

@@ -99,8 +99,8 @@ fn run_prints_a_summary_and_writes_the_csv_whole() {
     let header: Vec<&str> = lines.next().unwrap().split(',').collect();
     assert_eq!(
         header.len(),
-        1 + 7 + 4 + 3 + 10 + 6 * 46 + 45,
-        "t, ship, anchor, tension, energy; 6 per body; 45 joints"
+        1 + 7 + 4 + 3 + 15 + 6 * 46 + 45,
+        "t, ship, anchor, tension, energy (3 energies, 11 works, balance); 6 per body; 45 joints"
     );
     assert_eq!(&header[..4], ["t", "ship_x", "ship_z", "ship_theta"]);
     for name in
@@ -193,7 +193,7 @@ fn default_run_reports_the_stopping_time_against_the_paper() {
         "paper (Table 3): 20.010 s",
         "anchor    started to slide",
         "checks    PASS",
-        "seabed friction",
+        "anchor friction",
     ] {
         assert!(stdout.contains(part), "missing {part:?} in {stdout}");
     }
@@ -500,6 +500,35 @@ fn any_element_count_runs_on_the_rolled_kernel() {
         assert_eq!((&v["kernel"], &v["kernel_form"]), (&"generated".into(), &"rolled".into()), "{name}");
         assert_eq!(v["status"], "end time", "{name}");
         assert!(v["energy_drift"].as_f64().unwrap() < 1e-4, "{name}: {}", v["energy_drift"]);
+    }
+}
+
+/// Where case 1's kinetic energy went, split by force: the parts sum to the lumped
+/// `friction` and `drag` of before the split, the anchor's friction and drag, the line's
+/// drag and the hull's resistance all dissipate, the smooth line no friction; the balance
+/// still holds and the text summary names the parts.
+#[test]
+fn run_json_splits_the_work_by_force() {
+    let out = kanestop().args(["run", "scenes/paper/case01.toml", "--json"]).output().unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let w = |k: &str| v["work"][k].as_f64().unwrap_or_else(|| panic!("work.{k}"));
+    let close = |a: f64, b: f64| (a - b).abs() <= 1e-9 * a.abs().max(b.abs()).max(1.0);
+    assert!(close(w("friction"), w("anchor_friction") + w("line_friction")));
+    assert!(close(w("drag"), w("anchor_drag") + w("line_drag") + w("hull_resistance")));
+    for k in ["anchor_friction", "anchor_drag", "line_drag", "hull_resistance"] {
+        assert!(w(k) < -1e4, "{k} = {} J: case 1 dissipates there", w(k));
+    }
+    assert_eq!(w("line_friction"), 0.0, "case 1's line slides without friction");
+    assert!(v["energy_drift"].as_f64().unwrap() < 1e-6);
+    let cpu = v["cpu_time"].as_f64().expect("cpu_time, s");
+    assert!(cpu > 0.0 && cpu <= v["wall_time"].as_f64().unwrap() * 1.05 + 0.01, "cpu {cpu} s");
+
+    let text = kanestop().args(["run", "scenes/paper/case01.toml"]).output().unwrap();
+    let text = String::from_utf8_lossy(&text.stdout);
+    let energy = text.lines().find(|l| l.starts_with("energy")).expect("energy line");
+    for part in ["anchor friction", "anchor drag", "line drag", "hull resistance"] {
+        assert!(energy.contains(part), "{energy}");
     }
 }
 

@@ -158,3 +158,37 @@ fn exit_4_a_design_check_failed() {
     let out = kanestop().arg("run").arg(&path).arg("--json").output().unwrap();
     assert_eq!(out.status.code(), Some(4));
 }
+
+/// A batch whose scenes all run but one fails its `[checks]`: the table, the CSV and the
+/// JSON say pass or fail per row, the failed check is named, and the exit is 4 as `run`'s;
+/// an invalid scene beside it takes precedence (exit 1).
+#[test]
+fn exit_4_a_batch_row_fails_its_checks() {
+    let dir = temp_dir("batch-check");
+    let scenes = dir.join("scenes");
+    std::fs::create_dir_all(&scenes).unwrap();
+    scene(&scenes, "a-pass", |t| format!("{t}\n[checks]\nmax_anchor_drag = 100.0\n"));
+    scene(&scenes, "b-fail", |t| format!("{t}\n[checks]\nmax_anchor_drag = 100.0\nmax_stopping_time = 30.0\n"));
+    scene(&scenes, "c-none", |t| t);
+    let out_dir = dir.join("out");
+    let out = kanestop().arg("batch").arg(&scenes).arg("--out").arg(&out_dir).output().unwrap();
+    let (stdout, stderr) = text(&out);
+    assert_eq!(out.status.code(), Some(4), "{stdout}{stderr}");
+    assert!(stdout.contains("checks") && stdout.contains("check failed: max_stopping_time"), "{stdout}");
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out_dir.join("batch.json")).unwrap()).unwrap();
+    let pass: Vec<&serde_json::Value> = json.as_array().unwrap().iter().map(|r| &r["checks_pass"]).collect();
+    assert_eq!(pass, [&serde_json::json!(true), &serde_json::json!(false), &serde_json::Value::Null]);
+    for r in json.as_array().unwrap() {
+        assert!(r["cpu_time"].as_f64().is_some() && r["rhs_evaluations"].as_u64().unwrap() > 0, "{r}");
+    }
+    let csv = std::fs::read_to_string(out_dir.join("batch.csv")).unwrap();
+    let head: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+    let col = head.iter().position(|h| *h == "checks").expect("checks column");
+    let cells: Vec<&str> = csv.lines().skip(1).map(|l| l.split(',').nth(col).unwrap()).collect();
+    assert_eq!(cells, ["pass", "fail", ""]);
+
+    std::fs::write(scenes.join("d-bad.toml"), "not a scene").unwrap();
+    let out = kanestop().arg("batch").arg(&scenes).arg("--out").arg(&out_dir).output().unwrap();
+    assert_eq!(out.status.code(), Some(1));
+}

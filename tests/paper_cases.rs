@@ -86,9 +86,15 @@ fn line_friction_on_the_seabed_dissipates_and_keeps_the_balance() {
     let (smooth, rough) = (run_with(0.0), run_with(0.8));
     let (t0, t1) = (smooth.stopping_time.unwrap(), rough.stopping_time.unwrap());
     assert!(t1 < t0 - 0.1, "with line friction the ship stops at {t1:.3} s, without at {t0:.3} s");
-    // Friction work (index 2) is larger with the chain and cable rubbing too.
-    let friction = |r: &RunResult| r.samples.last().unwrap().energy.work[2];
+    // Friction work (anchor and line) is larger with the chain and cable rubbing too.
+    use kanestop_runtime::forces::term;
+    let work = |r: &RunResult, i: usize| r.samples.last().unwrap().energy.work[i];
+    let friction = |r: &RunResult| work(r, term::ANCHOR_FRICTION) + work(r, term::LINE_FRICTION);
     assert!(friction(&rough) < friction(&smooth), "{} vs {}", friction(&rough), friction(&smooth));
+    // Only the rough line does line-friction work; both anchors slide against friction.
+    assert_eq!(work(&smooth, term::LINE_FRICTION), 0.0);
+    assert!(work(&rough, term::LINE_FRICTION) < 0.0, "{}", work(&rough, term::LINE_FRICTION));
+    assert!(work(&smooth, term::ANCHOR_FRICTION) < 0.0 && work(&rough, term::ANCHOR_FRICTION) < 0.0);
     assert!(rough.max_energy_drift < 1e-4, "energy balance drift {:.2e}", rough.max_energy_drift);
 }
 
@@ -144,8 +150,15 @@ fn accuracy_study_compares_methods_with_a_tight_reference() {
     ];
     let kernel =
         |m: &Model| -> Box<dyn kanestop_runtime::kernel::Kernel> { Box::new(GeneratedKernel::new(&m.chain).unwrap()) };
-    let s = accuracy::study(&scene, &plan, accuracy::DEFAULT_ATOL_RATIO, &kernel, 1).unwrap();
-    assert!(accuracy::study(&scene, &plan, 0.0, &kernel, 1).unwrap_err().to_string().contains("atol ratio = 0"));
+    let ran = std::sync::Mutex::new(Vec::new());
+    let progress = |what: &str| ran.lock().unwrap().push(what.to_string());
+    let s = accuracy::study(&scene, &plan, accuracy::DEFAULT_ATOL_RATIO, &kernel, 1, &progress).unwrap();
+    // Progress: one call per run, the reference's two first, each naming its run.
+    let ran = ran.into_inner().unwrap();
+    assert_eq!(ran.len(), accuracy::run_count(&plan, 1), "{ran:?}");
+    assert!(ran[0].starts_with("reference") && ran[2].starts_with("rk4"), "{ran:?}");
+    let refused = accuracy::study(&scene, &plan, 0.0, &kernel, 1, &|_| {});
+    assert!(refused.unwrap_err().to_string().contains("atol ratio = 0"));
     assert!((s.reference_stopping_time - 10.025).abs() < 0.01, "{}", s.reference_stopping_time);
     assert!(s.reference_error < 1e-4, "reference error {}", s.reference_error);
     assert_eq!(s.rows.len(), 5);
@@ -154,6 +167,10 @@ fn accuracy_study_compares_methods_with_a_tight_reference() {
         assert!(r.stopping_time_error.unwrap() < 1e-2, "{r:?}");
         assert!(r.trajectory_error.unwrap() < 0.05, "{r:?}");
         assert!(r.rhs_evaluations > 0 && r.wall_time > 0.0);
+        // The verdicts' cost: the run thread's CPU time, never above its wall time.
+        let cpu = r.cpu_time.expect("Linux gives the thread's CPU time");
+        assert!(cpu > 0.0 && cpu <= 1.05 * r.wall_time + 1e-3, "{r:?}");
+        assert_eq!(r.cost(), cpu);
     }
     // The right-hand side is a smooth function of the state between events (implicit normal
     // force, one seabed rule), so the errors converge: RK4's trajectory error falls by more

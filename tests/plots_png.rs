@@ -116,6 +116,7 @@ fn the_accuracy_chart_renders() {
                 peak_tension_error: Some(error),
                 trajectory_error: Some(error * 3.0),
                 wall_time: wall,
+                cpu_time: Some(0.9 * wall),
                 rhs_evaluations: 1000 * (j as u64 + 1),
                 best: j == 3,
             });
@@ -131,4 +132,41 @@ fn the_accuracy_chart_renders() {
     };
     let svg = kanestop_workflow::accuracy::work_precision(&study).unwrap();
     assert_chart(&svg, "accuracy.svg");
+}
+
+/// The heat maps of a two-axis sweep (ship mass × speed on case 1, three of nine rows
+/// passing): each output over the grid, failing cells hatched, the check boundary drawn;
+/// rendered, sized and not blank; `target/chart-png/heatmap-*.png` to look at.
+#[test]
+fn the_sweep_heat_maps_render_with_the_check_boundary() {
+    use kanestop_workflow::sweep::{self, heatmap};
+    let spec = sweep::Spec::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/sweeps/mass_speed.toml")).unwrap();
+    assert_eq!(heatmap::unsupported(&spec), None);
+    let plan = spec.plan();
+    let rows = sweep::run(&plan, &kernels::factory(KernelChoice::Generated), None, &|_| {}).unwrap();
+    assert!(rows.iter().any(|r| r.checks_pass == Some(false)) && rows.iter().any(|r| r.checks_pass == Some(true)));
+    let dir = std::env::temp_dir().join(format!("kanestop-heatmap-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let files = heatmap::write(&spec, &rows, &heatmap::Output::ALL, &dir).unwrap();
+    assert_eq!(files.len(), heatmap::Output::ALL.len());
+    for f in &files {
+        let svg = std::fs::read_to_string(f).unwrap();
+        let name = f.file_name().unwrap().to_string_lossy().into_owned();
+        assert!(
+            svg.contains("mass_speed") && svg.contains("ship.mass") && svg.contains("initial.ship_speed"),
+            "{name}"
+        );
+        assert!(svg.contains("hatched: fails a design check"), "{name}: the legend");
+        let r = render(&svg, &png_dir().join(name.replace(".svg", ".png")));
+        assert!(r.width >= 900 && r.height >= 600, "{name}: {}×{}", r.width, r.height);
+        let area = (r.width * r.height) as usize;
+        // Nine coloured cells and the colour scale fill a good part of the chart.
+        assert!(r.coloured > area / 5, "{name}: {} coloured pixels", r.coloured);
+        assert!(r.inked < area * 9 / 10, "{name}: {} inked pixels", r.inked);
+    }
+    // A one-axis sweep has none (and says why).
+    let mut one = spec.clone();
+    one.axes.truncate(1);
+    assert!(heatmap::unsupported(&one).unwrap().contains("two grid axes"));
+    assert!(heatmap::write(&one, &rows, &heatmap::DEFAULT_OUTPUTS, &dir).unwrap().is_empty());
 }

@@ -73,7 +73,7 @@ fn local() -> &'static (PathBuf, Output) {
     })
 }
 
-/// `sweep.csv` with the `wall_time` column emptied (quoted cells kept whole).
+/// `sweep.csv` with the `wall_time` and `cpu_time` columns emptied (quoted cells kept whole).
 fn csv_without_wall_time(path: &Path) -> String {
     let text = std::fs::read_to_string(path).unwrap();
     let split = |line: &str| -> Vec<String> {
@@ -94,21 +94,24 @@ fn csv_without_wall_time(path: &Path) -> String {
     let mut lines = text.lines();
     let head = split(lines.next().unwrap());
     let col = head.iter().position(|h| h == "wall_time").expect("a wall_time column");
+    let cpu = head.iter().position(|h| h == "cpu_time").expect("a cpu_time column");
     let mut out = vec![head.join(",")];
     for line in lines {
         let mut cells = split(line);
         cells[col].clear();
+        cells[cpu].clear();
         out.push(cells.join(","));
     }
     out.join("\n")
 }
 
-/// `sweep.json` without the `wall_time` of each row's summary.
+/// `sweep.json` without the `wall_time` and `cpu_time` of each row's summary.
 fn json_without_wall_time(path: &Path) -> Value {
     let mut rows: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
     for r in rows.as_array_mut().unwrap() {
         if let Some(summary) = r["summary"].as_object_mut() {
             assert!(summary.remove("wall_time").is_some());
+            assert!(summary.remove("cpu_time").is_some());
         }
     }
     rows

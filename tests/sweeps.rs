@@ -74,9 +74,41 @@ fn a_3x3_grid_runs_in_spec_order_with_inputs_as_columns_and_checks() {
     let csv = std::fs::read_to_string(out.join("sweep.csv")).unwrap();
     let head: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
     assert_eq!(&head[..6], ["index", "name", "ship.mass", "initial.ship_speed", "status", "checks"]);
-    for col in ["stopping_distance", "anchor_drag_distance", "chain_peak_break_utilisation", "check_safety_factor_pass"]
-    {
+    for col in [
+        "stopping_distance",
+        "anchor_drag_distance",
+        "chain_peak_break_utilisation",
+        "check_safety_factor_pass",
+        "work_friction",
+        "work_anchor_friction",
+        "work_line_friction",
+        "dissipated_anchor_drag",
+        "dissipated_line_drag",
+        "dissipated_hull_resistance",
+        "cpu_time",
+    ] {
         assert!(head.contains(&col), "{col} in {head:?}");
+    }
+    // The energy split: the parts sum to the lumped terms in every row.
+    for r in &rows {
+        let split = &r["energy_split"];
+        let f = |k: &str| split[k].as_f64().unwrap_or_else(|| panic!("energy_split.{k}"));
+        assert!((f("friction") - f("anchor_friction") - f("line_friction")).abs() < 1e-12);
+        assert!((f("drag") - f("anchor_drag") - f("line_drag") - f("hull_resistance")).abs() < 1e-12);
+        assert!(f("anchor_friction") > 0.0 && f("hull_resistance") > 0.0 && f("line_friction") == 0.0, "{split}");
+    }
+    // Two numeric grid axes: the default heat maps beside the CSV.
+    for name in ["stopping_distance", "stopping_time", "peak_utilisation"] {
+        let svg = std::fs::read_to_string(out.join(format!("heatmap-{name}.svg"))).unwrap();
+        assert!(svg.starts_with("<svg") && svg.contains("ship.mass"), "{name}");
+    }
+    #[cfg(feature = "parquet")]
+    {
+        // sweep.parquet: a Parquet file (magic at both ends) naming the CSV's columns.
+        let bytes = std::fs::read(out.join("sweep.parquet")).unwrap();
+        assert!(bytes.starts_with(b"PAR1") && bytes.ends_with(b"PAR1"));
+        let text = String::from_utf8_lossy(&bytes);
+        assert!(head.iter().all(|h| text.contains(h)), "every column in the footer");
     }
     assert_eq!(csv.lines().count(), 10);
     assert_eq!(o.status.code() == Some(4), rows.iter().any(|r| r["checks_pass"] == false));
@@ -99,8 +131,9 @@ fn a_sweep_row_equals_its_scene_run_alone() {
         let mut row = r["summary"].clone();
         for v in [&mut alone, &mut row] {
             v.as_object_mut().unwrap().remove("wall_time");
+            v.as_object_mut().unwrap().remove("cpu_time");
         }
-        assert_eq!(row, alone, "every number but the wall time, exactly");
+        assert_eq!(row, alone, "every number but the wall and CPU times, exactly");
         assert!(row["checks_pass"].is_boolean());
     }
 }
@@ -157,6 +190,23 @@ fn a_failing_check_exits_4_and_a_bad_spec_exits_2_naming_the_field() {
     assert!(stderr(&bad).contains("axis[0].path = ship.mas"), "{}", stderr(&bad));
     let bad = sweep(&spec(&dir, "[checks]\nsafety_factor = 0.5\n"), &out);
     assert!(stderr(&bad).contains("checks.safety_factor = 0.5: finite and ≥ 1"), "{}", stderr(&bad));
+    // --heatmap: a name that is no output, or a spec without two grid axes, is refused
+    // before any run.
+    let one_axis = spec(&dir, "[[axis]]\npath = \"ship.mass\"\nvalues = [4e5, 5e5]\n");
+    let with = |value: &str| {
+        let args = ["sweep", one_axis.to_str().unwrap(), "--out", out.to_str().unwrap(), "--heatmap", value];
+        kanestop().args(args).output().unwrap()
+    };
+    let bad = with("speed");
+    assert_eq!(bad.status.code(), Some(2));
+    assert!(
+        stderr(&bad).contains("--heatmap = speed") && stderr(&bad).contains("stopping_distance"),
+        "{}",
+        stderr(&bad)
+    );
+    let bad = with("stopping_time");
+    assert_eq!(bad.status.code(), Some(2));
+    assert!(stderr(&bad).contains("exactly two grid axes; the spec has 1"), "{}", stderr(&bad));
     let help = kanestop().arg("--help").output().unwrap();
     let help = String::from_utf8_lossy(&help.stdout).into_owned();
     assert!(help.contains("4  a design check"), "{help}");

@@ -228,7 +228,7 @@ impl OdeSystem for Dynamics {
         self.accelerations(q, u, du)?;
         dw.copy_from_slice(&self.forces.power());
         // The sliding friction's power (Eq. 68), known only after the solve.
-        dw[2] += self.friction * u[n - 1];
+        dw[crate::forces::term::ANCHOR_FRICTION] += self.friction * u[n - 1];
         Ok(())
     }
 }

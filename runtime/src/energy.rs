@@ -9,7 +9,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::chain::Chain;
-use crate::forces::{Power, WORK_TERMS};
+use crate::forces::{self, Power, REPORTED_WORK, WORK_TERMS};
 use crate::kernel::BodyState;
 
 /// Energy terms at one instant, J.
@@ -47,5 +47,11 @@ impl Energy {
     /// Named work terms, for reports.
     pub fn work_terms(&self) -> impl Iterator<Item = (&'static str, f64)> + '_ {
         WORK_TERMS.iter().copied().zip(self.work.iter().copied())
+    }
+
+    /// The work by the names of [`REPORTED_WORK`] (J): the split terms and the sums
+    /// `friction` and `drag` of before the split.
+    pub fn reported_work(&self) -> [(&'static str, f64); REPORTED_WORK.len()] {
+        forces::reported_work(&self.work)
     }
 }

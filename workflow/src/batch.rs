@@ -10,7 +10,7 @@ use kanestop_runtime::scene::{Method, Scene};
 use kanestop_runtime::simulate::{self, RunResult, Stop};
 use serde::{Deserialize, Serialize};
 
-use crate::checks::break_exceedances;
+use crate::checks::{self, break_exceedances};
 use crate::kernels::KernelFactory;
 use crate::output::write_atomically;
 use crate::{diagnostic, parallel, Error, Result};
@@ -98,6 +98,17 @@ pub struct BatchRow {
     pub energy_drift: Option<f64>,
     /// Wall-clock time of the run, s.
     pub wall_time: f64,
+    /// CPU time of the run on its own thread, s (none where the platform does not say, or
+    /// for a scene that did not run): the cost to judge by on a shared machine.
+    #[serde(default)]
+    pub cpu_time: Option<f64>,
+    /// Right-hand-side evaluations of the run (none for a scene that did not load).
+    #[serde(default)]
+    pub rhs_evaluations: Option<u64>,
+    /// Whether every design check of the scene's `[checks]` passed (none when the scene has
+    /// none, or did not load); a failed check is named in `message`.
+    #[serde(default)]
+    pub checks_pass: Option<bool>,
     /// |t_stop − t_stop,refined|, s: the stopping time's error estimate (with
     /// `estimate`, when both runs stopped the ship).
     pub stop_error_estimate: Option<f64>,
@@ -124,8 +135,20 @@ pub fn row(file: &Path, model: &Model, result: &RunResult) -> BatchRow {
     // A run refused before its first step has no peak and no drift to report.
     let ran = result.steps > 0;
     let peak = result.peak_tension().filter(|_| ran);
+    let outcomes = model.scene.checks.as_ref().map(|c| checks::evaluate(c, model, result)).unwrap_or_default();
+    let failed_checks: Vec<String> = outcomes
+        .iter()
+        .filter(|o| !o.pass)
+        .map(|o| match o.value {
+            Some(v) => format!("{} {v:.4} > {}", o.name, o.limit),
+            None => format!("{} (no value: the run did not reach it) > {}", o.name, o.limit),
+        })
+        .collect();
     let message = match &result.stop {
         Stop::Failed(f) => one_line(&diagnostic::describe(model, f)),
+        Stop::ShipStopped | Stop::EndTime if !failed_checks.is_empty() => {
+            format!("check failed: {}", failed_checks.join("; "))
+        }
         Stop::ShipStopped | Stop::EndTime => String::new(),
     };
     BatchRow {
@@ -144,6 +167,9 @@ pub fn row(file: &Path, model: &Model, result: &RunResult) -> BatchRow {
         anchor_start: result.anchor_start(),
         energy_drift: ran.then_some(result.max_energy_drift),
         wall_time: result.wall_time.as_secs_f64(),
+        cpu_time: result.cpu_time.map(|d| d.as_secs_f64()),
+        rhs_evaluations: Some(result.rhs_evaluations),
+        checks_pass: checks::all_pass(&outcomes),
         stop_error_estimate: None,
         trajectory_error_estimate: None,
         message,
@@ -221,6 +247,9 @@ pub fn run_all(
                 anchor_start: None,
                 energy_drift: None,
                 wall_time: 0.0,
+                cpu_time: None,
+                rhs_evaluations: None,
+                checks_pass: None,
                 stop_error_estimate: None,
                 trajectory_error_estimate: None,
                 message: one_line(&message),
@@ -240,15 +269,25 @@ fn opt(v: Option<f64>, scale: f64, digits: usize) -> String {
     v.map(|v| format!("{:.*}", digits, v * scale)).unwrap_or_else(|| "—".into())
 }
 
+/// A row's checks as the table and the CSV write them: `pass`, `fail`, or empty (none).
+fn checks_word(pass: Option<bool>) -> &'static str {
+    match pass {
+        Some(true) => "pass",
+        Some(false) => "fail",
+        None => "",
+    }
+}
+
 /// The rows as a terminal table.
 pub fn table(rows: &[BatchRow]) -> String {
     let estimates = rows.iter().any(|r| r.stop_error_estimate.is_some() || r.trajectory_error_estimate.is_some());
     let mut out = format!(
-        "{:<15} {:>3} {:<6} {:<9} {:>9} {:>9} {:>8} {:>11} {:>6} {:>8} {:>9} {:>8}",
+        "{:<15} {:>3} {:<6} {:<9} {:>6} {:>9} {:>9} {:>8} {:>11} {:>6} {:>8} {:>9} {:>8} {:>9} {:>8}",
         "case",
         "N",
         "method",
         "status",
+        "checks",
         "stop (s)",
         "paper (s)",
         "diff %",
@@ -256,6 +295,8 @@ pub fn table(rows: &[BatchRow]) -> String {
         "joint",
         "anchor s",
         "drift",
+        "cpu (s)",
+        "evals",
         "wall (s)"
     );
     if estimates {
@@ -265,11 +306,12 @@ pub fn table(rows: &[BatchRow]) -> String {
     let e = |v: Option<f64>| v.map(|v| format!("{v:.1e}")).unwrap_or_else(|| "—".into());
     for r in rows {
         out.push_str(&format!(
-            "{:<15} {:>3} {:<6} {:<9} {:>9} {:>9} {:>8} {:>11} {:>6} {:>8} {:>9} {:>8.2}",
+            "{:<15} {:>3} {:<6} {:<9} {:>6} {:>9} {:>9} {:>8} {:>11} {:>6} {:>8} {:>9} {:>8} {:>9} {:>8.2}",
             r.case,
             r.bodies.map(|n| n.to_string()).unwrap_or_default(),
             r.method.map(Method::name).unwrap_or_default(),
             r.status.name(),
+            r.checks_pass.map_or("—", |p| checks_word(Some(p))),
             opt(r.stopping_time, 1.0, 3),
             opt(r.paper_stopping_time, 1.0, 3),
             opt(r.relative_difference, 100.0, 2),
@@ -277,6 +319,8 @@ pub fn table(rows: &[BatchRow]) -> String {
             r.peak_joint.map(|k| k.to_string()).unwrap_or_default(),
             opt(r.anchor_start, 1.0, 3),
             r.energy_drift.map(|d| format!("{d:.1e}")).unwrap_or_default(),
+            opt(r.cpu_time, 1.0, 2),
+            r.rhs_evaluations.map(|n| n.to_string()).unwrap_or_default(),
             r.wall_time
         ));
         if estimates {
@@ -293,12 +337,12 @@ pub fn table(rows: &[BatchRow]) -> String {
 /// The rows as CSV.
 pub fn csv(rows: &[BatchRow]) -> String {
     let mut out = String::from(
-        "case,file,status,bodies,stopping_time,paper_stopping_time,relative_difference,peak_tension,peak_joint,peak_time,break_exceedances,anchor_start,energy_drift,wall_time,message,method,stop_error_estimate,trajectory_error_estimate\n",
+        "case,file,status,bodies,stopping_time,paper_stopping_time,relative_difference,peak_tension,peak_joint,peak_time,break_exceedances,anchor_start,energy_drift,wall_time,message,method,stop_error_estimate,trajectory_error_estimate,checks,cpu_time,rhs_evaluations\n",
     );
     let o = |v: Option<f64>| v.map(|v| format!("{v}")).unwrap_or_default();
     for r in rows {
         out.push_str(&format!(
-            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},\"{}\",{},{},{}\n",
+            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},\"{}\",{},{},{},{},{},{}\n",
             r.case,
             r.file,
             r.status.name(),
@@ -317,6 +361,9 @@ pub fn csv(rows: &[BatchRow]) -> String {
             r.method.map(Method::name).unwrap_or_default(),
             o(r.stop_error_estimate),
             o(r.trajectory_error_estimate),
+            checks_word(r.checks_pass),
+            o(r.cpu_time),
+            r.rhs_evaluations.map(|n| n.to_string()).unwrap_or_default(),
         ));
     }
     out

@@ -10,7 +10,7 @@
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use kanestop_runtime::forces::WORK_TERMS;
+use kanestop_runtime::forces::REPORTED_WORK;
 use kanestop_runtime::kernel::AnchorDof;
 use kanestop_runtime::simulate::{RunResult, Sample};
 
@@ -111,7 +111,7 @@ impl Channel {
             Source::Kinetic => e.kinetic,
             Source::AddedKinetic => e.added_kinetic,
             Source::Potential => e.potential,
-            Source::Work(i) => e.work[i],
+            Source::Work(i) => e.reported_work()[i].1,
             Source::Balance => e.balance(),
         }
     }
@@ -171,7 +171,7 @@ pub fn all_channels(n: usize) -> Vec<Channel> {
         Source::AddedKinetic,
     ));
     c.push(Channel::new("energy_potential", "J", "gravitational potential energy", "energy", Source::Potential));
-    for (i, term) in WORK_TERMS.iter().enumerate() {
+    for (i, term) in REPORTED_WORK.iter().enumerate() {
         c.push(Channel::new(
             format!("work_{term}"),
             "J",
@@ -299,7 +299,7 @@ mod tests {
         names.sort_unstable();
         names.dedup();
         assert_eq!(names.len(), all.len());
-        assert_eq!(all.len(), 1 + 7 + 4 + 3 + 10 + 6 * 5 + 4);
+        assert_eq!(all.len(), 1 + 7 + 4 + 3 + 15 + 6 * 5 + 4);
         let sel = select(5, &["tension_fairlead".into(), "ship".into()]).unwrap();
         let names: Vec<&str> = sel.iter().map(|c| c.name.as_str()).collect();
         assert_eq!(names[0], "t");

@@ -61,6 +61,14 @@ pub enum Error {
         /// What the system said.
         source: std::io::Error,
     },
+    /// An output file could not be encoded (e.g. sweep.parquet).
+    #[error("cannot encode {file}: {message}")]
+    Encode {
+        /// The file's name.
+        file: String,
+        /// What the encoder said.
+        message: String,
+    },
     /// A chart could not be drawn.
     #[error("cannot draw {chart}: {message}")]
     Plot {

@@ -441,7 +441,7 @@ fn energy_curves(r: &RunResult) -> Vec<Curve> {
     for (i, term) in WORK_TERMS.iter().enumerate() {
         curves.push(Curve::new(format!("work: {term}"), 2 + i, series(&|s| s.energy.work[i])));
     }
-    curves.push(Curve::new("balance − E_0", 8, series(&|s| s.energy.balance() - r.energy0)));
+    curves.push(Curve::new("balance − E_0", 2 + WORK_TERMS.len(), series(&|s| s.energy.balance() - r.energy0)));
     curves
 }
 

@@ -56,7 +56,8 @@ pub struct RunSummary {
     pub initial_energy: f64,
     /// Work done on the system by each term of the energy balance by the end of the run
     /// (negative: dissipated), J, by name: buoyancy, seabed, friction, drag, hydrostatic,
-    /// added_mass.
+    /// added_mass, and the parts of friction and drag: anchor_friction, line_friction
+    /// (friction = their sum), anchor_drag, line_drag, hull_resistance (drag = their sum).
     pub work: BTreeMap<String, f64>,
     /// Largest relative drift |E − E_0|/E_0 of the energy balance.
     pub energy_drift: f64,
@@ -68,6 +69,10 @@ pub struct RunSummary {
     pub rhs_evaluations: u64,
     /// Wall time of the run, s.
     pub wall_time: f64,
+    /// CPU time of the run on its own thread, s (none where the platform does not say, or
+    /// for a run refused before its first step).
+    #[serde(default)]
+    pub cpu_time: Option<f64>,
     /// The numerical failure, when the run ended in one.
     pub failure: Option<FailureRecord>,
     /// The design checks of the scene's `[checks]`, each with its value, limit and pass
@@ -171,13 +176,14 @@ impl RunSummary {
             rod_peak: peak_in(Segment::Rod),
             initial_energy: result.energy0,
             work: last
-                .map(|s| s.energy.work_terms().map(|(name, work)| (name.to_string(), work)).collect())
+                .map(|s| s.energy.reported_work().iter().map(|(name, work)| (name.to_string(), *work)).collect())
                 .unwrap_or_default(),
             energy_drift: result.max_energy_drift,
             t_end: result.t_end,
             steps: result.steps,
             rhs_evaluations: result.rhs_evaluations,
             wall_time: result.wall_time.as_secs_f64(),
+            cpu_time: result.cpu_time.map(|d| d.as_secs_f64()),
             failure: match &result.stop {
                 Stop::Failed(f) => {
                     Some(FailureRecord { t: f.t, body: f.body, message: diagnostic::describe(model, f) })

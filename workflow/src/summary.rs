@@ -54,8 +54,11 @@ fn energy_share_line(out: &mut Lines, result: &RunResult) {
         return;
     }
     let word = |name: &'static str| match name {
-        "friction" => "seabed friction (anchor, grounded line)",
-        "drag" => "water drag (line, anchor, hull resistance)",
+        "anchor_friction" => "anchor friction",
+        "line_friction" => "line friction on the seabed",
+        "anchor_drag" => "anchor drag",
+        "line_drag" => "line drag",
+        "hull_resistance" => "hull resistance",
         "seabed" => "seabed contact",
         "hydrostatic" => "ship hydrostatics",
         "added_mass" => "entrained water",
@@ -137,12 +140,13 @@ fn run_lines(out: &mut Lines, model: &Model, result: &RunResult, verbose: bool) 
     out.line(
         "run",
         format!(
-            "{}, dt = {} s, kernel {}{}: {:.3} s simulated in {:.3} s wall ({} steps, {} right-hand-side evaluations)",
+            "{}, dt = {} s, kernel {}{}: {:.3} s simulated in {}{:.3} s wall ({} steps, {} right-hand-side evaluations)",
             solver.integrator,
             solver.dt,
             result.kernel,
             result.kernel_form.map(|f| format!(" ({f})")).unwrap_or_default(),
             result.t_end,
+            result.cpu_time.map(|c| format!("{:.3} s CPU, ", c.as_secs_f64())).unwrap_or_default(),
             result.wall_time.as_secs_f64(),
             result.steps,
             result.rhs_evaluations

@@ -25,11 +25,85 @@ use anchor::AnchorForces;
 use current::Current;
 use ship::ShipHydro;
 
-/// The categories of non-gravitational work in the energy balance (Eq. 63).
-pub const WORK_TERMS: [&str; 6] = ["buoyancy", "seabed", "friction", "drag", "hydrostatic", "added_mass"];
+/// The categories of non-gravitational work in the energy balance (Eq. 63), each
+/// integrated with the state: buoyancy (Eq. 42), the seabed's reaction on the line
+/// (Eq. 41), the anchor's sliding friction (Eq. 37), the grounded line's sliding friction,
+/// the current drag on the anchor (Eq. 39), Morison drag on the line (Eqs. 43–47), the
+/// ship's hull resistance, the ship's hydrostatics and the added mass's rotational part.
+pub const WORK_TERMS: [&str; 9] = [
+    "buoyancy",
+    "seabed",
+    "anchor_friction",
+    "line_friction",
+    "anchor_drag",
+    "line_drag",
+    "hull_resistance",
+    "hydrostatic",
+    "added_mass",
+];
+
+/// Index of each term in [`WORK_TERMS`] and [`Power`].
+pub mod term {
+    /// Buoyancy of the line and the anchor.
+    pub const BUOYANCY: usize = 0;
+    /// The seabed's normal reaction on the line.
+    pub const SEABED: usize = 1;
+    /// The anchor's sliding friction.
+    pub const ANCHOR_FRICTION: usize = 2;
+    /// The grounded line's sliding friction.
+    pub const LINE_FRICTION: usize = 3;
+    /// Current drag on the anchor.
+    pub const ANCHOR_DRAG: usize = 4;
+    /// Morison drag on the chain and cable.
+    pub const LINE_DRAG: usize = 5;
+    /// The ship's hull resistance.
+    pub const HULL_RESISTANCE: usize = 6;
+    /// The ship's heave and pitch hydrostatics.
+    pub const HYDROSTATIC: usize = 7;
+    /// The added-mass force's rotational part.
+    pub const ADDED_MASS: usize = 8;
+}
+
+/// The work terms before they were split (issue 16), kept in reports as sums of their
+/// parts: `friction` (anchor and line) and `drag` (anchor, line and hull).
+pub const LUMPED_WORK: [(&str, &[usize]); 2] = [
+    ("friction", &[term::ANCHOR_FRICTION, term::LINE_FRICTION]),
+    ("drag", &[term::ANCHOR_DRAG, term::LINE_DRAG, term::HULL_RESISTANCE]),
+];
+
+/// The work terms as reports name them (CSV channels, `run --json`, Python): the six of
+/// before the split (`friction` and `drag` as the sums of [`LUMPED_WORK`]), then the split
+/// parts.
+pub const REPORTED_WORK: [&str; 11] = [
+    "buoyancy",
+    "seabed",
+    "friction",
+    "drag",
+    "hydrostatic",
+    "added_mass",
+    "anchor_friction",
+    "line_friction",
+    "anchor_drag",
+    "line_drag",
+    "hull_resistance",
+];
 
 /// Power of each category of [`WORK_TERMS`], W.
-pub type Power = [f64; 6];
+pub type Power = [f64; WORK_TERMS.len()];
+
+/// The work of each name of [`REPORTED_WORK`], J, from the work of each term `work` (J).
+pub fn reported_work(work: &Power) -> [(&'static str, f64); REPORTED_WORK.len()] {
+    REPORTED_WORK.map(|name| {
+        let value = match WORK_TERMS.iter().position(|t| *t == name) {
+            Some(i) => work[i],
+            None => LUMPED_WORK
+                .iter()
+                .find(|(n, _)| *n == name)
+                .map_or(0.0, |(_, parts)| parts.iter().map(|&i| work[i]).sum()),
+        };
+        (name, value)
+    })
+}
 
 /// Per-body data the force models need.
 #[derive(Clone, Copy, Debug)]
@@ -129,7 +203,7 @@ impl Forces {
             current: Current { surface_speed: 0.0, exponent: 1.0 / 7.0, depth: 1.0, seabed_z: 0.0 },
             anchor: AnchorForces { volume: 0.0, frontal_area: 0.0, drag_coefficient: 0.0, friction_coefficient: 0.0 },
             ship: ShipHydro::new(1.0, 1.0, 1.0, 0.0, 1.0, g, 1.0),
-            power: [0.0; 6],
+            power: [0.0; WORK_TERMS.len()],
         }
     }
 
@@ -172,7 +246,7 @@ fn apply(load: &mut Load, s: &BodyState, arm: [f64; 2], fx: f64, fz: f64) -> f64
 
 impl LoadModel for Forces {
     fn loads(&mut self, bodies: &[BodyState], loads: &mut [Load]) {
-        let mut power = [0.0; 6];
+        let mut power = [0.0; WORK_TERMS.len()];
         let n = bodies.len();
         for (k, ((load, s), e)) in loads.iter_mut().zip(bodies).zip(&self.elements).enumerate() {
             *load = Load { fx: 0.0, fz: -e.mass * self.g, my: 0.0 };
@@ -180,8 +254,10 @@ impl LoadModel for Forces {
                 BodyKind::Anchor => {
                     let current = self.current.at(s.z);
                     if self.water {
-                        power[0] += apply(load, s, [0.0, 0.0], 0.0, self.rho * self.anchor.volume * self.g);
-                        power[3] += apply(load, s, [0.0, 0.0], self.anchor.drag(self.rho, current, s.vx), 0.0);
+                        power[term::BUOYANCY] +=
+                            apply(load, s, [0.0, 0.0], 0.0, self.rho * self.anchor.volume * self.g);
+                        power[term::ANCHOR_DRAG] +=
+                            apply(load, s, [0.0, 0.0], self.anchor.drag(self.rho, current, s.vx), 0.0);
                     }
                 }
                 BodyKind::ChainLink | BodyKind::Cable { .. } => {
@@ -190,12 +266,12 @@ impl LoadModel for Forces {
                 BodyKind::Rod => {} // above the water: weight only (Section 3.2.2)
                 BodyKind::Ship => {
                     if self.water && k == n - 1 {
-                        power[4] += apply(load, s, [0.0, 0.0], 0.0, self.ship.vertical_force(s.z));
+                        power[term::HYDROSTATIC] += apply(load, s, [0.0, 0.0], 0.0, self.ship.vertical_force(s.z));
                         let my = self.ship.pitch_moment(s.theta);
                         load.my += my;
-                        power[4] += my * s.omega;
+                        power[term::HYDROSTATIC] += my * s.omega;
                         let v_rel = s.vx - self.current.at(0.0);
-                        power[3] += apply(load, s, [0.0, 0.0], self.ship.resistance(v_rel), 0.0);
+                        power[term::HULL_RESISTANCE] += apply(load, s, [0.0, 0.0], self.ship.resistance(v_rel), 0.0);
                     }
                 }
             }
@@ -223,12 +299,12 @@ impl Forces {
             if v > 0.0 {
                 embedded = v;
                 let (arm, reaction) = (at(s_bar - half), self.k_z * v);
-                power[1] += apply(load, s, arm, 0.0, reaction);
+                power[term::SEABED] += apply(load, s, arm, 0.0, reaction);
                 if self.line_friction > 0.0 {
                     // Velocity of the contact point along x: v_x − ξ ω sin θ.
                     let slip = s.vx - (s_bar - half) * s.omega * sin;
                     let friction = seabed::sliding_friction(self.line_friction, reaction, slip);
-                    power[2] += apply(load, s, arm, friction, 0.0);
+                    power[term::LINE_FRICTION] += apply(load, s, arm, friction, 0.0);
                 }
             }
         }
@@ -257,7 +333,7 @@ impl Forces {
         // Buoyancy, Eq. 42: ρ (V − V^S) g on the submerged volume.
         let volume = std::f64::consts::PI * e.radius * e.radius * e.length * fraction;
         let buoyancy = self.rho * self.g * (volume - embedded).max(0.0);
-        power[0] += apply(load, s, at(wet_centre), 0.0, buoyancy);
+        power[term::BUOYANCY] += apply(load, s, at(wet_centre), 0.0, buoyancy);
 
         // Morison drag, Eqs. 43–47, on the submerged fraction.
         let rel = [self.current.at(s.z) - s.vx, -s.vz]; // water relative to the body
@@ -270,12 +346,13 @@ impl Forces {
         load.fx += f_n * ez[0] + f_t * ex[0];
         load.fz += f_n * ez[1] + f_t * ex[1];
         load.my += m_n;
-        power[3] += (f_n * ez[0] + f_t * ex[0]) * s.vx + (f_n * ez[1] + f_t * ex[1]) * s.vz + m_n * s.omega;
+        power[term::LINE_DRAG] +=
+            (f_n * ez[0] + f_t * ex[0]) * s.vx + (f_n * ez[1] + f_t * ex[1]) * s.vz + m_n * s.omega;
 
         // The added-mass force −m_a (a·n) n does work −d(½ m_a v_n²)/dt + m_a ω v_t v_n: the
         // first part is kinetic energy of the entrained water, the second is tracked here.
         let (bt, bn) = (s.vx * ex[0] + s.vz * ex[1], s.vx * ez[0] + s.vz * ez[1]);
-        power[5] += e.added_mass * s.omega * bt * bn;
+        power[term::ADDED_MASS] += e.added_mass * s.omega * bt * bn;
     }
 }
 

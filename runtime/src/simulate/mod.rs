@@ -25,6 +25,7 @@
 
 use std::time::Instant;
 
+pub mod cpu;
 pub mod events;
 pub mod failure;
 pub mod health;
@@ -82,7 +83,7 @@ pub fn run_checked(model: &Model, kernel: Box<dyn Kernel>, residual_kernel: Box<
 pub fn run(model: &Model, kernel: Box<dyn Kernel>) -> RunResult {
     let mut stepper = Stepper::new(model, kernel);
     let mut result = RunResult::empty(&stepper, model.body_count());
-    let start = Instant::now();
+    let (start, cpu_start) = (Instant::now(), cpu::thread_cpu_time());
     let started = stepper.start();
     result.stability = stepper.stability();
     if let Err(f) = started {
@@ -113,6 +114,7 @@ pub fn run(model: &Model, kernel: Box<dyn Kernel>) -> RunResult {
     result.rhs_evaluations = stepper.rhs_evaluations();
     result.max_energy_drift = stepper.max_energy_drift();
     result.wall_time = start.elapsed();
+    result.cpu_time = cpu::since(cpu_start);
     result
 }
 

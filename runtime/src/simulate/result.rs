@@ -76,6 +76,10 @@ pub struct RunResult {
     pub rhs_evaluations: u64,
     /// Wall time of the run (zero for a run refused or failed before its first step).
     pub wall_time: Duration,
+    /// CPU time of the run on its own thread, over the same span as `wall_time` (none where
+    /// the platform does not say, see [`super::cpu::thread_cpu_time`]; none too for a run
+    /// refused or failed before its first step).
+    pub cpu_time: Option<Duration>,
     /// Energy balance at t = 0, J.
     pub energy0: f64,
     /// Largest relative drift |E − E_0|/E_0 of the balance over the run.
@@ -187,6 +191,7 @@ impl RunResult {
             steps: 0,
             rhs_evaluations: 0,
             wall_time: Duration::ZERO,
+            cpu_time: None,
             energy0: 0.0,
             max_energy_drift: 0.0,
             kernel: stepper.kernel(),

@@ -5,7 +5,10 @@
 //! in [`shard`]s, each saved as a [`shard_file`], and be put back together by [`merge`];
 //! [`slurm`] writes the job script that does it on a Slurm cluster.
 
+pub mod heatmap;
 pub mod merge;
+#[cfg(feature = "parquet")]
+pub mod parquet;
 pub mod sampling;
 pub mod shard;
 pub mod shard_file;
@@ -259,7 +262,9 @@ pub fn cells(rows: &[SweepRow]) -> (Vec<String>, Vec<Vec<Cell>>) {
         head.push(format!("check_{c}_value"));
         head.push(format!("check_{c}_pass"));
     }
-    head.extend(["energy_drift", "t_end", "steps", "rhs_evaluations", "wall_time", "message"].map(String::from));
+    head.extend(
+        ["energy_drift", "t_end", "steps", "rhs_evaluations", "wall_time", "message", "cpu_time"].map(String::from),
+    );
     let body =
         rows.iter()
             .map(|r| {
@@ -300,6 +305,7 @@ pub fn cells(rows: &[SweepRow]) -> (Vec<String>, Vec<Vec<Cell>>) {
                 cells.push(s.map_or(Cell::Empty, |s| Cell::Count(s.rhs_evaluations)));
                 cells.push(f(&|s| Some(s.wall_time)));
                 cells.push(Cell::Text(r.message.clone()));
+                cells.push(f(&|s| s.cpu_time));
                 cells
             })
             .collect();
@@ -316,6 +322,19 @@ pub fn csv(rows: &[SweepRow]) -> String {
         out.push('\n');
     }
     out
+}
+
+/// The table of [`cells`] as text, unquoted (empty for none): for writers of other formats.
+pub fn columns(rows: &[SweepRow]) -> (Vec<String>, Vec<Vec<String>>) {
+    let (head, body) = cells(rows);
+    let text = |c: &Cell| match c {
+        Cell::Empty => String::new(),
+        Cell::Number(v) => format!("{v}"),
+        Cell::Count(n) => n.to_string(),
+        Cell::Text(s) => s.clone(),
+        Cell::Input(v) => fmt_value(v),
+    };
+    (head, body.iter().map(|row| row.iter().map(text).collect()).collect())
 }
 
 /// The rows as a terminal table (the first columns; the files hold every output).
@@ -444,6 +463,14 @@ pub fn write(rows: &[SweepRow], scenes: &[(String, String)], dir: &Path) -> Resu
         write_atomically(&path, text.as_bytes()).map_err(Error::io("write", &path))?;
     }
     let (c, j) = (dir.join("sweep.csv"), dir.join("sweep.json"));
+    #[cfg(feature = "parquet")]
+    {
+        let (head, cells) = columns(rows);
+        let bytes = parquet::encode(&head, &cells)
+            .map_err(|message| Error::Encode { file: "sweep.parquet".into(), message })?;
+        let p = dir.join("sweep.parquet");
+        write_atomically(&p, &bytes).map_err(Error::io("write", &p))?;
+    }
     write_atomically(&c, csv(rows).as_bytes()).map_err(Error::io("write", &c))?;
     let json = serde_json::to_string_pretty(rows).expect("rows serialise: plain numbers and strings");
     write_atomically(&j, json.as_bytes()).map_err(Error::io("write", &j))?;

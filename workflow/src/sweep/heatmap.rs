@@ -1,0 +1,566 @@
+//! Heat maps of a two-axis grid sweep: one output (stopping distance, stopping time, peak
+//! break utilisation, …) coloured over the two grid axes, with the design-check boundary
+//! drawn: cells whose row fails a check are hatched, and a thick line runs between passing
+//! and failing cells. SVG (plotters, no system fonts needed), one file per output.
+//!
+//! Each axis value is one column or row of cells, in spec order, whatever its spacing (a
+//! log range stays readable). With sampling on top of the grid a cell holds several rows:
+//! it shows the mean of the rows that have the output and is hatched when any of its rows
+//! fails a check.
+
+use std::path::{Path, PathBuf};
+
+use plotters::prelude::*;
+use toml::Value;
+
+use super::{Spec, SweepRow};
+use crate::output::write_atomically;
+use crate::record::RunSummary;
+use crate::{Error, Result};
+
+/// An output a heat map can show.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Output {
+    /// The ship's surge displacement to its stop, m.
+    StoppingDistance,
+    /// The first zero of the ship's surge speed, s.
+    StoppingTime,
+    /// The largest break utilisation among the line's peak tensions (peak tension / break
+    /// load), 1.
+    PeakUtilisation,
+    /// The largest joint tension, kN.
+    PeakTension,
+    /// How far the anchor was dragged, m.
+    AnchorDrag,
+    /// The ship's surge displacement at the end of the run, m.
+    ShipDisplacement,
+}
+
+/// The outputs drawn unless told otherwise.
+pub const DEFAULT_OUTPUTS: [Output; 3] = [Output::StoppingDistance, Output::StoppingTime, Output::PeakUtilisation];
+
+impl Output {
+    /// Every output, in the order `--heatmap` lists them.
+    pub const ALL: [Output; 6] = [
+        Output::StoppingDistance,
+        Output::StoppingTime,
+        Output::PeakUtilisation,
+        Output::PeakTension,
+        Output::AnchorDrag,
+        Output::ShipDisplacement,
+    ];
+
+    /// Its name on the command line and in the file name (`heatmap-NAME.svg`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Output::StoppingDistance => "stopping_distance",
+            Output::StoppingTime => "stopping_time",
+            Output::PeakUtilisation => "peak_utilisation",
+            Output::PeakTension => "peak_tension",
+            Output::AnchorDrag => "anchor_drag_distance",
+            Output::ShipDisplacement => "ship_displacement",
+        }
+    }
+
+    /// The output of name `name`, or an error naming the valid names.
+    pub fn parse(name: &str) -> Result<Output> {
+        Output::ALL.into_iter().find(|o| o.name() == name).ok_or_else(|| Error::Argument {
+            name: "--heatmap",
+            value: name.to_string(),
+            expected: "one of stopping_distance, stopping_time, peak_utilisation, peak_tension, \
+                       anchor_drag_distance, ship_displacement (comma-separated), or none",
+        })
+    }
+
+    /// Its words and unit, for the colour scale.
+    fn describe(self) -> &'static str {
+        match self {
+            Output::StoppingDistance => "stopping distance (m)",
+            Output::StoppingTime => "stopping time (s)",
+            Output::PeakUtilisation => "peak tension / break load",
+            Output::PeakTension => "peak tension (kN)",
+            Output::AnchorDrag => "anchor drag distance (m)",
+            Output::ShipDisplacement => "ship displacement (m)",
+        }
+    }
+
+    /// Its value in a row's summary, in the unit of its colour scale: m for the distances, s for
+    /// the stopping time, kN for the peak tension, 1 for the utilisation.
+    pub fn of(self, s: &RunSummary) -> Option<f64> {
+        match self {
+            Output::StoppingDistance => s.stopping_distance,
+            Output::StoppingTime => s.stopping_time.filter(|_| s.stopping_distance.is_some()),
+            Output::PeakUtilisation => [s.peak_tension, s.chain_peak, s.cable_peak, s.rod_peak]
+                .into_iter()
+                .flatten()
+                .filter_map(|p| p.break_utilisation)
+                .reduce(f64::max),
+            Output::PeakTension => s.peak_tension.map(|p| p.tension * 1e-3),
+            Output::AnchorDrag => Some(s.anchor_drag_distance.abs()),
+            Output::ShipDisplacement => Some(s.ship_displacement),
+        }
+    }
+
+    /// The limit of the spec's design check on this output, in its unit, with the check's
+    /// name: drawn on the colour scale.
+    fn limit(self, spec: &Spec) -> Option<(f64, &'static str)> {
+        let c = spec.checks.as_ref().or(spec.base.checks.as_ref())?;
+        match self {
+            Output::StoppingDistance => c.max_stopping_distance.map(|v| (v, "max_stopping_distance")),
+            Output::StoppingTime => c.max_stopping_time.map(|v| (v, "max_stopping_time")),
+            Output::PeakUtilisation => c.safety_factor.map(|f| (1.0 / f, "1 / safety_factor")),
+            Output::AnchorDrag => c.max_anchor_drag.map(|v| (v, "max_anchor_drag")),
+            Output::PeakTension | Output::ShipDisplacement => None,
+        }
+    }
+}
+
+/// Parses `--heatmap` values (`none` for no heat map), before any run.
+pub fn parse_outputs(names: &[String]) -> Result<Vec<Output>> {
+    if names.is_empty() {
+        return Ok(DEFAULT_OUTPUTS.to_vec());
+    }
+    if names.iter().any(|n| n == "none") {
+        return Ok(Vec::new());
+    }
+    let mut out: Vec<Output> = Vec::new();
+    for n in names {
+        let o = Output::parse(n.trim())?;
+        if !out.contains(&o) {
+            out.push(o);
+        }
+    }
+    Ok(out)
+}
+
+/// Why a spec has no heat map (none when it has one): it needs exactly two grid axes of
+/// numbers, each with at least two values.
+pub fn unsupported(spec: &Spec) -> Option<String> {
+    if spec.axes.len() != 2 {
+        return Some(format!("a heat map needs exactly two grid axes; the spec has {}", spec.axes.len()));
+    }
+    for a in &spec.axes {
+        if a.values.iter().any(|v| number(v).is_none()) {
+            return Some(format!("axis {} is not numeric", a.path));
+        }
+        if a.values.len() < 2 {
+            return Some(format!("axis {} has a single value", a.path));
+        }
+    }
+    None
+}
+
+fn number(v: &Value) -> Option<f64> {
+    match v {
+        Value::Float(x) => Some(*x),
+        Value::Integer(i) => Some(*i as f64),
+        _ => None,
+    }
+}
+
+/// One cell of the grid: the mean output of its rows that have it, and whether its rows
+/// passed their checks (none: no check, or no row ran).
+#[derive(Clone, Debug, Default, PartialEq)]
+struct Cell {
+    value: Option<f64>,
+    pass: Option<bool>,
+    /// The checks its rows failed, in words.
+    failed: Vec<&'static str>,
+}
+
+/// A check's name in a cell, short.
+fn check_word(name: &str) -> &'static str {
+    match name {
+        "max_stopping_distance" => "distance",
+        "max_stopping_time" => "time",
+        "max_anchor_drag" => "anchor drag",
+        "safety_factor" => "safety factor",
+        "max_proof_utilisation" => "proof load",
+        _ => "check",
+    }
+}
+
+/// The cells, `[x][y]` over axis 0 (x) and axis 1 (y).
+fn cells(spec: &Spec, rows: &[SweepRow], output: Output) -> Vec<Vec<Cell>> {
+    let (ax, ay) = (&spec.axes[0], &spec.axes[1]);
+    let mut sums = vec![vec![(0.0, 0usize, Cell::default()); ay.values.len()]; ax.values.len()];
+    for r in rows {
+        let at = |a: &super::spec::Axis| {
+            let v = r.inputs.0.iter().find(|(p, _)| *p == a.path).map(|(_, v)| v)?;
+            a.values.iter().position(|x| x == v)
+        };
+        let (Some(i), Some(j)) = (at(ax), at(ay)) else { continue };
+        let cell = &mut sums[i][j];
+        if let Some(v) = r.summary.as_ref().and_then(|s| output.of(s)).filter(|v| v.is_finite()) {
+            cell.0 += v;
+            cell.1 += 1;
+        }
+        if let Some(p) = r.checks_pass {
+            cell.2.pass = Some(cell.2.pass.unwrap_or(true) && p);
+        }
+        for c in r.summary.iter().flat_map(|s| &s.checks).filter(|c| !c.pass) {
+            let word = check_word(&c.name);
+            if !cell.2.failed.contains(&word) {
+                cell.2.failed.push(word);
+            }
+        }
+    }
+    sums.into_iter()
+        .map(|col| col.into_iter().map(|(s, n, cell)| Cell { value: (n > 0).then(|| s / n as f64), ..cell }).collect())
+        .collect()
+}
+
+/// Viridis, sampled at nine points and interpolated: dark blue (low) to yellow (high),
+/// readable in grey and by the colour-blind.
+fn viridis(t: f64) -> RGBColor {
+    const STOPS: [(u8, u8, u8); 9] = [
+        (68, 1, 84),
+        (71, 44, 122),
+        (59, 81, 139),
+        (44, 113, 142),
+        (33, 144, 141),
+        (39, 173, 129),
+        (92, 200, 99),
+        (170, 220, 50),
+        (253, 231, 37),
+    ];
+    let t = if t.is_finite() { t.clamp(0.0, 1.0) } else { 0.0 };
+    let x = t * (STOPS.len() - 1) as f64;
+    let k = (x.floor() as usize).min(STOPS.len() - 2);
+    let f = x - k as f64;
+    let mix = |a: u8, b: u8| (a as f64 + f * (b as f64 - a as f64)).round() as u8;
+    let (a, b) = (STOPS[k], STOPS[k + 1]);
+    RGBColor(mix(a.0, b.0), mix(a.1, b.1), mix(a.2, b.2))
+}
+
+/// A value for a tick or a cell: up to 4 significant digits, scientific when large or small.
+fn short(v: f64) -> String {
+    let a = v.abs();
+    if v != 0.0 && !(1e-2..1e5).contains(&a) {
+        let s = format!("{v:.3e}");
+        let (m, e) = s.split_once('e').unwrap_or((&s, "0"));
+        let m = m.trim_end_matches('0').trim_end_matches('.');
+        return format!("{m}e{e}");
+    }
+    let digits = if a >= 1000.0 {
+        0
+    } else if a >= 100.0 {
+        1
+    } else if a >= 10.0 {
+        2
+    } else {
+        3
+    };
+    let s = format!("{v:.digits$}");
+    if s.contains('.') {
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        s
+    }
+}
+
+/// Chart size, pixels.
+const SIZE: (u32, u32) = (1000, 720);
+
+/// The heat map of `output` over the spec's two grid axes, as SVG text (the spec must have
+/// them: see [`unsupported`]).
+pub fn heat_map(spec: &Spec, rows: &[SweepRow], output: Output) -> std::result::Result<String, String> {
+    let grid = cells(spec, rows, output);
+    let values: Vec<f64> = grid.iter().flatten().filter_map(|c| c.value).collect();
+    let limit = output.limit(spec);
+    let (mut lo, mut hi) = values.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
+    if !lo.is_finite() {
+        (lo, hi) = (0.0, 1.0);
+    }
+    if hi - lo <= 1e-12 * hi.abs().max(1.0) {
+        (lo, hi) = (lo - 0.5 * lo.abs().max(1.0) * 0.1, hi + 0.5 * hi.abs().max(1.0) * 0.1);
+    }
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, SIZE).into_drawing_area();
+        root.fill(&WHITE).map_err(|e| e.to_string())?;
+        let title =
+            format!("{}: {} over {} and {}", spec.name, output.describe(), spec.axes[0].path, spec.axes[1].path);
+        let root = root.titled(&title, ("sans-serif", 22)).map_err(|e| e.to_string())?;
+        let (body, legend) = root.split_vertically(SIZE.1 - 130);
+        let (main, scale) = body.split_horizontally(SIZE.0 - 170);
+        draw_cells(&main, spec, &grid, (lo, hi))?;
+        draw_scale(&scale, output, (lo, hi), limit)?;
+        draw_legend(&legend, spec, &grid, limit, (lo, hi))?;
+        root.present().map_err(|e| e.to_string())?;
+    }
+    Ok(svg)
+}
+
+// Long by design: one chart's drawing, cell by cell, reads best in one place.
+fn draw_cells<DB: DrawingBackend>(
+    area: &DrawingArea<DB, plotters::coord::Shift>,
+    spec: &Spec,
+    grid: &[Vec<Cell>],
+    (lo, hi): (f64, f64),
+) -> std::result::Result<(), String> {
+    let err = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
+    let (nx, ny) = (grid.len(), grid.first().map_or(0, Vec::len));
+    // Cell (i, j) spans [i − ½, i + ½] × [j − ½, j + ½]: the ticks fall on whole numbers, the
+    // cells' centres, and name the axis values there.
+    let (ax, ay) = (&spec.axes[0], &spec.axes[1]);
+    let tick = |a: &super::spec::Axis, v: f64| {
+        let i = v.round();
+        if (v - i).abs() > 1e-9 || i < 0.0 {
+            return String::new();
+        }
+        a.values.get(i as usize).and_then(number).map(short).unwrap_or_default()
+    };
+    let mut c = ChartBuilder::on(area)
+        .margin(12)
+        .x_label_area_size(50)
+        .y_label_area_size(80)
+        .build_cartesian_2d(-0.5..nx as f64 - 0.5, -0.5..ny as f64 - 0.5)
+        .map_err(err)?;
+    c.configure_mesh()
+        .disable_mesh()
+        .x_labels(nx.min(12))
+        .y_labels(ny.min(12))
+        .x_desc(ax.path.as_str())
+        .y_desc(ay.path.as_str())
+        .label_style(("sans-serif", 15))
+        .axis_desc_style(("sans-serif", 17))
+        .x_label_formatter(&|v| tick(ax, *v))
+        .y_label_formatter(&|v| tick(ay, *v))
+        .draw()
+        .map_err(err)?;
+    let annotate = nx * ny <= 225;
+    let name_failures = nx <= 8 && ny <= 8;
+    for (i, col) in grid.iter().enumerate() {
+        for (j, cell) in col.iter().enumerate() {
+            let (x, y) = (i as f64 - 0.5, j as f64 - 0.5);
+            let fill = match cell.value {
+                Some(v) => viridis((v - lo) / (hi - lo)),
+                None => RGBColor(200, 200, 200),
+            };
+            c.draw_series(std::iter::once(Rectangle::new([(x, y), (x + 1.0, y + 1.0)], fill.filled()))).map_err(err)?;
+            if cell.pass == Some(false) {
+                c.draw_series(
+                    hatch(x, y).into_iter().map(|seg| PathElement::new(seg, WHITE.mix(0.55).stroke_width(2))),
+                )
+                .map_err(err)?;
+            }
+            if annotate {
+                let text = cell.value.map(short).unwrap_or_else(|| "—".into());
+                let light = cell.value.is_some_and(|v| (v - lo) / (hi - lo) < 0.6);
+                let colour = if light { WHITE } else { BLACK };
+                let centred = plotters::style::text_anchor::Pos::new(
+                    plotters::style::text_anchor::HPos::Center,
+                    plotters::style::text_anchor::VPos::Center,
+                );
+                let style =
+                    TextStyle::from(("sans-serif", 17, FontStyle::Bold).into_font()).color(&colour).pos(centred);
+                c.draw_series(std::iter::once(Text::new(text, (x + 0.5, y + 0.5), style))).map_err(err)?;
+                if name_failures && !cell.failed.is_empty() {
+                    let small = TextStyle::from(("sans-serif", 14).into_font()).color(&colour).pos(centred);
+                    let words = format!("fails: {}", cell.failed.join(", "));
+                    c.draw_series(std::iter::once(Text::new(words, (x + 0.5, y + 0.5 - 0.16), small))).map_err(err)?;
+                }
+            }
+        }
+    }
+    // The check boundary: between a passing and a failing neighbour.
+    let mut edges = Vec::new();
+    for i in 0..nx {
+        for j in 0..ny {
+            let p = grid[i][j].pass;
+            let differs = |q: Option<bool>| p.is_some() && q.is_some() && p != q;
+            let (x, y) = (i as f64 + 0.5, j as f64 + 0.5);
+            if i + 1 < nx && differs(grid[i + 1][j].pass) {
+                edges.push(vec![(x, y - 1.0), (x, y)]);
+            }
+            if j + 1 < ny && differs(grid[i][j + 1].pass) {
+                edges.push(vec![(x - 1.0, y), (x, y)]);
+            }
+        }
+    }
+    let red = RGBColor(230, 30, 30);
+    c.draw_series(edges.into_iter().map(|e| PathElement::new(e, red.stroke_width(5)))).map_err(err)?;
+    Ok(())
+}
+
+/// Diagonal hatching lines of the unit cell at (x, y), in data coordinates.
+fn hatch(x: f64, y: f64) -> Vec<Vec<(f64, f64)>> {
+    (1..8)
+        .map(|k| {
+            let c = -1.0 + 0.25 * k as f64;
+            if c >= 0.0 {
+                vec![(x + c, y), (x + 1.0, y + 1.0 - c)]
+            } else {
+                vec![(x, y - c), (x + 1.0 + c, y + 1.0)]
+            }
+        })
+        .collect()
+}
+
+/// The colour scale: the gradient with its value axis on the right, and the check's limit
+/// on it (a red line).
+fn draw_scale<DB: DrawingBackend>(
+    area: &DrawingArea<DB, plotters::coord::Shift>,
+    output: Output,
+    (lo, hi): (f64, f64),
+    limit: Option<(f64, &'static str)>,
+) -> std::result::Result<(), String> {
+    let err = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
+    let mut c = ChartBuilder::on(area)
+        .margin_top(12)
+        .margin_bottom(62)
+        .margin_right(8)
+        .y_label_area_size(0)
+        .right_y_label_area_size(100)
+        .build_cartesian_2d(0.0..1.0, lo..hi)
+        .map_err(err)?
+        .set_secondary_coord(0.0..1.0, lo..hi);
+    c.configure_mesh().disable_mesh().disable_x_axis().disable_y_axis().draw().map_err(err)?;
+    c.configure_secondary_axes()
+        .y_desc(output.describe())
+        .label_style(("sans-serif", 14))
+        .axis_desc_style(("sans-serif", 15))
+        .y_label_formatter(&|v| short(*v))
+        .draw()
+        .map_err(err)?;
+    let steps = 100;
+    let band = (hi - lo) / steps as f64;
+    c.draw_series((0..steps).map(|k| {
+        let v = lo + k as f64 * band;
+        Rectangle::new([(0.0, v), (1.0, v + band)], viridis((v + 0.5 * band - lo) / (hi - lo)).filled())
+    }))
+    .map_err(err)?;
+    if let Some((l, _)) = limit.filter(|(l, _)| (lo..=hi).contains(l)) {
+        let red = RGBColor(230, 30, 30);
+        c.draw_series(std::iter::once(PathElement::new(vec![(0.0, l), (1.0, l)], red.stroke_width(4)))).map_err(err)?;
+    }
+    Ok(())
+}
+
+/// The legend below the chart: hatching, the boundary line, no value, the checks.
+fn draw_legend<DB: DrawingBackend>(
+    area: &DrawingArea<DB, plotters::coord::Shift>,
+    spec: &Spec,
+    grid: &[Vec<Cell>],
+    limit: Option<(f64, &'static str)>,
+    (lo, hi): (f64, f64),
+) -> std::result::Result<(), String> {
+    let err = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
+    let font = ("sans-serif", 15).into_font().color(&BLACK);
+    let red = RGBColor(230, 30, 30);
+    let (x0, y0) = (100, 8);
+    // Hatched swatch.
+    area.draw(&Rectangle::new([(x0, y0), (x0 + 26, y0 + 18)], RGBColor(59, 81, 139).filled())).map_err(err)?;
+    for k in 0..4 {
+        let d = 7 * k;
+        area.draw(&PathElement::new(vec![(x0 + d, y0 + 18), (x0 + d + 8, y0)], WHITE.stroke_width(2))).map_err(err)?;
+    }
+    let checks = spec.checks.as_ref().or(spec.base.checks.as_ref());
+    let names = checks.map(describe_checks).unwrap_or_else(|| "no [checks] set".into());
+    area.draw(&Text::new(format!("hatched: fails a design check ({names})"), (x0 + 36, y0 + 2), font.clone()))
+        .map_err(err)?;
+    let y1 = y0 + 28;
+    area.draw(&PathElement::new(vec![(x0, y1 + 9), (x0 + 26, y1 + 9)], red.stroke_width(5))).map_err(err)?;
+    let limit_words = match limit {
+        Some((v, name)) if (lo..=hi).contains(&v) => format!("; on the scale: {name} = {}", short(v)),
+        Some((v, name)) => format!("; {name} = {} is off the scale", short(v)),
+        None => String::new(),
+    };
+    area.draw(&Text::new(
+        format!("red line: the design-check boundary, between passing and failing cells{limit_words}"),
+        (x0 + 36, y1 + 2),
+        font.clone(),
+    ))
+    .map_err(err)?;
+    let y2 = y1 + 28;
+    area.draw(&Rectangle::new([(x0, y2), (x0 + 26, y2 + 18)], RGBColor(200, 200, 200).filled())).map_err(err)?;
+    let (fail, total) =
+        (grid.iter().flatten().filter(|c| c.pass == Some(false)).count(), grid.iter().flatten().count());
+    area.draw(&Text::new(
+        format!(
+            "grey, —: no value (the ship did not stop, or the row failed or was invalid); {fail} of {total} cells fail"
+        ),
+        (x0 + 36, y2 + 2),
+        font,
+    ))
+    .map_err(err)?;
+    Ok(())
+}
+
+/// The set checks in words, e.g. `max_stopping_distance 40, safety_factor 1.5`.
+fn describe_checks(c: &kanestop_runtime::design::DesignChecks) -> String {
+    let parts: Vec<String> = [
+        ("max_stopping_distance", c.max_stopping_distance),
+        ("max_stopping_time", c.max_stopping_time),
+        ("max_anchor_drag", c.max_anchor_drag),
+        ("safety_factor", c.safety_factor),
+        ("max_proof_utilisation", c.max_proof_utilisation),
+    ]
+    .into_iter()
+    .filter_map(|(n, v)| v.map(|v| format!("{n} {}", short(v))))
+    .collect();
+    if parts.is_empty() {
+        "no [checks] set".into()
+    } else {
+        parts.join(", ")
+    }
+}
+
+/// Draws every heat map of `outputs` (nothing when the spec has no two numeric grid axes),
+/// then writes them into `dir` as `heatmap-NAME.svg`, each whole or not at all. Returns the
+/// files written.
+pub fn write(spec: &Spec, rows: &[SweepRow], outputs: &[Output], dir: &Path) -> Result<Vec<PathBuf>> {
+    if unsupported(spec).is_some() {
+        return Ok(Vec::new());
+    }
+    let mut charts = Vec::new();
+    for &o in outputs {
+        let file = format!("heatmap-{}.svg", o.name());
+        let svg = heat_map(spec, rows, o).map_err(|message| Error::Plot { chart: file.clone(), message })?;
+        charts.push((dir.join(file), svg));
+    }
+    let mut files = Vec::new();
+    for (path, svg) in charts {
+        write_atomically(&path, svg.as_bytes()).map_err(Error::io("write", &path))?;
+        files.push(path);
+    }
+    Ok(files)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ticks_and_names() {
+        assert_eq!(short(500000.0), "5e5");
+        assert_eq!(short(750000.0), "7.5e5");
+        assert_eq!(short(2.5), "2.5");
+        assert_eq!(short(40.0), "40");
+        assert_eq!(short(27.004), "27");
+        assert_eq!(short(0.171), "0.171");
+        for o in Output::ALL {
+            assert_eq!(Output::parse(o.name()).unwrap(), o);
+        }
+        assert!(Output::parse("speed").unwrap_err().to_string().contains("stopping_distance"));
+        assert_eq!(parse_outputs(&[]).unwrap(), DEFAULT_OUTPUTS);
+        assert!(parse_outputs(&["none".into()]).unwrap().is_empty());
+    }
+
+    #[test]
+    fn viridis_runs_dark_to_light() {
+        let lum = |c: RGBColor| 0.3 * c.0 as f64 + 0.59 * c.1 as f64 + 0.11 * c.2 as f64;
+        let l: Vec<f64> = (0..=10).map(|k| lum(viridis(k as f64 / 10.0))).collect();
+        assert!(l.windows(2).all(|w| w[1] > w[0]), "{l:?}");
+    }
+
+    #[test]
+    fn hatching_stays_in_its_cell() {
+        for seg in hatch(2.0, 3.0) {
+            for (x, y) in seg {
+                assert!((2.0..=3.0).contains(&x) && (3.0..=4.0).contains(&y), "({x}, {y})");
+            }
+        }
+    }
+}
