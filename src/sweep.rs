@@ -82,6 +82,13 @@ struct MergeArgs {
     /// Folder for sweep.csv, sweep.json and scenes/ (default: the first folder given).
     #[arg(long)]
     out: Option<PathBuf>,
+    /// The sweep's spec: checked against the shards' plan hash, it lets the merge draw the
+    /// heat maps a local run draws (without it, the merge writes none).
+    #[arg(long)]
+    spec: Option<PathBuf>,
+    /// Heat maps to draw with --spec, as for a local run [default: the first three].
+    #[arg(long, value_delimiter = ',')]
+    heatmap: Vec<String>,
 }
 
 /// `report sensitivity SCENE`.
@@ -292,7 +299,19 @@ fn merge(m: &MergeArgs) -> Result<Exit> {
         }
     });
     output::check_dir_target(&out).with_context(|| format!("cannot write into {}", out.display()))?;
+    let heat_maps = heatmap::parse_outputs(&m.heatmap)?;
+    let spec = m.spec.as_ref().map(|f| sweep::Spec::load(f)).transpose()?;
     let merged = merge::merge(&m.dirs)?;
+    if let (Some(spec), Some(file)) = (&spec, &m.spec) {
+        let plan = spec.plan();
+        let same = ["generated", "reference"].iter().any(|k| SweepId::of(spec, &plan, k).plan_hash == merged.plan_hash);
+        anyhow::ensure!(
+            same,
+            "--spec {}: its plan is not the shards' ({}): the spec changed since the shards ran, or belongs to another sweep",
+            file.display(),
+            merged.plan_hash
+        );
+    }
     eprintln!(
         "merged    {} shard files of {} ({} rows, plan {})",
         merged.files.len(),
@@ -300,7 +319,13 @@ fn merge(m: &MergeArgs) -> Result<Exit> {
         merged.rows.len(),
         merged.plan_hash
     );
-    report(&merged.rows, merged.sampling, &merged.scenes, &out)
+    let code = report(&merged.rows, merged.sampling, &merged.scenes, &out)?;
+    if let Some(spec) = &spec {
+        for f in heatmap::write(spec, &merged.rows, &heat_maps, &out)? {
+            println!("written   {}", f.display());
+        }
+    }
+    Ok(code)
 }
 
 /// `sweep SPEC --slurm`: prints the job script.

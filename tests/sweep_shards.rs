@@ -360,3 +360,46 @@ fn the_plan_hash_depends_on_the_plan_and_kernel_not_on_where_or_how_it_runs() {
     assert_eq!(hash_of(&b, &["--jobs", "1"]), h, "another folder, another thread count: the same plan");
     assert_ne!(hash_of(&c, &["--kernel", "reference"]), h, "another kernel");
 }
+
+/// A two-axis sweep: merged with `--spec`, the shards give the local run's heat maps byte for
+/// byte; a spec that is not the shards' is refused, naming it.
+#[test]
+fn merge_with_the_spec_draws_the_local_heat_maps() {
+    let dir = temp_dir("heat");
+    let base = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/paper/case01.toml");
+    let spec_text = |masses: &str| {
+        format!(
+            "base = {:?}\nname = \"heat\"\n[solver]\nend_time = 1.0\n[[axis]]\npath = \"anchor.mass\"\nvalues = {masses}\n\
+             [[axis]]\npath = \"initial.ship_speed\"\nvalues = [2.0, 3.0]\n[checks]\nmax_anchor_drag = 0.5\n",
+            base.display().to_string()
+        )
+    };
+    let (spec, other) = (dir.join("spec.toml"), dir.join("other.toml"));
+    std::fs::write(&spec, spec_text("[30000.0, 40000.0]")).unwrap();
+    std::fs::write(&other, spec_text("[30000.0, 41000.0]")).unwrap();
+    let (local, sharded) = (dir.join("local"), dir.join("sharded"));
+    let o = run(&["sweep", s(&spec), "--out", s(&local)], &[]);
+    assert!(matches!(o.status.code(), Some(0 | 4)), "{}", stderr(&o));
+    for k in 0..2 {
+        let o = run(&["sweep", s(&spec), "--out", s(&sharded), "--shard", &format!("{k}/2")], &[]);
+        assert!(matches!(o.status.code(), Some(0 | 4)), "{}", stderr(&o));
+    }
+    let o = run(&["sweep", "merge", s(&sharded), "--spec", s(&other)], &[]);
+    assert_eq!(o.status.code(), Some(2), "another spec is refused");
+    assert!(stderr(&o).contains("other.toml") && stderr(&o).contains("plan"), "{}", stderr(&o));
+    let o = run(&["sweep", "merge", s(&sharded), "--spec", s(&spec)], &[]);
+    assert!(matches!(o.status.code(), Some(0 | 4)), "{}", stderr(&o));
+    let maps = |d: &Path| -> Vec<(String, Vec<u8>)> {
+        let mut out: Vec<(String, Vec<u8>)> = std::fs::read_dir(d)
+            .unwrap()
+            .map(|e| e.unwrap().path())
+            .filter(|p| p.file_name().unwrap().to_string_lossy().starts_with("heatmap-"))
+            .map(|p| (p.file_name().unwrap().to_string_lossy().into_owned(), std::fs::read(&p).unwrap()))
+            .collect();
+        out.sort();
+        out
+    };
+    let local_maps = maps(&local);
+    assert_eq!(local_maps.len(), 3, "the three default heat maps");
+    assert_eq!(maps(&sharded), local_maps, "the merge's heat maps, byte for byte");
+}

@@ -76,7 +76,7 @@ array=${{array%%;*}}
 merge=$(sbatch --parsable --dependency=afterany:"$array" --output={merge_log} <<'JOB'
 #!/bin/bash
 #SBATCH --job-name={job}-merge
-exec {exe} sweep merge {out}
+exec {exe} sweep merge {out} --spec {spec}
 JOB
 )
 merge=${{merge%%;*}}
@@ -112,7 +112,9 @@ mod tests {
         assert!(script.contains("#SBATCH --job-name=mass_speed\n"));
         assert!(script.contains("exec '/opt/bin/kanestop' sweep '/home/a b/spec.toml' --out '/scratch/it'\\''s' --shards 7 --resume --jobs \"${SLURM_CPUS_PER_TASK:-2}\""), "{script}");
         assert!(script.contains("--dependency=afterany:\"$array\""));
-        assert!(script.contains("exec '/opt/bin/kanestop' sweep merge '/scratch/it'\\''s'\n"));
+        assert!(
+            script.contains("exec '/opt/bin/kanestop' sweep merge '/scratch/it'\\''s' --spec '/home/a b/spec.toml'\n")
+        );
         assert_eq!(default_shards(3), 3);
         assert_eq!(default_shards(500), 10);
     }
