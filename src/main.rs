@@ -262,13 +262,12 @@ fn codegen(scene: Option<&PathBuf>, write: bool, root: &std::path::Path) -> Resu
 /// The unrolled kernel's operation counts for `model`, parameters kept and folded.
 fn unrolled_op_counts(model: &Model, variant: kanestop_chain::Variant) {
     let kept = kanestop_codegen::generate(variant);
-    let values: Vec<kanestop_codegen::planar::BodyValues> = model
-        .chain
-        .bodies
-        .iter()
+    // The very numbers the runtime hands the kernel.
+    let values: Vec<kanestop_codegen::planar::BodyValues> = kanestop_runtime::generated::body_params(&model.chain)
+        .into_iter()
         .map(|b| kanestop_codegen::planar::BodyValues {
             mass: b.mass,
-            inertia: b.inertia[1] + b.added_inertia,
+            inertia: b.inertia,
             centroid: b.centroid,
             joint: b.joint,
             added_mass: b.added_mass,

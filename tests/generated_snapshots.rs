@@ -51,8 +51,8 @@ fn rolled_wet() {
 fn rolled_steps_fold_the_structural_zeros_of_their_kind() {
     use kanestop_codegen::rolled::{steps, Kind};
     assert!(!kanestop_codegen::drivers::generate_rolled(Water::Off).source.contains("added_mass"));
+    let text = kanestop_codegen::drivers::generate_rolled(Water::On).source;
     for step in steps(Water::On) {
-        let text = kanestop_codegen::drivers::generate_rolled(Water::On).source;
         let start = text.find(&format!("fn {}(", step.name)).expect("every step is emitted");
         let end = text[start..].find("\n}\n").map_or(text.len(), |e| start + e);
         let body = &text[start..end];

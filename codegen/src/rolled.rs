@@ -129,6 +129,12 @@ fn carry_in(dag: &mut Dag, len: usize) -> Vec<Id> {
     (0..len).map(|i| dag.input(format!("c[{i}]"))).collect()
 }
 
+/// The articulated carry `c[0..9]` from the child: (Xᵀ Ia X, Xᵀ(Ia c + pa)).
+fn articulated_carry(dag: &mut Dag) -> crate::body::Articulated {
+    let c = carry_in(dag, 9);
+    ([c[0], c[1], c[2], c[3], c[4], c[5]], [c[6], c[7], c[8]])
+}
+
 /// The rotation of this body (`t`) and of its parent (`tp`), (1, 0) where it does not rotate.
 fn rotations(dag: &mut Dag, kind: Kind) -> (V2, V2) {
     let level = [dag.one(), dag.zero()];
@@ -266,10 +272,7 @@ pub fn inward(kind: Kind, water: Water) -> Step {
     let (w, wp) = angular_velocities(&mut dag, kind);
     let b = body_syms(&mut dag, &p, cs, w);
     let load = load_inputs(&mut dag);
-    let carry = (kind != Kind::Ship).then(|| {
-        let c = carry_in(&mut dag, 9);
-        ([c[0], c[1], c[2], c[3], c[4], c[5]], [c[6], c[7], c[8]])
-    });
+    let carry = (kind != Kind::Ship).then(|| articulated_carry(&mut dag));
     let ab = articulated_body(&mut dag, &b, load, carry, TAG);
     let d = rot(&mut dag, parent, p.joint);
     let (inv, (ci, cp)) = eliminate_hinge(&mut dag, ab, d, wp, TAG);
@@ -297,8 +300,7 @@ pub fn anchor(water: Water, stuck: bool) -> Step {
     let zero = dag.zero();
     let b = body_syms(&mut dag, &p, cs, zero);
     let load = load_inputs(&mut dag);
-    let c = carry_in(&mut dag, 9);
-    let carry = ([c[0], c[1], c[2], c[3], c[4], c[5]], [c[6], c[7], c[8]]);
+    let carry = articulated_carry(&mut dag);
     let ab = articulated_body(&mut dag, &b, load, Some(carry), "_1");
     let (s_dd, ret) = anchor_solve(&mut dag, ab, stuck);
     f.ret = std::iter::once(s_dd).chain(ret).collect();

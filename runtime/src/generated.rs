@@ -75,6 +75,22 @@ pub fn available() -> Vec<(usize, bool)> {
     kanestop_generated::available()
 }
 
+/// The numbers a generated kernel reads for each body of `chain`: the inertia about y plus
+/// the added inertia (Eqs. 18, 46), the centroid, the joint and the added mass.
+pub fn body_params(chain: &Chain) -> Vec<BodyParams> {
+    chain
+        .bodies
+        .iter()
+        .map(|b| BodyParams {
+            mass: b.mass,
+            inertia: b.inertia[1] + b.added_inertia,
+            centroid: b.centroid,
+            joint: b.joint,
+            added_mass: b.added_mass,
+        })
+        .collect()
+}
+
 /// Which generated code a [`GeneratedKernel`] runs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Form {
@@ -141,17 +157,7 @@ impl GeneratedKernel {
                 Table::Rolled(kanestop_generated::rolled(wet), vec![[0.0; kanestop_generated::ROLLED_SCRATCH]; n])
             }
         };
-        let params: Vec<BodyParams> = chain
-            .bodies
-            .iter()
-            .map(|b| BodyParams {
-                mass: b.mass,
-                inertia: b.inertia[1] + b.added_inertia,
-                centroid: b.centroid,
-                joint: b.joint,
-                added_mass: b.added_mass,
-            })
-            .collect();
+        let params = body_params(chain);
         for StructuralZero { body: k, field } in variant.structural_zeros() {
             let b = &params[k];
             let value = match field {
