@@ -188,8 +188,35 @@ fn warn(py: Python<'_>, note: &str) -> PyResult<()> {
     PyErr::warn(py, &py.get_type::<PyUserWarning>(), &message, 2)
 }
 
-/// Runs a scene: (summary JSON, channels, events, failure, channel info as (name, unit,
-/// group, description)). The Python `kanestop.run` wraps it into a `Result`.
+/// A run's time history, kept in Rust until Python asks for it: `kanestop.Result` turns it
+/// into NumPy arrays on first use of its channels (a run whose channels are never read, as
+/// in most sweeps and design checks, does not pay for them).
+#[pyclass(module = "kanestop._kanestop", name = "_History", frozen)]
+pub struct PyHistory {
+    result: simulate::RunResult,
+}
+
+#[pymethods]
+impl PyHistory {
+    /// (channels as a dict of NumPy arrays, channel info as (name, unit, group,
+    /// description)): the CSV history's columns, by the same names.
+    fn columns<'py>(&self, py: Python<'py>) -> PyResult<(Bound<'py, PyDict>, Bound<'py, PyList>)> {
+        let arrays = PyDict::new(py);
+        let info = PyList::empty(py);
+        let n = self.result.samples.first().map_or(0, |s| s.bodies.len());
+        let channels = if n == 0 { Vec::new() } else { history::all_channels(n) };
+        for (c, values) in channels.iter().zip(history::columns(&self.result, &channels)) {
+            arrays.set_item(&c.name, PyArray1::from_vec(py, values))?;
+            info.append((c.name.as_str(), c.unit, c.group, c.description.as_str()))?;
+        }
+        Ok((arrays, info))
+    }
+}
+
+/// Runs a scene: (summary JSON, history, events, failure, core time in s). The Python
+/// `kanestop.run` wraps it into a `Result`. The core time is the wall time from the call's
+/// start to its summary (the overrides, the model, the run, the summary): what the Rust
+/// core did for the call.
 #[pyfunction]
 #[pyo3(signature = (scene, *, integrator=None, dt=None, rtol=None, atol=None, end_time=None, output_interval=None, kernel="generated"))]
 #[allow(clippy::too_many_arguments)]
@@ -204,6 +231,7 @@ fn _run(
     output_interval: Option<f64>,
     kernel: &str,
 ) -> PyResult<PyObject> {
+    let start = std::time::Instant::now();
     let choice = kernel_choice(kernel)?;
     let solver = SolverArgs { integrator, dt, rtol, atol, end_time, output_interval };
     let scene = apply(&scene.inner, &solver.overrides()).map_err(|e| scene_error(py, e))?;
@@ -218,14 +246,7 @@ fn _run(
         warn(py, &note)?;
     }
     let json = serde_json::to_string(&summary).map_err(|e| PyValueError::new_err(e.to_string()))?;
-    let arrays = PyDict::new(py);
-    let info = PyList::empty(py);
-    let n = result.samples.first().map_or(0, |s| s.bodies.len());
-    let channels = if n == 0 { Vec::new() } else { history::all_channels(n) };
-    for c in &channels {
-        arrays.set_item(&c.name, PyArray1::from_vec(py, c.values(&result)))?;
-        info.append((c.name.as_str(), c.unit, c.group, c.description.as_str()))?;
-    }
+    let core_time = start.elapsed().as_secs_f64();
     let events = PyList::empty(py);
     for e in &result.anchor_events {
         let d = PyDict::new(py);
@@ -247,10 +268,10 @@ fn _run(
         py,
         [
             json.into_pyobject(py)?.into_any(),
-            arrays.into_any(),
+            Bound::new(py, PyHistory { result })?.into_any(),
             events.into_any(),
             failure.into_bound(py),
-            info.into_any(),
+            core_time.into_pyobject(py)?.into_any(),
         ],
     )?
     .into_any()
@@ -313,6 +334,7 @@ fn eval(
 fn _kanestop(m: &Bound<'_, PyModule>) -> PyResult<()> {
     let py = m.py();
     m.add_class::<PyScene>()?;
+    m.add_class::<PyHistory>()?;
     m.add_function(wrap_pyfunction!(_scene_from_toml, m)?)?;
     m.add_function(wrap_pyfunction!(_run, m)?)?;
     m.add_function(wrap_pyfunction!(eval, m)?)?;

@@ -99,6 +99,28 @@ def test_results_pickle(case01_result: kanestop.Result) -> None:
     assert r.units == case01_result.units and r.descriptions == case01_result.descriptions
     assert all(np.array_equal(r.arrays[k], v) for k, v in case01_result.arrays.items())
     assert r.channels.shape == case01_result.channels.shape
+    assert r.core_time == case01_result.core_time
+
+
+def test_the_history_is_read_once_and_an_unread_result_pickles_whole(case01: kanestop.Scene) -> None:
+    unread = kanestop.run(case01, end_time=0.5)
+    read = kanestop.run(case01, end_time=0.5)
+    arrays = read.arrays
+    assert read.arrays is arrays and read.channels_of("ship")[0] == "t"
+    again = pickle.loads(pickle.dumps(unread))
+    assert list(again.arrays) == list(arrays) and again.units == read.units
+    assert all(np.array_equal(again.arrays[k], v) for k, v in arrays.items())
+
+
+def test_core_time_holds_the_run_and_lies_inside_the_call(case01: kanestop.Scene) -> None:
+    """The Rust core's share of a call: at least the run's own wall time, at most the call."""
+    import time
+
+    t0 = time.perf_counter()
+    r = kanestop.run(case01, end_time=1.0)
+    call = time.perf_counter() - t0
+    assert r.core_time is not None
+    assert r.summary["wall_time"] <= r.core_time <= call
 
 
 def test_sweep_equals_single_runs_in_order(case01: kanestop.Scene) -> None:

@@ -11,7 +11,7 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use kanestop_runtime::forces::REPORTED_WORK;
-use kanestop_runtime::kernel::AnchorDof;
+use kanestop_runtime::kernel::{AnchorDof, BodyState};
 use kanestop_runtime::simulate::{RunResult, Sample};
 
 use crate::output::write_atomically;
@@ -28,6 +28,19 @@ enum Q {
     Vx,
     Vz,
     Omega,
+}
+
+impl Q {
+    fn of(self, b: &BodyState) -> f64 {
+        match self {
+            Q::X => b.x,
+            Q::Z => b.z,
+            Q::Theta => b.theta,
+            Q::Vx => b.vx,
+            Q::Vz => b.vz,
+            Q::Omega => b.omega,
+        }
+    }
 }
 
 const QUANTITIES: [(Q, &str, &str, &str); 6] = [
@@ -82,29 +95,12 @@ impl Channel {
         Channel { name: name.into(), unit, description: description.into(), group, source }
     }
 
-    /// Its value at every sample of `result`, in order (the numbers the CSV history writes;
-    /// the Python package's `channels`).
-    pub fn values(&self, result: &RunResult) -> Vec<f64> {
-        let Some(first) = result.samples.first() else { return Vec::new() };
-        result.samples.iter().map(|s| self.value(s, first)).collect()
-    }
-
     fn value(&self, s: &Sample, first: &Sample) -> f64 {
         let e = &s.energy;
         match self.source {
             Source::T => s.t,
             Source::Sliding => f64::from(u8::from(s.anchor == AnchorDof::Free)),
-            Source::Body(k, q) => {
-                let b = &s.bodies[k];
-                match q {
-                    Q::X => b.x,
-                    Q::Z => b.z,
-                    Q::Theta => b.theta,
-                    Q::Vx => b.vx,
-                    Q::Vz => b.vz,
-                    Q::Omega => b.omega,
-                }
-            }
+            Source::Body(k, q) => q.of(&s.bodies[k]),
             Source::Displacement(k) => s.bodies[k].x - first.bodies[k].x,
             Source::Tension(k) => s.tensions.get(k - 2).copied().unwrap_or(f64::NAN),
             Source::TensionMax => s.tensions.iter().copied().fold(f64::NAN, f64::max),
@@ -259,6 +255,42 @@ pub fn csv_of(result: &RunResult, channels: &[Channel]) -> String {
     out
 }
 
+/// The value of each of `channels` at every sample of `result`: one column per channel, in
+/// order (the numbers the CSV history writes; the Python package's `channels`).
+///
+/// The body states are most of the columns (276 of case 1's 351, 992 samples each): the
+/// columns of one body are filled together, each sample's state read once for all of them,
+/// which makes the whole conversion about 3× faster than a column at a time (a sample's
+/// bodies are a heap block of their own, so reading one value per block is a cache miss).
+pub fn columns(result: &RunResult, channels: &[Channel]) -> Vec<Vec<f64>> {
+    let mut out: Vec<Vec<f64>> = channels.iter().map(|_| Vec::with_capacity(result.samples.len())).collect();
+    let Some(first) = result.samples.first() else { return out };
+    let mut i = 0;
+    while i < channels.len() {
+        let Source::Body(k, _) = channels[i].source else {
+            out[i].extend(result.samples.iter().map(|s| channels[i].value(s, first)));
+            i += 1;
+            continue;
+        };
+        let quantities: Vec<Q> = channels[i..]
+            .iter()
+            .map_while(|c| match c.source {
+                Source::Body(j, q) if j == k => Some(q),
+                _ => None,
+            })
+            .collect();
+        let filled = &mut out[i..i + quantities.len()];
+        for s in &result.samples {
+            let b = &s.bodies[k];
+            for (column, q) in filled.iter_mut().zip(&quantities) {
+                column.push(q.of(b));
+            }
+        }
+        i += quantities.len();
+    }
+    out
+}
+
 /// The units sidecar: `channel,unit,description`, one line per column of the history.
 pub fn units_csv(channels: &[Channel]) -> String {
     let mut out = String::from("channel,unit,description\n");
@@ -306,5 +338,30 @@ mod tests {
         assert!(names.contains(&"ship_x") && names.contains(&"tension_fairlead") && !names.contains(&"anchor_x"));
         assert!(select(5, &["x_5".into()]).unwrap_err().contains("unknown channel \"x_5\""));
         assert!(all.iter().any(|c| c.name == "tension_joint5" && c.unit == "N"));
+    }
+
+    #[test]
+    fn columns_hold_the_numbers_the_csv_writes() {
+        use kanestop_runtime::{generated::GeneratedKernel, model::Model, paper::DEFAULT_SCENE, scene::Scene};
+        let mut scene = Scene::from_toml(DEFAULT_SCENE, "case01.toml").unwrap();
+        scene.solver.end_time = 0.1;
+        scene.solver.output_interval = 0.02;
+        let model = Model::new(&scene).unwrap();
+        let result = kanestop_runtime::simulate::run(&model, Box::new(GeneratedKernel::new(&model.chain).unwrap()));
+        // A selection that interleaves body channels with others, as `--channels` may.
+        let channels: Vec<Channel> = all_channels(model.body_count()).into_iter().step_by(5).collect();
+        let columns = columns(&result, &channels);
+        let csv = csv_of(&result, &channels);
+        let rows: Vec<Vec<f64>> =
+            csv.lines().skip(1).map(|l| l.split(',').map(|v| v.parse().unwrap()).collect()).collect();
+        assert_eq!(rows.len(), result.samples.len());
+        assert!(rows.len() > 2);
+        for (i, column) in columns.iter().enumerate() {
+            let from_csv: Vec<f64> = rows.iter().map(|r| r[i]).collect();
+            assert_eq!(column.len(), from_csv.len(), "{}", channels[i].name);
+            for (a, b) in column.iter().zip(&from_csv) {
+                assert!(a == b || (a.is_nan() && b.is_nan()), "{}: {a} against {b}", channels[i].name);
+            }
+        }
     }
 }

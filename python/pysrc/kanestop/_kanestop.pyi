@@ -85,6 +85,11 @@ class Spec:
     def __len__(self) -> int: ...
 
 def _scene_from_toml(text: str, name: str) -> Scene: ...
+class _History:
+    """A run's time history, still in Rust (``kanestop.Result`` converts it on first use)."""
+
+    def columns(self) -> Tuple[Dict[str, npt.NDArray[np.float64]], List[Tuple[str, str, str, str]]]: ...
+
 def _run(
     scene: Scene,
     *,
@@ -95,13 +100,7 @@ def _run(
     end_time: Optional[float] = None,
     output_interval: Optional[float] = None,
     kernel: str = "generated",
-) -> Tuple[
-    str,
-    Dict[str, npt.NDArray[np.float64]],
-    List[Dict[str, Any]],
-    Optional[Dict[str, Any]],
-    List[Tuple[str, str, str, str]],
-]: ...
+) -> Tuple[str, _History, List[Dict[str, Any]], Optional[Dict[str, Any]], float]: ...
 def eval(
     scene: Scene,
     q: Optional[Sequence[float]] = None,

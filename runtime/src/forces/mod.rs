@@ -64,46 +64,42 @@ pub mod term {
     pub const ADDED_MASS: usize = 8;
 }
 
-/// The work terms before they were split (issue 16), kept in reports as sums of their
-/// parts: `friction` (anchor and line) and `drag` (anchor, line and hull).
-pub const LUMPED_WORK: [(&str, &[usize]); 2] = [
+/// The work terms as reports name them (CSV channels, `run --json`, Python), each with the
+/// terms of [`WORK_TERMS`] it sums: the six of before the split (issue 16; `friction` the
+/// anchor's and the line's, `drag` the anchor's, the line's and the hull's), then the split
+/// parts.
+pub const REPORTED_WORK_PARTS: [(&str, &[usize]); 11] = [
+    ("buoyancy", &[term::BUOYANCY]),
+    ("seabed", &[term::SEABED]),
     ("friction", &[term::ANCHOR_FRICTION, term::LINE_FRICTION]),
     ("drag", &[term::ANCHOR_DRAG, term::LINE_DRAG, term::HULL_RESISTANCE]),
+    ("hydrostatic", &[term::HYDROSTATIC]),
+    ("added_mass", &[term::ADDED_MASS]),
+    ("anchor_friction", &[term::ANCHOR_FRICTION]),
+    ("line_friction", &[term::LINE_FRICTION]),
+    ("anchor_drag", &[term::ANCHOR_DRAG]),
+    ("line_drag", &[term::LINE_DRAG]),
+    ("hull_resistance", &[term::HULL_RESISTANCE]),
 ];
 
-/// The work terms as reports name them (CSV channels, `run --json`, Python): the six of
-/// before the split (`friction` and `drag` as the sums of [`LUMPED_WORK`]), then the split
-/// parts.
-pub const REPORTED_WORK: [&str; 11] = [
-    "buoyancy",
-    "seabed",
-    "friction",
-    "drag",
-    "hydrostatic",
-    "added_mass",
-    "anchor_friction",
-    "line_friction",
-    "anchor_drag",
-    "line_drag",
-    "hull_resistance",
-];
-
-/// Power of each category of [`WORK_TERMS`], W.
-pub type Power = [f64; WORK_TERMS.len()];
+/// The names of [`REPORTED_WORK_PARTS`], in order.
+pub const REPORTED_WORK: [&str; REPORTED_WORK_PARTS.len()] = {
+    let mut names = [""; REPORTED_WORK_PARTS.len()];
+    let mut i = 0;
+    while i < names.len() {
+        names[i] = REPORTED_WORK_PARTS[i].0;
+        i += 1;
+    }
+    names
+};
 
 /// The work of each name of [`REPORTED_WORK`], J, from the work of each term `work` (J).
 pub fn reported_work(work: &Power) -> [(&'static str, f64); REPORTED_WORK.len()] {
-    REPORTED_WORK.map(|name| {
-        let value = match WORK_TERMS.iter().position(|t| *t == name) {
-            Some(i) => work[i],
-            None => LUMPED_WORK
-                .iter()
-                .find(|(n, _)| *n == name)
-                .map_or(0.0, |(_, parts)| parts.iter().map(|&i| work[i]).sum()),
-        };
-        (name, value)
-    })
+    REPORTED_WORK_PARTS.map(|(name, parts)| (name, parts.iter().map(|&i| work[i]).sum()))
 }
+
+/// Power of each category of [`WORK_TERMS`], W.
+pub type Power = [f64; WORK_TERMS.len()];
 
 /// Per-body data the force models need.
 #[derive(Clone, Copy, Debug)]
@@ -375,6 +371,19 @@ mod tests {
         let mut loads = [Load::default()];
         f.loads(&[state], &mut loads);
         (loads[0], f.power())
+    }
+
+    #[test]
+    fn every_term_is_reported_under_its_own_name_and_the_sums_are_of_their_parts() {
+        for (i, term) in WORK_TERMS.iter().enumerate() {
+            assert!(REPORTED_WORK_PARTS.contains(&(*term, &[i][..])), "{term} is not reported alone");
+        }
+        let work: Power = std::array::from_fn(|i| (1 << i) as f64);
+        let reported = reported_work(&work);
+        assert_eq!(reported.map(|(n, _)| n), REPORTED_WORK);
+        let by_name = |n: &str| reported.iter().find(|(m, _)| *m == n).unwrap().1;
+        assert_eq!(by_name("friction"), by_name("anchor_friction") + by_name("line_friction"));
+        assert_eq!(by_name("drag"), by_name("anchor_drag") + by_name("line_drag") + by_name("hull_resistance"));
     }
 
     #[test]
