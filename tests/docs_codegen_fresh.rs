@@ -1,7 +1,7 @@
 //! `docs/codegen.md`'s operation-count tables are rendered from `kanestop_codegen::generate`
 //! (what `kanestop codegen` prints) for case 1's N = 46 and from the rolled kernels' steps: a
 //! stale table fails this test and is rewritten between its markers, as `docs_fresh.rs` does
-//! for docs/scenes.md.
+//! for docs/scenes.md. So is the table of case 1's counts with the parameters folded.
 
 use kanestop_chain::{Variant, Water};
 use kanestop_codegen::generate;
@@ -92,6 +92,47 @@ fn render_rolled(n: usize) -> String {
     o
 }
 
+const FOLDED_BEGIN: &str = "<!-- folded-opcounts:begin";
+const FOLDED_END: &str = "<!-- folded-opcounts:end -->";
+
+/// Case 1's unrolled kernel with its parameters kept and folded as the scene's literals:
+/// what `kanestop codegen --scene scenes/paper/case01.toml` prints.
+fn render_folded() -> String {
+    let scene = kanestop_runtime::paper::CASES[0].scene();
+    let model = kanestop_runtime::model::Model::new(&scene).unwrap();
+    let values: Vec<kanestop_codegen::planar::BodyValues> = kanestop_runtime::generated::body_params(&model.chain)
+        .into_iter()
+        .map(|b| kanestop_codegen::planar::BodyValues {
+            mass: b.mass,
+            inertia: b.inertia,
+            centroid: b.centroid,
+            joint: b.joint,
+            added_mass: b.added_mass,
+        })
+        .collect();
+    let wet = model.chain.bodies.iter().any(|b| b.added_mass > 0.0);
+    let variant = Variant::new(model.body_count(), if wet { Water::On } else { Water::Off });
+    let kept = generate(variant);
+    let folded = kanestop_codegen::emit::folded_op_counts(variant, &values);
+    let mut o = format!(
+        "{FOLDED_BEGIN}: rendered by tests/docs_codegen_fresh.rs from kanestop_codegen::emit::folded_op_counts -->\n\n\
+         Case 1 (N = {}, water {}):\n\n| function | kept | folded | saved |\n| --- | --- | --- | --- |\n",
+        variant.bodies,
+        if wet { "on" } else { "off" }
+    );
+    let mut most = 0.0f64;
+    for (k, f) in kept.functions.iter().zip(&folded) {
+        assert_eq!(k.name, f.name);
+        let (a, b) = (k.ops.total(), f.ops.total());
+        let saved = 100.0 * (a as f64 - b as f64) / a as f64;
+        most = most.max(saved);
+        o.push_str(&format!("| {} | {} | {} | {saved:.1} % |\n", k.name, spaced(a), spaced(b)));
+    }
+    o.push_str(&format!("\nFolding saves at most {:.0} % of a function's operations.\n\n", most.ceil()));
+    o.push_str(FOLDED_END);
+    o
+}
+
 /// Rewrites the block between `begin` and `end` with `fresh`; true when it was stale.
 fn refresh(text: &mut String, begin: &str, end: &str, fresh: &str) -> bool {
     let a = text.find(begin).unwrap_or_else(|| panic!("docs/codegen.md: marker {begin}"));
@@ -105,8 +146,9 @@ fn refresh(text: &mut String, begin: &str, end: &str, fresh: &str) -> bool {
 fn op_count_table_is_fresh() {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/codegen.md");
     let mut text = std::fs::read_to_string(&path).unwrap();
-    let stale =
-        refresh(&mut text, BEGIN, END, &render(46)) | refresh(&mut text, ROLLED_BEGIN, ROLLED_END, &render_rolled(46));
+    let stale = refresh(&mut text, BEGIN, END, &render(46))
+        | refresh(&mut text, ROLLED_BEGIN, ROLLED_END, &render_rolled(46))
+        | refresh(&mut text, FOLDED_BEGIN, FOLDED_END, &render_folded());
     if stale {
         std::fs::write(&path, &text).unwrap();
         panic!("docs/codegen.md's op counts were stale and have been regenerated: review and commit it");

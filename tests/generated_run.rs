@@ -52,7 +52,17 @@ fn case1_stopping_time_is_the_same_with_both_kernels() {
     );
     assert_eq!(r.stop, g.stop);
     match (r.stopping_time, g.stopping_time) {
-        (Some(a), Some(b)) => assert!((a - b).abs() < 1e-6, "stopping time {a} vs {b}"),
+        (Some(a), Some(b)) => {
+            assert!((a - b).abs() < 1e-6, "stopping time {a} vs {b}");
+            // docs/codegen.md quotes the difference.
+            let doc = std::fs::read_to_string(std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/codegen.md"))
+                .unwrap()
+                .split_whitespace()
+                .collect::<Vec<_>>()
+                .join(" ");
+            let quoted = format!("the two stop {:.0e} s apart", (a - b).abs());
+            assert!(doc.contains(&quoted), "docs/codegen.md should say: {quoted}");
+        }
         (a, b) => assert_eq!(a, b),
     }
 }

@@ -523,6 +523,17 @@ fn measured_orders_on_a_gravity_only_chain() {
     for p in p_dp5 {
         assert!((p - 5.0).abs() < 0.3, "DP5 order on the chain {p} ({dp5:?})");
     }
+    // docs/integrators.md's table of measured orders quotes these runs.
+    let quoted = |e: &[f64], p: &[f64]| {
+        let e: Vec<String> = e.iter().map(|x| format!("{x:.1e}")).collect();
+        let p: Vec<String> = p.iter().map(|x| format!("{x:.2}")).collect();
+        format!("errors {}: orders {}", e.join(", "), p.join(", "))
+    };
+    let doc =
+        std::fs::read_to_string(std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/integrators.md")).unwrap();
+    for q in [quoted(&rk4, &orders(&rk4)), quoted(&dp5, &orders(&dp5))] {
+        assert!(doc.contains(&q), "docs/integrators.md's measured orders should say: {q}");
+    }
 }
 
 #[test]

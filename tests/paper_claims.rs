@@ -6,7 +6,9 @@
 //! changed data (the `*_flipped` tests, some on a changed scene). The 19 cases run once, in
 //! parallel, and are shared by the tests. The figures in `docs/validation.md` between the
 //! `claims:begin` / `claims:end` markers are rendered here: a stale file fails
-//! `validation_doc_is_fresh` and is rewritten.
+//! `validation_doc_is_fresh` and is rewritten. The figures other docs quote from these runs
+//! in prose are checked by `prose_figures_are_what_the_runs_give` and
+//! `readme_figures_are_what_the_code_computes` (docs/validation.md lists every doc check).
 //!
 //! Thresholds (fixed before measuring; docs/validation.md says why): over a group of cases
 //! (case 1 and the cases that change one parameter), the spread of the peak tension is
@@ -579,4 +581,375 @@ fn readme_figures_are_what_the_code_computes() {
     assert!(readme.contains(&within), "README should say the 19 cases are {within} Table 3 (worst {worst:.4})");
     let python = format!("\n# {t1}\n");
     assert!(readme.contains(&python), "README's Python example should print {t1}");
+}
+
+// ---- figures quoted in the docs' prose ---------------------------------------------------
+
+/// A doc with its whitespace collapsed, so a quoted phrase matches across line breaks.
+fn flat_doc(name: &str) -> String {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(name);
+    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{name}: {e}"));
+    text.split_whitespace().collect::<Vec<_>>().join(" ")
+}
+
+/// The figures of a doc's prose that the runs give: each `phrase` must appear in the doc.
+struct Quotes {
+    missing: Vec<String>,
+}
+
+impl Quotes {
+    fn expect(&mut self, doc: &str, text: &str, phrase: String) {
+        if !text.contains(&phrase) {
+            self.missing.push(format!("{doc} should say: {phrase}"));
+        }
+    }
+    /// A table row: the line of `doc` that starts with `start` holds each of `cells`.
+    fn row(&mut self, doc: &str, raw: &str, start: &str, cells: &[String]) {
+        match raw.lines().map(str::trim_start).find(|l| l.starts_with(start)) {
+            None => self.missing.push(format!("{doc}: no table row starting {start}")),
+            Some(line) => {
+                for c in cells {
+                    if !line.contains(c.as_str()) {
+                        self.missing.push(format!("{doc}: row {start}… should hold {c}"));
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// "6446" → "6 446", as the docs write thousands.
+fn thousands(n: u64) -> String {
+    let s = n.to_string();
+    let mut out = String::new();
+    for (i, c) in s.chars().enumerate() {
+        if i > 0 && (s.len() - i) % 3 == 0 {
+            out.push(' ');
+        }
+        out.push(c);
+    }
+    out
+}
+
+/// Rounded up to `digits` decimals: what "within x" may quote.
+fn ceil_to(x: f64, digits: i32) -> String {
+    let scale = 10f64.powi(digits);
+    format!("{:.*}", digits as usize, (x * scale).ceil() / scale)
+}
+
+/// Case numbers as the docs list them: runs of three or more as "a–b", the last after "and".
+fn case_list(cases: &[usize]) -> String {
+    let mut parts: Vec<String> = Vec::new();
+    let mut i = 0;
+    while i < cases.len() {
+        let mut j = i;
+        while j + 1 < cases.len() && cases[j + 1] == cases[j] + 1 {
+            j += 1;
+        }
+        if j >= i + 2 {
+            parts.push(format!("{}–{}", cases[i], cases[j]));
+        } else {
+            parts.extend(cases[i..=j].iter().map(|c| c.to_string()));
+        }
+        i = j + 1;
+    }
+    match parts.split_last() {
+        Some((last, rest)) if !rest.is_empty() => format!("{} and {last}", rest.join(", ")),
+        _ => parts.join(""),
+    }
+}
+
+/// Kendall's τ between the runs' stopping times and Table 3's.
+fn kendall_tau(pairs: &[(f64, f64)]) -> f64 {
+    let (mut concordant, mut discordant) = (0i64, 0i64);
+    for i in 0..pairs.len() {
+        for j in i + 1..pairs.len() {
+            if (pairs[i].0 - pairs[j].0) * (pairs[i].1 - pairs[j].1) > 0.0 {
+                concordant += 1;
+            } else {
+                discordant += 1;
+            }
+        }
+    }
+    (concordant - discordant) as f64 / (concordant + discordant) as f64
+}
+
+/// The Case 19 study's scene changes (docs/validation.md): a uniform current (the profile's
+/// exponent → 0) and no anchor drag at all, on cases 1, 18 and 19.
+fn case_19_variants() -> (Vec<f64>, Vec<f64>) {
+    /// A scene change of the study.
+    type Change = fn(&mut Scene);
+    let uniform: Change = |s| s.environment.current_exponent = 1e-12;
+    let no_drag: Change = |s| s.hydrodynamics.anchor_drag_coefficient = 0.0;
+    let stop = |&(n, change): &(usize, Change)| {
+        let mut s = CASES[n - 1].scene();
+        change(&mut s);
+        measure(n, &s).time()
+    };
+    let jobs: [(usize, Change); 5] = [(18, uniform), (19, uniform), (1, no_drag), (18, no_drag), (19, no_drag)];
+    // Two workers: the machine has two cores.
+    let times: Vec<f64> = std::thread::scope(|s| {
+        let handles: Vec<_> = jobs.chunks(3).map(|c| s.spawn(move || c.iter().map(stop).collect::<Vec<_>>())).collect();
+        handles.into_iter().flat_map(|h| h.join().unwrap()).collect()
+    });
+    (vec![case(1).time(), times[0], times[1]], times[2..].to_vec())
+}
+
+/// The figures the docs quote in prose (docs/validation.md below the rendered tables,
+/// docs/model-choices.md, docs/codegen.md, docs/integrators.md, docs/python.md), computed
+/// from the same runs: a doc that quotes a stale figure fails here, naming the phrase the
+/// runs give now (edit the doc to it). The README's are `readme_figures_are_what_the_code_computes`.
+#[test]
+fn prose_figures_are_what_the_runs_give() {
+    use kanestop_runtime::forces::current::Current;
+    use kanestop_runtime::forces::Forces;
+    let r = runs();
+    let mut q = Quotes { missing: Vec::new() };
+
+    // docs/validation.md.
+    let v = "docs/validation.md";
+    let val = flat_doc(v);
+    let c1 = case(1);
+    let (t1, p1) = (c1.time(), c1.paper);
+    let worst = r[..19].iter().map(|m| ((m.time() - m.paper) / m.paper).abs()).fold(0.0, f64::max);
+    q.expect(v, &val, format!("stopping times are within {} % of Table 3", ceil_to(100.0 * worst, 1)));
+    let last_chain_joint = c1.chain_joint.iter().rposition(|&c| c).unwrap() + 2;
+    q.expect(v, &val, format!("(joints 2–{last_chain_joint} in case 1: anchor–chain to chain–cable)"));
+    let pairs: Vec<(f64, f64)> = r[..19].iter().map(|m| (m.time(), m.paper)).collect();
+    q.expect(v, &val, format!("(Kendall's τ = {:.3})", kendall_tau(&pairs)));
+    q.expect(
+        v,
+        &val,
+        format!(
+            "early in most cases, and {:.1} % early at 5 m/s",
+            -100.0 * (case(15).time() - case(15).paper) / case(15).paper
+        ),
+    );
+    q.expect(v, &val, format!("case 1's anchor starts to slide at {:.3} s", c1.result.anchor_start().unwrap()));
+    let ((cp, ck), (ap, _)) = (c1.chain_peak(), c1.all_peak());
+    q.expect(
+        v,
+        &val,
+        format!("the chain's is at the chain–cable joint ({ck}), {:.0} % below it", 100.0 * (ap - cp) / ap),
+    );
+    let sig: Vec<f64> = [FRICTION, ANCHOR_MASS, DEPTH, SPEED].iter().map(|g| 100.0 * spread(&chain_peaks(g))).collect();
+    let (lo, hi) = sig.iter().fold((f64::MAX, f64::MIN), |(a, b), &s| (a.min(s), b.max(s)));
+    q.expect(v, &val, format!("all four groups spread by {lo:.0}–{hi:.0} %"));
+    let depth = kn(&chain_peaks(&DEPTH));
+    let h_l: Vec<String> = DEPTH.iter().map(|&n| format!("{:.0}", CASES[n - 1].vertical)).collect();
+    q.expect(v, &val, format!("({} kN for h_L = {} m)", depth.join(" → "), h_l.join(", ")));
+    let s = |g: &[usize]| 100.0 * spread(&chain_peaks(g));
+    q.expect(
+        v,
+        &val,
+        format!(
+            "Ship mass ({:.1} %) and current ({:.1} %) have \"a little effect\", cable length ({:.1} %) and horizontal projection ({:.1} %) none",
+            s(&SHIP_MASS),
+            s(&CURRENT),
+            s(&CABLE_LENGTH),
+            s(&PROJECTION)
+        ),
+    );
+    let radius = chain_peaks(&CHAIN_RADIUS);
+    let heavier = |n: usize| CASES[n - 1].scene().chain.mass_per_length / CASES[0].scene().chain.mass_per_length;
+    q.expect(
+        v,
+        &val,
+        format!(
+            "moves the chain peak by {:.1} % ({:.1} % and {:.1} % for the {:.1}× and {:.1}× heavier chains of cases 6, 7)",
+            s(&CHAIN_RADIUS),
+            100.0 * (radius[1] / radius[0] - 1.0),
+            100.0 * (radius[2] / radius[0] - 1.0),
+            heavier(6),
+            heavier(7)
+        ),
+    );
+    q.expect(v, &val, format!("At 5 m/s the chain peak is {:.2}× case 1's", case(15).chain_peak().0 / cp));
+    let utilisation = r[..19]
+        .iter()
+        .flat_map(|m| m.peaks().into_iter().zip(m.limits.clone()).map(|(p, l)| p / l.0.or(l.1).unwrap()))
+        .fold(0.0f64, f64::max);
+    q.expect(v, &val, format!("the largest is {utilisation:.2} of its joint's lowest limit"));
+    // Trends: the cases within the absolute bound, those within the relative one, the rest.
+    let trend = |m: &Measured| (trend_error(m.time(), t1, m.paper, p1), m.paper - p1);
+    let (mut close, mut relative, mut missed) = (Vec::new(), Vec::new(), Vec::new());
+    for m in &r[1..19] {
+        let (e, dp) = trend(m);
+        if e.abs() <= TREND_ABS {
+            close.push(m.number);
+        } else if trend_holds(e, dp) {
+            relative.push(format!("{} ({} s of {} s)", m.number, signed(e, 2), signed(dp, 2)));
+        } else {
+            missed.push(m.number);
+        }
+    }
+    q.expect(v, &val, format!("within {TREND_ABS} s of the paper's for cases {}", case_list(&close)));
+    q.expect(
+        v,
+        &val,
+        format!("case {} within {:.0} % of the paper's difference", relative.join(" and "), 100.0 * TREND_REL),
+    );
+    assert_eq!(missed, [19], "the doc's trend prose is about case 19 alone");
+    let c19 = case(19);
+    let (e19, dp19) = trend(c19);
+    let d19 = c19.time() - t1;
+    q.expect(
+        v,
+        &val,
+        format!(
+            "**case 19 not reproduced**: the {:.0} m/s current adds {d19:.2} s, the paper's {dp19:.2} s ({} s, {:.0} %)",
+            CASES[18].current,
+            signed(e19, 2),
+            100.0 * e19 / dp19
+        ),
+    );
+    let (times, peaks) = step_study();
+    let (tlo, thi) = times.iter().fold((f64::MAX, f64::MIN), |(a, b), &t| (a.min(t), b.max(t)));
+    q.expect(
+        v,
+        &val,
+        format!(
+            "stops within {} ms and its chain peak moves by {:.2} %",
+            ceil_to(1e3 * (thi - tlo), 1),
+            100.0 * spread(&peaks)
+        ),
+    );
+    let drift = r.iter().map(|m| m.result.max_energy_drift).fold(0.0, f64::max);
+    q.expect(v, &val, format!("drifts by at most {drift:.1e}"));
+    // Case 19's section: the anchor's current and drag from the scene, the study's computable rows.
+    let scene19 = CASES[18].scene();
+    let model19 = Model::new(&scene19).unwrap();
+    let current = Current {
+        surface_speed: 1.0,
+        exponent: scene19.environment.current_exponent,
+        depth: model19.water_depth(),
+        seabed_z: model19.seabed_z,
+    };
+    let height = scene19.anchor.height;
+    let at_centroid = current.at(model19.seabed_z + height / 2.0);
+    q.expect(v, &val, format!("{:.2} m above the seabed: {at_centroid:.2} U_ST", height / 2.0));
+    q.expect(v, &val, format!("case 1 has no current and is unchanged at {t1:.3} s"));
+    let drag = |u: f64| Forces::new(&model19).anchor.drag(scene19.environment.water_density, 0.0, u).abs() / 1e3;
+    let (speed, following) = (CASES[0].ship_speed, at_centroid * CASES[18].current);
+    q.expect(
+        v,
+        &val,
+        format!(
+            "is {:.0} kN at {speed:.0} m/s in still water, {:.0} kN against {following:.2} m/s of following current",
+            drag(speed),
+            drag(speed - following)
+        ),
+    );
+    let average =
+        (0..1000).map(|i| current.at(model19.seabed_z + height * (i as f64 + 0.5) / 1000.0)).sum::<f64>() / 1000.0;
+    q.expect(
+        v,
+        &val,
+        format!("over the anchor's {height:.1} m height ({average:.2} U_ST instead of {at_centroid:.2})"),
+    );
+    q.expect(v, &val, format!("Of case 19's {d19:.2} s"));
+    q.expect(
+        v,
+        &val,
+        format!(
+            "not reproduced by {} s ({:.1} % of its stopping time; the stopping time itself is {} off Table 3's",
+            signed(e19, 2),
+            100.0 * e19 / c19.time(),
+            pct((c19.time() - c19.paper) / c19.paper)
+        ),
+    );
+    let raw_val = std::fs::read_to_string(std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(v)).unwrap();
+    q.expect(v, &val, format!("Δ19 − paper's {dp19:.3} s"));
+    let study_row = |t: [f64; 3]| {
+        let d = t[2] - t[0];
+        vec![format!("| {:.3} | {:.3} | {d:.3} | {} |", t[1], t[2], signed(d - dp19, 3))]
+    };
+    q.row(v, &raw_val, "| none (as committed) |", &study_row([t1, case(18).time(), c19.time()]));
+    let (uniform, no_drag) = case_19_variants();
+    q.row(v, &raw_val, "| uniform current", &study_row([uniform[0], uniform[1], uniform[2]]));
+    let mut cells = study_row([no_drag[0], no_drag[1], no_drag[2]]);
+    cells.push(format!("(case 1: {:.3} s)", no_drag[0]));
+    q.row(v, &raw_val, "| no anchor drag at all", &cells);
+    q.expect(
+        v,
+        &val,
+        format!(
+            "(Without any anchor drag the ship stops later, {:.3} s in case 1, and the current then adds only {:.2} s.",
+            no_drag[0],
+            no_drag[2] - no_drag[0]
+        ),
+    );
+    let ship = kanestop_runtime::forces::ship::ShipHydro::new(
+        scene19.ship.mass,
+        scene19.ship.length,
+        scene19.ship.beam,
+        scene19.ship.hull_roughness,
+        scene19.environment.water_density,
+        scene19.environment.gravity,
+        scene19.environment.kinematic_viscosity,
+    );
+    q.expect(v, &val, format!("ship's current at mid-draught ({:.2} m)", ship.volume / ship.waterplane_area / 2.0));
+
+    // docs/model-choices.md: Eq. 62 with the ½, as committed (the printed form needs a changed build).
+    let mc = "docs/model-choices.md";
+    let raw_mc = std::fs::read_to_string(std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(mc)).unwrap();
+    for n in [1, 15, 19] {
+        let m = case(n);
+        q.row(
+            mc,
+            &raw_mc,
+            &format!("| {n} |"),
+            &[format!("| {:.3} s ({}) | {:.3} s |", m.time(), pct((m.time() - m.paper) / m.paper), m.paper)],
+        );
+    }
+
+    // docs/codegen.md: case 1's stopping time to the last digit (rolled and unrolled alike:
+    // tests/generated_run.rs), and the whole-runs table's simulated times and solves.
+    let cg = "docs/codegen.md";
+    let codegen = flat_doc(cg);
+    let raw_cg = std::fs::read_to_string(std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(cg)).unwrap();
+    q.expect(cg, &codegen, format!("stopping time {t1} s with both forms"));
+    for n in [1, 17] {
+        let m = case(n);
+        q.row(
+            cg,
+            &raw_cg,
+            &format!("| {n} | {:.3} s |", m.time()),
+            &[format!("| {} |", thousands(m.result.rhs_evaluations))],
+        );
+    }
+
+    // docs/integrators.md: case 1's RK4 evaluations.
+    let ig = "docs/integrators.md";
+    let integrators = flat_doc(ig);
+    q.expect(ig, &integrators, format!("→ {} evaluations", thousands(c1.result.rhs_evaluations)));
+    let rest =
+        c1.result.anchor_events.iter().rev().find(|e| e.now == kanestop_runtime::kernel::AnchorDof::Stuck).unwrap().t;
+    q.expect(ig, &integrators, format!("The anchor comes to rest at {rest:.3} s, {:.1} s before the ship", t1 - rest));
+
+    // docs/python.md: the anchor's first switch in the example's DP5 run of case 1.
+    let mut s = CASES[0].scene();
+    s.solver.integrator = kanestop_runtime::scene::Method::Dp5;
+    (s.solver.dt, s.solver.rtol, s.solver.atol) = (0.02, 1e-4, 1e-6);
+    s.solver.output_interval = s.solver.output_interval.max(s.solver.dt);
+    let dp5 = measure(1, &s);
+    let py = "docs/python.md";
+    q.expect(py, &flat_doc(py), format!("[{{\"t\": {:.4}, \"anchor\": \"free\"}}", dp5.result.anchor_start().unwrap()));
+
+    assert!(q.missing.is_empty(), "stale figures (edit the docs to what the runs give):\n{}", q.missing.join("\n"));
+}
+
+#[test]
+fn quoted_figures_are_formatted_as_the_docs_write_them() {
+    assert_eq!(case_list(&[2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 16, 18]), "2–14, 16 and 18");
+    assert_eq!(case_list(&[2, 3, 5]), "2, 3 and 5");
+    assert_eq!(case_list(&[4]), "4");
+    assert_eq!(thousands(40243), "40 243");
+    assert_eq!(ceil_to(2.137, 1), "2.2");
+    assert!((kendall_tau(&[(1.0, 2.0), (2.0, 3.0), (3.0, 1.0)]) + 1.0 / 3.0).abs() < 1e-12);
+    let mut q = Quotes { missing: Vec::new() };
+    q.expect("d", "stops at 19.808 s", "stops at 19.809 s".into());
+    q.row("d", "| 1 | 19.808 s | 40 243 |", "| 1 |", &["| 40 244 |".into()]);
+    q.row("d", "| 1 | 19.808 s |", "| 2 |", &[]);
+    assert_eq!(q.missing.len(), 3, "{:?}", q.missing);
 }

@@ -224,6 +224,52 @@ fn fine_cable_converges_to_the_paper_discretisation() {
     let coarse = simulate::run(&model, Box::new(GeneratedKernel::new(&model.chain).unwrap()));
     let (a, b) = (fine.stopping_time.unwrap(), coarse.stopping_time.unwrap());
     assert!((a - b).abs() < 0.01 * b, "fine cable stops at {a:.4} s, case 1 at {b:.4} s");
+    // docs/integrators.md, "Fine cable", quotes these runs.
+    let lengths = load("fine_cable").cable_element_lengths();
+    let length = lengths[0];
+    assert!(lengths.iter().all(|&l| l == length));
+    for quoted in [
+        format!(
+            "case 1 with the cable in {} elements of {length} m, so N = {}",
+            lengths.len(),
+            fine.samples[0].bodies.len()
+        ),
+        format!("The scene stops the ship at {a:.3} s, against {b:.3} s for case 1's {} bodies", model.body_count()),
+    ] {
+        assert!(integrators_doc().contains(&quoted), "docs/integrators.md should say: {quoted}");
+    }
+}
+
+/// docs/integrators.md with its whitespace collapsed, so a quoted phrase matches across lines.
+fn integrators_doc() -> String {
+    let text = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/integrators.md")).unwrap();
+    text.split_whitespace().collect::<Vec<_>>().join(" ")
+}
+
+/// Case 1's RK4 limit at t = 0 and what RK4 does on either side of the step that later
+/// becomes unstable, as docs/integrators.md quotes them: it completes at 10 ms and blows up
+/// at 15 ms, caught by the run-time checks.
+#[test]
+fn case_1_limit_and_the_steps_beyond_it_are_as_documented() {
+    let at = |dt: f64| {
+        let mut scene = kanestop_runtime::paper::CASES[0].scene();
+        scene.solver.dt = dt;
+        scene.solver.output_interval = scene.solver.output_interval.max(dt);
+        let r = run_scene(&scene);
+        check("case 1", &scene, &r);
+        r
+    };
+    let (ok, blown) = (at(0.010), at(0.015));
+    assert_eq!(ok.stop, Stop::ShipStopped);
+    let Stop::Failed(f) = &blown.stop else { panic!("15 ms: expected a failure, got {:?}", blown.stop) };
+    let limit = ok.stability.expect("RK4 reports its limit");
+    let quoted = format!(
+        "Case 1's limit is {:.1} ms (a seabed contact mode at {:.0} rad/s); RK4 runs case 1 at 10 ms but blows up at 15 ms after {:.1} s",
+        1e3 * limit.rk4_dt,
+        limit.lambda.norm(),
+        f.t
+    );
+    assert!(integrators_doc().contains(&quoted), "docs/integrators.md should say: {quoted}");
 }
 
 /// The whole stress set, each scene with RK4 at its own dt and DP5 (rtol 1e-5, atol 1e-7,

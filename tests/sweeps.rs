@@ -68,6 +68,15 @@ fn a_3x3_grid_runs_in_spec_order_with_inputs_as_columns_and_checks() {
         let paper = r["summary"]["paper_stopping_time"].as_f64();
         assert_eq!(paper, (i == 1).then_some(20.01), "row {i}");
     }
+    // docs/sweeps.md quotes how many of the rows fail a check.
+    let failing = rows.iter().filter(|r| r["checks_pass"] == false).count();
+    let doc = std::fs::read_to_string(root().join("docs/sweeps.md"))
+        .unwrap()
+        .split_whitespace()
+        .collect::<Vec<_>>()
+        .join(" ");
+    let quoted = format!("{failing} of the {} rows fail", rows.len());
+    assert!(doc.contains(&quoted), "docs/sweeps.md should say of scenes/sweeps/mass_speed.toml: {quoted}");
     // Heavier and faster ships take longer to stop.
     let t = |i: usize| rows[i]["summary"]["stopping_time"].as_f64().unwrap();
     assert!(t(0) < t(3) && t(3) < t(6), "mass");
@@ -249,4 +258,54 @@ fn sensitivity_on_case_1_reproduces_the_measured_ranking() {
     // Ranked by |effect| on the stopping time.
     let ranked: Vec<f64> = rows.iter().filter_map(|r| r["stopping_time"].as_f64()).map(f64::abs).collect();
     assert!(ranked.windows(2).all(|w| w[0] >= w[1]));
+    refresh_sensitivity_doc(rows);
+}
+
+const SENSITIVITY_BEGIN: &str = "<!-- sensitivity:begin";
+const SENSITIVITY_END: &str = "<!-- sensitivity:end -->";
+/// Effects on the stopping time below this (s) are summed up in a sentence, not ranked.
+const SENSITIVITY_SHOWN: f64 = 0.3;
+
+/// docs/sweeps.md's "Measured on case 1": the study's ranking, rendered from its
+/// `sensitivity.json` rows. A stale block fails and is rewritten.
+fn refresh_sensitivity_doc(rows: &[Value]) {
+    let signed = |v: &Value, scale: f64, digits: usize| match v.as_f64() {
+        Some(x) => format!("{:+.*}", digits, x * scale).replace('-', "−"),
+        None => "—".to_string(),
+    };
+    let effect =
+        |p: &str| rows.iter().find(|r| r["parameter"] == p).map(|r| signed(&r["stopping_time"], 1.0, 3)).unwrap();
+    let mut o = format!(
+        "{SENSITIVITY_BEGIN}: rendered by tests/sweeps.rs::sensitivity_on_case_1_reproduces_the_measured_ranking -->\n\n\
+         {} runs (the base and two per parameter); d(output)/d(ln p), the top of the ranking:\n\n\
+         | rank | parameter | stop (s) | distance (m) | peak (kN) |\n| --- | --- | --- | --- | --- |\n",
+        1 + 2 * rows.len()
+    );
+    for (i, r) in rows.iter().enumerate() {
+        if r["stopping_time"].as_f64().is_some_and(|t| t.abs() >= SENSITIVITY_SHOWN) {
+            o.push_str(&format!(
+                "| {} | {} | {} | {} | {} |\n",
+                i + 1,
+                r["parameter"].as_str().unwrap(),
+                signed(&r["stopping_time"], 1.0, 2),
+                signed(&r["stopping_distance"], 1.0, 2),
+                signed(&r["peak_tension"], 1e-3, 1)
+            ));
+        }
+    }
+    o.push_str(&format!(
+        "\nThe rest is below {SENSITIVITY_SHOWN} s (normal drag {} s, added mass {} s, seabed stiffness {} s).\n\n{SENSITIVITY_END}",
+        effect("hydrodynamics.normal_drag_coefficient"),
+        effect("hydrodynamics.added_mass_coefficient"),
+        effect("environment.seabed_stiffness")
+    ));
+    let path = root().join("docs/sweeps.md");
+    let mut text = std::fs::read_to_string(&path).unwrap();
+    let a = text.find(SENSITIVITY_BEGIN).expect("docs/sweeps.md: sensitivity begin marker");
+    let b = text.find(SENSITIVITY_END).expect("docs/sweeps.md: sensitivity end marker") + SENSITIVITY_END.len();
+    if text[a..b] != o {
+        text.replace_range(a..b, &o);
+        std::fs::write(&path, &text).unwrap();
+        panic!("docs/sweeps.md's sensitivity table was stale and has been regenerated: review and commit it");
+    }
 }

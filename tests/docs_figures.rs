@@ -1,0 +1,175 @@
+//! Figures the docs quote in prose that follow from the scenes and the code's constants, not
+//! from a whole run: each is computed here and must appear in its doc as written (whitespace
+//! aside). A stale figure fails, naming the phrase the code gives now; edit the doc to it.
+//! Figures from runs are checked where the runs are made (`paper_claims.rs`,
+//! `stress_scenes.rs`, `sweeps.rs`, `generated_run.rs`); docs/validation.md lists them all.
+
+use std::path::Path;
+
+use kanestop_runtime::forces::ship::ShipHydro;
+use kanestop_runtime::generated::GeneratedKernel;
+use kanestop_runtime::model::{resting_height, Model};
+use kanestop_runtime::paper::CASES;
+use kanestop_runtime::scene::{bytes_for_bodies, MAX_BODIES, MAX_STEPS, SECONDS_PER_BODY_EVALUATION};
+
+fn read(name: &str) -> String {
+    std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join(name)).unwrap_or_else(|e| panic!("{name}: {e}"))
+}
+
+/// A doc with its whitespace collapsed, so a quoted phrase matches across line breaks.
+fn flat(name: &str) -> String {
+    read(name).split_whitespace().collect::<Vec<_>>().join(" ")
+}
+
+/// The phrases a doc should contain and does not.
+fn missing(doc: &str, phrases: &[String]) -> Vec<String> {
+    let text = flat(doc);
+    phrases.iter().filter(|p| !text.contains(p.as_str())).map(|p| format!("{doc} should say: {p}")).collect()
+}
+
+fn assert_quoted(doc: &str, phrases: &[String]) {
+    let m = missing(doc, phrases);
+    assert!(m.is_empty(), "stale figures (edit the doc to what the code gives):\n{}", m.join("\n"));
+}
+
+/// The value of `const NAME: TYPE = VALUE;` in a source file (constants the tests cannot import).
+fn source_const(file: &str, name: &str) -> String {
+    let text = read(file);
+    let line = text.lines().find(|l| l.contains(&format!("const {name}:"))).unwrap_or_else(|| panic!("{file}: {name}"));
+    line.split('=').nth(1).unwrap().trim().trim_end_matches(';').to_string()
+}
+
+#[test]
+fn model_choices_figures_are_what_the_code_computes() {
+    let scene = CASES[0].scene();
+    let model = Model::new(&scene).unwrap();
+    let (lo, hi) =
+        kanestop_runtime::catenary::laid_range(&scene.cable_element_lengths(), scene.initial.vertical_projection)
+            .expect("case 1 has a feasible range");
+    let env = &scene.environment;
+    let embedment = |radius: f64, mpl: f64| 1e3 * (radius - resting_height(radius, mpl, env));
+    let ship = ShipHydro::new(
+        scene.ship.mass,
+        scene.ship.length,
+        scene.ship.beam,
+        scene.ship.hull_roughness,
+        env.water_density,
+        env.gravity,
+        env.kinematic_viscosity,
+    );
+    let residual =
+        kanestop_runtime::simulate::static_residual(&model, Box::new(GeneratedKernel::new(&model.chain).unwrap()))
+            .unwrap();
+    let drifts: Vec<f64> = CASES.iter().map(|c| c.scene().solver.max_energy_drift).collect();
+    assert!(drifts.iter().all(|&d| d == drifts[0]), "one energy-drift limit for the paper scenes: {drifts:?}");
+    assert_quoted(
+        "docs/model-choices.md",
+        &[
+            format!("for case 1 it is [{lo:.6}, {hi:.6}] m"),
+            format!(
+                "about {:.0} mm into the seabed for the {} m chain and {:.0} mm for the cable",
+                embedment(scene.chain.radius, scene.chain.mass_per_length),
+                scene.chain.radius,
+                embedment(scene.cable.radius, scene.cable.mass_per_length)
+            ),
+            format!("({:.3} m for case 1)", model.water_depth()),
+            format!("({:.0} m for the {:.0} t ship)", ship.metacentric_height, scene.ship.mass / 1e3),
+            format!("(case 1: {:.2} g, from the first cable element", residual.line.0 / env.gravity),
+            format!("Above {} g the diagnosis", kanestop_workflow::diagnostic::NOT_STATIC),
+            format!("`solver.max_energy_drift` ({} in the paper scenes)", drifts[0]),
+            format!("the cable's {:.0} kN break load", scene.cable.break_load / 1e3),
+            format!("at most `MAX_BODIES` = {MAX_BODIES}"),
+            format!("{:.1} GB at N = {MAX_BODIES}", bytes_for_bodies(MAX_BODIES) / 1e9),
+            format!("at most `MAX_STEPS` = {MAX_STEPS:e} steps"),
+            format!("({:.2} µs per body and right-hand side", SECONDS_PER_BODY_EVALUATION * 1e6),
+            format!(
+                "kernels up to `MAX_GENERATED_BODIES` = {} bodies",
+                source_const("generated/build.rs", "MAX_GENERATED_BODIES")
+            ),
+        ],
+    );
+}
+
+#[test]
+fn codegen_and_conventions_figures_are_what_the_code_computes() {
+    // The body counts of the paper's scenes: the unrolled kernels checked in for them.
+    let mut counts: Vec<usize> = CASES.iter().map(|c| Model::new(&c.scene()).unwrap().body_count()).collect();
+    counts.sort();
+    counts.dedup();
+    let counts: Vec<String> = counts.iter().map(|n| n.to_string()).collect();
+    assert_quoted(
+        "docs/codegen.md",
+        &[format!("every N the paper's scenes (`scenes/paper/`) need ({})", counts.join(", "))],
+    );
+    // The mass matrix's condition over the paper's chains at their initial states, and the
+    // masses that make it so.
+    let (mut lo, mut hi) = (f64::MAX, 0.0f64);
+    for c in CASES {
+        let model = Model::new(&c.scene()).unwrap();
+        let e = kanestop_runtime::eval::evaluate(&model, Box::new(GeneratedKernel::new(&model.chain).unwrap()), None)
+            .unwrap();
+        (lo, hi) = (lo.min(e.cond), hi.max(e.cond));
+    }
+    let scene = CASES[0].scene();
+    let model = Model::new(&scene).unwrap();
+    let lightest = model.chain.bodies.iter().filter(|b| b.kind.is_rod_like()).map(|b| b.mass).fold(f64::MAX, f64::min);
+    assert_quoted(
+        "docs/conventions.md",
+        &[format!(
+            "(cond ≈ {lo:.1e}–{hi:.1e} at the paper's initial states: a {:.0} t ship on elements of {:.0} kg and more)",
+            scene.ship.mass / 1e3,
+            lightest
+        )],
+    );
+}
+
+#[test]
+fn integrators_figures_are_what_the_code_computes() {
+    use kanestop_runtime::integrate::StepControl;
+    let tests = read("tests/integrators.rs").lines().filter(|l| l.trim() == "#[test]").count();
+    // `report accuracy`'s runs at the CLI's default repeats (`--repeats`, in src/main.rs).
+    let main = read("src/main.rs");
+    let lines: Vec<&str> = main.lines().collect();
+    let at = lines.iter().position(|l| l.trim() == "repeats: usize,").expect("src/main.rs: --repeats");
+    let repeats: usize = lines[at - 1]
+        .split("default_value_t =")
+        .nth(1)
+        .expect("--repeats default")
+        .trim()
+        .trim_end_matches(")]")
+        .parse()
+        .unwrap();
+    let runs = kanestop_workflow::accuracy::run_count(&kanestop_workflow::accuracy::default_plan(), repeats);
+    let c = StepControl::default();
+    assert_quoted(
+        "docs/integrators.md",
+        &[
+            format!("`cargo test --test integrators` ({tests} tests"),
+            format!("the median over {repeats} runs in the same invocation"),
+            format!("a line every 10 % of the {runs} runs"),
+            format!(
+                "StepControl: safety {}, fac {}..{}, PI β = {}, h_min, h_max",
+                c.safety, c.fac_min, c.fac_max, c.beta
+            ),
+            format!("`max_rejections` ({}) consecutive failures", c.max_rejections),
+            format!("`SPIKE_FACTOR` = {} × the line's largest break load", kanestop_runtime::simulate::SPIKE_FACTOR),
+        ],
+    );
+}
+
+#[test]
+fn python_figures_are_what_the_code_computes() {
+    // The channels a case-1 run hands to NumPy, to the nearest ten.
+    let channels = kanestop_workflow::history::all_channels(Model::new(&CASES[0].scene()).unwrap().body_count()).len();
+    assert_quoted(
+        "docs/python.md",
+        &[format!("handing ~{} channels to NumPy", (channels as f64 / 10.0).round() * 10.0)],
+    );
+}
+
+#[test]
+fn a_stale_figure_is_reported() {
+    // The check itself: a phrase the doc does not hold is reported, one it holds is not.
+    assert!(missing("docs/model-choices.md", &["at most `MAX_BODIES` = 3999".to_string()]).len() == 1);
+    assert!(missing("docs/model-choices.md", &["# Model choices".to_string()]).is_empty());
+}
