@@ -124,6 +124,9 @@ pub struct GeneratedKernel {
     solve_path: SolvePath,
     params: Vec<BodyParams>,
     trig: Vec<[f64; 2]>,
+    /// The q that `trig` was computed at (empty before the first kinematics): body
+    /// accelerations at the state just solved, as every observation asks for, reuse it.
+    trig_q: Vec<f64>,
     states: Vec<[f64; 6]>,
     loads: Vec<Load>,
     load_array: Vec<[f64; 3]>,
@@ -176,6 +179,7 @@ impl GeneratedKernel {
             solve_path: SolvePath::Recursive,
             params,
             trig: vec![[0.0; 2]; n],
+            trig_q: Vec::with_capacity(n),
             states: vec![[0.0; 6]; n],
             loads: vec![Load::default(); n],
             load_array: vec![[0.0; 3]; n],
@@ -214,6 +218,8 @@ impl GeneratedKernel {
             Table::Rolled(t, _) => t.kinematics,
         };
         kinematics(&self.params, q, u, &mut self.trig, &mut self.states);
+        self.trig_q.clear();
+        self.trig_q.extend_from_slice(q);
         for ((b, s), t) in bodies.iter_mut().zip(&self.states).zip(&self.trig) {
             *b = BodyState { x: s[0], z: s[1], theta: s[2], cos: t[0], sin: t[1], vx: s[3], vz: s[4], omega: s[5] };
         }
@@ -264,7 +270,11 @@ impl Kernel for GeneratedKernel {
             Table::Unrolled(t) => (t.kinematics, t.accelerations),
             Table::Rolled(t, _) => (t.kinematics, t.accelerations),
         };
-        kinematics(&self.params, q, u, &mut self.trig, &mut self.states);
+        if self.trig_q != q {
+            kinematics(&self.params, q, u, &mut self.trig, &mut self.states);
+            self.trig_q.clear();
+            self.trig_q.extend_from_slice(q);
+        }
         accelerations(&self.params, u, &self.trig, qdd, &mut self.acc);
         for (o, a) in out.iter_mut().zip(&self.acc) {
             *o = BodyAcceleration { ax: a[0], az: a[1], alpha: a[2] };

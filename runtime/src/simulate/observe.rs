@@ -60,7 +60,7 @@ impl Observer {
             let a_n = a.ax * sin + a.az * cos;
             sum[0] += b.mass * a.ax + b.added_mass * a_n * sin - l.fx;
             sum[1] += b.mass * a.az + b.added_mass * a_n * cos - l.fz;
-            tensions[k - 1] = sum[0].hypot(sum[1]);
+            tensions[k - 1] = (sum[0] * sum[0] + sum[1] * sum[1]).sqrt(); // no overflow below 1e150 N
         }
         let mut work = [0.0; WORK_COUNT];
         work.copy_from_slice(w);
