@@ -32,6 +32,29 @@ fn assert_quoted(doc: &str, phrases: &[String]) {
     assert!(m.is_empty(), "stale figures (edit the doc to what the code gives):\n{}", m.join("\n"));
 }
 
+/// `x` to `decimals` places without trailing zeros (146.000000 → 146).
+fn trimmed(x: f64, decimals: usize) -> String {
+    let s = format!("{x:.decimals$}");
+    if s.contains('.') {
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        s
+    }
+}
+
+/// An integer with its thousands grouped by spaces, as the docs write them (1 000 000).
+fn grouped(n: usize) -> String {
+    let digits = n.to_string();
+    let mut out = String::new();
+    for (i, c) in digits.chars().enumerate() {
+        if i > 0 && (digits.len() - i) % 3 == 0 {
+            out.push(' ');
+        }
+        out.push(c);
+    }
+    out
+}
+
 /// The value of `const NAME: TYPE = VALUE;` in a source file (constants the tests cannot import).
 fn source_const(file: &str, name: &str) -> String {
     let text = read(file);
@@ -88,6 +111,20 @@ fn model_choices_figures_are_what_the_code_computes() {
             ),
         ],
     );
+    // `initial.horizontal_projection`'s doc comment (runtime/src/scene.rs, rendered into
+    // docs/scenes.md): the continuous cable's x_L range for case 1, and how far the rigid
+    // elements raise its lower end.
+    let (c_lo, c_hi) =
+        kanestop_runtime::catenary::continuous_range(scene.cable_length(), scene.initial.vertical_projection)
+            .expect("case 1 has a continuous range");
+    assert!((lo - c_lo).abs() < 1e-5 && (hi - c_hi).abs() < 1e-5, "laid [{lo}, {hi}] against ({c_lo}, {c_hi}]");
+    assert_quoted(
+        "docs/scenes.md",
+        &[
+            format!("for case 1, ({}, {c_hi:.6}] m)", trimmed(c_lo, 6)),
+            "the rigid elements may raise the lower end (case 1: by less than 1e-5 m)".to_string(),
+        ],
+    );
 }
 
 #[test]
@@ -99,7 +136,10 @@ fn codegen_and_conventions_figures_are_what_the_code_computes() {
     let counts: Vec<String> = counts.iter().map(|n| n.to_string()).collect();
     assert_quoted(
         "docs/codegen.md",
-        &[format!("every N the paper's scenes (`scenes/paper/`) need ({})", counts.join(", "))],
+        &[
+            format!("every N the paper's scenes (`scenes/paper/`) need ({})", counts.join(", ")),
+            format!("in a scratch of {} values per body", source_const("generated/src/lib.rs", "ROLLED_SCRATCH")),
+        ],
     );
     // The mass matrix's condition over the paper's chains at their initial states, and the
     // masses that make it so.
@@ -141,9 +181,42 @@ fn integrators_figures_are_what_the_code_computes() {
         .unwrap();
     let runs = kanestop_workflow::accuracy::run_count(&kanestop_workflow::accuracy::default_plan(), repeats);
     let c = StepControl::default();
+    // DP5's stability limit on the negative real axis: the |hλ| at which one fixed step on
+    // ẏ = −y stops damping (|R(−hλ)| = 1), found by bisection.
+    let boundary = {
+        struct Decay;
+        impl kanestop_runtime::integrate::OdeSystem for Decay {
+            fn dim(&self) -> usize {
+                1
+            }
+            fn rhs(&mut self, _t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), kanestop_runtime::integrate::RhsError> {
+                dy[0] = -y[0];
+                Ok(())
+            }
+        }
+        use kanestop_runtime::integrate::Integrator;
+        let mut dp = kanestop_runtime::integrate::Dp5::new(1, 1e-6, 1e-9).unwrap();
+        let mut grows = |h: f64| {
+            let mut y = [1.0];
+            dp.step(&mut Decay, 0.0, &mut y, h).unwrap();
+            y[0].abs() > 1.0
+        };
+        let (mut stable, mut unstable) = (1.0, 5.0);
+        assert!(!grows(stable) && grows(unstable));
+        while unstable - stable > 1e-9 {
+            let mid = 0.5 * (stable + unstable);
+            if grows(mid) {
+                unstable = mid;
+            } else {
+                stable = mid;
+            }
+        }
+        stable
+    };
     assert_quoted(
         "docs/integrators.md",
         &[
+            format!("(stability limit {boundary:.1}/1e6)"),
             format!("`cargo test --test integrators` ({tests} tests"),
             format!("the median over {repeats} runs in the same invocation"),
             format!("a line every 10 % of the {runs} runs"),
@@ -153,6 +226,18 @@ fn integrators_figures_are_what_the_code_computes() {
             ),
             format!("`max_rejections` ({}) consecutive failures", c.max_rejections),
             format!("`SPIKE_FACTOR` = {} × the line's largest break load", kanestop_runtime::simulate::SPIKE_FACTOR),
+        ],
+    );
+}
+
+#[test]
+fn sweeps_figures_are_what_the_code_computes() {
+    use kanestop_workflow::sweep::{shard::MAX_SHARDS, slurm::default_shards};
+    assert_quoted(
+        "docs/sweeps.md",
+        &[
+            format!("1 ≤ N ≤ {})", grouped(MAX_SHARDS)),
+            format!("`--shards` defaults to one shard per row up to {}", default_shards(usize::MAX)),
         ],
     );
 }
