@@ -160,7 +160,47 @@ fn main() {
     }
 
     rolled_vs_unrolled();
+    fused_gravity();
     whole_runs();
+}
+
+/// Weight alone, the loads included: the kernel handed `Forces::gravity_only`'s loads
+/// (unrolled where built, and rolled) against the rolled solve with the weights fused into
+/// its steps (`Kernel::fuse_gravity`), side by side, µs per call (wall median; CPU over the
+/// whole measurement divided by its calls).
+fn fused_gravity() {
+    println!("\ngravity only, loads included: fed by the force modules vs fused (µs per solve, anchor free)");
+    println!(
+        "{:>5} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>12}",
+        "N", "unrolled", "CPU", "rolled", "CPU", "fused", "CPU", "fused/best"
+    );
+    let built = available();
+    for n in [12, 46, 200, 520] {
+        let c = chain(n, false);
+        let timed = |mut k: GeneratedKernel| {
+            let cpu = thread_cpu();
+            let mut calls = 0u64;
+            let wall = per_solve_counted(&mut k, &c, &mut calls);
+            (wall, (thread_cpu() - cpu) * 1e6 / calls as f64)
+        };
+        let unrolled =
+            built.contains(&(n, false)).then(|| timed(GeneratedKernel::with_form(&c, Form::Unrolled).unwrap()));
+        let rolled = timed(GeneratedKernel::with_form(&c, Form::Rolled).unwrap());
+        let mut k = GeneratedKernel::with_form(&c, Form::Rolled).unwrap();
+        assert!(k.fuse_gravity(9.81));
+        let fused = timed(k);
+        let best = unrolled.map_or(rolled.0, |u| u.0.min(rolled.0));
+        let (u, uc) =
+            unrolled.map_or(("—".to_string(), "—".to_string()), |(w, c)| (format!("{w:.2}"), format!("{c:.2}")));
+        println!(
+            "{n:>5} {u:>9} {uc:>9} {:>9.2} {:>9.2} {:>9.2} {:>9.2} {:>11.2}×",
+            rolled.0,
+            rolled.1,
+            fused.0,
+            fused.1,
+            fused.0 / best
+        );
+    }
 }
 
 /// CPU time of this thread so far, s (Linux: the first field of schedstat, ns on the CPU).

@@ -211,9 +211,19 @@ fn codegen(scene: Option<&PathBuf>, write: bool, root: &std::path::Path) -> Resu
         if t.cable_stages.len() == 1 { "" } else { "s" }
     );
     let forces = kanestop_runtime::forces::Forces::new(&model);
-    println!("loads      {} (the runtime's force models)", forces.description());
-    let form = kanestop_runtime::generated::GeneratedKernel::new(&model.chain).map(|k| k.form());
-    let kernel = match form {
+    let kernel = kanestop_runtime::generated::GeneratedKernel::new(&model.chain);
+    // Whether a run fuses the loads into the kernel: as the run's own dynamics decide it.
+    let fused = kanestop_runtime::generated::GeneratedKernel::new(&model.chain).is_ok_and(|k| {
+        let forces = kanestop_runtime::forces::Forces::new(&model);
+        kanestop_runtime::dynamics::Dynamics::new(Box::new(k), forces, model.anchor).loads_fused()
+    });
+    if fused {
+        println!("loads      weight alone, fused into the generated solve (no load evaluation per call)");
+    } else {
+        println!("loads      {} (the runtime's force models)", forces.description());
+    }
+    let kernel = match kernel.map(|k| k.form()) {
+        _ if fused => "rolled_dry, its solves under weight alone (solve_free_gravity, solve_stuck_gravity)".to_string(),
         Ok(kanestop_runtime::generated::Form::Unrolled) => {
             format!("{} (unrolled, built for N = {n})", variant.module())
         }

@@ -553,3 +553,22 @@ fn codegen_reports_the_scene_kernel_and_what_folding_saves() {
     let text = String::from_utf8(out.stdout).unwrap();
     assert!(text.contains("rolled_wet (any N; no unrolled kernel for N = 51 in this build)"), "{text}");
 }
+
+/// A chain in vacuum (water and seabed off) runs with its weights fused into the generated
+/// solve, and `codegen` says so; with water on, the force modules compute the loads.
+#[test]
+fn codegen_says_when_the_loads_are_fused() {
+    let dir = temp_dir("codegen-fused");
+    let path = dir.join("vacuum.toml");
+    let text = kanestop_runtime::paper::DEFAULT_SCENE
+        .replace("water = true", "water = false")
+        .replace("seabed = true", "seabed = false");
+    std::fs::write(&path, text).unwrap();
+    let out = kanestop().arg("codegen").arg(&path).output().unwrap();
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(text.contains("loads      weight alone, fused into the generated solve"), "{text}");
+    assert!(text.contains("kernel     rolled_dry, its solves under weight alone"), "{text}");
+    let out = kanestop().args(["codegen", "scenes/paper/case01.toml"]).output().unwrap();
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(text.contains("(the runtime's force models)") && !text.contains("fused"), "{text}");
+}

@@ -101,22 +101,6 @@ fn chains(n: usize, wet: bool, rng: &mut StdRng) -> Vec<Chain> {
     out
 }
 
-/// The relative residual of the reference system over the active speeds; with the anchor
-/// sliding under friction −k N, N = a_w ẍ − f_w moves into the surge row.
-fn residual(asm: &Assembly, active: usize, friction: f64, qdd: &[f64]) -> f64 {
-    let mut m = asm.mass.view((0, 0), (active, active)).into_owned();
-    let mut f = asm.rhs.rows(0, active).into_owned();
-    if active == asm.rhs.len() {
-        let s = active - 1;
-        for p in 0..active {
-            m[(s, p)] += friction * asm.heave[p];
-        }
-        f[s] += friction * asm.heave_rhs;
-    }
-    let x = DVector::from_column_slice(&qdd[..active]);
-    (m * x - &f).norm() / f.norm()
-}
-
 /// The seabed's normal force on the anchor by Newton's sum over all bodies (Eq. 52 at the
 /// anchor): N = Σ_k (m_k a_kz + m_a,k a_kn cos θ_k − F_kz).
 fn newton_normal(chain: &Chain, bodies: &[BodyState], acc: &[BodyAcceleration], loads: &[Load]) -> f64 {

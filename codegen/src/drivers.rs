@@ -65,6 +65,13 @@ pub fn generate_rolled(water: Water) -> RolledFile {
     }
     let wet = water == Water::On;
     let drivers = drivers();
+    let (gravity, gravity_drivers) = match water {
+        Water::Off => (
+            quote!(Some(crate::GravityTable { solve_free: solve_free_gravity, solve_stuck: solve_stuck_gravity })),
+            gravity_drivers(),
+        ),
+        Water::On => (quote!(None), quote!()),
+    };
     let tokens = quote! {
         /// This variant, for [`crate::rolled`].
         pub const KERNEL: crate::RolledTable = crate::RolledTable {
@@ -74,8 +81,10 @@ pub fn generate_rolled(water: Water) -> RolledFile {
             accelerations,
             solve_free,
             solve_stuck,
+            gravity: #gravity,
         };
         #drivers
+        #gravity_drivers
         #items
     };
     let file: syn::File = syn::parse2(tokens).expect("generated rolled code parses");
@@ -85,6 +94,69 @@ pub fn generate_rolled(water: Water) -> RolledFile {
     };
     let source = header(what) + "\n" + &prettyplease::unparse(&file);
     RolledFile { water, file_name: format!("{}.rs", module(water)), source, steps: reports }
+}
+
+/// The solve under weight alone (dry, no seabed): the loads are the generated steps' own
+/// −m g (`g` in m/s²), so no load array is read. The same passes as `solve_free` and
+/// `solve_stuck` otherwise.
+fn gravity_drivers() -> TokenStream {
+    quote! {
+        /// The inward pass under weight alone, from the ship to B_2.
+        fn inward_pass_gravity(
+            p: &[crate::BodyParams],
+            trig: &[[f64; 2]],
+            g: f64,
+            scratch: &mut [[f64; crate::ROLLED_SCRATCH]],
+        ) -> [f64; 9] {
+            const W: usize = crate::ROLLED_SCRATCH - 1;
+            let n = p.len();
+            let (w, wp) = (scratch[n - 1][W], scratch[n - 2][W]);
+            let mut c = inward_ship_gravity(&p[n - 1], &trig[n - 1], w, &trig[n - 2], wp, g, &mut scratch[n - 1]);
+            for k in (2..n - 1).rev() {
+                let (w, wp) = (scratch[k][W], scratch[k - 1][W]);
+                c = inward_rod_gravity(&p[k], &trig[k], w, &trig[k - 1], wp, g, &c, &mut scratch[k]);
+            }
+            let w = scratch[1][W];
+            inward_first_gravity(&p[1], &trig[1], w, g, &c, &mut scratch[1])
+        }
+
+        /// `solve_free` with every body's load its weight −m g (Eq. 40), gravity `g` in m/s².
+        pub fn solve_free_gravity(
+            p: &[crate::BodyParams],
+            u: &[f64],
+            trig: &[[f64; 2]],
+            g: f64,
+            friction: f64,
+            qdd: &mut [f64],
+            scratch: &mut [[f64; crate::ROLLED_SCRATCH]],
+        ) -> [f64; 2] {
+            let n = self::bodies(p, &[u.len(), trig.len(), qdd.len(), scratch.len()]);
+            let scratch = &mut scratch[..n];
+            angular_velocities(u, scratch);
+            let c = inward_pass_gravity(p, trig, g, scratch);
+            let [s_dd, normal, factor] = anchor_free_gravity(&p[0], g, &c, friction);
+            outward_pass(s_dd, scratch, qdd);
+            [normal, factor]
+        }
+
+        /// `solve_stuck` with every body's load its weight −m g (Eq. 40), gravity `g` in m/s².
+        pub fn solve_stuck_gravity(
+            p: &[crate::BodyParams],
+            u: &[f64],
+            trig: &[[f64; 2]],
+            g: f64,
+            qdd: &mut [f64],
+            scratch: &mut [[f64; crate::ROLLED_SCRATCH]],
+        ) -> [f64; 2] {
+            let n = self::bodies(p, &[u.len(), trig.len(), qdd.len(), scratch.len()]);
+            let scratch = &mut scratch[..n];
+            angular_velocities(u, scratch);
+            let c = inward_pass_gravity(p, trig, g, scratch);
+            let [s_dd, holding, normal] = anchor_stuck_gravity(&p[0], g, &c);
+            outward_pass(s_dd, scratch, qdd);
+            [holding, normal]
+        }
+    }
 }
 
 // Long by design: the five entry points and their two shared passes, as they appear in the file.

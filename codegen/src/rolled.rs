@@ -255,15 +255,54 @@ pub fn accelerations(kind: Kind, water: Water) -> Step {
     )
 }
 
-fn load_inputs(dag: &mut Dag) -> (V2, Id) {
-    (pair(dag, "f"), dag.input("f[2]"))
+/// Where a solve step's applied load on its body comes from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Loads {
+    /// The resultant at the centroid, `f` = [F_x, F_z, M_y], an input: any physics the
+    /// runtime's force modules compute.
+    Inputs,
+    /// Weight alone, −m g through the centroid (Eq. 40), with `g` an input: the step reads
+    /// no load, and the terms of F_x and M_y fold away. A dry scene without seabed (a chain
+    /// hanging in vacuum) needs nothing else.
+    Gravity,
+}
+
+impl Loads {
+    /// `""` or `"_gravity"`, appended to the names of the steps and entry points.
+    pub fn suffix(self) -> &'static str {
+        match self {
+            Loads::Inputs => "",
+            Loads::Gravity => "_gravity",
+        }
+    }
+
+    /// The Rust parameter the steps take for it.
+    fn param(self) -> &'static str {
+        match self {
+            Loads::Inputs => "f: &[f64; 3]",
+            Loads::Gravity => "g: f64",
+        }
+    }
+}
+
+/// The applied load (force at the centroid, moment about y) on a body of mass `mass`.
+fn load_syms(dag: &mut Dag, loads: Loads, mass: Id) -> (V2, Id) {
+    match loads {
+        Loads::Inputs => (pair(dag, "f"), dag.input("f[2]")),
+        Loads::Gravity => {
+            let g = dag.input("g");
+            let weight = dag.mul(mass, g);
+            let zero = dag.zero();
+            ([zero, dag.neg(weight)], zero)
+        }
+    }
 }
 
 /// `inward_<kind>` (not the anchor): the body's articulated inertia, its hinge eliminated
 /// and carried to the parent (the inward pass of the O(N) solve). Stores the row the
 /// outward pass needs, `s` = [d_x, d_z, IA_01, IA_02, pA_0, 1/D]; returns the carry
-/// [Xᵀ Ia X (6), Xᵀ(Ia c + pa) (3)].
-pub fn inward(kind: Kind, water: Water) -> Step {
+/// [Xᵀ Ia X (6), Xᵀ(Ia c + pa) (3)]. With [`Loads::Gravity`], `inward_<kind>_gravity`.
+pub fn inward(kind: Kind, water: Water, loads: Loads) -> Step {
     assert_ne!(kind, Kind::Anchor, "the anchor closes the inward pass (anchor_free, anchor_stuck)");
     let mut dag = Dag::new();
     let mut f = Function::new(Dag::new());
@@ -271,7 +310,7 @@ pub fn inward(kind: Kind, water: Water) -> Step {
     let (cs, parent) = rotations(&mut dag, kind);
     let (w, wp) = angular_velocities(&mut dag, kind);
     let b = body_syms(&mut dag, &p, cs, w);
-    let load = load_inputs(&mut dag);
+    let load = load_syms(&mut dag, loads, p.mass);
     let carry = (kind != Kind::Ship).then(|| articulated_carry(&mut dag));
     let ab = articulated_body(&mut dag, &b, load, carry, TAG);
     let d = rot(&mut dag, parent, p.joint);
@@ -282,24 +321,29 @@ pub fn inward(kind: Kind, water: Water) -> Step {
     f.ret = ci.into_iter().chain(cp).collect();
     f.dag = dag;
     let carry = if kind == Kind::Ship { "" } else { ", c: &[f64; 9]" };
+    let doc = match loads {
+        Loads::Inputs => "The inward pass at one body: its articulated inertia and bias, the hinge eliminated and carried to the parent.",
+        Loads::Gravity => "The inward pass at one body under its weight alone (−m g through the centroid, Eq. 40): its articulated inertia and bias, the hinge eliminated and carried to the parent.",
+    };
     step(
-        format!("inward_{}", kind.name()),
+        format!("inward_{}{}", kind.name(), loads.suffix()),
         Some(kind),
-        "The inward pass at one body: its articulated inertia and bias, the hinge eliminated and carried to the parent.",
-        format!("{PARAMS}{}, f: &[f64; 3]{carry}, s: &mut [f64; crate::ROLLED_SCRATCH]", motion_params(kind)),
+        doc,
+        format!("{PARAMS}{}, {}{carry}, s: &mut [f64; crate::ROLLED_SCRATCH]", motion_params(kind), loads.param()),
         f,
     )
 }
 
-/// `anchor_free` / `anchor_stuck`: the anchor closes the inward pass (`body.rs`).
-pub fn anchor(water: Water, stuck: bool) -> Step {
+/// `anchor_free` / `anchor_stuck`: the anchor closes the inward pass (`body.rs`); with
+/// [`Loads::Gravity`], `anchor_free_gravity` / `anchor_stuck_gravity`.
+pub fn anchor(water: Water, stuck: bool, loads: Loads) -> Step {
     let mut dag = Dag::new();
     let mut f = Function::new(Dag::new());
     let p = param_syms(&mut dag, Kind::Anchor, water, "p");
     let (cs, _) = rotations(&mut dag, Kind::Anchor);
     let zero = dag.zero();
     let b = body_syms(&mut dag, &p, cs, zero);
-    let load = load_inputs(&mut dag);
+    let load = load_syms(&mut dag, loads, p.mass);
     let carry = articulated_carry(&mut dag);
     let ab = articulated_body(&mut dag, &b, load, Some(carry), "_1");
     let (s_dd, ret) = anchor_solve(&mut dag, ab, stuck);
@@ -314,7 +358,13 @@ pub fn anchor(water: Water, stuck: bool) -> Step {
             ", friction: f64",
         )
     };
-    step(name.to_string(), Some(Kind::Anchor), doc, format!("{PARAMS}, f: &[f64; 3], c: &[f64; 9]{friction}"), f)
+    step(
+        format!("{name}{}", loads.suffix()),
+        Some(Kind::Anchor),
+        doc,
+        format!("{PARAMS}, {}, c: &[f64; 9]{friction}", loads.param()),
+        f,
+    )
 }
 
 /// `outward`: the outward pass across one hinge from the row `s` the inward pass stored;
@@ -488,7 +538,8 @@ pub fn forces(kind: Kind, water: Water) -> Step {
     )
 }
 
-/// Every step of the rolled kernel of `water`, in the order they are emitted.
+/// Every step of the rolled kernel of `water`, in the order they are emitted: the dry
+/// kernel also has the solve steps under weight alone ([`Loads::Gravity`]).
 pub fn steps(water: Water) -> Vec<Step> {
     use Kind::{Anchor, First, Rod, Ship};
     let mut out = Vec::new();
@@ -498,11 +549,17 @@ pub fn steps(water: Water) -> Vec<Step> {
     for kind in [Anchor, First, Rod, Ship] {
         out.push(accelerations(kind, water));
     }
-    for kind in [Ship, Rod, First] {
-        out.push(inward(kind, water));
+    let fused: &[Loads] = match water {
+        Water::Off => &[Loads::Inputs, Loads::Gravity],
+        Water::On => &[Loads::Inputs],
+    };
+    for &loads in fused {
+        for kind in [Ship, Rod, First] {
+            out.push(inward(kind, water, loads));
+        }
+        out.push(anchor(water, false, loads));
+        out.push(anchor(water, true, loads));
     }
-    out.push(anchor(water, false));
-    out.push(anchor(water, true));
     out.push(outward());
     out.push(outboard(Ship, water));
     out.push(outboard(Rod, water));

@@ -109,6 +109,26 @@ pub struct RolledTable {
     pub accelerations: AccelerationsFn,
     pub solve_free: RolledSolveFreeFn,
     pub solve_stuck: RolledSolveStuckFn,
+    /// The solves under weight alone, loads fused into the steps (dry only).
+    pub gravity: Option<GravityTable>,
+}
+
+/// `solve_free_gravity(p, u, trig, g, friction, qdd, scratch)`: a rolled free solve whose
+/// loads are the bodies' weights −m g (m/s² for `g`); returns `[N, 1 + friction·∂N/∂F_x]`.
+pub type GravitySolveFreeFn =
+    fn(&[BodyParams], &[f64], &[[f64; 2]], f64, f64, &mut [f64], &mut [[f64; ROLLED_SCRATCH]]) -> [f64; 2];
+/// `solve_stuck_gravity(p, u, trig, g, qdd, scratch)`: the stuck solve under weight alone;
+/// returns `[holding, normal]`.
+pub type GravitySolveStuckFn =
+    fn(&[BodyParams], &[f64], &[[f64; 2]], f64, &mut [f64], &mut [[f64; ROLLED_SCRATCH]]) -> [f64; 2];
+
+/// The entry points of a kernel with the loads fused: weight alone (Eq. 40), for a chain
+/// hanging in vacuum (water and seabed off). The generated steps compute −m g themselves,
+/// and the zero force along x and moment fold out of the code.
+#[derive(Clone, Copy, Debug)]
+pub struct GravityTable {
+    pub solve_free: GravitySolveFreeFn,
+    pub solve_stuck: GravitySolveStuckFn,
 }
 
 /// The rolled kernel for the water switch: any N.

@@ -9,6 +9,10 @@ pub const KERNEL: crate::RolledTable = crate::RolledTable {
     accelerations,
     solve_free,
     solve_stuck,
+    gravity: Some(crate::GravityTable {
+        solve_free: solve_free_gravity,
+        solve_stuck: solve_stuck_gravity,
+    }),
 };
 /// The chain's length, checked against every argument.
 fn bodies(p: &[crate::BodyParams], lens: &[usize]) -> usize {
@@ -255,6 +259,76 @@ pub fn assemble(
     let g = forces_anchor(&fe(0), &c);
     f[n - 1] = g[0];
     heave[n] = g[1];
+}
+/// The inward pass under weight alone, from the ship to B_2.
+fn inward_pass_gravity(
+    p: &[crate::BodyParams],
+    trig: &[[f64; 2]],
+    g: f64,
+    scratch: &mut [[f64; crate::ROLLED_SCRATCH]],
+) -> [f64; 9] {
+    const W: usize = crate::ROLLED_SCRATCH - 1;
+    let n = p.len();
+    let (w, wp) = (scratch[n - 1][W], scratch[n - 2][W]);
+    let mut c = inward_ship_gravity(
+        &p[n - 1],
+        &trig[n - 1],
+        w,
+        &trig[n - 2],
+        wp,
+        g,
+        &mut scratch[n - 1],
+    );
+    for k in (2..n - 1).rev() {
+        let (w, wp) = (scratch[k][W], scratch[k - 1][W]);
+        c = inward_rod_gravity(
+            &p[k],
+            &trig[k],
+            w,
+            &trig[k - 1],
+            wp,
+            g,
+            &c,
+            &mut scratch[k],
+        );
+    }
+    let w = scratch[1][W];
+    inward_first_gravity(&p[1], &trig[1], w, g, &c, &mut scratch[1])
+}
+/// `solve_free` with every body's load its weight −m g (Eq. 40), gravity `g` in m/s².
+pub fn solve_free_gravity(
+    p: &[crate::BodyParams],
+    u: &[f64],
+    trig: &[[f64; 2]],
+    g: f64,
+    friction: f64,
+    qdd: &mut [f64],
+    scratch: &mut [[f64; crate::ROLLED_SCRATCH]],
+) -> [f64; 2] {
+    let n = self::bodies(p, &[u.len(), trig.len(), qdd.len(), scratch.len()]);
+    let scratch = &mut scratch[..n];
+    angular_velocities(u, scratch);
+    let c = inward_pass_gravity(p, trig, g, scratch);
+    let [s_dd, normal, factor] = anchor_free_gravity(&p[0], g, &c, friction);
+    outward_pass(s_dd, scratch, qdd);
+    [normal, factor]
+}
+/// `solve_stuck` with every body's load its weight −m g (Eq. 40), gravity `g` in m/s².
+pub fn solve_stuck_gravity(
+    p: &[crate::BodyParams],
+    u: &[f64],
+    trig: &[[f64; 2]],
+    g: f64,
+    qdd: &mut [f64],
+    scratch: &mut [[f64; crate::ROLLED_SCRATCH]],
+) -> [f64; 2] {
+    let n = self::bodies(p, &[u.len(), trig.len(), qdd.len(), scratch.len()]);
+    let scratch = &mut scratch[..n];
+    angular_velocities(u, scratch);
+    let c = inward_pass_gravity(p, trig, g, scratch);
+    let [s_dd, holding, normal] = anchor_stuck_gravity(&p[0], g, &c);
+    outward_pass(s_dd, scratch, qdd);
+    [holding, normal]
 }
 /// Body state and rotation of one body from the parent's carry (Eqs. 9, 13, 14).
 #[inline(always)]
@@ -634,6 +708,171 @@ fn anchor_stuck(p: &crate::BodyParams, f: &[f64; 3], c: &[f64; 9]) -> [f64; 3] {
     let pa_1_x = c[7] - f[0];
     let pa_1_z = c[8] - f[1];
     [0.0, pa_1_x, pa_1_z]
+}
+/// The inward pass at one body under its weight alone (−m g through the centroid, Eq. 40): its articulated inertia and bias, the hinge eliminated and carried to the parent.
+#[inline(always)]
+fn inward_ship_gravity(
+    p: &crate::BodyParams,
+    t: &[f64; 2],
+    w: f64,
+    tp: &[f64; 2],
+    wp: f64,
+    g: f64,
+    s: &mut [f64; crate::ROLLED_SCRATCH],
+) -> [f64; 9] {
+    let t15 = p.centroid[0] * t[0] + p.centroid[1] * t[1];
+    let t20 = p.mass * g;
+    let ia_k_00 = p.inertia
+        + p.mass * (p.centroid[0] * p.centroid[0] + p.centroid[1] * p.centroid[1]);
+    let t27 = p.mass * t15;
+    let ia_k_01 = p.mass * (p.centroid[1] * t[0] - p.centroid[0] * t[1]);
+    let ia_k_02 = -t27;
+    let t34 = w * w;
+    let t43 = t15 * t20;
+    let pa_k_m = -t43;
+    let pa_k_z = t20 - ia_k_01 * t34;
+    let t46 = p.joint[0] * tp[0];
+    let t47 = p.joint[0] * tp[1];
+    let t48 = -t47;
+    let inv_k = 1.0 / ia_k_00;
+    let t50 = ia_k_01 * inv_k;
+    let t51 = t27 * inv_k;
+    let t54 = t27 * t50;
+    let t57 = p.mass - ia_k_01 * t50;
+    let t58 = p.mass - t27 * t51;
+    let t65 = wp * wp;
+    let t66 = t46 * t65;
+    let t67 = t47 * t65;
+    let t74 = t43 * t50 - t27 * t34 + (t54 * t67 - t57 * t66);
+    let t79 = pa_k_z - t43 * t51 + (t58 * t67 - t54 * t66);
+    let t84 = -(t47 * t57) - t46 * t54;
+    let t89 = -(t47 * t54) - t46 * t58;
+    let t94 = -(t47 * t84) - t46 * t89;
+    let t99 = -(t47 * t74) - t46 * t79;
+    s[0] = t46;
+    s[1] = t48;
+    s[2] = ia_k_01;
+    s[3] = ia_k_02;
+    s[4] = pa_k_m;
+    s[5] = inv_k;
+    [t94, t84, t89, t57, t54, t58, t99, t74, t79]
+}
+/// The inward pass at one body under its weight alone (−m g through the centroid, Eq. 40): its articulated inertia and bias, the hinge eliminated and carried to the parent.
+#[inline(always)]
+fn inward_rod_gravity(
+    p: &crate::BodyParams,
+    t: &[f64; 2],
+    w: f64,
+    tp: &[f64; 2],
+    wp: f64,
+    g: f64,
+    c: &[f64; 9],
+    s: &mut [f64; crate::ROLLED_SCRATCH],
+) -> [f64; 9] {
+    let t12 = p.centroid[0] * t[0];
+    let t16 = p.mass * g;
+    let t30 = p.mass * t12;
+    let t31 = p.mass * (p.centroid[0] * t[1]);
+    let t38 = w * w;
+    let ia_k_00 = c[0] + (p.inertia + p.mass * (p.centroid[0] * p.centroid[0]));
+    let ia_k_01 = c[1] - t31;
+    let ia_k_02 = c[2] - t30;
+    let ia_k_11 = p.mass + c[3];
+    let ia_k_22 = p.mass + c[5];
+    let pa_k_m = c[6] - t12 * t16;
+    let pa_k_x = c[7] - t30 * t38;
+    let pa_k_z = c[8] + (t16 + t31 * t38);
+    let t58 = p.joint[0] * tp[0];
+    let t59 = p.joint[0] * tp[1];
+    let t60 = -t59;
+    let inv_k = 1.0 / ia_k_00;
+    let t62 = ia_k_01 * inv_k;
+    let t63 = ia_k_02 * inv_k;
+    let t67 = ia_k_11 - ia_k_01 * t62;
+    let t68 = c[4] - ia_k_02 * t62;
+    let t69 = ia_k_22 - ia_k_02 * t63;
+    let t75 = wp * wp;
+    let t76 = t58 * t75;
+    let t77 = t59 * t75;
+    let t84 = pa_k_x - pa_k_m * t62 + (t68 * t77 - t67 * t76);
+    let t89 = pa_k_z - pa_k_m * t63 + (t69 * t77 - t68 * t76);
+    let t94 = -(t59 * t67) - t58 * t68;
+    let t99 = -(t59 * t68) - t58 * t69;
+    let t104 = -(t59 * t94) - t58 * t99;
+    let t109 = -(t59 * t84) - t58 * t89;
+    s[0] = t58;
+    s[1] = t60;
+    s[2] = ia_k_01;
+    s[3] = ia_k_02;
+    s[4] = pa_k_m;
+    s[5] = inv_k;
+    [t104, t94, t99, t67, t68, t69, t109, t84, t89]
+}
+/// The inward pass at one body under its weight alone (−m g through the centroid, Eq. 40): its articulated inertia and bias, the hinge eliminated and carried to the parent.
+#[inline(always)]
+fn inward_first_gravity(
+    p: &crate::BodyParams,
+    t: &[f64; 2],
+    w: f64,
+    g: f64,
+    c: &[f64; 9],
+    s: &mut [f64; crate::ROLLED_SCRATCH],
+) -> [f64; 9] {
+    let t10 = p.centroid[0] * t[0];
+    let t14 = p.mass * g;
+    let t28 = p.mass * t10;
+    let t29 = p.mass * (p.centroid[0] * t[1]);
+    let t36 = w * w;
+    let ia_k_00 = c[0] + (p.inertia + p.mass * (p.centroid[0] * p.centroid[0]));
+    let ia_k_01 = c[1] - t29;
+    let ia_k_02 = c[2] - t28;
+    let ia_k_11 = p.mass + c[3];
+    let ia_k_22 = p.mass + c[5];
+    let pa_k_m = c[6] - t10 * t14;
+    let pa_k_x = c[7] - t28 * t36;
+    let pa_k_z = c[8] + (t14 + t29 * t36);
+    let inv_k = 1.0 / ia_k_00;
+    let t57 = ia_k_01 * inv_k;
+    let t58 = ia_k_02 * inv_k;
+    let t62 = ia_k_11 - ia_k_01 * t57;
+    let t63 = c[4] - ia_k_02 * t57;
+    let t64 = ia_k_22 - ia_k_02 * t58;
+    let t67 = pa_k_x - pa_k_m * t57;
+    let t68 = pa_k_z - pa_k_m * t58;
+    let t73 = p.joint[1] * t62 - p.joint[0] * t63;
+    let t77 = p.joint[1] * t63 - p.joint[0] * t64;
+    let t81 = p.joint[1] * t73 - p.joint[0] * t77;
+    let t85 = p.joint[1] * t67 - p.joint[0] * t68;
+    s[0] = p.joint[0];
+    s[1] = p.joint[1];
+    s[2] = ia_k_01;
+    s[3] = ia_k_02;
+    s[4] = pa_k_m;
+    s[5] = inv_k;
+    [t81, t73, t77, t62, t63, t64, t85, t67, t68]
+}
+/// The anchor sliding with friction −`friction`·N: returns [s̈, normal force (Eq. 37), 1 + friction·∂N/∂F_x].
+#[inline(always)]
+fn anchor_free_gravity(
+    p: &crate::BodyParams,
+    g: f64,
+    c: &[f64; 9],
+    friction: f64,
+) -> [f64; 3] {
+    let ia_1_11 = p.mass + c[3];
+    let pa_1_z = p.mass * g + c[8];
+    let t38 = ia_1_11 + c[4] * friction;
+    let t41 = (c[7] + pa_1_z * friction) / t38;
+    let s_dd = -t41;
+    let normal_force = pa_1_z - c[4] * t41;
+    let friction_factor = t38 / ia_1_11;
+    [s_dd, normal_force, friction_factor]
+}
+/// The anchor held: returns [0, holding force (Eq. 50), normal force (Eq. 37)].
+#[inline(always)]
+fn anchor_stuck_gravity(p: &crate::BodyParams, g: f64, c: &[f64; 9]) -> [f64; 3] {
+    let pa_1_z = p.mass * g + c[8];
+    [0.0, c[7], pa_1_z]
 }
 /// The outward pass across one hinge: [α, a_{o,x}, a_{o,z}] of the body and its β̈.
 #[inline(always)]

@@ -9,6 +9,7 @@ pub const KERNEL: crate::RolledTable = crate::RolledTable {
     accelerations,
     solve_free,
     solve_stuck,
+    gravity: None,
 };
 /// The chain's length, checked against every argument.
 fn bodies(p: &[crate::BodyParams], lens: &[usize]) -> usize {

@@ -31,6 +31,9 @@ pub struct Dynamics {
     /// The last evaluation's (q, u) and ü: an evaluation at the same state under the same
     /// anchor state is answered from it (see [`Dynamics::accelerations`]).
     last: LastEvaluation,
+    /// The weights, when the kernel computes them itself ([`Kernel::fuse_gravity`]): the
+    /// loads of every evaluation, as [`Forces`] gives them.
+    fused_weights: Option<Vec<Load>>,
 }
 
 /// Inputs and result of the last evaluation; `valid` is cleared whenever anything but
@@ -74,8 +77,18 @@ impl LoadModel for Recording<'_> {
 impl Dynamics {
     /// The right-hand side for `kernel` under the loads `forces`, the anchor starting in
     /// state `anchor` (without friction until [`Dynamics::slide_anchor`] sets a direction).
-    pub fn new(kernel: Box<dyn Kernel>, forces: Forces, anchor: AnchorDof) -> Self {
+    ///
+    /// When weight is the only load ([`Forces::weight_only`]) and the kernel can take it
+    /// into its own code ([`Kernel::fuse_gravity`]), it does: the loads are then not
+    /// evaluated per call, and [`Dynamics::loads`] holds the weights the force modules give.
+    pub fn new(mut kernel: Box<dyn Kernel>, mut forces: Forces, anchor: AnchorDof) -> Self {
         let n = kernel.body_count();
+        let fused_weights = forces.weight_only().filter(|&g| kernel.fuse_gravity(g)).map(|_| {
+            // Weight does not depend on the state: any state gives it.
+            let mut weights = vec![Load::default(); n];
+            forces.loads(&vec![BodyState::default(); n], &mut weights);
+            weights
+        });
         Dynamics {
             kernel,
             forces,
@@ -83,16 +96,22 @@ impl Dynamics {
             direction: 0.0,
             assembly: Assembly::new(n),
             evaluations: 0,
-            loads: vec![Load::default(); n],
+            loads: fused_weights.clone().unwrap_or_else(|| vec![Load::default(); n]),
             reaction: AnchorReaction::default(),
             friction: 0.0,
             last: LastEvaluation::default(),
+            fused_weights,
         }
     }
 
     /// N.
     pub fn body_count(&self) -> usize {
         self.kernel.body_count()
+    }
+
+    /// Whether the kernel computes the loads itself (weight alone, [`Kernel::fuse_gravity`]).
+    pub fn loads_fused(&self) -> bool {
+        self.fused_weights.is_some()
     }
 
     /// The load models (read-only: changing one would change the right-hand side behind the
@@ -184,9 +203,15 @@ impl Dynamics {
             AnchorDof::Free => self.forces.anchor.friction_factor(self.direction),
             AnchorDof::Stuck => 0.0,
         };
+        if let Some(weights) = &self.fused_weights {
+            self.loads.copy_from_slice(weights); // the kernel does not call the model
+        }
         let mut model = Recording { forces: &mut self.forces, loads: &mut self.loads };
         let mut reaction = self.kernel.solve(q, u, self.anchor, k, &mut model, &mut self.assembly, qdd)?;
         if k != 0.0 && reaction.normal < 0.0 {
+            if let Some(weights) = &self.fused_weights {
+                self.loads.copy_from_slice(weights);
+            }
             let mut model = Recording { forces: &mut self.forces, loads: &mut self.loads };
             reaction = self.kernel.solve(q, u, self.anchor, 0.0, &mut model, &mut self.assembly, qdd)?;
         }

@@ -119,6 +119,9 @@ enum Table {
 /// A generated kernel bound to one chain's numbers.
 pub struct GeneratedKernel {
     table: Table,
+    /// The solves with the loads fused, weight alone, and g (m/s²): see
+    /// [`Kernel::fuse_gravity`].
+    gravity: Option<(kanestop_generated::GravityTable, f64)>,
     bodies: usize,
     wet: bool,
     solve_path: SolvePath,
@@ -174,6 +177,7 @@ impl GeneratedKernel {
         }
         Ok(GeneratedKernel {
             table,
+            gravity: None,
             bodies: n,
             wet,
             solve_path: SolvePath::Recursive,
@@ -204,6 +208,11 @@ impl GeneratedKernel {
         self.wet
     }
 
+    /// Whether the loads are fused into the generated solve (weight alone).
+    pub fn is_gravity_fused(&self) -> bool {
+        self.gravity.is_some()
+    }
+
     /// Unrolled or rolled.
     pub fn form(&self) -> Form {
         match self.table {
@@ -225,6 +234,37 @@ impl GeneratedKernel {
         }
     }
 
+    /// The recursive solve with the loads of `model` at `bodies` (the states just computed).
+    fn solve_with_loads(
+        &mut self,
+        u: &[f64],
+        anchor: AnchorDof,
+        friction: f64,
+        model: &mut dyn LoadModel,
+        bodies: &[BodyState],
+        qdd: &mut [f64],
+    ) -> Result<AnchorReaction, RhsError> {
+        self.loads(model, bodies);
+        let (p, trig, loads) = (&self.params, &self.trig, &self.load_array);
+        Ok(match (anchor, &mut self.table) {
+            (AnchorDof::Free, table) => {
+                let [normal, factor] = match table {
+                    Table::Unrolled(t) => (t.solve_free)(p, u, trig, loads, friction, qdd),
+                    Table::Rolled(t, scratch) => (t.solve_free)(p, u, trig, loads, friction, qdd, scratch),
+                };
+                check_friction_factor(factor)?;
+                AnchorReaction { holding: 0.0, normal }
+            }
+            (AnchorDof::Stuck, table) => {
+                let [holding, normal] = match table {
+                    Table::Unrolled(t) => (t.solve_stuck)(p, u, trig, loads, qdd),
+                    Table::Rolled(t, scratch) => (t.solve_stuck)(p, u, trig, loads, qdd, scratch),
+                };
+                AnchorReaction { holding, normal }
+            }
+        })
+    }
+
     fn loads(&mut self, model: &mut dyn LoadModel, bodies: &[BodyState]) {
         model.loads(bodies, &mut self.loads);
         for (a, l) in self.load_array.iter_mut().zip(&self.loads) {
@@ -244,6 +284,22 @@ impl Kernel for GeneratedKernel {
 
     fn form(&self) -> Option<&'static str> {
         Some(GeneratedKernel::form(self).name())
+    }
+
+    /// The dry rolled kernel has the solves under weight alone; an unrolled kernel
+    /// switches to it (the rolled form runs within a few per cent of the unrolled one, and
+    /// says so in [`GeneratedKernel::form`]). Not on the assembled path, which reads loads.
+    fn fuse_gravity(&mut self, g: f64) -> bool {
+        let rolled = kanestop_generated::rolled(self.wet);
+        let Some(fused) = rolled.gravity else { return false };
+        if self.solve_path != SolvePath::Recursive || !g.is_finite() {
+            return false;
+        }
+        if let Table::Unrolled(_) = self.table {
+            self.table = Table::Rolled(rolled, vec![[0.0; kanestop_generated::ROLLED_SCRATCH]; self.bodies]);
+        }
+        self.gravity = Some((fused, g));
+        true
     }
 
     fn kinematics(&mut self, q: &[f64], u: &[f64], bodies: &mut [BodyState]) {
@@ -296,24 +352,22 @@ impl Kernel for GeneratedKernel {
             return solve_assembled(scratch, anchor, friction, qdd);
         }
         self.states(q, u, &mut scratch.bodies);
-        self.loads(model, &scratch.bodies);
-        let (p, trig, loads) = (&self.params, &self.trig, &self.load_array);
-        let reaction = match (anchor, &mut self.table) {
-            (AnchorDof::Free, table) => {
-                let [normal, factor] = match table {
-                    Table::Unrolled(t) => (t.solve_free)(p, u, trig, loads, friction, qdd),
-                    Table::Rolled(t, scratch) => (t.solve_free)(p, u, trig, loads, friction, qdd, scratch),
-                };
-                check_friction_factor(factor)?;
-                AnchorReaction { holding: 0.0, normal }
+        let reaction = match (self.gravity, &mut self.table) {
+            (Some((fused, g)), Table::Rolled(_, scratch)) => {
+                let (p, trig) = (&self.params, &self.trig);
+                match anchor {
+                    AnchorDof::Free => {
+                        let [normal, factor] = (fused.solve_free)(p, u, trig, g, friction, qdd, scratch);
+                        check_friction_factor(factor)?;
+                        AnchorReaction { holding: 0.0, normal }
+                    }
+                    AnchorDof::Stuck => {
+                        let [holding, normal] = (fused.solve_stuck)(p, u, trig, g, qdd, scratch);
+                        AnchorReaction { holding, normal }
+                    }
+                }
             }
-            (AnchorDof::Stuck, table) => {
-                let [holding, normal] = match table {
-                    Table::Unrolled(t) => (t.solve_stuck)(p, u, trig, loads, qdd),
-                    Table::Rolled(t, scratch) => (t.solve_stuck)(p, u, trig, loads, qdd, scratch),
-                };
-                AnchorReaction { holding, normal }
-            }
+            _ => self.solve_with_loads(u, anchor, friction, model, &scratch.bodies, qdd)?,
         };
         if !reaction.holding.is_finite() || !reaction.normal.is_finite() || qdd.iter().any(|x| !x.is_finite()) {
             return Err(RhsError::NonFiniteAcceleration);

@@ -166,6 +166,14 @@ pub trait Kernel {
         None
     }
 
+    /// Takes the loads into the kernel's own code when they are weight alone, −m g through
+    /// each centroid (Eq. 40, gravity `g` in m/s²): afterwards [`Kernel::solve`] computes
+    /// them itself and leaves its `model` uncalled, so the caller knows the loads without
+    /// asking. Returns whether it did; the default cannot.
+    fn fuse_gravity(&mut self, _g: f64) -> bool {
+        false
+    }
+
     /// Body states only (Eqs. 9, 13, 14): for energy, output and diagnostics.
     fn kinematics(&mut self, q: &[f64], u: &[f64], bodies: &mut [BodyState]);
 

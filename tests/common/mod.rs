@@ -6,7 +6,7 @@ use kanestop_runtime::chain::{box_inertia, Body, Chain, Shape};
 use kanestop_runtime::dynamics::{Dynamics, WORK_COUNT};
 use kanestop_runtime::forces::Forces;
 use kanestop_runtime::integrate::{Integrator, Rk4};
-use kanestop_runtime::kernel::{AnchorDof, BodyState, Kernel};
+use kanestop_runtime::kernel::{AnchorDof, Assembly, BodyState, Kernel};
 use kanestop_runtime::reference::ReferenceKernel;
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
@@ -108,4 +108,20 @@ pub fn integrate(
 /// Kinetic plus gravitational energy, J.
 pub fn energy(chain: &Chain, bodies: &[BodyState]) -> f64 {
     kanestop_runtime::energy::Energy::of(chain, bodies, G, 0.0, [0.0; WORK_COUNT]).balance()
+}
+
+/// The relative residual of the reference system over the active speeds; with the anchor
+/// sliding under friction −k N, N = a_w ẍ − f_w moves into the surge row.
+pub fn residual(asm: &Assembly, active: usize, friction: f64, qdd: &[f64]) -> f64 {
+    let mut m = asm.mass.view((0, 0), (active, active)).into_owned();
+    let mut f = asm.rhs.rows(0, active).into_owned();
+    if active == asm.rhs.len() {
+        let s = active - 1;
+        for p in 0..active {
+            m[(s, p)] += friction * asm.heave[p];
+        }
+        f[s] += friction * asm.heave_rhs;
+    }
+    let x = nalgebra::DVector::from_column_slice(&qdd[..active]);
+    (m * x - &f).norm() / f.norm()
 }

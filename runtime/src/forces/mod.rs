@@ -203,6 +203,13 @@ impl Forces {
         }
     }
 
+    /// Gravity g (m/s²) when weight is the only load: water and seabed off, a chain hanging
+    /// in vacuum (no buoyancy, drag, foundation or hydrostatics; the anchor's friction needs
+    /// the seabed). None otherwise.
+    pub fn weight_only(&self) -> Option<f64> {
+        (!self.water && !self.seabed).then_some(self.g)
+    }
+
     /// Power of each work term at the last [`LoadModel::loads`] call, W.
     pub fn power(&self) -> Power {
         self.power
