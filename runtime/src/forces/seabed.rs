@@ -7,15 +7,23 @@
 //! one; elements on the seabed lie nearly level). See docs/model-choices.md. A(δ) is
 //! [`segment_area`], shared with the model's resting heights.
 //!
-//! The axis height h = r − δ runs linearly along the rod, so the integral has a closed form
-//! ([`embedded_volume`]): with the antiderivatives F(h) of A and G(h) of h·A, V^S = L (F(h_b)
-//! − F(h_a)) / (h_b − h_a), one `acos` and one `sqrt` per end. It cancels as the rod levels
-//! out, so a nearly level rod takes its Taylor series about the mid height (one `acos`), and
-//! a nearly level rod close to an edge of the section (barely touching, or nearly buried),
-//! where neither serves, the 8-point quadrature ([`embedded_volume_by_quadrature`], the
-//! literal statement of the integral, 8 `acos` and 8 `sqrt`). The branches agree to 1e-11 of
-//! V where the series meets the closed form, and to the quadrature's own error (measured 5e-6
-//! of a barely touching rod's tiny V) where the quadrature meets them.
+//! The axis height h = r − δ runs linearly along the rod, so the integral has closed forms
+//! ([`embedded_volume`]), chosen so that they join smoothly (a jump between two formulas,
+//! even of 1e-6 of V, spoils the finite-difference Jacobian of the implicit method: see
+//! docs/integrators.md, "The stiff scene"):
+//!
+//! - near an edge of the section (the deeper end at most r/4 below the seabed, as every
+//!   element resting on it; or nearly buried), a series in the depth whose terms are
+//!   divided differences of powers of δ, formed without cancellation at any tilt
+//!   (`near_edge`): one `sqrt` per end and a few terms;
+//! - between the edges, with the antiderivatives F(h) of A and G(h) of h·A, V^S = L (F(h_b)
+//!   − F(h_a)) / (h_b − h_a), one `acos` and one `sqrt` per end; it cancels as the rod levels
+//!   out, so a nearly level rod takes its Taylor series about the mid height (one `acos`).
+//!
+//! The branches agree to about 1e-13 of V and 2e-11 of the length in the centroid where
+//! they meet (asserted by the tests below: 2e-13 and 5e-11). The 8-point quadrature
+//! ([`embedded_volume_by_quadrature`]) is the literal statement of the integral, kept as a
+//! check.
 
 use std::f64::consts::PI;
 
@@ -62,20 +70,28 @@ fn antiderivatives(r: f64, h: f64) -> (f64, f64) {
     }
 }
 
-/// A rod is nearly level when |h_b − h_a| ≤ `TAYLOR` × the ends' distance from the section's
-/// edges (h = ±r): its Taylor series about the mid height is then exact to about 3e-12.
-const TAYLOR: f64 = 1e-2;
+/// A rod lies near the top of its section (barely touching) when its deeper end is at most
+/// `NEAR_EDGE` × r below the seabed plane, and near the bottom (nearly buried) when its
+/// shallower end is at least (2 − `NEAR_EDGE`) r deep: there the volume and centroid are
+/// sums of the depth series of `near_edge` (terms shrinking by δ/2r ≤ 1/8), exact to about
+/// 1e-15 for any tilt. Elements resting on the seabed lie here (the paper's chain about
+/// 0.08 r deep, at k_z × 1e4 about 2e-4 r).
+const NEAR_EDGE: f64 = 0.25;
 
-/// The closed form cancels as the tilt shrinks (its centroid's error grows as (r/Δ)²): it is
-/// used for |h_b − h_a| ≥ `CLOSED` × r, where V is exact to about 1e-13 and s̄ to about 2e-9
-/// of the length.
-const CLOSED: f64 = 1e-3;
+/// Between the edges a rod is nearly level when |h_b − h_a| ≤ `TAYLOR` × the ends' distance
+/// from the section's edges (h = ±r, at least 0.22 r there): its Taylor series about the
+/// mid height (to Δ⁴ in V, Δ⁵ in the moment) is then exact to about 1e-14; beyond it
+/// (|Δ| ≥ 0.0066 r) the closed form's rounding is about 1e-13 of V and 2e-11 of the length
+/// in s̄ (what the two differ by where they meet, measured by the tests below).
+const TAYLOR: f64 = 3e-2;
 
 /// Embedded volume of a rod of radius `r` whose axis runs from height `h_a` to `h_b`
 /// above the seabed over a length `len`: (V^S in m³, its centroid's axial position s̄ in m
 /// from the `h_a` end). Zero volume when the rod is clear of the seabed; NaN for a NaN height.
-/// The integral of [`embedded_volume_by_quadrature`], in closed form or its Taylor series
-/// (see the module documentation).
+/// The integral of [`embedded_volume_by_quadrature`]: near an edge of the section by the
+/// depth series of `near_edge`, between the edges in closed form or, nearly level, by its
+/// Taylor series (see the module documentation). The branches meet to about 1e-13 of V and
+/// 2e-11 of the length in s̄, so the right-hand side is smooth to that level where they join.
 pub fn embedded_volume(r: f64, len: f64, h_a: f64, h_b: f64) -> (f64, f64) {
     if h_a.is_nan() || h_b.is_nan() {
         return (f64::NAN, f64::NAN);
@@ -87,22 +103,23 @@ pub fn embedded_volume(r: f64, len: f64, h_a: f64, h_b: f64) -> (f64, f64) {
     if hi <= -r {
         return (PI * r * r * len, 0.5 * len);
     }
+    // Depths of the lowest fibre below the seabed plane at the two ends.
+    let (da, db) = (r - h_a, r - h_b);
+    if da.max(db) <= NEAR_EDGE * r {
+        return near_edge(r, len, da, db);
+    }
+    if da.min(db) >= (2.0 - NEAR_EDGE) * r {
+        // Nearly buried: the whole section less the segment left above the seabed plane,
+        // of depth 2r − δ from the top fibre (A(δ) = π r² − A(2r − δ)).
+        let (vc, sc) = near_edge(r, len, 2.0 * r - da, 2.0 * r - db);
+        let full = PI * r * r * len;
+        let v = full - vc;
+        return (v, (0.5 * full * len - vc * sc) / v);
+    }
     let dh = h_b - h_a;
     let inside = r - lo.abs().max(hi.abs()); // > 0: both ends cut the section
-    let h = 0.5 * (h_a + h_b);
-    let w = (r * r - h * h).sqrt();
-    if dh.abs() <= TAYLOR * inside && w > 0.0 {
-        // A(h_m + tΔ) about the mid height, t in [−½, ½], with A1 = −2√(r² − h²),
-        // A2 = 2h/√(r² − h²) and A3 = 2r²/(r² − h²)^{3/2} its derivatives.
-        let a = r * r * (h / r).acos() - h * w;
-        let (a1, a2, a3) = (-2.0 * w, 2.0 * h / w, 2.0 * r * r / (w * w * w));
-        let v = a + a2 * dh * dh / 24.0;
-        let m = 0.5 * v + a1 * dh / 12.0 + a3 * dh * dh * dh / 480.0;
-        return (len * v, len * m / v);
-    }
-    if dh.abs() < CLOSED * r {
-        // Nearly level at an edge of the section: the literal integral.
-        return embedded_volume_by_quadrature(r, len, h_a, h_b);
+    if dh.abs() <= TAYLOR * inside {
+        return nearly_level(r, len, 0.5 * (h_a + h_b), dh);
     }
     let ((fa, ga), (fb, gb)) = (antiderivatives(r, h_a), antiderivatives(r, h_b));
     let df = fb - fa;
@@ -110,14 +127,101 @@ pub fn embedded_volume(r: f64, len: f64, h_a: f64, h_b: f64) -> (f64, f64) {
     if v <= 0.0 {
         return (0.0, 0.0);
     }
-    // ∫ A s ds with s = L (h − h_a)/Δ, kept inside the embedded part of the axis: for a rod
-    // that barely touches, G's terms cancel to nothing and only that bound is meaningful.
+    // ∫ A s ds with s = L (h − h_a)/Δ, kept inside the embedded part of the axis (a
+    // safeguard: the rods for which G's terms would cancel lie near the edge, above).
     let s_bar = len * len * (gb - ga - h_a * df) / (dh * dh) / v;
     let s_edge = (len * (r - h_a) / dh).clamp(0.0, len); // where the axis leaves the section's top
     let (s0, s1) = if h_a < h_b { (0.0, s_edge) } else { (s_edge, len) };
     (v, s_bar.clamp(s0, s1))
 }
 
+/// A nearly level rod between the section's edges: A(h_m + tΔ) about the mid height h_m,
+/// t in [−½, ½], integrated term by term (V/L = Σ A⁽ⁿ⁾ Δⁿ ∫tⁿ/n!, even n; the moment about the
+/// mid-length Σ A⁽ⁿ⁾ Δⁿ ∫tⁿ⁺¹/n!, odd n), with w = √(r² − h²) and the derivatives
+/// A′ = −2w, A″ = 2h/w, A‴ = 2r²/w³, A⁗ = 6r²h/w⁵, A⁽⁵⁾ = 6r²(w² + 5h²)/w⁷.
+fn nearly_level(r: f64, len: f64, h: f64, dh: f64) -> (f64, f64) {
+    let w = (r * r - h * h).sqrt();
+    let (w2, w3) = (w * w, w * w * w);
+    let a = r * r * (h / r).acos() - h * w;
+    let (a1, a2, a3) = (-2.0 * w, 2.0 * h / w, 2.0 * r * r / w3);
+    let (a4, a5) = (6.0 * r * r * h / (w3 * w2), 6.0 * r * r * (w2 + 5.0 * h * h) / (w3 * w2 * w2));
+    let d2 = dh * dh;
+    let v = a + d2 * (a2 / 24.0 + d2 * a4 / 1920.0);
+    let m = 0.5 * v + dh * (a1 / 12.0 + d2 * (a3 / 480.0 + d2 * a5 / 53_760.0));
+    (len * v, len * m / v)
+}
+
+/// A rod near the top of its section, its ends `da` and `db` deep (either may be ≤ 0: that
+/// end is clear of the seabed; the deeper one is > 0). With dA/dδ = 2√(2rδ − δ²) and the
+/// binomial series of √(1 − δ/2r),
+///
+/// A(δ) = Σ_k a_k δ^(k + 3/2), a_k = 2√(2r) C(½, k) (−1/2r)^k / (k + 3/2),
+///
+/// and δ linear along the axis, V^S/L is the mean of A over [δ_a, δ_b] and the moment
+/// about the `da` end M/L² = ∫ A(δ)(δ − δ_a) dδ / Δ² (Δ = δ_b − δ_a): term by term, the first
+/// and second divided differences of the powers, P_q = δ^q[δ_a, δ_b] and
+/// R_q = δ^q[δ_a, δ_b, δ_b]: V/L = Σ a_k P_(p+1)/(p + 1), M/L² = Σ a_k R_(p+2)/((p + 1)(p + 2)),
+/// p = k + 3/2. They are formed from P_½ = 1/(√δ_a + √δ_b), R_(3/2) = (2√δ_a + √δ_b)/(2(√δ_a +
+/// √δ_b)²) by P_(q+1) = δ_a^q + δ_b P_q and R_(q+1) = P_q + δ_b R_q (the divided differences of
+/// δ·u), sums of positive terms: no cancellation as Δ → 0, and no branch on the tilt. With the
+/// shallow end clear (δ_a ≤ 0) the integrals run over [0, δ_b]: V/L = Σ a_k δ_b^(p+1)/((p + 1) Δ)
+/// and M/L² = Σ a_k (δ_b^(p+2)/(p + 2) − δ_a δ_b^(p+1)/(p + 1)) / Δ². Terms are summed until
+/// they are below 1e-17 of the sums (they shrink by about δ_b/2r).
+fn near_edge(r: f64, len: f64, da: f64, db: f64) -> (f64, f64) {
+    if da > db {
+        // The series below wants the deeper end second; the centroid is then from the other end.
+        let (v, s) = near_edge(r, len, db, da);
+        return (v, len - s);
+    }
+    let b = db;
+    let sb = b.sqrt();
+    let c0 = 2.0 * (2.0 * r).sqrt();
+    // g = C(½, k) (−1/2r)^k; the k-th term's coefficient is a_k = c0 g / p.
+    let mut g = 1.0;
+    let (mut v, mut m) = (0.0, 0.0);
+    let small = |t: f64, sum: f64| t.abs() <= 1e-17 * sum.abs();
+    if da > 0.0 {
+        // Both ends embedded: P_q and R_q for q = p + 1 and p + 2, and δ_a^(p+1).
+        let (a, sa) = (da, da.sqrt());
+        let s = sa + sb;
+        let p32 = sa + b / s;
+        let mut pq = a * sa + b * p32; // P_(5/2)
+        let mut rq = pq + b * (p32 + b * (2.0 * sa + sb) / (2.0 * s * s)); // R_(7/2)
+        let mut apow = a * a * sa; // δ_a^(5/2)
+        for k in 0..64 {
+            let p = k as f64 + 1.5;
+            let c = c0 * g / p;
+            let (tv, tm) = (c * pq / (p + 1.0), c * rq / ((p + 1.0) * (p + 2.0)));
+            v += tv;
+            m += tm;
+            if small(tv, v) && small(tm, m) {
+                break;
+            }
+            g *= (0.5 - k as f64) / (k as f64 + 1.0) * (-0.5 / r);
+            pq = apow + b * pq;
+            rq = pq + b * rq;
+            apow *= a;
+        }
+    } else {
+        // The shallow end clear of the seabed: integrals over [0, δ_b], divided at the end.
+        let dd = b - da;
+        let mut bpow = b * b * sb; // δ_b^(p+1)
+        for k in 0..64 {
+            let p = k as f64 + 1.5;
+            let c = c0 * g / p;
+            let (tv, tm) = (c * bpow / (p + 1.0), c * bpow * (b / (p + 2.0) - da / (p + 1.0)));
+            v += tv;
+            m += tm;
+            if small(tv, v) && small(tm, m) {
+                break;
+            }
+            g *= (0.5 - k as f64) / (k as f64 + 1.0) * (-0.5 / r);
+            bpow *= b;
+        }
+        (v, m) = (v / dd, m / (dd * dd));
+    }
+    (len * v, len * m / v)
+}
 /// The embedded volume and its centroid as in [`embedded_volume`], by 8-point Gauss–Legendre
 /// quadrature of ∫ A(δ(s)) ds over the embedded part: the literal statement of the integral.
 pub fn embedded_volume_by_quadrature(r: f64, len: f64, h_a: f64, h_b: f64) -> (f64, f64) {
@@ -208,27 +312,98 @@ mod tests {
         }
     }
 
-    #[test]
-    fn branches_agree_where_they_meet() {
-        let (r, len) = (0.0763, 1.0);
-        let at = |h: f64, d: f64| embedded_volume(r, len, h - d / 2.0, h + d / 2.0);
-        // Taylor series → closed form, at mid heights (|h| ≤ 0.9 r: the two are adjacent).
-        for h in [0.0f64, 0.03, -0.05, 0.068] {
-            let d = TAYLOR * (r - h.abs()) / (1.0 + TAYLOR / 2.0);
-            let d = d.max(CLOSED * r);
-            let (below, above) = (at(h, d * (1.0 - 1e-9)), at(h, d * (1.0 + 1e-9)));
-            assert!((below.0 - above.0).abs() < 1e-11 * below.0, "h = {h}: {below:?} {above:?}");
-            // (The closed form's centroid at its lower limit: about 2e-9 of the length.)
-            assert!((below.1 - above.1).abs() < 1e-8 * len, "h = {h}: {below:?} {above:?}");
+    /// The jumps of V (relative to V) and of s̄ (m, on a 1 m rod) at a branch boundary: the
+    /// ends' heights (h_a, h_b) scaled about `c` by 1 ± e and 1 ± 3e, the boundary between
+    /// 1 − e and 1 + e; the difference across it less the mean of the differences on either
+    /// side (the smooth change), so that only a step remains.
+    fn jump(r: f64, ends: (f64, f64), c: f64, e: f64) -> (f64, f64, f64) {
+        let at = |f: f64| embedded_volume(r, 1.0, c + (ends.0 - c) * f, c + (ends.1 - c) * f);
+        let [m3, m1, p1, p3] = [at(1.0 - 3.0 * e), at(1.0 - e), at(1.0 + e), at(1.0 + 3.0 * e)];
+        let step = |x: [f64; 4]| (x[2] - x[1]) - 0.5 * ((x[3] - x[2]) + (x[1] - x[0]));
+        let (v, s) = (step([m3.0, m1.0, p1.0, p3.0]), step([m3.1, m1.1, p1.1, p3.1]));
+        (m1.0, v.abs() / m1.0, s.abs())
+    }
+
+    /// Rods straddling each branch boundary, for the chain's and the cable's radius: the
+    /// near-edge series against the closed form and Taylor series at the deeper end r/4 below
+    /// the seabed (level, tilted, the other end clear), the same at the bottom edge, and the
+    /// Taylor series against the closed form between the edges.
+    fn straddling(r: f64) -> Vec<((f64, f64), f64, f64)> {
+        let mut cases = Vec::new();
+        let edge = r - NEAR_EDGE * r; // axis height with the lowest fibre r/4 deep
+        for t in [0.0, 1e-7, 1e-5, 1e-3, 3e-2, 0.2, 0.5] {
+            // The deeper end on the boundary, scaled about the seabed's reference r (depth 0).
+            cases.push(((edge + t * r, edge), r, 1e-12));
+            cases.push(((edge, edge + t * r), r, 1e-12));
+            // The shallower end on the bottom boundary, scaled about the section's bottom.
+            let bottom = -r + NEAR_EDGE * r;
+            cases.push(((bottom, bottom - t * r), -r, 1e-12));
         }
-        // Quadrature → closed form near the edges of the section (|Δ| = CLOSED r): the
-        // 8-point rule's own error, measured 5e-6 of V for a rod barely touching, 5e-9 at the
-        // bottom edge.
-        for h in [r - 1e-5, -r + 1e-5] {
-            let d = CLOSED * r;
-            let (below, above) = (at(h, d * (1.0 - 1e-9)), at(h, d * (1.0 + 1e-9)));
-            assert!((below.0 - above.0).abs() < 1e-5 * below.0, "h = {h}: {below:?} {above:?}");
-            assert!((below.1 - above.1).abs() < 1e-3 * len, "h = {h}: {below:?} {above:?}");
+        for h in [0.0, 0.3 * r, -0.4 * r, 0.74 * r, -0.74 * r] {
+            let d = TAYLOR * (r - h.abs()) / (1.0 + TAYLOR / 2.0);
+            cases.push(((h - d / 2.0, h + d / 2.0), h, 1e-9));
+            cases.push(((h + d / 2.0, h - d / 2.0), h, 1e-9));
+        }
+        cases
+    }
+
+    #[test]
+    fn volume_and_centroid_are_continuous_across_every_branch_boundary() {
+        // A step of 4.8e-6 × V (the old 8-point branch against the closed form, for a chain
+        // link resting on the k_z × 1e4 seabed) broke SDIRK4's difference Jacobian there
+        // (docs/integrators.md, "The stiff scene"); the old bound here was 1e-5 × V.
+        for r in [0.0763, 0.0237] {
+            for (ends, c, e) in straddling(r) {
+                let (v, dv, ds) = jump(r, ends, c, e);
+                assert!(dv <= 2e-13, "r = {r}, ends {ends:?}: V = {v:e} jumps by {dv:e} of itself");
+                assert!(ds <= 5e-11, "r = {r}, ends {ends:?}: s̄ jumps by {ds:e} m on a 1 m rod");
+            }
+        }
+    }
+
+    #[test]
+    fn slopes_match_across_every_branch_boundary() {
+        // One-sided differences of V in h_a with SDIRK4's relative increment (√ε) on either
+        // side of each boundary: the slope the Jacobian sees is the same on both.
+        for r in [0.0763, 0.0237] {
+            for (ends, c, e) in straddling(r) {
+                let slope = |f: f64| {
+                    let (ha, hb) = (c + (ends.0 - c) * f, c + (ends.1 - c) * f);
+                    let dh = 1.5e-8 * r;
+                    (embedded_volume(r, 1.0, ha + dh, hb).0 - embedded_volume(r, 1.0, ha, hb).0) / dh
+                };
+                let (below, above) = (slope(1.0 - e), slope(1.0 + e));
+                let scale = below.abs().max(PI * r * r * 1e-6);
+                assert!(
+                    (above - below).abs() <= 1e-5 * scale,
+                    "r = {r}, ends {ends:?}: ∂V/∂h_a {below:e} against {above:e}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn level_rods_at_the_edges_match_the_segment_by_its_half_angle_series() {
+        // Barely touching and nearly buried, where A's closed form (and the 8-point rule on
+        // it) lose digits: A = r²(θ − sin 2θ / 2), θ = 2 asin √(δ/2r), by the sine series.
+        let (r, len) = (0.0763, 1.0);
+        let segment = |d: f64| {
+            let t = 2.0 * (d / (2.0 * r)).sqrt().asin();
+            let (mut term, mut sum) = (2.0 * t, 0.0); // (2θ)^(2n+1)/(2n+1)! with its sign
+            for n in 1..30 {
+                term *= -(2.0 * t) * (2.0 * t) / ((2 * n) as f64 * (2 * n + 1) as f64);
+                sum -= term / 2.0;
+            }
+            r * r * sum
+        };
+        for d in [1e-9, 1e-7, 1e-5, 1e-3, 0.01, 0.019] {
+            let d = r - (r - d); // the depth the heights represent (exactly)
+            let (v, s) = embedded_volume(r, len, r - d, r - d);
+            assert!((v - segment(d)).abs() < 1e-13 * v, "δ = {d}: V {v} against {}", segment(d));
+            let (vb, sb) = embedded_volume(r, len, -(r - d), -(r - d)); // the section less a segment d high
+            let full = PI * r * r;
+            assert!((vb - (full - segment(d))).abs() < 1e-15 * full, "2r − δ = {d}: V {vb}");
+            assert!((s - 0.5).abs() < 1e-15 && (sb - 0.5).abs() < 1e-15, "δ = {d}: s̄ {s}, {sb}");
         }
         // An end crossing the top of the section.
         let (b, a) = (embedded_volume(r, len, 0.0, r - 1e-12), embedded_volume(r, len, 0.0, r + 1e-12));
