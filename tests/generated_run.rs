@@ -60,8 +60,12 @@ fn case1_stopping_time_is_the_same_with_both_kernels() {
                 .split_whitespace()
                 .collect::<Vec<_>>()
                 .join(" ");
-            let quoted = format!("the two stop {:.0e} s apart", (a - b).abs());
-            assert!(doc.contains(&quoted), "docs/codegen.md should say: {quoted}");
+            // The difference is rounding (ulps of the two formulations' sums, amplified over
+            // 40 000 steps): the doc quotes its bound, not its value, which any change of
+            // rounding in the physics moves (8e-10, 1e-8, 2e-9 so far).
+            assert!((a - b).abs() < 1e-8, "the kernels stop {:e} s apart", (a - b).abs());
+            let quoted = "the two stop less than 1e-8 s apart";
+            assert!(doc.contains(quoted), "docs/codegen.md should say: {quoted}");
         }
         (a, b) => assert_eq!(a, b),
     }
