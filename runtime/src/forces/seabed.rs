@@ -151,6 +151,26 @@ fn nearly_level(r: f64, len: f64, h: f64, dh: f64) -> (f64, f64) {
     (len * v, len * m / v)
 }
 
+/// Terms of the depth series of `near_edge` at most (they shrink by δ/2r ≤ 1/8 there, so
+/// about 19 reach 1e-17 of the sums).
+const SERIES_TERMS: usize = 64;
+
+/// Per term k of the depth series, p = k + 3/2: [C(½, k)/p, 1/(p + 1), 1/(p + 2),
+/// 1/((p + 1)(p + 2))], the coefficients without the power of −1/2r, so the series sums
+/// without a division per term. C(½, k + 1) = C(½, k)(½ − k)/(k + 1).
+static SERIES: [[f64; 4]; SERIES_TERMS] = {
+    let mut out = [[0.0; 4]; SERIES_TERMS];
+    let mut binomial = 1.0;
+    let mut k = 0;
+    while k < SERIES_TERMS {
+        let p = k as f64 + 1.5;
+        out[k] = [binomial / p, 1.0 / (p + 1.0), 1.0 / (p + 2.0), 1.0 / ((p + 1.0) * (p + 2.0))];
+        binomial *= (0.5 - k as f64) / (k as f64 + 1.0);
+        k += 1;
+    }
+    out
+};
+
 /// A rod near the top of its section, its ends `da` and `db` deep (either may be ≤ 0: that
 /// end is clear of the seabed; the deeper one is > 0). With dA/dδ = 2√(2rδ − δ²) and the
 /// binomial series of √(1 − δ/2r),
@@ -176,7 +196,8 @@ fn near_edge(r: f64, len: f64, da: f64, db: f64) -> (f64, f64) {
     let b = db;
     let sb = b.sqrt();
     let c0 = 2.0 * (2.0 * r).sqrt();
-    // g = C(½, k) (−1/2r)^k; the k-th term's coefficient is a_k = c0 g / p.
+    // g = (−1/2r)^k; the k-th term's coefficient is a_k = c0 g C(½, k) / p ([`SERIES`]).
+    let x = -0.5 / r;
     let mut g = 1.0;
     let (mut v, mut m) = (0.0, 0.0);
     let small = |t: f64, sum: f64| t.abs() <= 1e-17 * sum.abs();
@@ -188,16 +209,15 @@ fn near_edge(r: f64, len: f64, da: f64, db: f64) -> (f64, f64) {
         let mut pq = a * sa + b * p32; // P_(5/2)
         let mut rq = pq + b * (p32 + b * (2.0 * sa + sb) / (2.0 * s * s)); // R_(7/2)
         let mut apow = a * a * sa; // δ_a^(5/2)
-        for k in 0..64 {
-            let p = k as f64 + 1.5;
-            let c = c0 * g / p;
-            let (tv, tm) = (c * pq / (p + 1.0), c * rq / ((p + 1.0) * (p + 2.0)));
+        for &[cp, i1, _, i12] in &SERIES {
+            let c = c0 * g * cp;
+            let (tv, tm) = (c * pq * i1, c * rq * i12);
             v += tv;
             m += tm;
             if small(tv, v) && small(tm, m) {
                 break;
             }
-            g *= (0.5 - k as f64) / (k as f64 + 1.0) * (-0.5 / r);
+            g *= x;
             pq = apow + b * pq;
             rq = pq + b * rq;
             apow *= a;
@@ -206,16 +226,15 @@ fn near_edge(r: f64, len: f64, da: f64, db: f64) -> (f64, f64) {
         // The shallow end clear of the seabed: integrals over [0, δ_b], divided at the end.
         let dd = b - da;
         let mut bpow = b * b * sb; // δ_b^(p+1)
-        for k in 0..64 {
-            let p = k as f64 + 1.5;
-            let c = c0 * g / p;
-            let (tv, tm) = (c * bpow / (p + 1.0), c * bpow * (b / (p + 2.0) - da / (p + 1.0)));
+        for &[cp, i1, i2, _] in &SERIES {
+            let c = c0 * g * cp;
+            let (tv, tm) = (c * bpow * i1, c * bpow * (b * i2 - da * i1));
             v += tv;
             m += tm;
             if small(tv, v) && small(tm, m) {
                 break;
             }
-            g *= (0.5 - k as f64) / (k as f64 + 1.0) * (-0.5 / r);
+            g *= x;
             bpow *= b;
         }
         (v, m) = (v / dd, m / (dd * dd));
