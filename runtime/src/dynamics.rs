@@ -209,9 +209,6 @@ impl Dynamics {
         let mut model = Recording { forces: &mut self.forces, loads: &mut self.loads };
         let mut reaction = self.kernel.solve(q, u, self.anchor, k, &mut model, &mut self.assembly, qdd)?;
         if k != 0.0 && reaction.normal < 0.0 {
-            if let Some(weights) = &self.fused_weights {
-                self.loads.copy_from_slice(weights);
-            }
             let mut model = Recording { forces: &mut self.forces, loads: &mut self.loads };
             reaction = self.kernel.solve(q, u, self.anchor, 0.0, &mut model, &mut self.assembly, qdd)?;
         }
