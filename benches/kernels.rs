@@ -166,7 +166,7 @@ fn main() {
 
 /// Weight alone, the loads included: the kernel handed `Forces::gravity_only`'s loads
 /// (unrolled where built, and rolled) against the rolled solve with the weights fused into
-/// its steps (`Kernel::fuse_gravity`), side by side, µs per call (wall median; CPU over the
+/// its steps (`Kernel::fuse_loads` of weight alone), side by side, µs per call (wall median; CPU over the
 /// whole measurement divided by its calls).
 fn fused_gravity() {
     println!("\ngravity only, loads included: fed by the force modules vs fused (µs per solve, anchor free)");
@@ -187,7 +187,7 @@ fn fused_gravity() {
             built.contains(&(n, false)).then(|| timed(GeneratedKernel::with_form(&c, Form::Unrolled).unwrap()));
         let rolled = timed(GeneratedKernel::with_form(&c, Form::Rolled).unwrap());
         let mut k = GeneratedKernel::with_form(&c, Form::Rolled).unwrap();
-        assert!(k.fuse_gravity(9.81));
+        assert!(k.fuse_loads(&kanestop_runtime::dynamics::fused_loads(&Forces::gravity_only(&c, 9.81))));
         let fused = timed(k);
         let best = unrolled.map_or(rolled.0, |u| u.0.min(rolled.0));
         let (u, uc) =

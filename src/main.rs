@@ -212,18 +212,20 @@ fn codegen(scene: Option<&PathBuf>, write: bool, root: &std::path::Path) -> Resu
     );
     let forces = kanestop_runtime::forces::Forces::new(&model);
     let kernel = kanestop_runtime::generated::GeneratedKernel::new(&model.chain);
-    // Whether a run fuses the loads into the kernel: as the run's own dynamics decide it.
-    let fused = kanestop_runtime::generated::GeneratedKernel::new(&model.chain).is_ok_and(|k| {
-        let forces = kanestop_runtime::forces::Forces::new(&model);
-        kanestop_runtime::dynamics::Dynamics::new(Box::new(k), forces, model.anchor).loads_fused()
-    });
-    if fused {
-        println!("loads      weight alone, fused into the generated solve (no load evaluation per call)");
-    } else {
-        println!("loads      {} (the runtime's force models)", forces.description());
-    }
+    // Whether a run fuses the loads into the kernel, and how: as the run's own dynamics decide it.
+    let (fused, gravity) = match kanestop_runtime::generated::GeneratedKernel::new(&model.chain) {
+        Ok(mut k) => {
+            use kanestop_runtime::kernel::Kernel;
+            let fused = k.fuse_loads(&kanestop_runtime::dynamics::fused_loads(&forces));
+            (fused, k.is_gravity_fused())
+        }
+        Err(_) => (false, false),
+    };
+    load_report(&model, &forces, fused, gravity);
     let kernel = match kernel.map(|k| k.form()) {
-        _ if fused => "rolled_dry, its solves under weight alone (solve_free_gravity, solve_stuck_gravity)".to_string(),
+        _ if gravity => {
+            "rolled_dry, its solves under weight alone (solve_free_gravity, solve_stuck_gravity)".to_string()
+        }
         Ok(kanestop_runtime::generated::Form::Unrolled) => {
             format!("{} (unrolled, built for N = {n})", variant.module())
         }
@@ -235,7 +237,7 @@ fn codegen(scene: Option<&PathBuf>, write: bool, root: &std::path::Path) -> Resu
     println!("kernel     {kernel}");
     let zeros = variant.structural_zeros().count();
     println!(
-        "left out   {zeros} structurally zero parameters{}",
+        "folded     {zeros} structurally zero parameters{}",
         if wet { "" } else { "; every added-mass term (water off)" }
     );
     // The unrolled expansion's DAG recurses with N (docs/codegen.md: the build script stops at
@@ -267,6 +269,47 @@ fn codegen(scene: Option<&PathBuf>, write: bool, root: &std::path::Path) -> Resu
         }
     }
     Ok(())
+}
+
+/// The scene's load signature, what its generated load code has and leaves out, and each
+/// term's operations over this chain.
+fn load_report(model: &Model, forces: &kanestop_runtime::forces::Forces, fused: bool, gravity: bool) {
+    use kanestop_chain::LoadTerm;
+    use kanestop_codegen::loads::{signature_code, LoadBody};
+    let sig = forces.signature();
+    let (_, report) = signature_code(&sig);
+    let names = |terms: Vec<LoadTerm>| terms.iter().map(|t| t.name()).collect::<Vec<_>>().join(", ");
+    let absent: Vec<LoadTerm> = LoadTerm::ALL.into_iter().filter(|&t| !sig.has(t)).collect();
+    println!("signature  {} ({})", sig.name(), names(sig.terms()));
+    println!("left out   {}", if absent.is_empty() { "no load term".to_string() } else { names(absent) });
+    if !fused {
+        println!("loads      {} (the runtime's force models)", forces.description());
+        return;
+    }
+    if gravity {
+        println!("loads      weight alone, fused into the generated solve (no load evaluation per call)");
+    } else {
+        println!("loads      generated: loads_{} before the solve (no force model per call)", sig.name());
+    }
+    let lines = model
+        .chain
+        .bodies
+        .iter()
+        .filter(|b| matches!(b.kind, kanestop_chain::BodyKind::ChainLink | kanestop_chain::BodyKind::Cable { .. }))
+        .count();
+    let per = |b| report.body_total(b);
+    println!(
+        "  load code  {} operations per call: anchor {}, element {} (× {lines}), ship {}",
+        per(LoadBody::Anchor) + lines * per(LoadBody::Element) + per(LoadBody::Ship),
+        per(LoadBody::Anchor),
+        per(LoadBody::Element),
+        per(LoadBody::Ship)
+    );
+    let total: usize = sig.terms().iter().map(|&t| report.term_total(t, lines)).sum();
+    for t in sig.terms() {
+        let ops = report.term_total(t, lines);
+        println!("  {:<14} {ops:>8} {:>6.1}%", t.name(), 100.0 * ops as f64 / total.max(1) as f64);
+    }
 }
 
 /// The unrolled kernel's operation counts for `model`, parameters kept and folded.

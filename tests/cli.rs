@@ -540,7 +540,9 @@ fn codegen_reports_the_scene_kernel_and_what_folding_saves() {
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let text = String::from_utf8(out.stdout).unwrap();
     assert!(text.contains("kernel     chain46_wet (unrolled, built for N = 46)"), "{text}");
-    assert!(text.contains("seabed foundation") && text.contains("15 chain links, 28 cable elements in 3 stages"));
+    assert!(text.contains("15 chain links, 28 cable elements in 3 stages"), "{text}");
+    assert!(text.contains("signature  wet_seabed (weight, seabed, buoyancy, line_drag"), "{text}");
+    assert!(text.contains("left out   line_friction, current"), "{text}");
     let solve = text.lines().find(|l| l.trim_start().starts_with("solve_free")).expect("solve_free row");
     let cols: Vec<&str> = solve.split_whitespace().collect();
     let (kept, folded): (usize, usize) = (cols[1].parse().unwrap(), cols[2].parse().unwrap());
@@ -554,8 +556,9 @@ fn codegen_reports_the_scene_kernel_and_what_folding_saves() {
     assert!(text.contains("rolled_wet (any N; no unrolled kernel for N = 51 in this build)"), "{text}");
 }
 
-/// A chain in vacuum (water and seabed off) runs with its weights fused into the generated
-/// solve, and `codegen` says so; with water on, the force modules compute the loads.
+/// `codegen` says how a scene's loads run: a chain in vacuum (water and seabed off) with its
+/// weights inside the generated solve, case 1 on the generated load code of its signature,
+/// with each term's operations and nothing of the terms it leaves out.
 #[test]
 fn codegen_says_when_the_loads_are_fused() {
     let dir = temp_dir("codegen-fused");
@@ -566,9 +569,20 @@ fn codegen_says_when_the_loads_are_fused() {
     std::fs::write(&path, text).unwrap();
     let out = kanestop().arg("codegen").arg(&path).output().unwrap();
     let text = String::from_utf8(out.stdout).unwrap();
+    assert!(text.contains("signature  dry (weight)"), "{text}");
     assert!(text.contains("loads      weight alone, fused into the generated solve"), "{text}");
     assert!(text.contains("kernel     rolled_dry, its solves under weight alone"), "{text}");
     let out = kanestop().args(["codegen", "scenes/paper/case01.toml"]).output().unwrap();
     let text = String::from_utf8(out.stdout).unwrap();
-    assert!(text.contains("(the runtime's force models)") && !text.contains("fused"), "{text}");
+    assert!(text.contains("loads      generated: loads_wet_seabed before the solve"), "{text}");
+    let row = |term: &str| text.lines().find(|l| l.split_whitespace().next() == Some(term)).map(str::to_string);
+    let shares: f64 = ["weight", "seabed", "buoyancy", "line_drag", "anchor_drag", "hydrostatics", "hull_resistance"]
+        .iter()
+        .map(|t| {
+            let r = row(t).unwrap_or_else(|| panic!("no {t} row: {text}"));
+            r.split_whitespace().last().unwrap().trim_end_matches('%').parse::<f64>().unwrap()
+        })
+        .sum();
+    assert!((shares - 100.0).abs() < 0.5, "the shares sum to {shares}: {text}");
+    assert!(row("line_friction").is_none() && row("current").is_none(), "{text}");
 }

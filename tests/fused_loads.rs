@@ -1,41 +1,377 @@
-//! Loads fused into the generated code (issue 14), so far weight alone: a dry chain without
-//! seabed (a chain hanging in vacuum) runs on solves whose steps compute −m g themselves
-//! (`solve_free_gravity`, `solve_stuck_gravity` in `generated/src/rolled_dry.rs`). Checked
-//! against the same kernel fed the loads of the force modules (`Forces::gravity_only`, the
-//! oracle of the physics) and against the reference formulation (the oracle of the
-//! dynamics), at 100 random states for every size; and in the code: the fused steps read no
-//! load and do fewer operations.
+//! Loads fused into the generated code (issue 14): the generated load code of a scene's
+//! signature (`generated/src/loads.rs`) runs inside the kernel's solve instead of the force
+//! modules, and weight alone goes further, into the rolled kernel's own steps
+//! (`solve_free_gravity`, `solve_stuck_gravity`).
+//!
+//! Checked against the oracles at 100 random states per scene, for every paper scene, every
+//! stress scene, case 1 under each of the nine load signatures and random scenes, on the
+//! unrolled kernel where the build has one and on the rolled kernel:
+//! - the loads and the work terms' power against the force modules (`Forces`, the oracle of
+//!   the physics), entrywise to 1e-12 of their scale;
+//! - ẍ from the fused solve against the same kernel fed by the force modules, and through
+//!   its normwise backward error in the reference system (the oracle of the dynamics), to
+//!   1e-12 (the residual relative to ‖f‖ alone is reported beside the reference's own
+//!   solve's: a scene's a_lp spans ten orders of magnitude, see `common::backward_error`);
+//!
+//! and in the code: a term a signature leaves out is not in its generated code.
 
 mod common;
 
+use std::path::Path;
+
 use common::*;
-use kanestop_chain::Water;
+use kanestop_chain::{LoadSignature, LoadTerm, Water};
+use kanestop_codegen::loads::{generate_loads, signature_code, LoadBody};
 use kanestop_codegen::rolled::{anchor, inward, Kind, Loads};
 use kanestop_runtime::chain::Chain;
-use kanestop_runtime::dynamics::Dynamics;
-use kanestop_runtime::forces::Forces;
-use kanestop_runtime::generated::{Form, GeneratedKernel};
-use kanestop_runtime::kernel::{AnchorDof, Assembly, Kernel};
+use kanestop_runtime::dynamics::{fused_loads, Dynamics};
+use kanestop_runtime::forces::{Forces, WORK_TERMS};
+use kanestop_runtime::generated::{available, Form, GeneratedKernel};
+use kanestop_runtime::kernel::{AnchorDof, Assembly, BodyState, Kernel, Load, LoadModel};
+use kanestop_runtime::model::Model;
 use kanestop_runtime::reference::ReferenceKernel;
+use kanestop_runtime::scene::Scene;
+use rand::rngs::StdRng;
 use rand::Rng;
 
 const STATES: usize = 100;
+const TOL: f64 = 1e-12;
 
-/// The relative difference of two accelerations, on the scale of the larger.
+/// A load model that records what a fused kernel tells it, and fails if it is asked to
+/// compute.
+#[derive(Default)]
+struct Told {
+    loads: Vec<Load>,
+    power: Vec<f64>,
+}
+
+impl LoadModel for Told {
+    fn loads(&mut self, _bodies: &[BodyState], _loads: &mut [Load]) {
+        panic!("a fused kernel computes its loads itself");
+    }
+
+    fn fused(&mut self, loads: &[Load], power: &[f64]) {
+        self.loads = loads.to_vec();
+        self.power = power.to_vec();
+    }
+}
+
+/// The relative difference of two vectors, on the scale of the larger.
 fn rel(a: &[f64], b: &[f64]) -> f64 {
     let scale = a.iter().chain(b).fold(1.0f64, |m, x| m.max(x.abs()));
     a.iter().zip(b).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max) / scale
 }
 
-fn check(chain: &Chain, seed: u64) -> f64 {
+fn load_scene(path: &Path) -> Model {
+    Model::new(&Scene::load(path).unwrap()).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+}
+
+fn scenes(dir: &str) -> Vec<(String, Model)> {
+    let mut files: Vec<_> = std::fs::read_dir(Path::new(env!("CARGO_MANIFEST_DIR")).join(dir))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+        .collect();
+    files.sort();
+    files.iter().map(|p| (p.file_stem().unwrap().to_string_lossy().into_owned(), load_scene(p))).collect()
+}
+
+/// A state near the scene's start: the angles moved by up to `spread` rad, the anchor by up
+/// to a metre, speeds of order one (so the line lifts off and presses into the seabed,
+/// crosses the surface at either end and drags both ways).
+fn near_start(model: &Model, rng: &mut StdRng, spread: f64) -> (Vec<f64>, Vec<f64>) {
+    let n = model.body_count();
+    let mut q = model.q0.clone();
+    let mut u = model.u0.clone();
+    for (k, (qk, uk)) in q.iter_mut().zip(&mut u).enumerate() {
+        *qk += if k == n - 1 { rng.gen_range(-1.0..1.0) } else { rng.gen_range(-spread..spread) };
+        *uk += rng.gen_range(-1.0..1.0);
+    }
+    (q, u)
+}
+
+/// Scale of body k's load entries: its weight, and its weight times its length for the moment.
+fn load_scales(chain: &Chain, g: f64) -> Vec<[f64; 3]> {
+    chain
+        .bodies
+        .iter()
+        .map(|b| {
+            let w = b.mass * g;
+            [w, w, w * b.length().max(1.0)]
+        })
+        .collect()
+}
+
+/// What the checks of one scene found: the worst relative differences.
+#[derive(Default, Debug, Clone, Copy)]
+struct Worst {
+    loads: f64,
+    power: f64,
+    qdd: f64,
+    /// The fused solve's backward error in the reference system.
+    residual: f64,
+    /// ‖M ẍ − f‖/‖f‖ of the fused solve and of the reference's own Cholesky solve.
+    fused_residual: f64,
+    reference_residual: f64,
+}
+
+/// The checks of one model on one kernel form: `states` random states.
+fn check_model(name: &str, model: &Model, form: Form, seed: u64, states: usize) -> Worst {
+    let n = model.body_count();
+    let chain = &model.chain;
+    let mut rng = rng(seed);
+    let mut forces = Forces::new(model);
+    let mut fused = GeneratedKernel::with_form(chain, form).unwrap();
+    assert!(fused.fuse_loads(&fused_loads(&forces)), "{name}: the generated kernel fuses the loads");
+    let mut fed = GeneratedKernel::with_form(chain, form).unwrap();
+    let mut reference = ReferenceKernel::new(chain);
+    let scales = load_scales(chain, model.scene.environment.gravity);
+    let mu = model.scene.environment.seabed_friction;
+    let mut worst = Worst::default();
+    for trial in 0..states {
+        let (q, mut u) = near_start(model, &mut rng, if trial % 2 == 0 { 0.02 } else { 0.3 });
+        let (anchor, friction) = match trial % 3 {
+            0 => (AnchorDof::Free, 0.0),
+            1 => (AnchorDof::Stuck, 0.0),
+            _ => (AnchorDof::Free, if rng.gen_bool(0.5) { mu } else { -mu }),
+        };
+        if anchor == AnchorDof::Stuck {
+            u[n - 1] = 0.0;
+        }
+        let (mut scratch, mut told) = (Assembly::new(n), Told::default());
+        let (mut a, mut b) = (vec![0.0; n], vec![0.0; n]);
+        let ra = fused.solve(&q, &u, anchor, friction, &mut told, &mut scratch, &mut a).unwrap();
+        // The oracle's loads at the same body states.
+        let mut oracle = vec![Load::default(); n];
+        forces.loads(&scratch.bodies, &mut oracle);
+        let power = forces.power();
+        for (k, ((x, y), s)) in told.loads.iter().zip(&oracle).zip(&scales).enumerate() {
+            for (i, (p, r)) in [(x.fx, y.fx), (x.fz, y.fz), (x.my, y.my)].into_iter().enumerate() {
+                let d = (p - r).abs() / s[i];
+                assert!(d <= TOL, "{name} {form:?} state {trial}: B_{} load {i} {p} against {r} ({d:e})", k + 1);
+                worst.loads = worst.loads.max(d);
+            }
+        }
+        let power_scale = scratch
+            .bodies
+            .iter()
+            .zip(&oracle)
+            .map(|(s, l)| (l.fx * s.vx).abs() + (l.fz * s.vz).abs() + (l.my * s.omega).abs())
+            .sum::<f64>()
+            .max(1.0);
+        for (i, (p, r)) in told.power.iter().zip(&power).enumerate() {
+            let d = (p - r).abs() / power_scale;
+            assert!(d <= TOL, "{name} {form:?} state {trial}: {} power {p} against {r} ({d:e})", WORK_TERMS[i]);
+            worst.power = worst.power.max(d);
+        }
+        // The same kernel fed by the force modules.
+        let rb = fed.solve(&q, &u, anchor, friction, &mut forces, &mut scratch, &mut b).unwrap();
+        let d = rel(&a, &b).max(rel(&[ra.normal, ra.holding], &[rb.normal, rb.holding]));
+        assert!(d <= TOL, "{name} {form:?} state {trial}: fused and fed solves differ by {d:e}");
+        worst.qdd = worst.qdd.max(d);
+        // The reference system's residual, every fifth state (the reference assembles in O(N³)).
+        if trial % 5 == 0 {
+            let mut asm = Assembly::new(n);
+            reference.assemble(&q, &u, &mut forces, &mut asm);
+            let active = if anchor == AnchorDof::Stuck { n - 1 } else { n };
+            let r = backward_error(&asm, active, friction, &a);
+            assert!(r <= TOL, "{name} {form:?} state {trial}: backward error {r:e} in the reference system");
+            worst.residual = worst.residual.max(r);
+            // For scale: the reference's own solve, by the residual relative to ‖f‖.
+            let mut own = vec![0.0; n];
+            kanestop_runtime::kernel::solve_assembled(&asm, anchor, friction, &mut own).unwrap();
+            worst.reference_residual = worst.reference_residual.max(residual(&asm, active, friction, &own));
+            worst.fused_residual = worst.fused_residual.max(residual(&asm, active, friction, &a));
+        }
+    }
+    worst
+}
+
+/// Both forms where the build has the unrolled one, else the rolled one.
+fn forms(model: &Model) -> Vec<Form> {
+    let wet = model.chain.bodies.iter().any(|b| b.added_mass != 0.0);
+    if available().contains(&(model.body_count(), wet)) {
+        vec![Form::Unrolled, Form::Rolled]
+    } else {
+        vec![Form::Rolled]
+    }
+}
+
+fn check_all(models: &[(String, Model)], seed: u64) -> Worst {
+    let mut worst = Worst::default();
+    for (i, (name, model)) in models.iter().enumerate() {
+        for form in forms(model) {
+            let w = check_model(name, model, form, seed + i as u64, STATES);
+            worst.loads = worst.loads.max(w.loads);
+            worst.power = worst.power.max(w.power);
+            worst.qdd = worst.qdd.max(w.qdd);
+            worst.residual = worst.residual.max(w.residual);
+            worst.fused_residual = worst.fused_residual.max(w.fused_residual);
+            worst.reference_residual = worst.reference_residual.max(w.reference_residual);
+        }
+    }
+    worst
+}
+
+#[test]
+fn fused_loads_are_the_force_modules_loads_in_every_paper_scene() {
+    let worst = check_all(&scenes("scenes/paper"), 1000);
+    eprintln!("paper scenes, fused against the oracles: {worst:?}");
+}
+
+#[test]
+fn fused_loads_are_the_force_modules_loads_in_every_stress_scene() {
+    let worst = check_all(&scenes("scenes/stress"), 2000);
+    eprintln!("stress scenes, fused against the oracles: {worst:?}");
+}
+
+/// Case 1 under every load signature: water, seabed, current and line friction switched.
+fn case1_signatures() -> Vec<(String, Model)> {
+    let base = Scene::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/paper/case01.toml")).unwrap();
+    LoadSignature::all()
+        .into_iter()
+        .map(|sig| {
+            let mut scene = base.clone();
+            let e = &mut scene.environment;
+            e.water = sig.water;
+            e.seabed = sig.seabed;
+            e.current_surface_speed = if sig.current { 1.2 } else { 0.0 };
+            e.line_friction = if sig.line_friction { 0.5 } else { 0.0 };
+            let model = Model::new(&scene).unwrap_or_else(|e| panic!("{}: {e}", sig.name()));
+            assert_eq!(Forces::new(&model).signature(), sig);
+            (sig.name(), model)
+        })
+        .collect()
+}
+
+#[test]
+fn every_load_signature_fuses_and_matches_the_force_modules() {
+    let models = case1_signatures();
+    assert_eq!(models.len(), 9);
+    let worst = check_all(&models, 3000);
+    eprintln!("case 1 under the nine signatures: {worst:?}");
+}
+
+#[test]
+fn random_scenes_fuse_and_match_the_force_modules() {
+    let base = Scene::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/paper/case01.toml")).unwrap();
+    let mut rng = rng(4000);
+    let mut models = Vec::new();
+    let mut refused = Vec::new();
+    while models.len() < 6 {
+        assert!(refused.len() < 50, "random scenes refused: {refused:?}");
+        let mut s = base.clone();
+        s.chain.elements = rng.gen_range(2..25);
+        s.chain.element_length = rng.gen_range(0.5..3.0);
+        s.chain.radius *= rng.gen_range(0.5..1.5);
+        for stage in &mut s.cable.stages {
+            // The stage keeps its length (the catenary needs the cable to reach the ship).
+            let length = stage.elements as f64 * stage.element_length;
+            stage.elements = rng.gen_range(1..15);
+            stage.element_length = length / stage.elements as f64;
+        }
+        s.anchor.mass *= rng.gen_range(0.5..2.0);
+        s.ship.mass *= rng.gen_range(0.2..3.0);
+        s.environment.seabed_stiffness *= 10f64.powf(rng.gen_range(-1.0..2.0));
+        s.environment.current_surface_speed = if rng.gen_bool(0.5) { rng.gen_range(-2.0..2.0) } else { 0.0 };
+        s.environment.line_friction = if rng.gen_bool(0.5) { rng.gen_range(0.1..1.0) } else { 0.0 };
+        s.initial.horizontal_projection *= rng.gen_range(0.97..1.0);
+        match Model::new(&s) {
+            Ok(model) => models.push((format!("random scene {} (N = {})", models.len(), model.body_count()), model)),
+            Err(e) => refused.push(e.to_string()),
+        }
+    }
+    let worst = check_all(&models, 5000);
+    eprintln!("random scenes: {worst:?}");
+}
+
+#[test]
+fn every_scene_runs_fused_on_the_generated_kernel_and_not_on_the_reference() {
+    for (name, model) in scenes("scenes/paper").into_iter().chain(scenes("scenes/stress")) {
+        let kernel = GeneratedKernel::new(&model.chain).unwrap();
+        let d = Dynamics::new(Box::new(kernel), Forces::new(&model), model.anchor);
+        assert!(d.loads_fused(), "{name}");
+        let r = Dynamics::new(Box::new(ReferenceKernel::new(&model.chain)), Forces::new(&model), model.anchor);
+        assert!(!r.loads_fused(), "{name}");
+    }
+}
+
+/// What marks each term in the emitted code: the parameters only it reads, and its functions.
+fn markers(term: LoadTerm) -> &'static [&'static str] {
+    match term {
+        LoadTerm::Weight => &["lp.g"],
+        LoadTerm::Seabed => &["embedded_volume", "seabed_stiffness", "power[1]"],
+        LoadTerm::LineFriction => &["tanh", "line_friction", "slip_speed", "power[3]"],
+        LoadTerm::Buoyancy => &["fraction", "anchor_volume", "power[0]"],
+        LoadTerm::Current => &["powf", "current_speed", "current_exponent"],
+        LoadTerm::LineDrag => &["normal_drag", "tangential_drag", "power[5]", "power[8]"],
+        LoadTerm::AnchorDrag => &["anchor_drag", "anchor_area", "power[4]"],
+        LoadTerm::Hydrostatics => &["ship_volume", "ship_metacentric_height", "power[7]"],
+        LoadTerm::HullResistance => &["log10", "ship_wetted_surface", "roughness_allowance", "power[6]"],
+    }
+}
+
+/// A marker as it appears in a token stream's text (`lp . g`, `power [1]`).
+fn spaced(marker: &str) -> String {
+    marker.replace('.', " . ").replace('[', " [")
+}
+
+#[test]
+fn a_term_switched_off_is_not_in_the_generated_code() {
+    let full = LoadSignature::new(true, true, true, true);
+    let (full_code, full_report) = signature_code(&full);
+    let full_code = full_code.to_string();
+    let ops = |r: &kanestop_codegen::loads::LoadReport| -> usize {
+        [LoadBody::Anchor, LoadBody::Element, LoadBody::Ship].iter().map(|&b| r.body_total(b)).sum()
+    };
+    for term in LoadTerm::ALL.into_iter().filter(|&t| t != LoadTerm::Weight) {
+        for m in markers(term) {
+            assert!(full_code.contains(&spaced(m)), "{}: {m} in the full code", term.name());
+        }
+        let off = match term {
+            LoadTerm::Seabed => LoadSignature::new(true, false, true, false),
+            LoadTerm::LineFriction => LoadSignature::new(true, true, true, false),
+            LoadTerm::Current => LoadSignature::new(true, true, false, true),
+            _ => LoadSignature::new(false, true, false, true),
+        };
+        assert!(!off.has(term));
+        let (code, report) = signature_code(&off);
+        let code = code.to_string();
+        for m in markers(term) {
+            assert!(!code.contains(&spaced(m)), "{}: {m} left in the code of {}", term.name(), off.name());
+        }
+        assert_eq!(report.term_total(term, 40), 0, "{}", term.name());
+        assert!(full_report.term_total(term, 40) > 0, "{}", term.name());
+        assert!(
+            ops(&report) < ops(&full_report),
+            "{}: {} ops without, {} with",
+            term.name(),
+            ops(&report),
+            ops(&full_report)
+        );
+    }
+    // Weight alone is three numbers per body.
+    let (code, report) = signature_code(&LoadSignature::weight_only());
+    assert!(!code.to_string().contains("power ["), "weight does no work in the balance's terms");
+    assert_eq!(ops(&report), 6, "−m g, a negation and a product per body kind: {:?}", report.ops);
+    // The file holds every signature once.
+    let source = generate_loads().source;
+    for sig in LoadSignature::all() {
+        assert_eq!(source.matches(&format!("pub fn loads_{}(", sig.name())).count(), 1, "{}", sig.name());
+    }
+}
+
+// --- Weight alone, inside the rolled kernel's steps ----------------------------------------
+
+fn check_gravity(chain: &Chain, seed: u64) -> f64 {
     let n = chain.len();
     let mut rng = rng(seed);
+    let mut forces = Forces::gravity_only(chain, G);
     let mut fused = GeneratedKernel::with_form(chain, Form::Rolled).unwrap();
-    assert!(fused.fuse_gravity(G), "the dry rolled kernel fuses weight");
+    assert!(fused.fuse_loads(&fused_loads(&forces)), "the dry rolled kernel fuses weight");
     assert!(fused.is_gravity_fused());
     let mut fed = GeneratedKernel::with_form(chain, Form::Rolled).unwrap();
     let mut reference = ReferenceKernel::new(chain);
-    let mut forces = Forces::gravity_only(chain, G);
     let mut worst = 0.0f64;
     for trial in 0..STATES {
         let (q, mut u) = random_state(n, &mut rng);
@@ -49,25 +385,23 @@ fn check(chain: &Chain, seed: u64) -> f64 {
         }
         let mut scratch = Assembly::new(n);
         let (mut a, mut b) = (vec![0.0; n], vec![0.0; n]);
-        // The fused kernel never calls the load model: hand it one that would be wrong.
-        let mut nothing = Forces::gravity_only(chain, 0.0);
-        let ra = fused.solve(&q, &u, anchor, friction, &mut nothing, &mut scratch, &mut a).unwrap();
+        let mut told = Told::default();
+        let ra = fused.solve(&q, &u, anchor, friction, &mut told, &mut scratch, &mut a).unwrap();
+        assert!(told.loads.iter().zip(&chain.bodies).all(|(l, b)| l.fz == -b.mass * G && l.fx == 0.0 && l.my == 0.0));
         let rb = fed.solve(&q, &u, anchor, friction, &mut forces, &mut scratch, &mut b).unwrap();
-        // Against the same code fed the force modules' weights: the same numbers.
         let d = rel(&a, &b);
         let force_scale = chain.bodies.iter().map(|b| b.mass * G).sum::<f64>();
         let dr = [(ra.normal, rb.normal), (ra.holding, rb.holding)]
             .iter()
             .map(|(x, y)| (x - y).abs() / force_scale)
             .fold(0.0, f64::max);
-        assert!(d <= 1e-12, "N={n} {anchor:?} k={friction}: qdd differ by {d:e}");
-        assert!(dr <= 1e-12, "N={n} {anchor:?} k={friction}: reaction differs by {dr:e}");
-        // Against the reference: its system's residual (Eqs. 22–27 with the same weights).
+        assert!(d <= TOL, "N={n} {anchor:?} k={friction}: qdd differ by {d:e}");
+        assert!(dr <= TOL, "N={n} {anchor:?} k={friction}: reaction differs by {dr:e}");
         let mut asm = Assembly::new(n);
         reference.assemble(&q, &u, &mut forces, &mut asm);
         let active = if anchor == AnchorDof::Stuck { n - 1 } else { n };
         let r = residual(&asm, active, friction, &a);
-        assert!(r <= 1e-12, "N={n} {anchor:?} k={friction}: residual {r:e} in the reference system");
+        assert!(r <= TOL, "N={n} {anchor:?} k={friction}: residual {r:e} in the reference system");
         worst = worst.max(d).max(dr).max(r);
     }
     worst
@@ -78,33 +412,33 @@ fn fused_weight_is_the_force_modules_weight_at_every_size() {
     let mut rng = rng(77);
     let mut worst = 0.0f64;
     for n in [3, 4, 5, 11, 46, 51] {
-        worst = worst.max(check(&random_chain(n, &mut rng), 500 + n as u64));
+        worst = worst.max(check_gravity(&random_chain(n, &mut rng), 500 + n as u64));
     }
     eprintln!("fused weight against the fed loads and the reference: worst {worst:e}");
 }
 
 #[test]
-fn a_chain_in_vacuum_runs_fused_and_a_wet_one_does_not() {
+fn a_chain_in_vacuum_runs_on_the_gravity_solves_and_a_wet_one_on_its_load_code() {
     let mut rng = rng(78);
     let chain = random_chain(46, &mut rng);
     let kernel = GeneratedKernel::new(&chain).unwrap();
     assert_eq!(kernel.form(), Form::Unrolled, "N = 46 dry has an unrolled kernel");
-    let d = Dynamics::new(Box::new(kernel), Forces::gravity_only(&chain, G), AnchorDof::Stuck);
+    let mut d = Dynamics::new(Box::new(kernel), Forces::gravity_only(&chain, G), AnchorDof::Stuck);
     assert!(d.loads_fused());
-    // The weights are still known, for the joint forces the observation computes.
+    // The weights are known after a solve, for the joint forces the observation computes.
+    let (q, u) = random_state(46, &mut rng);
+    let mut qdd = vec![0.0; 46];
+    d.accelerations(&q, &u, &mut qdd).unwrap();
     assert!(d.loads().iter().zip(&chain.bodies).all(|(l, b)| l.fz == -b.mass * G && l.fx == 0.0 && l.my == 0.0));
-    // No fusing on the reference kernel, nor for a wet chain (its kernel has no weight-only
-    // solve; in a scene, water brings buoyancy and drag besides).
-    let r = Dynamics::new(Box::new(ReferenceKernel::new(&chain)), Forces::gravity_only(&chain, G), AnchorDof::Stuck);
-    assert!(!r.loads_fused());
+    // A wet chain has no weight-only solve: its weights come from the load code.
     let wet = random_wet_chain(46, &mut rng);
-    let d =
-        Dynamics::new(Box::new(GeneratedKernel::new(&wet).unwrap()), Forces::gravity_only(&wet, G), AnchorDof::Stuck);
-    assert!(!d.loads_fused());
+    let mut k = GeneratedKernel::new(&wet).unwrap();
+    assert!(k.fuse_loads(&fused_loads(&Forces::gravity_only(&wet, G))));
+    assert!(k.is_fused() && !k.is_gravity_fused());
 }
 
 #[test]
-fn the_fused_steps_read_no_load_and_do_less() {
+fn the_gravity_steps_read_no_load_and_do_less() {
     for (kind, fed, fused) in [
         (
             Some(Kind::Ship),
@@ -132,7 +466,6 @@ fn the_fused_steps_read_no_load_and_do_less() {
         assert!(fed.params.contains("f: &[f64; 3]") && !fused.params.contains("f: &[f64; 3]"), "{}", fused.name);
         assert!(fused.params.contains("g: f64") && fused.name.ends_with("_gravity"));
     }
-    // In the emitted file: the fused solve reads no load array.
     let dry = kanestop_codegen::drivers::generate_rolled(Water::Off).source;
     let fused_solve = &dry[dry.find("pub fn solve_free_gravity").unwrap()..];
     let fused_solve = &fused_solve[..fused_solve.find("\n}\n").unwrap()];

@@ -44,6 +44,10 @@ impl LoadModel for StateLoads {
             };
         }
     }
+
+    fn fused(&mut self, _loads: &[Load], _power: &[f64]) {
+        unreachable!("these loads are never offered to a kernel for fusing");
+    }
 }
 
 fn random_loads(chain: &Chain, rng: &mut StdRng) -> StateLoads {

@@ -16,6 +16,10 @@ impl LoadModel for FixedLoads {
     fn loads(&mut self, _bodies: &[BodyState], loads: &mut [Load]) {
         loads.copy_from_slice(&self.0);
     }
+
+    fn fused(&mut self, _loads: &[Load], _power: &[f64]) {
+        unreachable!("these loads are never offered to a kernel for fusing");
+    }
 }
 
 /// R(θ) v: body (x, z) components to inertial, for a rotation θ about y.

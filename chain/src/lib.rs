@@ -3,7 +3,8 @@
 //! The model of a restraining chain that the generator (`kanestop-codegen`) and the runtime
 //! (`kanestop-runtime`) share, as `prost-types` is shared by `prost` and `prost-build`: which
 //! bodies the chain has, in Huston's order ([`BodyKind`], [`Topology`]), and the shape of a
-//! generated kernel ([`Variant`]) with the parameters it folds to zero ([`StructuralZero`]).
+//! generated kernel ([`Variant`]) with the parameters it folds to zero ([`StructuralZero`]),
+//! and the load terms a scene uses ([`LoadSignature`]), which decide its generated load code.
 //!
 //! Only *structure* lives here: masses, lengths and forces are numbers the runtime supplies,
 //! so one kernel serves every scene of the same shape. The crate depends on nothing of the
@@ -22,8 +23,10 @@
 
 #![warn(missing_docs)]
 
+mod signature;
 mod topology;
 mod variant;
 
+pub use signature::{LoadSignature, LoadTerm};
 pub use topology::{BodyKind, Topology, TopologyError};
 pub use variant::{ParamField, StructuralZero, Variant, Water};

@@ -16,12 +16,14 @@
 //! - [`rolled`]: the same steps expanded once per body kind, for a chain of any N;
 //! - [`emit`]: Rust emission (quote → syn → prettyplease), one file per variant;
 //! - [`drivers`]: the rolled kernels' emission: their steps and the loops that drive them;
+//! - [`loads`]: the load terms of Section 3.2, one function per load signature;
 //! - [`scenes`]: the element counts the scene files need, for `build.rs` and the CLI.
 
 pub(crate) mod body;
 pub mod drivers;
 pub mod emit;
 pub mod expr;
+pub mod loads;
 pub mod planar;
 pub mod rolled;
 pub mod scenes;
@@ -51,7 +53,8 @@ pub fn checked_in_variants(scenes_dir: &std::path::Path) -> Vec<Variant> {
 }
 
 /// Every checked-in file as (name under `generated/src/`, text): the unrolled kernels, the
-/// registry `kernels.rs`, which lists them, and the two rolled kernels (any N).
+/// registry `kernels.rs`, which lists them, the two rolled kernels (any N) and the load
+/// code of every signature (`loads.rs`).
 pub fn checked_in_files(scenes_dir: &std::path::Path) -> Vec<(String, String)> {
     let variants = checked_in_variants(scenes_dir);
     let mut out: Vec<(String, String)> = variants
@@ -66,5 +69,6 @@ pub fn checked_in_files(scenes_dir: &std::path::Path) -> Vec<(String, String)> {
         let rolled = drivers::generate_rolled(water);
         out.push((rolled.file_name, rolled.source));
     }
+    out.push(("loads.rs".to_string(), loads::generate_loads().source));
     out
 }

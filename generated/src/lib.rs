@@ -25,6 +25,11 @@ mod rolled_dry;
 #[allow(clippy::all, unused_variables, dead_code)]
 mod rolled_wet;
 
+/// The loads of every load signature.
+#[rustfmt::skip]
+#[allow(clippy::all, unused_variables, unused_mut, dead_code)]
+mod loads;
+
 mod extra {
     include!(concat!(env!("OUT_DIR"), "/extra.rs"));
 }
@@ -129,6 +134,85 @@ pub type GravitySolveStuckFn =
 pub struct GravityTable {
     pub solve_free: GravitySolveFreeFn,
     pub solve_stuck: GravitySolveStuckFn,
+}
+
+/// Work terms in the power array of the load functions (the runtime's `WORK_TERMS`).
+pub const POWER_TERMS: usize = 9;
+
+/// The numbers the generated load code reads for a scene, SI units (see the runtime's
+/// force modules, whose values these are).
+#[derive(Clone, Copy, Debug)]
+pub struct LoadParams {
+    /// g, m/s².
+    pub g: f64,
+    /// ρ, kg/m³.
+    pub rho: f64,
+    /// Height of the seabed plane in the inertial frame, m.
+    pub seabed_z: f64,
+    /// k_z, the foundation's stiffness, N/m³ (Eq. 41).
+    pub seabed_stiffness: f64,
+    /// μ of the grounded line.
+    pub line_friction: f64,
+    /// The slip speed of the regularised line friction, m/s.
+    pub slip_speed: f64,
+    /// C_D across the line (Eq. 47).
+    pub normal_drag: f64,
+    /// C_F along the line (Eq. 45).
+    pub tangential_drag: f64,
+    /// U_ST, m/s (Eq. 38).
+    pub current_speed: f64,
+    /// The current profile's exponent (1/7 in Eq. 38).
+    pub current_exponent: f64,
+    /// d, water depth, m.
+    pub water_depth: f64,
+    /// V_1, m³.
+    pub anchor_volume: f64,
+    /// w_1 h_1, m².
+    pub anchor_area: f64,
+    /// C_1^D.
+    pub anchor_drag: f64,
+    /// ∇, the ship's displaced volume at rest, m³.
+    pub ship_volume: f64,
+    /// A_W, m².
+    pub ship_waterplane_area: f64,
+    /// G_y^M, m (Eq. 57).
+    pub ship_metacentric_height: f64,
+    /// S_W, m².
+    pub ship_wetted_surface: f64,
+    /// L_N, m.
+    pub ship_length: f64,
+    /// ϑ, m²/s.
+    pub viscosity: f64,
+    /// C_sf (Eq. 61).
+    pub roughness_allowance: f64,
+    /// The Reynolds number below which Eq. 60's coefficient is held.
+    pub min_reynolds: f64,
+    /// The embedded volume of a rod, `(r, L, h_a, h_b) → (V^S m³, s̄ m from the h_a end)`:
+    /// the runtime's closed form, handed in so that it has one statement.
+    pub embedded_volume: fn(f64, f64, f64, f64) -> (f64, f64),
+}
+
+/// What the load code reads of one body besides its [`BodyParams`].
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Element {
+    /// Length, m.
+    pub length: f64,
+    /// Radius, m.
+    pub radius: f64,
+    /// A chain link or cable element (buoyancy, drag, the seabed); false for the rod in
+    /// air, the anchor and the ship.
+    pub line: bool,
+}
+
+/// `loads(p, lp, elements, trig, bodies, loads, power)`: every body's load `[F_x, F_z, M_y]`
+/// at its centroid from the body states and rotations of the kinematics, and the power of
+/// each work term.
+pub type LoadsFn =
+    fn(&[BodyParams], &LoadParams, &[Element], &[[f64; 2]], &[[f64; 6]], &mut [[f64; 3]], &mut [f64; POWER_TERMS]);
+
+/// The generated load function of a signature, by its name (`wet_seabed_friction`).
+pub fn loads(signature: &str) -> Option<LoadsFn> {
+    loads::LOADS.iter().find(|(n, _)| *n == signature).map(|(_, f)| *f)
 }
 
 /// The rolled kernel for the water switch: any N.

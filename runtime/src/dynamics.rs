@@ -6,8 +6,12 @@
 //! friction −μ N of Eq. 37, N the normal force of the same evaluation: the kernel's solve
 //! takes it implicitly, so the right-hand side is a function of (q, u) alone.
 
+use kanestop_chain::BodyKind;
+use kanestop_generated::{Element, LoadParams, POWER_TERMS};
+
 use crate::forces::anchor::AnchorForces;
-use crate::forces::{Forces, WORK_TERMS};
+use crate::forces::{seabed, ship, Forces, WORK_TERMS};
+use crate::fusion::FusedLoads;
 use crate::integrate::{OdeSystem, RhsError};
 use crate::kernel::{AnchorDof, AnchorReaction, Assembly, BodyAcceleration, BodyState, Kernel, Load, LoadModel};
 
@@ -31,10 +35,11 @@ pub struct Dynamics {
     /// The last evaluation's (q, u) and ü: an evaluation at the same state under the same
     /// anchor state is answered from it (see [`Dynamics::accelerations`]).
     last: LastEvaluation,
-    /// The weights, when the kernel computes them itself ([`Kernel::fuse_gravity`]): the
-    /// loads of every evaluation, as [`Forces`] gives them.
-    fused_weights: Option<Vec<Load>>,
+    /// Whether the kernel computes the loads itself ([`Kernel::fuse_loads`]).
+    fused: bool,
 }
+
+const _: () = assert!(POWER_TERMS == WORK_TERMS.len(), "the generated load code's power array is WORK_TERMS");
 
 /// Inputs and result of the last evaluation; `valid` is cleared whenever anything but
 /// (q, u) that the result depends on may have changed.
@@ -72,23 +77,65 @@ impl LoadModel for Recording<'_> {
         self.loads.clear();
         self.loads.extend_from_slice(loads);
     }
+
+    fn fused(&mut self, loads: &[Load], power: &[f64]) {
+        self.forces.fused(loads, power);
+        self.loads.clear();
+        self.loads.extend_from_slice(loads);
+    }
+}
+
+/// The loads of `forces` as the generated load code takes them: their signature, their
+/// numbers, and the seabed's closed form (`seabed::embedded_volume`), handed in.
+pub fn fused_loads(forces: &Forces) -> FusedLoads {
+    let (c, a, s) = (&forces.current, &forces.anchor, &forces.ship);
+    let params = LoadParams {
+        g: forces.g,
+        rho: forces.rho,
+        seabed_z: forces.seabed_z,
+        seabed_stiffness: forces.k_z,
+        line_friction: forces.line_friction,
+        slip_speed: seabed::V_SLIP,
+        normal_drag: forces.c_d,
+        tangential_drag: forces.c_f,
+        current_speed: c.surface_speed,
+        current_exponent: c.exponent,
+        water_depth: c.depth,
+        anchor_volume: a.volume,
+        anchor_area: a.frontal_area,
+        anchor_drag: a.drag_coefficient,
+        ship_volume: s.volume,
+        ship_waterplane_area: s.waterplane_area,
+        ship_metacentric_height: s.metacentric_height,
+        ship_wetted_surface: s.wetted_surface,
+        ship_length: s.length,
+        viscosity: s.viscosity,
+        roughness_allowance: s.roughness_allowance,
+        min_reynolds: ship::MIN_REYNOLDS,
+        embedded_volume: seabed::embedded_volume,
+    };
+    let elements = forces
+        .elements
+        .iter()
+        .map(|e| Element {
+            length: e.length,
+            radius: e.radius,
+            line: matches!(e.kind, BodyKind::ChainLink | BodyKind::Cable { .. }),
+        })
+        .collect();
+    FusedLoads { signature: forces.signature(), params, elements }
 }
 
 impl Dynamics {
     /// The right-hand side for `kernel` under the loads `forces`, the anchor starting in
     /// state `anchor` (without friction until [`Dynamics::slide_anchor`] sets a direction).
     ///
-    /// When weight is the only load ([`Forces::weight_only`]) and the kernel can take it
-    /// into its own code ([`Kernel::fuse_gravity`]), it does: the loads are then not
-    /// evaluated per call, and [`Dynamics::loads`] holds the weights the force modules give.
-    pub fn new(mut kernel: Box<dyn Kernel>, mut forces: Forces, anchor: AnchorDof) -> Self {
+    /// When the kernel can take the loads into its own code ([`Kernel::fuse_loads`], the
+    /// generated load code of their signature), it does: the force modules are then not
+    /// called per evaluation, and [`Dynamics::loads`] holds what the kernel computed.
+    pub fn new(mut kernel: Box<dyn Kernel>, forces: Forces, anchor: AnchorDof) -> Self {
         let n = kernel.body_count();
-        let fused_weights = forces.weight_only().filter(|&g| kernel.fuse_gravity(g)).map(|_| {
-            // Weight does not depend on the state: any state gives it.
-            let mut weights = vec![Load::default(); n];
-            forces.loads(&vec![BodyState::default(); n], &mut weights);
-            weights
-        });
+        let fused = kernel.fuse_loads(&fused_loads(&forces));
         Dynamics {
             kernel,
             forces,
@@ -96,11 +143,11 @@ impl Dynamics {
             direction: 0.0,
             assembly: Assembly::new(n),
             evaluations: 0,
-            loads: fused_weights.clone().unwrap_or_else(|| vec![Load::default(); n]),
+            loads: vec![Load::default(); n],
             reaction: AnchorReaction::default(),
             friction: 0.0,
             last: LastEvaluation::default(),
-            fused_weights,
+            fused,
         }
     }
 
@@ -109,9 +156,9 @@ impl Dynamics {
         self.kernel.body_count()
     }
 
-    /// Whether the kernel computes the loads itself (weight alone, [`Kernel::fuse_gravity`]).
+    /// Whether the kernel computes the loads itself ([`Kernel::fuse_loads`]).
     pub fn loads_fused(&self) -> bool {
-        self.fused_weights.is_some()
+        self.fused
     }
 
     /// The load models (read-only: changing one would change the right-hand side behind the
@@ -203,9 +250,6 @@ impl Dynamics {
             AnchorDof::Free => self.forces.anchor.friction_factor(self.direction),
             AnchorDof::Stuck => 0.0,
         };
-        if let Some(weights) = &self.fused_weights {
-            self.loads.copy_from_slice(weights); // the kernel does not call the model
-        }
         let mut model = Recording { forces: &mut self.forces, loads: &mut self.loads };
         let mut reaction = self.kernel.solve(q, u, self.anchor, k, &mut model, &mut self.assembly, qdd)?;
         if k != 0.0 && reaction.normal < 0.0 {

@@ -16,10 +16,11 @@
 //! ([`SolvePath::Recursive`]); [`SolvePath::Assembled`] assembles the generated a_lp and f_l
 //! and factors them like the reference (kept for comparison and benchmarks).
 
-use kanestop_chain::{ParamField, StructuralZero, Variant, Water};
+use kanestop_chain::{LoadSignature, ParamField, StructuralZero, Variant, Water};
 use kanestop_generated::BodyParams;
 
 use crate::chain::Chain;
+use crate::fusion::FusedLoads;
 use crate::kernel::RhsError;
 use crate::kernel::{
     check_friction_factor, solve_assembled, AnchorDof, AnchorReaction, Assembly, BodyAcceleration, BodyState, Kernel,
@@ -116,12 +117,22 @@ enum Table {
     Rolled(kanestop_generated::RolledTable, Vec<[f64; kanestop_generated::ROLLED_SCRATCH]>),
 }
 
+/// The scene's loads, computed by generated code ([`Kernel::fuse_loads`]).
+struct Fusion {
+    /// The load code of the scene's signature.
+    loads: kanestop_generated::LoadsFn,
+    params: kanestop_generated::LoadParams,
+    elements: Vec<kanestop_generated::Element>,
+    power: [f64; kanestop_generated::POWER_TERMS],
+    /// Weight alone on the rolled kernel: the solves that compute −m g in their own steps,
+    /// g (m/s²), and the weights they apply, for the model.
+    gravity: Option<(kanestop_generated::GravityTable, f64)>,
+}
+
 /// A generated kernel bound to one chain's numbers.
 pub struct GeneratedKernel {
     table: Table,
-    /// The solves with the loads fused, weight alone, and g (m/s²): see
-    /// [`Kernel::fuse_gravity`].
-    gravity: Option<(kanestop_generated::GravityTable, f64)>,
+    fusion: Option<Fusion>,
     bodies: usize,
     wet: bool,
     solve_path: SolvePath,
@@ -177,7 +188,7 @@ impl GeneratedKernel {
         }
         Ok(GeneratedKernel {
             table,
-            gravity: None,
+            fusion: None,
             bodies: n,
             wet,
             solve_path: SolvePath::Recursive,
@@ -208,9 +219,14 @@ impl GeneratedKernel {
         self.wet
     }
 
-    /// Whether the loads are fused into the generated solve (weight alone).
+    /// Whether the generated code computes the loads ([`Kernel::fuse_loads`]).
+    pub fn is_fused(&self) -> bool {
+        self.fusion.is_some()
+    }
+
+    /// Whether the loads are weight alone, computed inside the generated solve's steps.
     pub fn is_gravity_fused(&self) -> bool {
-        self.gravity.is_some()
+        self.fusion.as_ref().is_some_and(|f| f.gravity.is_some())
     }
 
     /// Unrolled or rolled.
@@ -244,7 +260,11 @@ impl GeneratedKernel {
         bodies: &[BodyState],
         qdd: &mut [f64],
     ) -> Result<AnchorReaction, RhsError> {
-        self.loads(model, bodies);
+        if self.fusion.is_some() {
+            self.fused_loads(model);
+        } else {
+            self.loads(model, bodies);
+        }
         let (p, trig, loads) = (&self.params, &self.trig, &self.load_array);
         Ok(match (anchor, &mut self.table) {
             (AnchorDof::Free, table) => {
@@ -271,6 +291,17 @@ impl GeneratedKernel {
             *a = [l.fx, l.fz, l.my];
         }
     }
+
+    /// The loads by the generated load code, at the states of the last kinematics, told
+    /// to `model`.
+    fn fused_loads(&mut self, model: &mut dyn LoadModel) {
+        let f = self.fusion.as_mut().expect("fused");
+        (f.loads)(&self.params, &f.params, &f.elements, &self.trig, &self.states, &mut self.load_array, &mut f.power);
+        for (l, a) in self.loads.iter_mut().zip(&self.load_array) {
+            *l = Load { fx: a[0], fz: a[1], my: a[2] };
+        }
+        model.fused(&self.loads, &f.power);
+    }
 }
 
 impl Kernel for GeneratedKernel {
@@ -286,19 +317,49 @@ impl Kernel for GeneratedKernel {
         Some(GeneratedKernel::form(self).name())
     }
 
-    /// The dry rolled kernel has the solves under weight alone; an unrolled kernel
-    /// switches to it (the rolled form runs within a few per cent of the unrolled one, and
-    /// says so in [`GeneratedKernel::form`]). Not on the assembled path, which reads loads.
-    fn fuse_gravity(&mut self, g: f64) -> bool {
-        let rolled = kanestop_generated::rolled(self.wet);
-        let Some(fused) = rolled.gravity else { return false };
-        if self.solve_path != SolvePath::Recursive || !g.is_finite() {
+    /// Any signature on the recursive path: the generated load code of the signature runs
+    /// before the solve. Weight alone on a dry chain goes further: the rolled kernel's
+    /// gravity solves compute −m g in their own steps, and an unrolled kernel switches to
+    /// them (the rolled form runs within a few per cent of the unrolled one, and says so in
+    /// [`GeneratedKernel::form`]). Not on the assembled path, which reads loads.
+    fn fuse_loads(&mut self, fused: &FusedLoads) -> bool {
+        let Some(loads) = kanestop_generated::loads(&fused.signature.name()) else { return false };
+        if self.solve_path != SolvePath::Recursive || fused.elements.len() != self.bodies {
             return false;
         }
-        if let Table::Unrolled(_) = self.table {
-            self.table = Table::Rolled(rolled, vec![[0.0; kanestop_generated::ROLLED_SCRATCH]; self.bodies]);
+        let rolled = kanestop_generated::rolled(self.wet);
+        let g = fused.params.g;
+        let gravity = rolled.gravity.filter(|_| fused.signature == LoadSignature::weight_only() && g.is_finite());
+        if gravity.is_some() {
+            if let Table::Unrolled(_) = self.table {
+                self.table = Table::Rolled(rolled, vec![[0.0; kanestop_generated::ROLLED_SCRATCH]; self.bodies]);
+            }
         }
-        self.gravity = Some((fused, g));
+        let mut fusion = Fusion {
+            loads,
+            params: fused.params,
+            elements: fused.elements.clone(),
+            power: [0.0; kanestop_generated::POWER_TERMS],
+            gravity: gravity.map(|t| (t, g)),
+        };
+        if fusion.gravity.is_some() {
+            // The weights do not depend on the state: the load code at any state gives them.
+            let states = vec![[0.0; 6]; self.bodies];
+            let trig = vec![[1.0, 0.0]; self.bodies];
+            (fusion.loads)(
+                &self.params,
+                &fusion.params,
+                &fusion.elements,
+                &trig,
+                &states,
+                &mut self.load_array,
+                &mut fusion.power,
+            );
+            for (l, a) in self.loads.iter_mut().zip(&self.load_array) {
+                *l = Load { fx: a[0], fz: a[1], my: a[2] };
+            }
+        }
+        self.fusion = Some(fusion);
         true
     }
 
@@ -352,10 +413,11 @@ impl Kernel for GeneratedKernel {
             return solve_assembled(scratch, anchor, friction, qdd);
         }
         self.states(q, u, &mut scratch.bodies);
-        let reaction = match (self.gravity, &mut self.table) {
+        let gravity = self.fusion.as_ref().and_then(|f| f.gravity);
+        let reaction = match (gravity, &mut self.table) {
             (Some((fused, g)), Table::Rolled(_, scratch)) => {
                 let (p, trig) = (&self.params, &self.trig);
-                match anchor {
+                let reaction = match anchor {
                     AnchorDof::Free => {
                         let [normal, factor] = (fused.solve_free)(p, u, trig, g, friction, qdd, scratch);
                         check_friction_factor(factor)?;
@@ -365,7 +427,9 @@ impl Kernel for GeneratedKernel {
                         let [holding, normal] = (fused.solve_stuck)(p, u, trig, g, qdd, scratch);
                         AnchorReaction { holding, normal }
                     }
-                }
+                };
+                model.fused(&self.loads, &[0.0; kanestop_generated::POWER_TERMS]);
+                reaction
             }
             _ => self.solve_with_loads(u, anchor, friction, model, &scratch.bodies, qdd)?,
         };

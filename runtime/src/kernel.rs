@@ -19,6 +19,8 @@
 
 use nalgebra::{DMatrix, DVector};
 
+use crate::fusion::FusedLoads;
+
 /// Why a kernel could not produce the accelerations: the right-hand side of ẏ = F(t, y)
 /// cannot be evaluated at this state.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
@@ -150,6 +152,12 @@ pub trait LoadModel {
     /// Writes the resultant applied load on every body (at its centroid, inertial
     /// components) for the body states `bodies` into `loads`, B_1 first.
     fn loads(&mut self, bodies: &[BodyState], loads: &mut [Load]);
+
+    /// Told instead of [`LoadModel::loads`] by a kernel that computed the loads in its own
+    /// code ([`Kernel::fuse_loads`]): every body's load and the power of each work term
+    /// (W, in the order of `forces::WORK_TERMS`), for the model to keep as if it had
+    /// computed them.
+    fn fused(&mut self, loads: &[Load], power: &[f64]);
 }
 
 /// A Kane kernel for one chain.
@@ -166,11 +174,11 @@ pub trait Kernel {
         None
     }
 
-    /// Takes the loads into the kernel's own code when they are weight alone, −m g through
-    /// each centroid (Eq. 40, gravity `g` in m/s²): afterwards [`Kernel::solve`] computes
-    /// them itself and leaves its `model` uncalled, so the caller knows the loads without
-    /// asking. Returns whether it did; the default cannot.
-    fn fuse_gravity(&mut self, _g: f64) -> bool {
+    /// Takes the scene's loads into the kernel's own code (the generated load code of their
+    /// signature): afterwards [`Kernel::solve`] computes them itself and hands them to its
+    /// `model` through [`LoadModel::fused`] instead of calling [`LoadModel::loads`].
+    /// Returns whether it did; the default cannot.
+    fn fuse_loads(&mut self, _loads: &FusedLoads) -> bool {
         false
     }
 

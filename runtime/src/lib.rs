@@ -19,6 +19,7 @@ pub mod dynamics;
 pub mod energy;
 pub mod eval;
 pub mod forces;
+pub mod fusion;
 pub mod generated;
 pub mod geometry;
 pub mod integrate;

@@ -16,7 +16,7 @@ pub mod morison;
 pub mod seabed;
 pub mod ship;
 
-use kanestop_chain::BodyKind;
+use kanestop_chain::{BodyKind, LoadSignature};
 
 use crate::chain::{Chain, Shape};
 use crate::kernel::{BodyState, Load, LoadModel};
@@ -103,10 +103,10 @@ pub type Power = [f64; WORK_TERMS.len()];
 
 /// Per-body data the force models need.
 #[derive(Clone, Copy, Debug)]
-struct Element {
-    kind: BodyKind,
-    length: f64,
-    radius: f64,
+pub(crate) struct Element {
+    pub(crate) kind: BodyKind,
+    pub(crate) length: f64,
+    pub(crate) radius: f64,
     mass: f64,
     added_mass: f64,
 }
@@ -114,20 +114,20 @@ struct Element {
 /// All loads of a model.
 #[derive(Clone, Debug)]
 pub struct Forces {
-    g: f64,
-    rho: f64,
-    water: bool,
-    seabed: bool,
-    k_z: f64,
-    line_friction: f64,
-    c_d: f64,
-    c_f: f64,
-    seabed_z: f64,
-    elements: Vec<Element>,
-    current: Current,
+    pub(crate) g: f64,
+    pub(crate) rho: f64,
+    pub(crate) water: bool,
+    pub(crate) seabed: bool,
+    pub(crate) k_z: f64,
+    pub(crate) line_friction: f64,
+    pub(crate) c_d: f64,
+    pub(crate) c_f: f64,
+    pub(crate) seabed_z: f64,
+    pub(crate) elements: Vec<Element>,
+    pub(crate) current: Current,
     /// The anchor's drag and friction.
     pub anchor: AnchorForces,
-    ship: ShipHydro,
+    pub(crate) ship: ShipHydro,
     power: Power,
 }
 
@@ -203,11 +203,12 @@ impl Forces {
         }
     }
 
-    /// Gravity g (m/s²) when weight is the only load: water and seabed off, a chain hanging
-    /// in vacuum (no buoyancy, drag, foundation or hydrostatics; the anchor's friction needs
-    /// the seabed). None otherwise.
-    pub fn weight_only(&self) -> Option<f64> {
-        (!self.water && !self.seabed).then_some(self.g)
+    /// The load terms these loads have ([`LoadSignature`]): the switches that change the
+    /// generated load code. Weight alone when water and seabed are off (a chain hanging in
+    /// vacuum: no buoyancy, drag, foundation or hydrostatics; the anchor's friction needs
+    /// the seabed).
+    pub fn signature(&self) -> LoadSignature {
+        LoadSignature::new(self.water, self.seabed, self.current.surface_speed != 0.0, self.line_friction > 0.0)
     }
 
     /// Power of each work term at the last [`LoadModel::loads`] call, W.
@@ -280,6 +281,10 @@ impl LoadModel for Forces {
             }
         }
         self.power = power;
+    }
+
+    fn fused(&mut self, _loads: &[Load], power: &[f64]) {
+        self.power.copy_from_slice(power);
     }
 }
 

@@ -1,0 +1,552 @@
+//! The generated loads: one function per [`LoadSignature`], each term of Section 3.2 emitted
+//! only where the signature has it (`generated/src/loads.rs`).
+//!
+//! The runtime's force modules (`runtime/src/forces/`) are the readable statement of the
+//! physics and the oracle of this code: the terms below are the same formulas, specialised
+//! (a term the signature lacks is not emitted; zero components of a force are not
+//! multiplied out) and written with the same operations in the same order, so that a
+//! generated load equals the force modules' to the last bit wherever IEEE arithmetic
+//! allows (`tests/fused_loads.rs` checks them at 1e-12 on random states).
+//!
+//! The loads are piecewise (the wetted fraction, U|U|, the two cases of Eq. 47), which the
+//! expression DAG of [`crate::expr`] does not model; they are emitted as Rust fragments, and
+//! their operations are counted on the emitted syntax ([`count`]). The seabed's embedded
+//! volume is the one call: the runtime hands its closed form in (`LoadParams::embedded_volume`),
+//! so the generated crate depends on nothing and the volume has one statement.
+//!
+//! Per body the generated function reads the state `s = [x, z, θ, v_x, v_z, ω]` and the
+//! rotation `t = [cos θ, sin θ]` the kinematics computed (no transcendental function of θ
+//! again), and adds each term's power (the work terms of the energy balance, Eq. 63) into
+//! `power`, indexed as the runtime's `WORK_TERMS`.
+
+use std::collections::BTreeMap;
+
+use kanestop_chain::{LoadSignature, LoadTerm};
+use proc_macro2::TokenStream;
+use quote::{format_ident, quote};
+use syn::visit::Visit;
+
+use crate::emit::header;
+
+/// Index of each work term in the power array (the runtime's `WORK_TERMS` order:
+/// buoyancy, seabed, anchor friction, line friction, anchor drag, line drag, hull
+/// resistance, hydrostatic, added mass). `tests/fused_loads.rs` checks it against the runtime.
+pub const POWER_INDEX: [(&str, usize); 9] = [
+    ("buoyancy", 0),
+    ("seabed", 1),
+    ("anchor_friction", 2),
+    ("line_friction", 3),
+    ("anchor_drag", 4),
+    ("line_drag", 5),
+    ("hull_resistance", 6),
+    ("hydrostatic", 7),
+    ("added_mass", 8),
+];
+
+fn power(name: &str) -> TokenStream {
+    let i = POWER_INDEX.iter().find(|(n, _)| *n == name).expect("a work term").1;
+    let i = proc_macro2::Literal::usize_unsuffixed(i);
+    quote!(power[#i])
+}
+
+/// Operations of emitted code, counted on its syntax.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct LoadOps {
+    /// Additions and subtractions (compound assignments included).
+    pub add: usize,
+    /// Multiplications.
+    pub mul: usize,
+    /// Divisions.
+    pub div: usize,
+    /// Negations.
+    pub neg: usize,
+    /// Comparisons (the branches of the piecewise terms).
+    pub cmp: usize,
+    /// Function calls: `sqrt`, `tanh`, `powf`, `log10`, `abs`, `signum`, `min`, `max`,
+    /// `clamp`, `powi`, and the embedded volume.
+    pub func: usize,
+}
+
+impl LoadOps {
+    /// Every operation.
+    pub fn total(&self) -> usize {
+        self.add + self.mul + self.div + self.neg + self.cmp + self.func
+    }
+}
+
+impl std::ops::AddAssign for LoadOps {
+    fn add_assign(&mut self, o: LoadOps) {
+        self.add += o.add;
+        self.mul += o.mul;
+        self.div += o.div;
+        self.neg += o.neg;
+        self.cmp += o.cmp;
+        self.func += o.func;
+    }
+}
+
+impl<'a> Visit<'a> for LoadOps {
+    fn visit_expr_binary(&mut self, e: &'a syn::ExprBinary) {
+        use syn::BinOp::*;
+        match e.op {
+            Add(_) | Sub(_) | AddAssign(_) | SubAssign(_) => self.add += 1,
+            Mul(_) | MulAssign(_) => self.mul += 1,
+            Div(_) | DivAssign(_) => self.div += 1,
+            Lt(_) | Le(_) | Gt(_) | Ge(_) | Eq(_) | Ne(_) => self.cmp += 1,
+            _ => {}
+        }
+        syn::visit::visit_expr_binary(self, e);
+    }
+
+    fn visit_expr_unary(&mut self, e: &'a syn::ExprUnary) {
+        if matches!(e.op, syn::UnOp::Neg(_)) {
+            self.neg += 1;
+        }
+        syn::visit::visit_expr_unary(self, e);
+    }
+
+    fn visit_expr_method_call(&mut self, e: &'a syn::ExprMethodCall) {
+        self.func += 1;
+        syn::visit::visit_expr_method_call(self, e);
+    }
+
+    fn visit_expr_call(&mut self, e: &'a syn::ExprCall) {
+        self.func += 1;
+        syn::visit::visit_expr_call(self, e);
+    }
+}
+
+/// The operations of a fragment of statements.
+pub fn count(fragment: &TokenStream) -> LoadOps {
+    let block: syn::Block = syn::parse2(quote!({ #fragment })).expect("a load fragment is Rust");
+    let mut ops = LoadOps::default();
+    ops.visit_block(&block);
+    ops
+}
+
+/// Where a body's load code runs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub enum LoadBody {
+    /// B_1.
+    Anchor,
+    /// A chain link or cable element (B_2 … B_{N−1}; the rod in air carries its weight only).
+    Element,
+    /// B_N.
+    Ship,
+}
+
+impl LoadBody {
+    /// `anchor`, `element`, `ship`.
+    pub fn name(self) -> &'static str {
+        match self {
+            LoadBody::Anchor => "anchor",
+            LoadBody::Element => "element",
+            LoadBody::Ship => "ship",
+        }
+    }
+}
+
+/// What the load code of one signature costs: operations per call of each body's
+/// function, by term.
+#[derive(Clone, Debug)]
+pub struct LoadReport {
+    /// The signature.
+    pub signature: LoadSignature,
+    /// (body, term) → operations per call.
+    pub ops: BTreeMap<(LoadBody, LoadTerm), LoadOps>,
+}
+
+impl LoadReport {
+    /// Operations per call of `body`'s function, all terms.
+    pub fn body_total(&self, body: LoadBody) -> usize {
+        self.ops.iter().filter(|((b, _), _)| *b == body).map(|(_, o)| o.total()).sum()
+    }
+
+    /// Operations of `term` over a chain of `elements` line elements (anchor and ship once).
+    pub fn term_total(&self, term: LoadTerm, elements: usize) -> usize {
+        self.ops
+            .iter()
+            .filter(|((_, t), _)| *t == term)
+            .map(|((b, _), o)| o.total() * if *b == LoadBody::Element { elements } else { 1 })
+            .sum()
+    }
+}
+
+/// The pieces of one body's function: each term's statements, in order, with the
+/// operations counted for the term (a term whose statements hold another's, as the seabed's
+/// hold the line friction's, is counted without them).
+struct Pieces {
+    terms: Vec<(LoadTerm, TokenStream, LoadOps)>,
+}
+
+impl Pieces {
+    fn new() -> Self {
+        Pieces { terms: Vec::new() }
+    }
+
+    fn push(&mut self, term: LoadTerm, code: TokenStream) {
+        let ops = count(&code);
+        self.terms.push((term, code, ops));
+    }
+
+    /// `code`, counted as `counted` for `term` (the rest is counted by [`Pieces::count`]).
+    fn push_counted(&mut self, term: LoadTerm, code: TokenStream, counted: &TokenStream) {
+        self.terms.push((term, code, count(counted)));
+    }
+
+    /// Operations of `term` emitted inside another term's statements.
+    fn count(&mut self, term: LoadTerm, code: &TokenStream) {
+        self.terms.push((term, TokenStream::new(), count(code)));
+    }
+
+    fn record(&self, body: LoadBody, report: &mut LoadReport) {
+        for (term, _, ops) in &self.terms {
+            *report.ops.entry((body, *term)).or_default() += *ops;
+        }
+    }
+
+    fn code(&self) -> TokenStream {
+        self.terms.iter().map(|(_, c, _)| c.clone()).collect()
+    }
+}
+
+/// The current at height `z` (tokens of an f64 expression), Eq. 38: U_ST (h/d)^(1/7) with h
+/// the height above the seabed clamped to [0, d], as `Current::at`.
+fn current_at(sig: &LoadSignature, z: TokenStream) -> (TokenStream, TokenStream) {
+    if sig.current {
+        let code = quote! {
+            let current = lp.current_speed * ((#z - lp.seabed_z).clamp(0.0, lp.water_depth) / lp.water_depth).powf(lp.current_exponent);
+        };
+        (code, quote!(current))
+    } else {
+        (quote!(), quote!(0.0))
+    }
+}
+
+/// B_1: weight, buoyancy (Eq. 36) and the current drag (Eq. 39). Its friction is the
+/// solve's (Eq. 37).
+fn anchor(sig: &LoadSignature, report: &mut LoadReport) -> TokenStream {
+    let mut p = Pieces::new();
+    p.push(LoadTerm::Weight, quote! { let mut fx = 0.0; let mut fz = -p.mass * lp.g; });
+    if sig.water {
+        let pb = power("buoyancy");
+        p.push(
+            LoadTerm::Buoyancy,
+            quote! {
+                let buoyancy = lp.rho * lp.anchor_volume * lp.g;
+                fz += buoyancy;
+                #pb += buoyancy * s[4];
+            },
+        );
+        let (current, u_c) = current_at(sig, quote!(s[1]));
+        p.push(LoadTerm::Current, current);
+        let pd = power("anchor_drag");
+        p.push(
+            LoadTerm::AnchorDrag,
+            quote! {
+                let u = #u_c - s[3];
+                let drag = 0.5 * lp.anchor_drag * lp.rho * lp.anchor_area * u * u.abs();
+                fx += drag;
+                #pd += drag * s[3];
+            },
+        );
+    }
+    p.record(LoadBody::Anchor, report);
+    let body = p.code();
+    let name = format_ident!("load_anchor_{}", sig.name());
+    quote! {
+        /// B_1's load at its state `s`.
+        #[inline(always)]
+        fn #name(p: &crate::BodyParams, lp: &crate::LoadParams, s: &[f64; 6], power: &mut [f64; crate::POWER_TERMS]) -> [f64; 3] {
+            #body
+            [fx, fz, 0.0]
+        }
+    }
+}
+
+/// A chain link or cable element: weight, the seabed (Eq. 41) with the line's friction,
+/// buoyancy less the embedded volume (Eq. 42), Morison drag (Eqs. 43–47) on the wetted
+/// fraction, and the added mass's power. The rod in air (`e.line` false) carries its weight.
+fn element(sig: &LoadSignature, report: &mut LoadReport) -> TokenStream {
+    let mut p = Pieces::new();
+    p.push(
+        LoadTerm::Weight,
+        quote! {
+            let mut fx = 0.0;
+            let mut fz = -p.mass * lp.g;
+            let mut my = 0.0;
+        },
+    );
+    let line = sig.seabed || sig.water;
+    if line {
+        // The element's ends, as `Forces::element_loads` (ex = (cos, −sin)).
+        p.push(
+            LoadTerm::Weight,
+            quote! {
+                if !e.line {
+                    return [fx, fz, my];
+                }
+                let (cos, sin) = (t[0], t[1]);
+                let half = 0.5 * e.length;
+                let (za, zb) = (s[1] + half * sin, s[1] - half * sin);
+            },
+        );
+    }
+    if sig.seabed {
+        let ps = power("seabed");
+        let embedded = if sig.water { quote!(embedded = v;) } else { quote!() };
+        let declare = if sig.water { quote!(let mut embedded = 0.0;) } else { quote!() };
+        let friction = if sig.line_friction {
+            let pf = power("line_friction");
+            quote! {
+                let slip = s[3] - xi * s[5] * sin;
+                let friction = -lp.line_friction * reaction * (slip / lp.slip_speed).tanh();
+                let m = -(xi * sin) * friction;
+                fx += friction;
+                my += m;
+                #pf += friction * s[3] + m * s[5];
+            }
+        } else {
+            quote!()
+        };
+        let seabed = |friction: &TokenStream| {
+            quote! {
+                #declare
+                let (v, s_bar) = (lp.embedded_volume)(e.radius, e.length, za - lp.seabed_z, zb - lp.seabed_z);
+                if v > 0.0 {
+                    #embedded
+                    let xi = s_bar - half;
+                    let reaction = lp.seabed_stiffness * v;
+                    let m = -(xi * cos * reaction);
+                    fz += reaction;
+                    my += m;
+                    #ps += reaction * s[4] + m * s[5];
+                    #friction
+                }
+            }
+        };
+        p.push_counted(LoadTerm::Seabed, seabed(&friction), &seabed(&TokenStream::new()));
+        if sig.line_friction {
+            p.count(LoadTerm::LineFriction, &friction);
+        }
+    }
+    if sig.water {
+        let pb = power("buoyancy");
+        let embedded = if sig.seabed { quote!(embedded) } else { quote!(0.0) };
+        p.push(
+            LoadTerm::Buoyancy,
+            quote! {
+                let (lo, hi) = (za.min(zb), za.max(zb));
+                let fraction = if hi <= 0.0 { 1.0 } else if lo >= 0.0 { 0.0 } else { -lo / (hi - lo) };
+                if fraction == 0.0 {
+                    return [fx, fz, my];
+                }
+                let wet_centre = if fraction == 1.0 {
+                    0.0
+                } else {
+                    let low_end = if za < zb { -half } else { half };
+                    low_end - low_end.signum() * fraction * half
+                };
+                let volume = ::std::f64::consts::PI * e.radius * e.radius * e.length * fraction;
+                let buoyancy = lp.rho * lp.g * (volume - #embedded).max(0.0);
+                let m = -(wet_centre * cos * buoyancy);
+                fz += buoyancy;
+                my += m;
+                #pb += buoyancy * s[4] + m * s[5];
+            },
+        );
+        let (current, u_c) = current_at(sig, quote!(s[1]));
+        p.push(LoadTerm::Current, current);
+        let pd = power("line_drag");
+        let pa = power("added_mass");
+        p.push(
+            LoadTerm::LineDrag,
+            quote! {
+                let (rel_x, rel_z) = (#u_c - s[3], -s[4]);
+                let v_t = rel_x * cos - rel_z * sin;
+                let u_n = rel_x * sin + rel_z * cos;
+                let (w, len) = (s[5], e.length);
+                let d = 2.0 * e.radius;
+                let k = 0.5 * lp.rho * d * lp.normal_drag;
+                let (f_n, m_n) = if u_n.abs() >= w.abs() * half {
+                    let sign = u_n.signum();
+                    (k * sign * (u_n * u_n * len + w * w * len.powi(3) / 12.0), -k * sign * u_n * w * len.powi(3) / 6.0)
+                } else {
+                    let (wa, wb) = (u_n - w * half, u_n + w * half);
+                    let (f2a, f2b) = (wa * wa * wa.abs() / 3.0, wb * wb * wb.abs() / 3.0);
+                    let (f3a, f3b) = (wa * wa * wa * wa.abs() / 4.0, wb * wb * wb * wb.abs() / 4.0);
+                    let force = (f2b - f2a) / w;
+                    let first_moment = (f3b - f3a - u_n * (f2b - f2a)) / (w * w);
+                    (k * force, -k * first_moment)
+                };
+                let f_t = 0.5 * ::std::f64::consts::PI * lp.rho * d * len * lp.tangential_drag * v_t * v_t.abs();
+                let (f_n, m_n, f_t) = (f_n * fraction, m_n * fraction, f_t * fraction);
+                let (dx, dz) = (f_n * sin + f_t * cos, f_n * cos - f_t * sin);
+                fx += dx;
+                fz += dz;
+                my += m_n;
+                #pd += dx * s[3] + dz * s[4] + m_n * w;
+                let (bt, bn) = (s[3] * cos - s[4] * sin, s[3] * sin + s[4] * cos);
+                #pa += p.added_mass * w * bt * bn;
+            },
+        );
+    }
+    p.record(LoadBody::Element, report);
+    let body = p.code();
+    let name = format_ident!("load_element_{}", sig.name());
+    let unused = if line { quote!() } else { quote!(let _ = (e, s, t);) };
+    quote! {
+        /// The load of a line element (or of the rod in air) at its state `s` and rotation `t`.
+        #[inline(always)]
+        fn #name(
+            p: &crate::BodyParams,
+            lp: &crate::LoadParams,
+            e: &crate::Element,
+            s: &[f64; 6],
+            t: &[f64; 2],
+            power: &mut [f64; crate::POWER_TERMS],
+        ) -> [f64; 3] {
+            #unused
+            #body
+            [fx, fz, my]
+        }
+    }
+}
+
+/// B_N: weight, the hydrostatics (Eqs. 54, 58) and the hull resistance (Eqs. 59–62).
+fn ship(sig: &LoadSignature, report: &mut LoadReport) -> TokenStream {
+    let mut p = Pieces::new();
+    p.push(LoadTerm::Weight, quote! { let mut fx = 0.0; let mut fz = -p.mass * lp.g; let mut my = 0.0; });
+    if sig.water {
+        let ph = power("hydrostatic");
+        p.push(
+            LoadTerm::Hydrostatics,
+            quote! {
+                let vertical = lp.rho * lp.g * (lp.ship_volume - lp.ship_waterplane_area * s[1]);
+                fz += vertical;
+                #ph += vertical * s[4];
+                let pitch = -lp.rho * lp.g * lp.ship_volume * lp.ship_metacentric_height * s[2];
+                my += pitch;
+                #ph += pitch * s[5];
+            },
+        );
+        let (current, u_c) = current_at(sig, quote!(0.0));
+        p.push(LoadTerm::Current, current);
+        let pr = power("hull_resistance");
+        p.push(LoadTerm::HullResistance, quote! {
+            let v_rel = s[3] - #u_c;
+            let re = v_rel.abs() * lp.ship_length / lp.viscosity;
+            let lg = re.max(lp.min_reynolds).log10();
+            let c_f = 0.075 / ((lg - 2.0) * (lg - 2.0));
+            let resistance = -0.5 * (c_f + lp.roughness_allowance) * lp.rho * lp.ship_wetted_surface * v_rel * v_rel.abs();
+            fx += resistance;
+            #pr += resistance * s[3];
+        });
+    }
+    p.record(LoadBody::Ship, report);
+    let body = p.code();
+    let name = format_ident!("load_ship_{}", sig.name());
+    let unused = if sig.water { quote!() } else { quote!(let _ = s;) };
+    quote! {
+        /// B_N's load at its state `s`.
+        #[inline(always)]
+        fn #name(p: &crate::BodyParams, lp: &crate::LoadParams, s: &[f64; 6], power: &mut [f64; crate::POWER_TERMS]) -> [f64; 3] {
+            #unused
+            #body
+            [fx, fz, my]
+        }
+    }
+}
+
+/// The tokens and the report of one signature's load functions.
+pub fn signature_code(sig: &LoadSignature) -> (TokenStream, LoadReport) {
+    let mut report = LoadReport { signature: *sig, ops: BTreeMap::new() };
+    let (a, e, s) = (anchor(sig, &mut report), element(sig, &mut report), ship(sig, &mut report));
+    let n = sig.name();
+    let (la, le, ls) =
+        (format_ident!("load_anchor_{n}"), format_ident!("load_element_{n}"), format_ident!("load_ship_{n}"));
+    let entry = format_ident!("loads_{n}");
+    let doc = format!(" The loads of every body, signature `{n}`: {}.", term_list(sig));
+    let tokens = quote! {
+        #[doc = #doc]
+        pub fn #entry(
+            p: &[crate::BodyParams],
+            lp: &crate::LoadParams,
+            e: &[crate::Element],
+            trig: &[[f64; 2]],
+            bodies: &[[f64; 6]],
+            loads: &mut [[f64; 3]],
+            power: &mut [f64; crate::POWER_TERMS],
+        ) {
+            let n = p.len();
+            assert!(n >= 3, "a chain has at least an anchor, one rod and a ship");
+            assert!([e.len(), trig.len(), bodies.len(), loads.len()].iter().all(|&l| l >= n), "every argument must hold N = {n} entries");
+            *power = [0.0; crate::POWER_TERMS];
+            loads[0] = #la(&p[0], lp, &bodies[0], power);
+            for k in 1..n - 1 {
+                loads[k] = #le(&p[k], lp, &e[k], &bodies[k], &trig[k], power);
+            }
+            loads[n - 1] = #ls(&p[n - 1], lp, &bodies[n - 1], power);
+        }
+        #a
+        #e
+        #s
+    };
+    (tokens, report)
+}
+
+fn term_list(sig: &LoadSignature) -> String {
+    sig.terms().iter().map(|t| t.name()).collect::<Vec<_>>().join(", ")
+}
+
+/// The emitted `generated/src/loads.rs`: every signature's functions and the registry.
+pub struct LoadsFile {
+    /// The source text.
+    pub source: String,
+    /// Each signature's operation counts.
+    pub reports: Vec<LoadReport>,
+}
+
+/// Generates the load code of every signature.
+pub fn generate_loads() -> LoadsFile {
+    let mut items = TokenStream::new();
+    let mut reports = Vec::new();
+    let mut entries = Vec::new();
+    for sig in LoadSignature::all() {
+        let (tokens, report) = signature_code(&sig);
+        items.extend(tokens);
+        reports.push(report);
+        let (name, entry) = (sig.name(), format_ident!("loads_{}", sig.name()));
+        entries.push(quote!((#name, #entry as crate::LoadsFn)));
+    }
+    let count = proc_macro2::Literal::usize_unsuffixed(entries.len());
+    let tokens = quote! {
+        /// Every signature's load function, by [`kanestop_chain::LoadSignature::name`].
+        pub const LOADS: [(&str, crate::LoadsFn); #count] = [#(#entries),*];
+        #items
+    };
+    let file: syn::File = syn::parse2(tokens).expect("generated load code parses");
+    let source =
+        header("the load terms of Section 3.2, one function per load signature") + "\n" + &prettyplease::unparse(&file);
+    LoadsFile { source, reports }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn load_code_is_deterministic_and_parses() {
+        let (a, b) = (generate_loads(), generate_loads());
+        assert_eq!(a.source, b.source);
+        syn::parse_file(&a.source).expect("parses");
+        assert_eq!(a.reports.len(), LoadSignature::all().len());
+    }
+
+    #[test]
+    fn power_indices_are_distinct_and_in_order() {
+        for (i, (_, k)) in POWER_INDEX.iter().enumerate() {
+            assert_eq!(i, *k);
+        }
+    }
+}
