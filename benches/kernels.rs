@@ -161,6 +161,7 @@ fn main() {
 
     rolled_vs_unrolled();
     fused_gravity();
+    whole_rhs();
     whole_runs();
 }
 
@@ -199,6 +200,52 @@ fn fused_gravity() {
             fused.0,
             fused.1,
             fused.0 / best
+        );
+    }
+}
+
+/// The whole right-hand side of case 1 (N = 46, its full physics: water, seabed, drag,
+/// buoyancy, the ship): kinematics, loads and the O(N) solve, at the scene's starting state
+/// with the anchor sliding under friction. The kernels fed by the force modules against the
+/// same kernels running the generated load code of the scene's signature
+/// (`Kernel::fuse_loads`), side by side, µs per call (wall median; CPU over the whole
+/// measurement divided by its calls).
+fn whole_rhs() {
+    use kanestop_runtime::dynamics::fused_loads;
+    use kanestop_runtime::model::Model;
+    use kanestop_runtime::paper::CASES;
+    println!("\nwhole right-hand side, case 1 physics, N = 46: loads by the force modules vs generated (µs per solve)");
+    println!("{:>10} {:>9} {:>9} {:>9} {:>9} {:>12}", "form", "fed", "CPU", "fused", "CPU", "fused/fed");
+    let model = Model::new(&CASES[0].scene()).unwrap();
+    let (q, u) = (model.q0.clone(), model.u0.clone());
+    let n = model.body_count();
+    for form in [Form::Unrolled, Form::Rolled] {
+        let timed = |fuse: bool| {
+            let mut k = GeneratedKernel::with_form(&model.chain, form).unwrap();
+            let mut forces = Forces::new(&model);
+            if fuse {
+                assert!(k.fuse_loads(&fused_loads(&forces)));
+            }
+            let mut scratch = Assembly::new(n);
+            let mut qdd = vec![0.0; n];
+            let (cpu, mut calls) = (thread_cpu(), 0u64);
+            let wall = time(|| {
+                calls += 1;
+                let f =
+                    k.solve(black_box(&q), black_box(&u), AnchorDof::Free, 0.3, &mut forces, &mut scratch, &mut qdd);
+                black_box((f.unwrap(), &qdd));
+            });
+            (wall, (thread_cpu() - cpu) * 1e6 / calls as f64)
+        };
+        let (fed, fused) = (timed(false), timed(true));
+        println!(
+            "{:>10} {:>9.2} {:>9.2} {:>9.2} {:>9.2} {:>11.2}×",
+            form.name(),
+            fed.0,
+            fed.1,
+            fused.0,
+            fused.1,
+            fused.0 / fed.0
         );
     }
 }

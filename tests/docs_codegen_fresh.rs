@@ -143,6 +143,35 @@ fn render_folded() -> String {
     o
 }
 
+const LOADS_BEGIN: &str = "<!-- load-opcounts:begin";
+const LOADS_END: &str = "<!-- load-opcounts:end -->";
+
+/// The generated load code of every signature: its operations per call of each body's
+/// function, and what it leaves out.
+fn render_loads() -> String {
+    use kanestop_chain::{LoadSignature, LoadTerm};
+    use kanestop_codegen::loads::{generate_loads, LoadBody};
+    let mut o = format!(
+        "{LOADS_BEGIN}: rendered by tests/docs_codegen_fresh.rs from kanestop_codegen::loads -->\n\n\
+         | signature | anchor | element | ship | left out |\n| --- | --- | --- | --- | --- |\n"
+    );
+    for r in generate_loads().reports {
+        let sig: LoadSignature = r.signature;
+        let out: Vec<&str> = LoadTerm::ALL.iter().filter(|t| !sig.has(**t)).map(|t| t.name()).collect();
+        o.push_str(&format!(
+            "| `{}` | {} | {} | {} | {} |\n",
+            sig.name(),
+            r.body_total(LoadBody::Anchor),
+            r.body_total(LoadBody::Element),
+            r.body_total(LoadBody::Ship),
+            if out.is_empty() { "nothing".to_string() } else { out.join(", ") }
+        ));
+    }
+    o.push('\n');
+    o.push_str(LOADS_END);
+    o
+}
+
 /// Rewrites the block between `begin` and `end` with `fresh`; true when it was stale.
 fn refresh(text: &mut String, begin: &str, end: &str, fresh: &str) -> bool {
     let a = text.find(begin).unwrap_or_else(|| panic!("docs/codegen.md: marker {begin}"));
@@ -158,7 +187,8 @@ fn op_count_table_is_fresh() {
     let mut text = std::fs::read_to_string(&path).unwrap();
     let stale = refresh(&mut text, BEGIN, END, &render(46))
         | refresh(&mut text, ROLLED_BEGIN, ROLLED_END, &render_rolled(46))
-        | refresh(&mut text, FOLDED_BEGIN, FOLDED_END, &render_folded());
+        | refresh(&mut text, FOLDED_BEGIN, FOLDED_END, &render_folded())
+        | refresh(&mut text, LOADS_BEGIN, LOADS_END, &render_loads());
     if stale {
         std::fs::write(&path, &text).unwrap();
         panic!("docs/codegen.md's op counts were stale and have been regenerated: review and commit it");

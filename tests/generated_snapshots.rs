@@ -1,5 +1,6 @@
-//! Snapshots of the generated source for small chains, every variant: a change to the
-//! generator shows as a reviewable diff under `tests/snapshots/`.
+//! Snapshots of the generated source for small chains, every variant, the rolled kernels and
+//! the load code of every signature: a change to the generator shows as a reviewable diff
+//! under `tests/snapshots/`.
 
 use kanestop_chain::{Variant, Water};
 use kanestop_codegen::generate;
@@ -42,6 +43,13 @@ fn rolled_dry() {
 #[test]
 fn rolled_wet() {
     rolled_snapshot(Water::On);
+}
+
+/// The generated loads of every load signature (`generated/src/loads.rs`): a change to a
+/// term's emitted code shows here, per signature.
+#[test]
+fn loads() {
+    insta::assert_snapshot!("loads", kanestop_codegen::loads::generate_loads().source);
 }
 
 /// The rolled steps fold per body kind what the unrolled kernels fold per body: the dry
