@@ -13,7 +13,7 @@ use proc_macro2::TokenStream;
 use quote::{format_ident, quote};
 
 use crate::emit::{body, header, FunctionReport};
-use crate::rolled::{steps, Step};
+use crate::rolled::{steps, Loads, Step};
 
 /// One emitted rolled kernel file.
 #[derive(Clone, Debug)]
@@ -65,10 +65,11 @@ pub fn generate_rolled(water: Water) -> RolledFile {
     }
     let wet = water == Water::On;
     let drivers = drivers();
+    let solves = solve_drivers(Loads::Inputs);
     let (gravity, gravity_drivers) = match water {
         Water::Off => (
             quote!(Some(crate::GravityTable { solve_free: solve_free_gravity, solve_stuck: solve_stuck_gravity })),
-            gravity_drivers(),
+            solve_drivers(Loads::Gravity),
         ),
         Water::On => (quote!(None), quote!()),
     };
@@ -84,6 +85,7 @@ pub fn generate_rolled(water: Water) -> RolledFile {
             gravity: #gravity,
         };
         #drivers
+        #solves
         #gravity_drivers
         #items
     };
@@ -96,72 +98,106 @@ pub fn generate_rolled(water: Water) -> RolledFile {
     RolledFile { water, file_name: format!("{}.rs", module(water)), source, steps: reports }
 }
 
-/// The solve under weight alone (dry, no seabed): the loads are the generated steps' own
-/// −m g (`g` in m/s²), so no load array is read. The same passes as `solve_free` and
-/// `solve_stuck` otherwise.
-fn gravity_drivers() -> TokenStream {
+/// The O(N) solve's entry points for one source of the loads: the inward pass from the
+/// ship to B_2, then `solve_free` and `solve_stuck` (names suffixed as [`Loads::suffix`]).
+/// [`Loads::Inputs`] reads every body's load from `loads`; [`Loads::Gravity`] passes `g`
+/// (m/s²) to steps that compute −m g themselves, so no load array is read.
+fn solve_drivers(loads: Loads) -> TokenStream {
+    let suffix = loads.suffix();
+    let id = |name: &str| format_ident!("{name}{suffix}");
+    let (pass, free, stuck) = (id("inward_pass"), id("solve_free"), id("solve_stuck"));
+    let (ship, rod, first) = (id("inward_ship"), id("inward_rod"), id("inward_first"));
+    let (anchor_free, anchor_stuck) = (id("anchor_free"), id("anchor_stuck"));
+    let (param, lens, what) = match loads {
+        Loads::Inputs => (
+            quote!(loads: &[[f64; 3]],),
+            quote!(loads.len(),),
+            "with the loads `loads` ([F_x, F_z, M_y] of every body at its centroid)",
+        ),
+        Loads::Gravity => {
+            (quote!(g: f64,), quote!(), "with every body's load its weight −m g (Eq. 40), gravity `g` in m/s²")
+        }
+    };
+    let arg = |k: TokenStream| match loads {
+        Loads::Inputs => quote!(&loads[#k]),
+        Loads::Gravity => quote!(g),
+    };
+    let (l_ship, l_rod, l_first, l_anchor) = (arg(quote!(n - 1)), arg(quote!(k)), arg(quote!(1)), arg(quote!(0)));
+    let all = match loads {
+        Loads::Inputs => quote!(loads),
+        Loads::Gravity => quote!(g),
+    };
+    let pass_doc =
+        format!(" The inward pass of the O(N) solve, from the ship to B_2, {what}; returns what reaches the anchor.");
+    let free_doc = format!(
+        " ẍ of Eq. 27 with the anchor free, by the O(N) articulated-body recursion, {what}; sliding friction \
+         −`friction`·N along x. Returns `[N, 1 + friction·∂N/∂F_x]`."
+    );
+    let stuck_doc = format!(
+        " ẍ of Eq. 27 with the anchor stuck, {what}; returns the holding force (Eq. 50) and the normal force (Eq. 37)."
+    );
     quote! {
-        /// The inward pass under weight alone, from the ship to B_2.
-        fn inward_pass_gravity(
+        #[doc = #pass_doc]
+        fn #pass(
             p: &[crate::BodyParams],
             trig: &[[f64; 2]],
-            g: f64,
+            #param
             scratch: &mut [[f64; crate::ROLLED_SCRATCH]],
         ) -> [f64; 9] {
             const W: usize = crate::ROLLED_SCRATCH - 1;
             let n = p.len();
             let (w, wp) = (scratch[n - 1][W], scratch[n - 2][W]);
-            let mut c = inward_ship_gravity(&p[n - 1], &trig[n - 1], w, &trig[n - 2], wp, g, &mut scratch[n - 1]);
+            let mut c = #ship(&p[n - 1], &trig[n - 1], w, &trig[n - 2], wp, #l_ship, &mut scratch[n - 1]);
             for k in (2..n - 1).rev() {
                 let (w, wp) = (scratch[k][W], scratch[k - 1][W]);
-                c = inward_rod_gravity(&p[k], &trig[k], w, &trig[k - 1], wp, g, &c, &mut scratch[k]);
+                c = #rod(&p[k], &trig[k], w, &trig[k - 1], wp, #l_rod, &c, &mut scratch[k]);
             }
             let w = scratch[1][W];
-            inward_first_gravity(&p[1], &trig[1], w, g, &c, &mut scratch[1])
+            #first(&p[1], &trig[1], w, #l_first, &c, &mut scratch[1])
         }
 
-        /// `solve_free` with every body's load its weight −m g (Eq. 40), gravity `g` in m/s².
-        pub fn solve_free_gravity(
+        #[doc = #free_doc]
+        pub fn #free(
             p: &[crate::BodyParams],
             u: &[f64],
             trig: &[[f64; 2]],
-            g: f64,
+            #param
             friction: f64,
             qdd: &mut [f64],
             scratch: &mut [[f64; crate::ROLLED_SCRATCH]],
         ) -> [f64; 2] {
-            let n = self::bodies(p, &[u.len(), trig.len(), qdd.len(), scratch.len()]);
+            let n = self::bodies(p, &[u.len(), trig.len(), #lens qdd.len(), scratch.len()]);
             let scratch = &mut scratch[..n];
             angular_velocities(u, scratch);
-            let c = inward_pass_gravity(p, trig, g, scratch);
-            let [s_dd, normal, factor] = anchor_free_gravity(&p[0], g, &c, friction);
+            let c = #pass(p, trig, #all, scratch);
+            let [s_dd, normal, factor] = #anchor_free(&p[0], #l_anchor, &c, friction);
             outward_pass(s_dd, scratch, qdd);
             [normal, factor]
         }
 
-        /// `solve_stuck` with every body's load its weight −m g (Eq. 40), gravity `g` in m/s².
-        pub fn solve_stuck_gravity(
+        #[doc = #stuck_doc]
+        pub fn #stuck(
             p: &[crate::BodyParams],
             u: &[f64],
             trig: &[[f64; 2]],
-            g: f64,
+            #param
             qdd: &mut [f64],
             scratch: &mut [[f64; crate::ROLLED_SCRATCH]],
         ) -> [f64; 2] {
-            let n = self::bodies(p, &[u.len(), trig.len(), qdd.len(), scratch.len()]);
+            let n = self::bodies(p, &[u.len(), trig.len(), #lens qdd.len(), scratch.len()]);
             let scratch = &mut scratch[..n];
             angular_velocities(u, scratch);
-            let c = inward_pass_gravity(p, trig, g, scratch);
-            let [s_dd, holding, normal] = anchor_stuck_gravity(&p[0], g, &c);
+            let c = #pass(p, trig, #all, scratch);
+            let [s_dd, holding, normal] = #anchor_stuck(&p[0], #l_anchor, &c);
             outward_pass(s_dd, scratch, qdd);
             [holding, normal]
         }
     }
 }
 
-// Long by design: the five entry points and their two shared passes, as they appear in the file.
-/// The loops over the chain: the public entry points (the signatures of the unrolled
-/// kernels plus `scratch`) and the passes they share.
+// Long by design: the entry points and their shared passes, as they appear in the file.
+/// The loops over the chain: the public entry points but the solves ([`solve_drivers`]; the
+/// signatures of the unrolled kernels plus `scratch`) and the passes they share.
 fn drivers() -> TokenStream {
     quote! {
         /// The chain's length, checked against every argument.
@@ -211,25 +247,6 @@ fn drivers() -> TokenStream {
             }
         }
 
-        /// The inward pass of the O(N) solve, from the ship to B_2; returns what reaches the anchor.
-        fn inward_pass(
-            p: &[crate::BodyParams],
-            trig: &[[f64; 2]],
-            loads: &[[f64; 3]],
-            scratch: &mut [[f64; crate::ROLLED_SCRATCH]],
-        ) -> [f64; 9] {
-            const W: usize = crate::ROLLED_SCRATCH - 1;
-            let n = p.len();
-            let (w, wp) = (scratch[n - 1][W], scratch[n - 2][W]);
-            let mut c = inward_ship(&p[n - 1], &trig[n - 1], w, &trig[n - 2], wp, &loads[n - 1], &mut scratch[n - 1]);
-            for k in (2..n - 1).rev() {
-                let (w, wp) = (scratch[k][W], scratch[k - 1][W]);
-                c = inward_rod(&p[k], &trig[k], w, &trig[k - 1], wp, &loads[k], &c, &mut scratch[k]);
-            }
-            let w = scratch[1][W];
-            inward_first(&p[1], &trig[1], w, &loads[1], &c, &mut scratch[1])
-        }
-
         /// The outward pass of the O(N) solve from the anchor's s̈.
         fn outward_pass(s_dd: f64, scratch: &[[f64; crate::ROLLED_SCRATCH]], qdd: &mut [f64]) {
             let n = scratch.len();
@@ -240,45 +257,6 @@ fn drivers() -> TokenStream {
                 qdd[k - 1] = beta_dd;
                 c = [alpha, ax, az];
             }
-        }
-
-        /// ẍ of Eq. 27 with the anchor free, by the O(N) articulated-body recursion; sliding
-        /// friction −`friction`·N along x. Returns `[N, 1 + friction·∂N/∂F_x]`.
-        pub fn solve_free(
-            p: &[crate::BodyParams],
-            u: &[f64],
-            trig: &[[f64; 2]],
-            loads: &[[f64; 3]],
-            friction: f64,
-            qdd: &mut [f64],
-            scratch: &mut [[f64; crate::ROLLED_SCRATCH]],
-        ) -> [f64; 2] {
-            let n = self::bodies(p, &[u.len(), trig.len(), loads.len(), qdd.len(), scratch.len()]);
-            let scratch = &mut scratch[..n];
-            angular_velocities(u, scratch);
-            let c = inward_pass(p, trig, loads, scratch);
-            let [s_dd, normal, factor] = anchor_free(&p[0], &loads[0], &c, friction);
-            outward_pass(s_dd, scratch, qdd);
-            [normal, factor]
-        }
-
-        /// ẍ of Eq. 27 with the anchor stuck; returns the holding force (Eq. 50) and the
-        /// normal force (Eq. 37).
-        pub fn solve_stuck(
-            p: &[crate::BodyParams],
-            u: &[f64],
-            trig: &[[f64; 2]],
-            loads: &[[f64; 3]],
-            qdd: &mut [f64],
-            scratch: &mut [[f64; crate::ROLLED_SCRATCH]],
-        ) -> [f64; 2] {
-            let n = self::bodies(p, &[u.len(), trig.len(), loads.len(), qdd.len(), scratch.len()]);
-            let scratch = &mut scratch[..n];
-            angular_velocities(u, scratch);
-            let c = inward_pass(p, trig, loads, scratch);
-            let [s_dd, holding, normal] = anchor_stuck(&p[0], &loads[0], &c);
-            outward_pass(s_dd, scratch, qdd);
-            [holding, normal]
         }
 
         /// a_lp (Eq. 26), f_l (Eq. 25) and the anchor's heave row, as the unrolled `assemble`.

@@ -78,41 +78,6 @@ fn angular_velocities(u: &[f64], scratch: &mut [[f64; crate::ROLLED_SCRATCH]]) {
         scratch[k][crate::ROLLED_SCRATCH - 1] = w;
     }
 }
-/// The inward pass of the O(N) solve, from the ship to B_2; returns what reaches the anchor.
-fn inward_pass(
-    p: &[crate::BodyParams],
-    trig: &[[f64; 2]],
-    loads: &[[f64; 3]],
-    scratch: &mut [[f64; crate::ROLLED_SCRATCH]],
-) -> [f64; 9] {
-    const W: usize = crate::ROLLED_SCRATCH - 1;
-    let n = p.len();
-    let (w, wp) = (scratch[n - 1][W], scratch[n - 2][W]);
-    let mut c = inward_ship(
-        &p[n - 1],
-        &trig[n - 1],
-        w,
-        &trig[n - 2],
-        wp,
-        &loads[n - 1],
-        &mut scratch[n - 1],
-    );
-    for k in (2..n - 1).rev() {
-        let (w, wp) = (scratch[k][W], scratch[k - 1][W]);
-        c = inward_rod(
-            &p[k],
-            &trig[k],
-            w,
-            &trig[k - 1],
-            wp,
-            &loads[k],
-            &c,
-            &mut scratch[k],
-        );
-    }
-    let w = scratch[1][W];
-    inward_first(&p[1], &trig[1], w, &loads[1], &c, &mut scratch[1])
-}
 /// The outward pass of the O(N) solve from the anchor's s̈.
 fn outward_pass(s_dd: f64, scratch: &[[f64; crate::ROLLED_SCRATCH]], qdd: &mut [f64]) {
     let n = scratch.len();
@@ -127,49 +92,6 @@ fn outward_pass(s_dd: f64, scratch: &[[f64; crate::ROLLED_SCRATCH]], qdd: &mut [
         qdd[k - 1] = beta_dd;
         c = [alpha, ax, az];
     }
-}
-/// ẍ of Eq. 27 with the anchor free, by the O(N) articulated-body recursion; sliding
-/// friction −`friction`·N along x. Returns `[N, 1 + friction·∂N/∂F_x]`.
-pub fn solve_free(
-    p: &[crate::BodyParams],
-    u: &[f64],
-    trig: &[[f64; 2]],
-    loads: &[[f64; 3]],
-    friction: f64,
-    qdd: &mut [f64],
-    scratch: &mut [[f64; crate::ROLLED_SCRATCH]],
-) -> [f64; 2] {
-    let n = self::bodies(
-        p,
-        &[u.len(), trig.len(), loads.len(), qdd.len(), scratch.len()],
-    );
-    let scratch = &mut scratch[..n];
-    angular_velocities(u, scratch);
-    let c = inward_pass(p, trig, loads, scratch);
-    let [s_dd, normal, factor] = anchor_free(&p[0], &loads[0], &c, friction);
-    outward_pass(s_dd, scratch, qdd);
-    [normal, factor]
-}
-/// ẍ of Eq. 27 with the anchor stuck; returns the holding force (Eq. 50) and the
-/// normal force (Eq. 37).
-pub fn solve_stuck(
-    p: &[crate::BodyParams],
-    u: &[f64],
-    trig: &[[f64; 2]],
-    loads: &[[f64; 3]],
-    qdd: &mut [f64],
-    scratch: &mut [[f64; crate::ROLLED_SCRATCH]],
-) -> [f64; 2] {
-    let n = self::bodies(
-        p,
-        &[u.len(), trig.len(), loads.len(), qdd.len(), scratch.len()],
-    );
-    let scratch = &mut scratch[..n];
-    angular_velocities(u, scratch);
-    let c = inward_pass(p, trig, loads, scratch);
-    let [s_dd, holding, normal] = anchor_stuck(&p[0], &loads[0], &c);
-    outward_pass(s_dd, scratch, qdd);
-    [holding, normal]
 }
 /// a_lp (Eq. 26), f_l (Eq. 25) and the anchor's heave row, as the unrolled `assemble`.
 /// Scratch rows: [S_x, S_z, J then K, ō_x, ō_z, F̃_x, F̃_z, θ̇].
@@ -260,7 +182,83 @@ pub fn assemble(
     f[n - 1] = g[0];
     heave[n] = g[1];
 }
-/// The inward pass under weight alone, from the ship to B_2.
+/// The inward pass of the O(N) solve, from the ship to B_2, with the loads `loads` ([F_x, F_z, M_y] of every body at its centroid); returns what reaches the anchor.
+fn inward_pass(
+    p: &[crate::BodyParams],
+    trig: &[[f64; 2]],
+    loads: &[[f64; 3]],
+    scratch: &mut [[f64; crate::ROLLED_SCRATCH]],
+) -> [f64; 9] {
+    const W: usize = crate::ROLLED_SCRATCH - 1;
+    let n = p.len();
+    let (w, wp) = (scratch[n - 1][W], scratch[n - 2][W]);
+    let mut c = inward_ship(
+        &p[n - 1],
+        &trig[n - 1],
+        w,
+        &trig[n - 2],
+        wp,
+        &loads[n - 1],
+        &mut scratch[n - 1],
+    );
+    for k in (2..n - 1).rev() {
+        let (w, wp) = (scratch[k][W], scratch[k - 1][W]);
+        c = inward_rod(
+            &p[k],
+            &trig[k],
+            w,
+            &trig[k - 1],
+            wp,
+            &loads[k],
+            &c,
+            &mut scratch[k],
+        );
+    }
+    let w = scratch[1][W];
+    inward_first(&p[1], &trig[1], w, &loads[1], &c, &mut scratch[1])
+}
+/// ẍ of Eq. 27 with the anchor free, by the O(N) articulated-body recursion, with the loads `loads` ([F_x, F_z, M_y] of every body at its centroid); sliding friction −`friction`·N along x. Returns `[N, 1 + friction·∂N/∂F_x]`.
+pub fn solve_free(
+    p: &[crate::BodyParams],
+    u: &[f64],
+    trig: &[[f64; 2]],
+    loads: &[[f64; 3]],
+    friction: f64,
+    qdd: &mut [f64],
+    scratch: &mut [[f64; crate::ROLLED_SCRATCH]],
+) -> [f64; 2] {
+    let n = self::bodies(
+        p,
+        &[u.len(), trig.len(), loads.len(), qdd.len(), scratch.len()],
+    );
+    let scratch = &mut scratch[..n];
+    angular_velocities(u, scratch);
+    let c = inward_pass(p, trig, loads, scratch);
+    let [s_dd, normal, factor] = anchor_free(&p[0], &loads[0], &c, friction);
+    outward_pass(s_dd, scratch, qdd);
+    [normal, factor]
+}
+/// ẍ of Eq. 27 with the anchor stuck, with the loads `loads` ([F_x, F_z, M_y] of every body at its centroid); returns the holding force (Eq. 50) and the normal force (Eq. 37).
+pub fn solve_stuck(
+    p: &[crate::BodyParams],
+    u: &[f64],
+    trig: &[[f64; 2]],
+    loads: &[[f64; 3]],
+    qdd: &mut [f64],
+    scratch: &mut [[f64; crate::ROLLED_SCRATCH]],
+) -> [f64; 2] {
+    let n = self::bodies(
+        p,
+        &[u.len(), trig.len(), loads.len(), qdd.len(), scratch.len()],
+    );
+    let scratch = &mut scratch[..n];
+    angular_velocities(u, scratch);
+    let c = inward_pass(p, trig, loads, scratch);
+    let [s_dd, holding, normal] = anchor_stuck(&p[0], &loads[0], &c);
+    outward_pass(s_dd, scratch, qdd);
+    [holding, normal]
+}
+/// The inward pass of the O(N) solve, from the ship to B_2, with every body's load its weight −m g (Eq. 40), gravity `g` in m/s²; returns what reaches the anchor.
 fn inward_pass_gravity(
     p: &[crate::BodyParams],
     trig: &[[f64; 2]],
@@ -295,7 +293,7 @@ fn inward_pass_gravity(
     let w = scratch[1][W];
     inward_first_gravity(&p[1], &trig[1], w, g, &c, &mut scratch[1])
 }
-/// `solve_free` with every body's load its weight −m g (Eq. 40), gravity `g` in m/s².
+/// ẍ of Eq. 27 with the anchor free, by the O(N) articulated-body recursion, with every body's load its weight −m g (Eq. 40), gravity `g` in m/s²; sliding friction −`friction`·N along x. Returns `[N, 1 + friction·∂N/∂F_x]`.
 pub fn solve_free_gravity(
     p: &[crate::BodyParams],
     u: &[f64],
@@ -313,7 +311,7 @@ pub fn solve_free_gravity(
     outward_pass(s_dd, scratch, qdd);
     [normal, factor]
 }
-/// `solve_stuck` with every body's load its weight −m g (Eq. 40), gravity `g` in m/s².
+/// ẍ of Eq. 27 with the anchor stuck, with every body's load its weight −m g (Eq. 40), gravity `g` in m/s²; returns the holding force (Eq. 50) and the normal force (Eq. 37).
 pub fn solve_stuck_gravity(
     p: &[crate::BodyParams],
     u: &[f64],
