@@ -110,9 +110,9 @@ pub fn energy(chain: &Chain, bodies: &[BodyState]) -> f64 {
     kanestop_runtime::energy::Energy::of(chain, bodies, G, 0.0, [0.0; WORK_COUNT]).balance()
 }
 
-/// The relative residual of the reference system over the active speeds; with the anchor
-/// sliding under friction −k N, N = a_w ẍ − f_w moves into the surge row.
-pub fn residual(asm: &Assembly, active: usize, friction: f64, qdd: &[f64]) -> f64 {
+/// The reference system over the active speeds, (M, f); with the anchor sliding under
+/// friction −k N, N = a_w ẍ − f_w moves into the surge row.
+fn reference_system(asm: &Assembly, active: usize, friction: f64) -> (nalgebra::DMatrix<f64>, nalgebra::DVector<f64>) {
     let mut m = asm.mass.view((0, 0), (active, active)).into_owned();
     let mut f = asm.rhs.rows(0, active).into_owned();
     if active == asm.rhs.len() {
@@ -122,25 +122,22 @@ pub fn residual(asm: &Assembly, active: usize, friction: f64, qdd: &[f64]) -> f6
         }
         f[s] += friction * asm.heave_rhs;
     }
+    (m, f)
+}
+
+/// The relative residual of `qdd` in the reference system, ‖M ẍ − f‖ / ‖f‖ ([`reference_system`]).
+pub fn residual(asm: &Assembly, active: usize, friction: f64, qdd: &[f64]) -> f64 {
+    let (m, f) = reference_system(asm, active, friction);
     let x = nalgebra::DVector::from_column_slice(&qdd[..active]);
     (m * x - &f).norm() / f.norm()
 }
 
 /// The normwise backward error of `qdd` in the reference system, ‖M ẍ − f‖ / (‖M‖ ‖ẍ‖ + ‖f‖)
-/// (Frobenius norm for M), with the sliding friction moved into the surge row as in
-/// [`residual`]. A scene's a_lp spans ten orders of magnitude (a 13 kg/m cable and a 500 t
-/// ship), so the residual relative to ‖f‖ alone measures the conditioning, not the solve:
-/// the reference's own Cholesky solution reaches 1e-11 there.
+/// (Frobenius norm for M). A scene's a_lp spans ten orders of magnitude (a 13 kg/m cable and
+/// a 500 t ship), so the residual relative to ‖f‖ alone measures the conditioning, not the
+/// solve: the reference's own Cholesky solution reaches 1e-10 there.
 pub fn backward_error(asm: &Assembly, active: usize, friction: f64, qdd: &[f64]) -> f64 {
-    let mut m = asm.mass.view((0, 0), (active, active)).into_owned();
-    let mut f = asm.rhs.rows(0, active).into_owned();
-    if active == asm.rhs.len() {
-        let s = active - 1;
-        for p in 0..active {
-            m[(s, p)] += friction * asm.heave[p];
-        }
-        f[s] += friction * asm.heave_rhs;
-    }
+    let (m, f) = reference_system(asm, active, friction);
     let x = nalgebra::DVector::from_column_slice(&qdd[..active]);
     (&m * &x - &f).norm() / (m.norm() * x.norm() + f.norm())
 }
