@@ -188,7 +188,7 @@ fn fused_gravity() {
             built.contains(&(n, false)).then(|| timed(GeneratedKernel::with_form(&c, Form::Unrolled).unwrap()));
         let rolled = timed(GeneratedKernel::with_form(&c, Form::Rolled).unwrap());
         let mut k = GeneratedKernel::with_form(&c, Form::Rolled).unwrap();
-        assert!(k.fuse_loads(&kanestop_runtime::dynamics::fused_loads(&Forces::gravity_only(&c, 9.81))));
+        assert!(k.fuse_loads(&kanestop_runtime::dynamics::fused_loads(&Forces::gravity_only(&c, 9.81)).unwrap()));
         let fused = timed(k);
         let best = unrolled.map_or(rolled.0, |u| u.0.min(rolled.0));
         let (u, uc) =
@@ -224,7 +224,7 @@ fn whole_rhs() {
             let mut k = GeneratedKernel::with_form(&model.chain, form).unwrap();
             let mut forces = Forces::new(&model);
             if fuse {
-                assert!(k.fuse_loads(&fused_loads(&forces)));
+                assert!(k.fuse_loads(&fused_loads(&forces).unwrap()));
             }
             let mut scratch = Assembly::new(n);
             let mut qdd = vec![0.0; n];

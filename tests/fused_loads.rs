@@ -7,7 +7,8 @@
 //! stress scene, case 1 under each of the nine load signatures and random scenes, on the
 //! unrolled kernel where the build has one and on the rolled kernel:
 //! - the loads and the work terms' power against the force modules (`Forces`, the oracle of
-//!   the physics), entrywise to 1e-12 of their scale;
+//!   the physics): equal, as floating-point numbers (within 1e-12 of their scale is
+//!   allowed per entry, and equality asserted over each set);
 //! - ẍ from the fused solve against the same kernel fed by the force modules, and through
 //!   its normwise backward error in the reference system (the oracle of the dynamics), to
 //!   1e-12 (the residual relative to ‖f‖ alone is reported beside the reference's own
@@ -108,6 +109,14 @@ struct Worst {
     loads: f64,
     power: f64,
     qdd: f64,
+    /// How often the piecewise branches were met (at the oracle's states): an element
+    /// partly wet with its a end lowest, with its b end lowest; Morison drag's second case
+    /// (the normal flow changing sign along the element); an element on the seabed; the
+    /// line's friction working.
+    partly_wet: [usize; 2],
+    flow_reversing: usize,
+    grounded: usize,
+    sliding: usize,
     /// The fused solve's backward error in the reference system.
     residual: f64,
     /// ‖M ẍ − f‖/‖f‖ of the fused solve and of the reference's own Cholesky solve.
@@ -122,7 +131,7 @@ fn check_model(name: &str, model: &Model, form: Form, seed: u64, states: usize) 
     let mut rng = rng(seed);
     let mut forces = Forces::new(model);
     let mut fused = GeneratedKernel::with_form(chain, form).unwrap();
-    assert!(fused.fuse_loads(&fused_loads(&forces)), "{name}: the generated kernel fuses the loads");
+    assert!(fused.fuse_loads(&fused_loads(&forces).unwrap()), "{name}: the generated kernel fuses the loads");
     let mut fed = GeneratedKernel::with_form(chain, form).unwrap();
     let mut reference = ReferenceKernel::new(chain);
     let scales = load_scales(chain, model.scene.environment.gravity);
@@ -141,10 +150,12 @@ fn check_model(name: &str, model: &Model, form: Form, seed: u64, states: usize) 
         let (mut scratch, mut told) = (Assembly::new(n), Told::default());
         let (mut a, mut b) = (vec![0.0; n], vec![0.0; n]);
         let ra = fused.solve(&q, &u, anchor, friction, &mut told, &mut scratch, &mut a).unwrap();
+        assert_eq!((told.loads.len(), told.power.len()), (n, WORK_TERMS.len()), "{name}: the kernel told its loads");
         // The oracle's loads at the same body states.
         let mut oracle = vec![Load::default(); n];
         forces.loads(&scratch.bodies, &mut oracle);
         let power = forces.power();
+        count_branches(model, &scratch.bodies, &power, &mut worst);
         for (k, ((x, y), s)) in told.loads.iter().zip(&oracle).zip(&scales).enumerate() {
             for (i, (p, r)) in [(x.fx, y.fx), (x.fz, y.fz), (x.my, y.my)].into_iter().enumerate() {
                 let d = (p - r).abs() / s[i];
@@ -187,6 +198,41 @@ fn check_model(name: &str, model: &Model, form: Form, seed: u64, states: usize) 
     worst
 }
 
+/// Counts the piecewise branches the force modules take at `bodies` (see [`Worst`]).
+fn count_branches(model: &Model, bodies: &[BodyState], power: &[f64], worst: &mut Worst) {
+    use kanestop_chain::BodyKind;
+    use kanestop_runtime::chain::Shape;
+    use kanestop_runtime::forces::current::Current;
+    let e = &model.scene.environment;
+    let current = Current {
+        surface_speed: if e.water { e.current_surface_speed } else { 0.0 },
+        exponent: e.current_exponent,
+        depth: model.water_depth(),
+        seabed_z: model.seabed_z,
+    };
+    for (b, s) in model.chain.bodies.iter().zip(bodies) {
+        let (BodyKind::ChainLink | BodyKind::Cable { .. }, Shape::Rod { length, radius }) = (b.kind, b.shape) else {
+            continue;
+        };
+        let half = 0.5 * length;
+        let (za, zb) = (s.z + half * s.sin, s.z - half * s.sin);
+        if e.water && za.min(zb) < 0.0 && za.max(zb) > 0.0 {
+            worst.partly_wet[usize::from(za > zb)] += 1;
+        }
+        let u_n = (current.at(s.z) - s.vx) * s.sin - s.vz * s.cos;
+        if e.water && u_n.abs() < s.omega.abs() * half {
+            worst.flow_reversing += 1;
+        }
+        let sb = model.seabed_z;
+        if e.seabed && kanestop_runtime::forces::seabed::embedded_volume(radius, length, za - sb, zb - sb).0 > 0.0 {
+            worst.grounded += 1;
+        }
+    }
+    if power[kanestop_runtime::forces::term::LINE_FRICTION] != 0.0 {
+        worst.sliding += 1;
+    }
+}
+
 /// Both forms where the build has the unrolled one, else the rolled one.
 fn forms(model: &Model) -> Vec<Form> {
     let wet = model.chain.bodies.iter().any(|b| b.added_mass != 0.0);
@@ -208,21 +254,28 @@ fn check_all(models: &[(String, Model)], seed: u64) -> Worst {
             worst.residual = worst.residual.max(w.residual);
             worst.fused_residual = worst.fused_residual.max(w.fused_residual);
             worst.reference_residual = worst.reference_residual.max(w.reference_residual);
+            worst.partly_wet = [worst.partly_wet[0] + w.partly_wet[0], worst.partly_wet[1] + w.partly_wet[1]];
+            worst.flow_reversing += w.flow_reversing;
+            worst.grounded += w.grounded;
+            worst.sliding += w.sliding;
         }
     }
     worst
 }
 
-/// What docs/codegen.md says the checks measure: the loads, the power and ẍ equal to the
-/// last bit, the backward error below 1e-16, and (for `conditioned`, the scenes of the
+/// What docs/codegen.md says the checks measure: the loads, the power and ẍ equal (as
+/// floating-point numbers), the backward error below 1e-16, and (for `conditioned`, the scenes of the
 /// paper's chain) the reference's own residual relative to ‖f‖ above 1e-12.
 fn as_documented(what: &str, worst: Worst, conditioned: bool) {
     eprintln!("{what}, fused against the oracles: {worst:?}");
-    assert_eq!((worst.loads, worst.power, worst.qdd), (0.0, 0.0, 0.0), "{what}: not equal to the last bit");
+    assert_eq!((worst.loads, worst.power, worst.qdd), (0.0, 0.0, 0.0), "{what}: not equal");
     assert!(worst.residual < 1e-16, "{what}: backward error {:e}", worst.residual);
     if conditioned {
         assert!(worst.reference_residual > TOL, "{what}: the reference's own residual {:e}", worst.reference_residual);
     }
+    // The states reach every branch of the piecewise terms.
+    let met = [worst.partly_wet[0], worst.partly_wet[1], worst.flow_reversing, worst.grounded];
+    assert!(met.iter().all(|&c| c > 0), "{what}: a branch never met: {worst:?}");
 }
 
 #[test]
@@ -258,7 +311,9 @@ fn case1_signatures() -> Vec<(String, Model)> {
 fn every_load_signature_fuses_and_matches_the_force_modules() {
     let models = case1_signatures();
     assert_eq!(models.len(), 9);
-    as_documented("case 1 under the nine signatures", check_all(&models, 3000), true);
+    let worst = check_all(&models, 3000);
+    assert!(worst.sliding > 0, "the line's friction never worked: {worst:?}");
+    as_documented("case 1 under the nine signatures", worst, true);
 }
 
 #[test]
@@ -369,6 +424,129 @@ fn a_term_switched_off_is_not_in_the_generated_code() {
     }
 }
 
+#[test]
+fn the_load_code_s_power_array_is_the_runtime_s_work_terms() {
+    assert_eq!(kanestop_codegen::loads::POWER_INDEX.map(|(name, _)| name), WORK_TERMS);
+    assert!(kanestop_codegen::loads::POWER_INDEX.iter().enumerate().all(|(i, (_, k))| i == *k));
+}
+
+/// A chain out of Huston's order (the ship not last) is not offered to the load code, which
+/// assumes it: the force modules, which dispatch on each body's kind, compute its loads.
+#[test]
+fn a_chain_out_of_order_keeps_the_force_modules() {
+    let model = &scenes("scenes/paper")[0].1;
+    let mut chain = model.chain.clone();
+    let n = chain.len();
+    chain.bodies.swap(n - 2, n - 1);
+    let forces = Forces::gravity_only(&chain, G);
+    assert!(fused_loads(&forces).is_none());
+    assert!(fused_loads(&Forces::gravity_only(&model.chain, G)).is_some());
+}
+
+/// A kernel that is the generated one but cannot fuse (the trait's default), so that
+/// `Dynamics` calls the force modules: the same right-hand side, entry for entry.
+struct Unfused(GeneratedKernel);
+
+impl Kernel for Unfused {
+    fn name(&self) -> &'static str {
+        "unfused"
+    }
+    fn body_count(&self) -> usize {
+        self.0.body_count()
+    }
+    fn kinematics(&mut self, q: &[f64], u: &[f64], bodies: &mut [BodyState]) {
+        self.0.kinematics(q, u, bodies)
+    }
+    fn assemble(&mut self, q: &[f64], u: &[f64], model: &mut dyn LoadModel, out: &mut Assembly) {
+        self.0.assemble(q, u, model, out)
+    }
+    fn accelerations(
+        &mut self,
+        q: &[f64],
+        u: &[f64],
+        qdd: &[f64],
+        out: &mut [kanestop_runtime::kernel::BodyAcceleration],
+    ) {
+        self.0.accelerations(q, u, qdd, out)
+    }
+    #[allow(clippy::too_many_arguments)]
+    fn solve(
+        &mut self,
+        q: &[f64],
+        u: &[f64],
+        anchor: AnchorDof,
+        friction: f64,
+        model: &mut dyn LoadModel,
+        scratch: &mut Assembly,
+        qdd: &mut [f64],
+    ) -> Result<kanestop_runtime::kernel::AnchorReaction, kanestop_runtime::kernel::RhsError> {
+        self.0.solve(q, u, anchor, friction, model, scratch, qdd)
+    }
+}
+
+/// `Dynamics` with the loads fused against `Dynamics` on the force modules: the whole
+/// right-hand side (q̇, ü and the work terms' power, the anchor's friction included), the
+/// loads it reports and the seabed's reaction, equal, with the anchor held and sliding
+/// both ways (the retry without friction when the chain lifts the anchor included).
+#[test]
+fn dynamics_with_fused_loads_is_dynamics_on_the_force_modules() {
+    use kanestop_runtime::integrate::OdeSystem;
+    let mut retried = 0;
+    for (name, model) in case1_signatures().into_iter().chain(scenes("scenes/stress")) {
+        let n = model.body_count();
+        let kernel = || GeneratedKernel::new(&model.chain).unwrap();
+        let mut fused = Dynamics::new(Box::new(kernel()), Forces::new(&model), model.anchor);
+        let mut fed = Dynamics::new(Box::new(Unfused(kernel())), Forces::new(&model), model.anchor);
+        assert!(fused.loads_fused() && !fed.loads_fused(), "{name}");
+        let mut rng = rng(6000);
+        for trial in 0..30 {
+            match trial % 3 {
+                0 => [&mut fused, &mut fed].map(|d| d.stick_anchor()),
+                1 => [&mut fused, &mut fed].map(|d| d.slide_anchor(1.0)),
+                _ => [&mut fused, &mut fed].map(|d| d.slide_anchor(-1.0)),
+            };
+            let (q, u) = near_start(&model, &mut rng, 0.3);
+            let y: Vec<f64> = q.iter().chain(&u).copied().chain([0.0; WORK_TERMS.len()]).collect();
+            let (mut a, mut b) = (vec![0.0; y.len()], vec![0.0; y.len()]);
+            let ra = fused.rhs(0.0, &y, &mut a);
+            let rb = fed.rhs(0.0, &y, &mut b);
+            assert_eq!(ra.is_ok(), rb.is_ok(), "{name} state {trial}");
+            if ra.is_err() {
+                continue;
+            }
+            assert_eq!(a, b, "{name} state {trial}: the right-hand sides differ");
+            assert_eq!(fused.loads(), fed.loads(), "{name} state {trial}: the loads reported differ");
+            assert_eq!(fused.reaction(), fed.reaction(), "{name} state {trial}");
+            if fused.sliding_direction() != 0.0 && fused.reaction().normal < 0.0 {
+                retried += 1;
+            }
+            assert_eq!(fused.loads().len(), n);
+        }
+    }
+    eprintln!("right-hand sides compared; {retried} solved again without friction");
+}
+
+/// A dry scene without seabed runs on the rolled gravity solves, and its run says so.
+#[test]
+fn a_run_reports_the_kernel_form_fusing_chose() {
+    let base = Scene::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/paper/case01.toml")).unwrap();
+    let mut scene = base.clone();
+    scene.environment.water = false;
+    scene.environment.seabed = false;
+    scene.solver.end_time = 0.01;
+    let model = Model::new(&scene).unwrap();
+    let kernel = GeneratedKernel::new(&model.chain).unwrap();
+    assert_eq!(kernel.form(), Form::Unrolled);
+    let result = kanestop_runtime::simulate::run(&model, Box::new(kernel));
+    assert_eq!(result.kernel_form, Some("rolled"), "the gravity solves are rolled");
+    let model = Model::new(&base).unwrap();
+    let mut short = base;
+    short.solver.end_time = 0.01;
+    let model_short = Model::new(&short).unwrap();
+    let result = kanestop_runtime::simulate::run(&model_short, Box::new(GeneratedKernel::new(&model.chain).unwrap()));
+    assert_eq!(result.kernel_form, Some("unrolled"));
+}
+
 // --- Weight alone, inside the rolled kernel's steps ----------------------------------------
 
 fn check_gravity(chain: &Chain, seed: u64) -> f64 {
@@ -376,7 +554,7 @@ fn check_gravity(chain: &Chain, seed: u64) -> f64 {
     let mut rng = rng(seed);
     let mut forces = Forces::gravity_only(chain, G);
     let mut fused = GeneratedKernel::with_form(chain, Form::Rolled).unwrap();
-    assert!(fused.fuse_loads(&fused_loads(&forces)), "the dry rolled kernel fuses weight");
+    assert!(fused.fuse_loads(&fused_loads(&forces).unwrap()), "the dry rolled kernel fuses weight");
     assert!(fused.is_gravity_fused());
     let mut fed = GeneratedKernel::with_form(chain, Form::Rolled).unwrap();
     let mut reference = ReferenceKernel::new(chain);
@@ -441,7 +619,7 @@ fn a_chain_in_vacuum_runs_on_the_gravity_solves_and_a_wet_one_on_its_load_code()
     // A wet chain has no weight-only solve: its weights come from the load code.
     let wet = random_wet_chain(46, &mut rng);
     let mut k = GeneratedKernel::new(&wet).unwrap();
-    assert!(k.fuse_loads(&fused_loads(&Forces::gravity_only(&wet, G))));
+    assert!(k.fuse_loads(&fused_loads(&Forces::gravity_only(&wet, G)).unwrap()));
     assert!(k.is_fused() && !k.is_gravity_fused());
 }
 

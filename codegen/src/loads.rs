@@ -6,7 +6,7 @@
 //! (a term the signature lacks is not emitted; zero components of a force are not
 //! multiplied out) and written with the same operations in the same order, so that a
 //! generated load equals the force modules' to the last bit wherever IEEE arithmetic
-//! allows (`tests/fused_loads.rs` checks them at 1e-12 on random states).
+//! allows (`tests/fused_loads.rs` checks them on random states: equal as numbers).
 //!
 //! The loads are piecewise (the wetted fraction, U|U|, the two cases of Eq. 47), which the
 //! expression DAG of [`crate::expr`] does not model; they are emitted as Rust fragments, and
@@ -30,7 +30,8 @@ use crate::emit::header;
 
 /// Index of each work term in the power array (the runtime's `WORK_TERMS` order:
 /// buoyancy, seabed, anchor friction, line friction, anchor drag, line drag, hull
-/// resistance, hydrostatic, added mass). `tests/fused_loads.rs` checks it against the runtime.
+/// resistance, hydrostatic, added mass). `tests/fused_loads.rs` checks the names against the
+/// runtime's `WORK_TERMS`.
 pub const POWER_INDEX: [(&str, usize); 9] = [
     ("buoyancy", 0),
     ("seabed", 1),
@@ -154,12 +155,21 @@ pub struct LoadReport {
     pub signature: LoadSignature,
     /// (body, term) → operations per call.
     pub ops: BTreeMap<(LoadBody, LoadTerm), LoadOps>,
+    /// body → operations per call that several terms share (a line element's rotation and
+    /// end heights), in no term's count.
+    pub shared: BTreeMap<LoadBody, LoadOps>,
 }
 
 impl LoadReport {
     /// Operations per call of `body`'s function, all terms.
     pub fn body_total(&self, body: LoadBody) -> usize {
-        self.ops.iter().filter(|((b, _), _)| *b == body).map(|(_, o)| o.total()).sum()
+        let shared = self.shared.get(&body).map_or(0, LoadOps::total);
+        shared + self.ops.iter().filter(|((b, _), _)| *b == body).map(|(_, o)| o.total()).sum::<usize>()
+    }
+
+    /// Operations per call of `body`'s function that several terms share.
+    pub fn shared_total(&self, body: LoadBody) -> usize {
+        self.shared.get(&body).map_or(0, LoadOps::total)
     }
 
     /// Operations of `term` over a chain of `elements` line elements (anchor and ship once).
@@ -176,7 +186,8 @@ impl LoadReport {
 /// operations counted for the term (a term whose statements hold another's, as the seabed's
 /// hold the line friction's, is counted without them).
 struct Pieces {
-    terms: Vec<(LoadTerm, TokenStream, LoadOps)>,
+    /// (term, or None for statements the terms share; code; its operations).
+    terms: Vec<(Option<LoadTerm>, TokenStream, LoadOps)>,
 }
 
 impl Pieces {
@@ -186,22 +197,31 @@ impl Pieces {
 
     fn push(&mut self, term: LoadTerm, code: TokenStream) {
         let ops = count(&code);
-        self.terms.push((term, code, ops));
+        self.terms.push((Some(term), code, ops));
+    }
+
+    /// Statements several terms use, counted apart.
+    fn push_shared(&mut self, code: TokenStream) {
+        let ops = count(&code);
+        self.terms.push((None, code, ops));
     }
 
     /// `code`, counted as `counted` for `term` (the rest is counted by [`Pieces::count`]).
     fn push_counted(&mut self, term: LoadTerm, code: TokenStream, counted: &TokenStream) {
-        self.terms.push((term, code, count(counted)));
+        self.terms.push((Some(term), code, count(counted)));
     }
 
     /// Operations of `term` emitted inside another term's statements.
     fn count(&mut self, term: LoadTerm, code: &TokenStream) {
-        self.terms.push((term, TokenStream::new(), count(code)));
+        self.terms.push((Some(term), TokenStream::new(), count(code)));
     }
 
     fn record(&self, body: LoadBody, report: &mut LoadReport) {
         for (term, _, ops) in &self.terms {
-            *report.ops.entry((body, *term)).or_default() += *ops;
+            match term {
+                Some(t) => *report.ops.entry((body, *t)).or_default() += *ops,
+                None => *report.shared.entry(body).or_default() += *ops,
+            }
         }
     }
 
@@ -279,18 +299,21 @@ fn element(sig: &LoadSignature, report: &mut LoadReport) -> TokenStream {
     );
     let line = sig.seabed || sig.water;
     if line {
-        // The element's ends, as `Forces::element_loads` (ex = (cos, −sin)).
+        // The rod in air stops at its weight.
         p.push(
             LoadTerm::Weight,
             quote! {
                 if !e.line {
                     return [fx, fz, my];
                 }
-                let (cos, sin) = (t[0], t[1]);
-                let half = 0.5 * e.length;
-                let (za, zb) = (s[1] + half * sin, s[1] - half * sin);
             },
         );
+        // The element's ends, as `Forces::element_loads` (ex = (cos, −sin)).
+        p.push_shared(quote! {
+            let (cos, sin) = (t[0], t[1]);
+            let half = 0.5 * e.length;
+            let (za, zb) = (s[1] + half * sin, s[1] - half * sin);
+        });
     }
     if sig.seabed {
         let ps = power("seabed");
@@ -460,7 +483,7 @@ fn ship(sig: &LoadSignature, report: &mut LoadReport) -> TokenStream {
 
 /// The tokens and the report of one signature's load functions.
 pub fn signature_code(sig: &LoadSignature) -> (TokenStream, LoadReport) {
-    let mut report = LoadReport { signature: *sig, ops: BTreeMap::new() };
+    let mut report = LoadReport { signature: *sig, ops: BTreeMap::new(), shared: BTreeMap::new() };
     let (a, e, s) = (anchor(sig, &mut report), element(sig, &mut report), ship(sig, &mut report));
     let n = sig.name();
     let (la, le, ls) =

@@ -10,8 +10,9 @@
 //! are stale. The build script generates any other count a scene under `scenes/` needs, and
 //! the counts in `KANESTOP_EXTRA_BODY_COUNTS` (e.g. `12,24,100,200` for the benchmarks), into
 //! OUT_DIR. Besides these unrolled kernels, two rolled ones (`src/rolled_dry.rs`,
-//! `src/rolled_wet.rs`, [`rolled`]) serve a chain of any N without a rebuild. This file is
-//! written by hand.
+//! `src/rolled_wet.rs`, [`rolled`]) serve a chain of any N without a rebuild, and
+//! `src/loads.rs` holds the load code of every load signature ([`loads`], [`LoadParams`]).
+//! This file is written by hand.
 
 #[rustfmt::skip]
 mod kernels;

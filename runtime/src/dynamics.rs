@@ -86,9 +86,22 @@ impl LoadModel for Recording<'_> {
 }
 
 /// The loads of `forces` as the generated load code takes them: their signature, their
-/// numbers, and the seabed's closed form (`seabed::embedded_volume`), handed in.
-pub fn fused_loads(forces: &Forces) -> FusedLoads {
+/// numbers, and the seabed's closed form (`seabed::embedded_volume`), handed in. None when
+/// the load code cannot state them: a chain not in Huston's order (the anchor first, the
+/// ship last, line elements and the rod between; the load code assumes it, the force
+/// modules dispatch on each body's kind), or, with water, a ship whose hydrostatics were
+/// built with another ρ or g than the other loads (the load code has one of each).
+pub fn fused_loads(forces: &Forces) -> Option<FusedLoads> {
     let (c, a, s) = (&forces.current, &forces.anchor, &forces.ship);
+    let kinds: Vec<BodyKind> = forces.elements.iter().map(|e| e.kind).collect();
+    let n = kinds.len();
+    let ordered = n >= 3
+        && kinds[0] == BodyKind::Anchor
+        && kinds[n - 1] == BodyKind::Ship
+        && kinds[1..n - 1].iter().all(|k| !matches!(k, BodyKind::Anchor | BodyKind::Ship));
+    if !ordered || (forces.water && (s.rho != forces.rho || s.g != forces.g)) {
+        return None;
+    }
     let params = LoadParams {
         g: forces.g,
         rho: forces.rho,
@@ -123,7 +136,7 @@ pub fn fused_loads(forces: &Forces) -> FusedLoads {
             line: matches!(e.kind, BodyKind::ChainLink | BodyKind::Cable { .. }),
         })
         .collect();
-    FusedLoads { signature: forces.signature(), params, elements }
+    Some(FusedLoads { signature: forces.signature(), params, elements })
 }
 
 impl Dynamics {
@@ -135,7 +148,7 @@ impl Dynamics {
     /// called per evaluation, and [`Dynamics::loads`] holds what the kernel computed.
     pub fn new(mut kernel: Box<dyn Kernel>, forces: Forces, anchor: AnchorDof) -> Self {
         let n = kernel.body_count();
-        let fused = kernel.fuse_loads(&fused_loads(&forces));
+        let fused = fused_loads(&forces).is_some_and(|f| kernel.fuse_loads(&f));
         Dynamics {
             kernel,
             forces,
@@ -159,6 +172,11 @@ impl Dynamics {
     /// Whether the kernel computes the loads itself ([`Kernel::fuse_loads`]).
     pub fn loads_fused(&self) -> bool {
         self.fused
+    }
+
+    /// The form of the kernel that runs ([`Kernel::form`]), as fusing left it.
+    pub fn kernel_form(&self) -> Option<&'static str> {
+        self.kernel.form()
     }
 
     /// The load models (read-only: changing one would change the right-hand side behind the

@@ -124,9 +124,11 @@ struct Fusion {
     params: kanestop_generated::LoadParams,
     elements: Vec<kanestop_generated::Element>,
     power: [f64; kanestop_generated::POWER_TERMS],
-    /// Weight alone on the rolled kernel: the solves that compute −m g in their own steps,
-    /// g (m/s²), and the weights they apply, for the model.
+    /// Weight alone on the rolled kernel: the solves that compute −m g in their own steps
+    /// and g (m/s²).
     gravity: Option<(kanestop_generated::GravityTable, f64)>,
+    /// The weights those solves apply, for the model (from the load code, at fusing).
+    weights: Vec<Load>,
 }
 
 /// A generated kernel bound to one chain's numbers.
@@ -203,9 +205,13 @@ impl GeneratedKernel {
         })
     }
 
-    /// The same kernel with another solve path.
+    /// The same kernel with another solve path. Fused loads are dropped when the path is
+    /// not the recursive one (the assembled path reads its loads from the model).
     pub fn with_solve_path(mut self, path: SolvePath) -> Self {
         self.solve_path = path;
+        if path != SolvePath::Recursive {
+            self.fusion = None;
+        }
         self
     }
 
@@ -341,23 +347,16 @@ impl Kernel for GeneratedKernel {
             elements: fused.elements.clone(),
             power: [0.0; kanestop_generated::POWER_TERMS],
             gravity: gravity.map(|t| (t, g)),
+            weights: Vec::new(),
         };
         if fusion.gravity.is_some() {
             // The weights do not depend on the state: the load code at any state gives them.
             let states = vec![[0.0; 6]; self.bodies];
             let trig = vec![[1.0, 0.0]; self.bodies];
-            (fusion.loads)(
-                &self.params,
-                &fusion.params,
-                &fusion.elements,
-                &trig,
-                &states,
-                &mut self.load_array,
-                &mut fusion.power,
-            );
-            for (l, a) in self.loads.iter_mut().zip(&self.load_array) {
-                *l = Load { fx: a[0], fz: a[1], my: a[2] };
-            }
+            let mut weights = vec![[0.0; 3]; self.bodies];
+            let f = &mut fusion;
+            (f.loads)(&self.params, &f.params, &f.elements, &trig, &states, &mut weights, &mut f.power);
+            f.weights = weights.iter().map(|a| Load { fx: a[0], fz: a[1], my: a[2] }).collect();
         }
         self.fusion = Some(fusion);
         true
@@ -413,11 +412,12 @@ impl Kernel for GeneratedKernel {
             return solve_assembled(scratch, anchor, friction, qdd);
         }
         self.states(q, u, &mut scratch.bodies);
-        let gravity = self.fusion.as_ref().and_then(|f| f.gravity);
+        let gravity = self.fusion.as_ref().and_then(|f| f.gravity.map(|t| (t, &f.weights)));
         let reaction = match (gravity, &mut self.table) {
-            (Some((fused, g)), Table::Rolled(_, scratch)) => {
+            (Some(((fused, g), weights)), Table::Rolled(_, scratch)) => {
                 let (p, trig) = (&self.params, &self.trig);
-                let reaction = match anchor {
+                model.fused(weights, &[0.0; kanestop_generated::POWER_TERMS]);
+                match anchor {
                     AnchorDof::Free => {
                         let [normal, factor] = (fused.solve_free)(p, u, trig, g, friction, qdd, scratch);
                         check_friction_factor(factor)?;
@@ -427,9 +427,7 @@ impl Kernel for GeneratedKernel {
                         let [holding, normal] = (fused.solve_stuck)(p, u, trig, g, qdd, scratch);
                         AnchorReaction { holding, normal }
                     }
-                };
-                model.fused(&self.loads, &[0.0; kanestop_generated::POWER_TERMS]);
-                reaction
+                }
             }
             _ => self.solve_with_loads(u, anchor, friction, model, &scratch.bodies, qdd)?,
         };

@@ -2,8 +2,11 @@
 //!
 //! A kernel takes the generalised coordinates and speeds of the planar chain and returns
 //! the reduced Kane equations a_lp ẍ_p = f_l (Eq. 27) plus the state of every body. The
-//! applied loads are not the kernel's business: it calls back into the force models with
-//! the body states it computed and projects what they return (Eq. 23).
+//! applied loads come from a [`LoadModel`]: the kernel calls back into the force models
+//! with the body states it computed and projects what they return (Eq. 23), unless it took
+//! the loads into its own code ([`Kernel::fuse_loads`], the generated load code of the
+//! scene's signature), in which case it tells the model what it computed
+//! ([`LoadModel::fused`]).
 //!
 //! # Coordinates (used by every kernel, `eval` and the state files)
 //!

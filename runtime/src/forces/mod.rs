@@ -1,7 +1,12 @@
 //! Applied loads on each body (Section 3.2), one small module per force.
 //!
-//! The kernel calls [`Forces::loads`] with the body states it computed and projects the
-//! result with the partial velocities (Eq. 23). Each load is the resultant at the body's
+//! These modules are the readable statement of the physics and the oracle of the generated
+//! load code (`generated/src/loads.rs`, emitted by `codegen/src/loads.rs` with the same
+//! operations, per load signature; `tests/fused_loads.rs` checks them equal). The reference
+//! kernel, the assembled path and `eval` call [`Forces::loads`] with the body states they
+//! computed and project the result with the partial velocities (Eq. 23); the generated
+//! kernel's solve runs the generated copy and hands its loads and power back
+//! ([`LoadModel::fused`]). Each load is the resultant at the body's
 //! centroid (force in N, moment about y in N·m). Added mass (Eq. 46) is not a load: it is
 //! part of each body's inertia ([`crate::chain::Body::added_mass`]) and so of a_lp.
 //!

@@ -173,7 +173,6 @@ impl<'a> Stepper<'a> {
         let solver = &model.scene.solver;
         let n = model.body_count();
         let kernel_name = kernel.name();
-        let kernel_form = kernel.form();
         let forces = Forces::new(model);
         let physics = forces.description();
         let m = Machine {
@@ -181,6 +180,8 @@ impl<'a> Stepper<'a> {
             integrator: integrator(solver, 2 * n + WORK_COUNT),
             observer: Observer::new(n),
         };
+        // After fusing: weight alone moves an unrolled kernel to the rolled one.
+        let kernel_form = m.dynamics.kernel_form();
         Stepper {
             model,
             m,
