@@ -526,7 +526,9 @@ fn dynamics_with_fused_loads_is_dynamics_on_the_force_modules() {
     eprintln!("right-hand sides compared; {retried} solved again without friction");
 }
 
-/// A dry scene without seabed runs on the rolled gravity solves, and its run says so.
+/// A dry scene without seabed runs on the rolled gravity solves, case 1 on its unrolled
+/// kernel with the load code of `wet_seabed`, the reference on the force modules; the run
+/// result and its summary say which.
 #[test]
 fn a_run_reports_the_kernel_form_fusing_chose() {
     let base = Scene::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/paper/case01.toml")).unwrap();
@@ -539,12 +541,19 @@ fn a_run_reports_the_kernel_form_fusing_chose() {
     assert_eq!(kernel.form(), Form::Unrolled);
     let result = kanestop_runtime::simulate::run(&model, Box::new(kernel));
     assert_eq!(result.kernel_form, Some("rolled"), "the gravity solves are rolled");
-    let model = Model::new(&base).unwrap();
+    assert_eq!(result.load_code.as_deref(), Some("dry"));
     let mut short = base;
     short.solver.end_time = 0.01;
-    let model_short = Model::new(&short).unwrap();
-    let result = kanestop_runtime::simulate::run(&model_short, Box::new(GeneratedKernel::new(&model.chain).unwrap()));
-    assert_eq!(result.kernel_form, Some("unrolled"));
+    let model = Model::new(&short).unwrap();
+    let result = kanestop_runtime::simulate::run(&model, Box::new(GeneratedKernel::new(&model.chain).unwrap()));
+    assert_eq!((result.kernel_form, result.load_code.as_deref()), (Some("unrolled"), Some("wet_seabed")));
+    // The summary says so.
+    let text = kanestop_workflow::summary::summary(&model, &result);
+    assert!(text.contains("kernel generated (unrolled), loads generated (wet_seabed)"), "{text}");
+    let result = kanestop_runtime::simulate::run(&model, Box::new(ReferenceKernel::new(&model.chain)));
+    assert_eq!((result.kernel_form, result.load_code.as_deref()), (None, None));
+    let text = kanestop_workflow::summary::summary(&model, &result);
+    assert!(text.contains("kernel reference, loads by the force modules"), "{text}");
 }
 
 // --- Weight alone, inside the rolled kernel's steps ----------------------------------------

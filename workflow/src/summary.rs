@@ -140,11 +140,12 @@ fn run_lines(out: &mut Lines, model: &Model, result: &RunResult, verbose: bool) 
     out.line(
         "run",
         format!(
-            "{}, dt = {} s, kernel {}{}: {:.3} s simulated in {}{:.3} s wall ({} steps, {} right-hand-side evaluations)",
+            "{}, dt = {} s, kernel {}{}, loads {}: {:.3} s simulated in {}{:.3} s wall ({} steps, {} right-hand-side evaluations)",
             solver.integrator,
             solver.dt,
             result.kernel,
             result.kernel_form.map(|f| format!(" ({f})")).unwrap_or_default(),
+            result.load_code.as_ref().map_or("by the force modules".to_string(), |s| format!("generated ({s})")),
             result.t_end,
             result.cpu_time.map(|c| format!("{:.3} s CPU, ", c.as_secs_f64())).unwrap_or_default(),
             result.wall_time.as_secs_f64(),

@@ -89,6 +89,9 @@ pub struct RunResult {
     /// The generated kernel's form: `unrolled` (built for this N) or `rolled` (any N); none
     /// for the reference.
     pub kernel_form: Option<&'static str>,
+    /// The load signature whose generated load code computed the loads (`wet_seabed`); none
+    /// when the force modules did (the reference kernel).
+    pub load_code: Option<String>,
     /// What the loads included.
     pub physics: String,
     /// How static the initial catenary is under the model's own forces.
@@ -196,6 +199,7 @@ impl RunResult {
             max_energy_drift: 0.0,
             kernel: stepper.kernel(),
             kernel_form: stepper.kernel_form(),
+            load_code: stepper.load_code().map(str::to_string),
             physics: stepper.physics().to_string(),
             initial_residual: None,
             stability: None,

@@ -150,6 +150,8 @@ pub struct Stepper<'a> {
     m: Machine,
     kernel: &'static str,
     kernel_form: Option<&'static str>,
+    /// The signature of the generated load code in use, none on the force modules.
+    load_code: Option<String>,
     physics: String,
     stability: Option<StabilityLimit>,
     /// The last good state: time (s), y = (q, u, W) and its observation.
@@ -182,11 +184,13 @@ impl<'a> Stepper<'a> {
         };
         // After fusing: weight alone moves an unrolled kernel to the rolled one.
         let kernel_form = m.dynamics.kernel_form();
+        let load_code = m.dynamics.loads_fused().then(|| m.dynamics.forces().signature().name());
         Stepper {
             model,
             m,
             kernel: kernel_name,
             kernel_form,
+            load_code,
             physics,
             stability: None,
             t: 0.0,
@@ -317,6 +321,12 @@ impl<'a> Stepper<'a> {
     /// The generated kernel's form (`unrolled` or `rolled`), none for the reference.
     pub fn kernel_form(&self) -> Option<&'static str> {
         self.kernel_form
+    }
+
+    /// The load signature whose generated code computes the loads, none when the force
+    /// modules do.
+    pub fn load_code(&self) -> Option<&str> {
+        self.load_code.as_deref()
     }
 
     /// What the loads include.
