@@ -294,12 +294,8 @@ fn load_report(model: &Model, forces: &kanestop_runtime::forces::Forces, fused: 
     let count = |f: fn(&kanestop_chain::BodyKind) -> bool| model.chain.bodies.iter().filter(|b| f(&b.kind)).count();
     let lines = count(|k| matches!(k, kanestop_chain::BodyKind::ChainLink | kanestop_chain::BodyKind::Cable { .. }));
     let rods = count(|k| matches!(k, kanestop_chain::BodyKind::Rod));
-    // A line element runs the whole element function; the rod in air stops after its weight.
+    let term = |t: LoadTerm| report.term_total(t, lines, rods);
     let ops = |b, t| report.ops.get(&(b, t)).map_or(0, |o: &kanestop_codegen::loads::LoadOps| o.total());
-    let term = |t: LoadTerm| {
-        let calls = if t == LoadTerm::Weight { lines + rods } else { lines };
-        ops(LoadBody::Anchor, t) + calls * ops(LoadBody::Element, t) + ops(LoadBody::Ship, t)
-    };
     let shared = lines * report.shared_total(LoadBody::Element);
     let total: usize = shared + sig.terms().iter().map(|&t| term(t)).sum::<usize>();
     let per = |b| report.body_total(b);

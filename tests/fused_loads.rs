@@ -403,8 +403,8 @@ fn a_term_switched_off_is_not_in_the_generated_code() {
         for m in markers(term) {
             assert!(!code.contains(&spaced(m)), "{}: {m} left in the code of {}", term.name(), off.name());
         }
-        assert_eq!(report.term_total(term, 40), 0, "{}", term.name());
-        assert!(full_report.term_total(term, 40) > 0, "{}", term.name());
+        assert_eq!(report.term_total(term, 40, 1), 0, "{}", term.name());
+        assert!(full_report.term_total(term, 40, 1) > 0, "{}", term.name());
         assert!(
             ops(&report) < ops(&full_report),
             "{}: {} ops without, {} with",

@@ -172,13 +172,16 @@ impl LoadReport {
         self.shared.get(&body).map_or(0, LoadOps::total)
     }
 
-    /// Operations of `term` over a chain of `elements` line elements (anchor and ship once).
-    pub fn term_total(&self, term: LoadTerm, elements: usize) -> usize {
-        self.ops
-            .iter()
-            .filter(|((_, t), _)| *t == term)
-            .map(|((b, _), o)| o.total() * if *b == LoadBody::Element { elements } else { 1 })
-            .sum()
+    /// Operations of `term` over a chain of `lines` line elements and `rods` rods in air
+    /// (the anchor and the ship once): a line element runs the whole element function, a
+    /// rod in air only its weight.
+    pub fn term_total(&self, term: LoadTerm, lines: usize, rods: usize) -> usize {
+        let calls = |b: LoadBody| match b {
+            LoadBody::Element if term == LoadTerm::Weight => lines + rods,
+            LoadBody::Element => lines,
+            LoadBody::Anchor | LoadBody::Ship => 1,
+        };
+        self.ops.iter().filter(|((_, t), _)| *t == term).map(|((b, _), o)| o.total() * calls(*b)).sum()
     }
 }
 
