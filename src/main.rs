@@ -179,8 +179,8 @@ impl ValueEnum for KernelArg {
         let help = match self.0 {
             KernelChoice::Reference => "The generic formulation of the paper's Eqs. 1–27 (slow, the oracle)",
             KernelChoice::Generated => {
-                "Flat code emitted by kanestop-codegen for the chain's N and water switch, with the O(N) recursive \
-                 solve (default; the reference when no kernel fits the chain)"
+                "Flat code emitted by kanestop-codegen, with the O(N) recursive solve: unrolled when the build has \
+                 the chain's N, else rolled, which serves any N (default)"
             }
         };
         Some(PossibleValue::new(self.0.name()).help(help))

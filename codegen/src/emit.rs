@@ -138,11 +138,11 @@ pub(crate) fn body(f: &Function) -> (TokenStream, usize) {
             }
             Node::Sin(a) => {
                 let a = op(a, ATOM);
-                (quote!(#a.sin()), ATOM)
+                (quote!(crate::trig::sin(#a)), ATOM)
             }
             Node::Cos(a) => {
                 let a = op(a, ATOM);
-                (quote!(#a.cos()), ATOM)
+                (quote!(crate::trig::cos(#a)), ATOM)
             }
         };
         let named = dag.name_of(id);

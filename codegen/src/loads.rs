@@ -12,7 +12,9 @@
 //! expression DAG of [`crate::expr`] does not model; they are emitted as Rust fragments, and
 //! their operations are counted on the emitted syntax ([`count`]). The seabed's embedded
 //! volume is the one call: the runtime hands its closed form in (`LoadParams::embedded_volume`),
-//! so the generated crate depends on nothing and the volume has one statement.
+//! so the generated crate depends on nothing and the volume has one statement. It runs in a
+//! pass of its own over the elements before their loads (`contact_<signature>`), where the
+//! volumes of consecutive elements overlap in the processor.
 //!
 //! Per body the generated function reads the state `s = [x, z, θ, v_x, v_z, ω]` and the
 //! rotation `t = [cos θ, sin θ]` the kinematics computed (no transcendental function of θ
@@ -338,7 +340,7 @@ fn element(sig: &LoadSignature, report: &mut LoadReport) -> TokenStream {
         let seabed = |friction: &TokenStream| {
             quote! {
                 #declare
-                let (v, s_bar) = (lp.embedded_volume)(e.radius, e.length, za - lp.seabed_z, zb - lp.seabed_z);
+                let [v, s_bar, _] = contact;
                 if v > 0.0 {
                     #embedded
                     let xi = s_bar - half;
@@ -420,9 +422,14 @@ fn element(sig: &LoadSignature, report: &mut LoadReport) -> TokenStream {
     p.record(LoadBody::Element, report);
     let body = p.code();
     let name = format_ident!("load_element_{}", sig.name());
-    let unused = if line { quote!() } else { quote!(let _ = (e, s, t);) };
+    let unused = match (line, sig.seabed) {
+        (false, _) => quote!(let _ = (e, s, t, contact);),
+        (true, false) => quote!(let _ = contact;),
+        (true, true) => quote!(),
+    };
     quote! {
-        /// The load of a line element (or of the rod in air) at its state `s` and rotation `t`.
+        /// The load of a line element (or of the rod in air) at its state `s` and rotation `t`,
+        /// with its seabed contact (embedded volume and centroid, zeros without a seabed).
         #[inline(always)]
         fn #name(
             p: &crate::BodyParams,
@@ -430,11 +437,48 @@ fn element(sig: &LoadSignature, report: &mut LoadReport) -> TokenStream {
             e: &crate::Element,
             s: &[f64; 6],
             t: &[f64; 2],
+            contact: [f64; 3],
             power: &mut [f64; crate::POWER_TERMS],
         ) -> [f64; 3] {
             #unused
             #body
             [fx, fz, my]
+        }
+    }
+}
+
+/// The seabed's contact of a line element: [V^S, s̄, 0] (Eq. 41's embedded volume and its
+/// centroid from the `za` end), zeros for the rod in air and for an element clear of the
+/// seabed (as `embedded_volume` gives there; a NaN height still reaches it). Run for every
+/// element before the loads, in a pass of its own: the volumes of consecutive elements are
+/// independent, so the processor overlaps their chains of dependent operations, and the
+/// element loads then run without a call.
+fn contact(sig: &LoadSignature, report: &mut LoadReport) -> TokenStream {
+    let mut p = Pieces::new();
+    p.push(
+        LoadTerm::Seabed,
+        quote! {
+            if !e.line {
+                return [0.0; 3];
+            }
+            let half = 0.5 * e.length;
+            let (za, zb) = (s[1] + half * t[1], s[1] - half * t[1]);
+            let (ha, hb) = (za - lp.seabed_z, zb - lp.seabed_z);
+            if ha >= e.radius && hb >= e.radius {
+                return [0.0; 3];
+            }
+            let (v, s_bar) = (lp.embedded_volume)(e.radius, e.length, ha, hb);
+        },
+    );
+    p.record(LoadBody::Element, report);
+    let body = p.code();
+    let name = format_ident!("contact_{}", sig.name());
+    quote! {
+        /// A line element's seabed contact at its state `s` and rotation `t`: [V^S, s̄, 0].
+        #[inline(always)]
+        fn #name(lp: &crate::LoadParams, e: &crate::Element, s: &[f64; 6], t: &[f64; 2]) -> [f64; 3] {
+            #body
+            [v, s_bar, 0.0]
         }
     }
 }
@@ -488,9 +532,24 @@ fn ship(sig: &LoadSignature, report: &mut LoadReport) -> TokenStream {
 pub fn signature_code(sig: &LoadSignature) -> (TokenStream, LoadReport) {
     let mut report = LoadReport { signature: *sig, ops: BTreeMap::new(), shared: BTreeMap::new() };
     let (a, e, s) = (anchor(sig, &mut report), element(sig, &mut report), ship(sig, &mut report));
+    let c = if sig.seabed { contact(sig, &mut report) } else { TokenStream::new() };
     let n = sig.name();
     let (la, le, ls) =
         (format_ident!("load_anchor_{n}"), format_ident!("load_element_{n}"), format_ident!("load_ship_{n}"));
+    // With a seabed, the contacts first, parked in `loads`, each overwritten by its load.
+    let (contacts, contact) = if sig.seabed {
+        let lc = format_ident!("contact_{n}");
+        (
+            quote! {
+                for k in 1..n - 1 {
+                    loads[k] = #lc(lp, &e[k], &bodies[k], &trig[k]);
+                }
+            },
+            quote!(loads[k]),
+        )
+    } else {
+        (TokenStream::new(), quote!([0.0; 3]))
+    };
     let entry = format_ident!("loads_{n}");
     let doc = format!(" The loads of every body, signature `{n}`: {}.", term_list(sig));
     let tokens = quote! {
@@ -508,13 +567,15 @@ pub fn signature_code(sig: &LoadSignature) -> (TokenStream, LoadReport) {
             assert!(n >= 3, "a chain has at least an anchor, one rod and a ship");
             assert!([e.len(), trig.len(), bodies.len(), loads.len()].iter().all(|&l| l >= n), "every argument must hold N = {n} entries");
             *power = [0.0; crate::POWER_TERMS];
+            #contacts
             loads[0] = #la(&p[0], lp, &bodies[0], power);
             for k in 1..n - 1 {
-                loads[k] = #le(&p[k], lp, &e[k], &bodies[k], &trig[k], power);
+                loads[k] = #le(&p[k], lp, &e[k], &bodies[k], &trig[k], #contact, power);
             }
             loads[n - 1] = #ls(&p[n - 1], lp, &bodies[n - 1], power);
         }
         #a
+        #c
         #e
         #s
     };

@@ -31,11 +31,11 @@ pub fn kinematics(
     let bodies: &mut [[f64; 6]; 3] = bodies
         .try_into()
         .expect("bodies must have 3 entries");
-    let c_2 = q[0].cos();
-    let s_2 = q[0].sin();
+    let c_2 = crate::trig::cos(q[0]);
+    let s_2 = crate::trig::sin(q[0]);
     let theta_3 = q[0] + q[1];
-    let c_3 = theta_3.cos();
-    let s_3 = theta_3.sin();
+    let c_3 = crate::trig::cos(theta_3);
+    let s_3 = crate::trig::sin(theta_3);
     let w_3 = u[0] + u[1];
     let e_2_x = c_2 * p[1].centroid[0];
     let t28 = s_2 * p[1].centroid[0];

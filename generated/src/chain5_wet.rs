@@ -31,17 +31,17 @@ pub fn kinematics(
     let bodies: &mut [[f64; 6]; 5] = bodies
         .try_into()
         .expect("bodies must have 5 entries");
-    let c_2 = q[0].cos();
-    let s_2 = q[0].sin();
+    let c_2 = crate::trig::cos(q[0]);
+    let s_2 = crate::trig::sin(q[0]);
     let theta_3 = q[0] + q[1];
-    let c_3 = theta_3.cos();
-    let s_3 = theta_3.sin();
+    let c_3 = crate::trig::cos(theta_3);
+    let s_3 = crate::trig::sin(theta_3);
     let theta_4 = theta_3 + q[2];
-    let c_4 = theta_4.cos();
-    let s_4 = theta_4.sin();
+    let c_4 = crate::trig::cos(theta_4);
+    let s_4 = crate::trig::sin(theta_4);
     let theta_5 = theta_4 + q[3];
-    let c_5 = theta_5.cos();
-    let s_5 = theta_5.sin();
+    let c_5 = crate::trig::cos(theta_5);
+    let s_5 = crate::trig::sin(theta_5);
     let w_3 = u[0] + u[1];
     let w_4 = w_3 + u[2];
     let w_5 = w_4 + u[3];

@@ -31,6 +31,8 @@ mod rolled_wet;
 #[allow(clippy::all, unused_variables, unused_mut, dead_code)]
 mod loads;
 
+pub mod trig;
+
 mod extra {
     include!(concat!(env!("OUT_DIR"), "/extra.rs"));
 }

@@ -32,7 +32,15 @@ pub fn loads_dry(
     *power = [0.0; crate::POWER_TERMS];
     loads[0] = load_anchor_dry(&p[0], lp, &bodies[0], power);
     for k in 1..n - 1 {
-        loads[k] = load_element_dry(&p[k], lp, &e[k], &bodies[k], &trig[k], power);
+        loads[k] = load_element_dry(
+            &p[k],
+            lp,
+            &e[k],
+            &bodies[k],
+            &trig[k],
+            [0.0; 3],
+            power,
+        );
     }
     loads[n - 1] = load_ship_dry(&p[n - 1], lp, &bodies[n - 1], power);
 }
@@ -48,7 +56,8 @@ fn load_anchor_dry(
     let mut fz = -p.mass * lp.g;
     [fx, fz, 0.0]
 }
-/// The load of a line element (or of the rod in air) at its state `s` and rotation `t`.
+/// The load of a line element (or of the rod in air) at its state `s` and rotation `t`,
+/// with its seabed contact (embedded volume and centroid, zeros without a seabed).
 #[inline(always)]
 fn load_element_dry(
     p: &crate::BodyParams,
@@ -56,9 +65,10 @@ fn load_element_dry(
     e: &crate::Element,
     s: &[f64; 6],
     t: &[f64; 2],
+    contact: [f64; 3],
     power: &mut [f64; crate::POWER_TERMS],
 ) -> [f64; 3] {
-    let _ = (e, s, t);
+    let _ = (e, s, t, contact);
     let mut fx = 0.0;
     let mut fz = -p.mass * lp.g;
     let mut my = 0.0;
@@ -95,6 +105,9 @@ pub fn loads_dry_seabed(
         "every argument must hold N = {n} entries"
     );
     *power = [0.0; crate::POWER_TERMS];
+    for k in 1..n - 1 {
+        loads[k] = contact_dry_seabed(lp, &e[k], &bodies[k], &trig[k]);
+    }
     loads[0] = load_anchor_dry_seabed(&p[0], lp, &bodies[0], power);
     for k in 1..n - 1 {
         loads[k] = load_element_dry_seabed(
@@ -103,6 +116,7 @@ pub fn loads_dry_seabed(
             &e[k],
             &bodies[k],
             &trig[k],
+            loads[k],
             power,
         );
     }
@@ -120,7 +134,28 @@ fn load_anchor_dry_seabed(
     let mut fz = -p.mass * lp.g;
     [fx, fz, 0.0]
 }
-/// The load of a line element (or of the rod in air) at its state `s` and rotation `t`.
+/// A line element's seabed contact at its state `s` and rotation `t`: [V^S, s̄, 0].
+#[inline(always)]
+fn contact_dry_seabed(
+    lp: &crate::LoadParams,
+    e: &crate::Element,
+    s: &[f64; 6],
+    t: &[f64; 2],
+) -> [f64; 3] {
+    if !e.line {
+        return [0.0; 3];
+    }
+    let half = 0.5 * e.length;
+    let (za, zb) = (s[1] + half * t[1], s[1] - half * t[1]);
+    let (ha, hb) = (za - lp.seabed_z, zb - lp.seabed_z);
+    if ha >= e.radius && hb >= e.radius {
+        return [0.0; 3];
+    }
+    let (v, s_bar) = (lp.embedded_volume)(e.radius, e.length, ha, hb);
+    [v, s_bar, 0.0]
+}
+/// The load of a line element (or of the rod in air) at its state `s` and rotation `t`,
+/// with its seabed contact (embedded volume and centroid, zeros without a seabed).
 #[inline(always)]
 fn load_element_dry_seabed(
     p: &crate::BodyParams,
@@ -128,6 +163,7 @@ fn load_element_dry_seabed(
     e: &crate::Element,
     s: &[f64; 6],
     t: &[f64; 2],
+    contact: [f64; 3],
     power: &mut [f64; crate::POWER_TERMS],
 ) -> [f64; 3] {
     let mut fx = 0.0;
@@ -139,8 +175,7 @@ fn load_element_dry_seabed(
     let (cos, sin) = (t[0], t[1]);
     let half = 0.5 * e.length;
     let (za, zb) = (s[1] + half * sin, s[1] - half * sin);
-    let (v, s_bar) = (lp
-        .embedded_volume)(e.radius, e.length, za - lp.seabed_z, zb - lp.seabed_z);
+    let [v, s_bar, _] = contact;
     if v > 0.0 {
         let xi = s_bar - half;
         let reaction = lp.seabed_stiffness * v;
@@ -182,6 +217,9 @@ pub fn loads_dry_seabed_friction(
         "every argument must hold N = {n} entries"
     );
     *power = [0.0; crate::POWER_TERMS];
+    for k in 1..n - 1 {
+        loads[k] = contact_dry_seabed_friction(lp, &e[k], &bodies[k], &trig[k]);
+    }
     loads[0] = load_anchor_dry_seabed_friction(&p[0], lp, &bodies[0], power);
     for k in 1..n - 1 {
         loads[k] = load_element_dry_seabed_friction(
@@ -190,6 +228,7 @@ pub fn loads_dry_seabed_friction(
             &e[k],
             &bodies[k],
             &trig[k],
+            loads[k],
             power,
         );
     }
@@ -207,7 +246,28 @@ fn load_anchor_dry_seabed_friction(
     let mut fz = -p.mass * lp.g;
     [fx, fz, 0.0]
 }
-/// The load of a line element (or of the rod in air) at its state `s` and rotation `t`.
+/// A line element's seabed contact at its state `s` and rotation `t`: [V^S, s̄, 0].
+#[inline(always)]
+fn contact_dry_seabed_friction(
+    lp: &crate::LoadParams,
+    e: &crate::Element,
+    s: &[f64; 6],
+    t: &[f64; 2],
+) -> [f64; 3] {
+    if !e.line {
+        return [0.0; 3];
+    }
+    let half = 0.5 * e.length;
+    let (za, zb) = (s[1] + half * t[1], s[1] - half * t[1]);
+    let (ha, hb) = (za - lp.seabed_z, zb - lp.seabed_z);
+    if ha >= e.radius && hb >= e.radius {
+        return [0.0; 3];
+    }
+    let (v, s_bar) = (lp.embedded_volume)(e.radius, e.length, ha, hb);
+    [v, s_bar, 0.0]
+}
+/// The load of a line element (or of the rod in air) at its state `s` and rotation `t`,
+/// with its seabed contact (embedded volume and centroid, zeros without a seabed).
 #[inline(always)]
 fn load_element_dry_seabed_friction(
     p: &crate::BodyParams,
@@ -215,6 +275,7 @@ fn load_element_dry_seabed_friction(
     e: &crate::Element,
     s: &[f64; 6],
     t: &[f64; 2],
+    contact: [f64; 3],
     power: &mut [f64; crate::POWER_TERMS],
 ) -> [f64; 3] {
     let mut fx = 0.0;
@@ -226,8 +287,7 @@ fn load_element_dry_seabed_friction(
     let (cos, sin) = (t[0], t[1]);
     let half = 0.5 * e.length;
     let (za, zb) = (s[1] + half * sin, s[1] - half * sin);
-    let (v, s_bar) = (lp
-        .embedded_volume)(e.radius, e.length, za - lp.seabed_z, zb - lp.seabed_z);
+    let [v, s_bar, _] = contact;
     if v > 0.0 {
         let xi = s_bar - half;
         let reaction = lp.seabed_stiffness * v;
@@ -277,7 +337,15 @@ pub fn loads_wet(
     *power = [0.0; crate::POWER_TERMS];
     loads[0] = load_anchor_wet(&p[0], lp, &bodies[0], power);
     for k in 1..n - 1 {
-        loads[k] = load_element_wet(&p[k], lp, &e[k], &bodies[k], &trig[k], power);
+        loads[k] = load_element_wet(
+            &p[k],
+            lp,
+            &e[k],
+            &bodies[k],
+            &trig[k],
+            [0.0; 3],
+            power,
+        );
     }
     loads[n - 1] = load_ship_wet(&p[n - 1], lp, &bodies[n - 1], power);
 }
@@ -300,7 +368,8 @@ fn load_anchor_wet(
     power[4] += drag * s[3];
     [fx, fz, 0.0]
 }
-/// The load of a line element (or of the rod in air) at its state `s` and rotation `t`.
+/// The load of a line element (or of the rod in air) at its state `s` and rotation `t`,
+/// with its seabed contact (embedded volume and centroid, zeros without a seabed).
 #[inline(always)]
 fn load_element_wet(
     p: &crate::BodyParams,
@@ -308,8 +377,10 @@ fn load_element_wet(
     e: &crate::Element,
     s: &[f64; 6],
     t: &[f64; 2],
+    contact: [f64; 3],
     power: &mut [f64; crate::POWER_TERMS],
 ) -> [f64; 3] {
+    let _ = contact;
     let mut fx = 0.0;
     let mut fz = -p.mass * lp.g;
     let mut my = 0.0;
@@ -426,6 +497,7 @@ pub fn loads_wet_current(
             &e[k],
             &bodies[k],
             &trig[k],
+            [0.0; 3],
             power,
         );
     }
@@ -453,7 +525,8 @@ fn load_anchor_wet_current(
     power[4] += drag * s[3];
     [fx, fz, 0.0]
 }
-/// The load of a line element (or of the rod in air) at its state `s` and rotation `t`.
+/// The load of a line element (or of the rod in air) at its state `s` and rotation `t`,
+/// with its seabed contact (embedded volume and centroid, zeros without a seabed).
 #[inline(always)]
 fn load_element_wet_current(
     p: &crate::BodyParams,
@@ -461,8 +534,10 @@ fn load_element_wet_current(
     e: &crate::Element,
     s: &[f64; 6],
     t: &[f64; 2],
+    contact: [f64; 3],
     power: &mut [f64; crate::POWER_TERMS],
 ) -> [f64; 3] {
+    let _ = contact;
     let mut fx = 0.0;
     let mut fz = -p.mass * lp.g;
     let mut my = 0.0;
@@ -577,6 +652,9 @@ pub fn loads_wet_seabed(
         "every argument must hold N = {n} entries"
     );
     *power = [0.0; crate::POWER_TERMS];
+    for k in 1..n - 1 {
+        loads[k] = contact_wet_seabed(lp, &e[k], &bodies[k], &trig[k]);
+    }
     loads[0] = load_anchor_wet_seabed(&p[0], lp, &bodies[0], power);
     for k in 1..n - 1 {
         loads[k] = load_element_wet_seabed(
@@ -585,6 +663,7 @@ pub fn loads_wet_seabed(
             &e[k],
             &bodies[k],
             &trig[k],
+            loads[k],
             power,
         );
     }
@@ -609,7 +688,28 @@ fn load_anchor_wet_seabed(
     power[4] += drag * s[3];
     [fx, fz, 0.0]
 }
-/// The load of a line element (or of the rod in air) at its state `s` and rotation `t`.
+/// A line element's seabed contact at its state `s` and rotation `t`: [V^S, s̄, 0].
+#[inline(always)]
+fn contact_wet_seabed(
+    lp: &crate::LoadParams,
+    e: &crate::Element,
+    s: &[f64; 6],
+    t: &[f64; 2],
+) -> [f64; 3] {
+    if !e.line {
+        return [0.0; 3];
+    }
+    let half = 0.5 * e.length;
+    let (za, zb) = (s[1] + half * t[1], s[1] - half * t[1]);
+    let (ha, hb) = (za - lp.seabed_z, zb - lp.seabed_z);
+    if ha >= e.radius && hb >= e.radius {
+        return [0.0; 3];
+    }
+    let (v, s_bar) = (lp.embedded_volume)(e.radius, e.length, ha, hb);
+    [v, s_bar, 0.0]
+}
+/// The load of a line element (or of the rod in air) at its state `s` and rotation `t`,
+/// with its seabed contact (embedded volume and centroid, zeros without a seabed).
 #[inline(always)]
 fn load_element_wet_seabed(
     p: &crate::BodyParams,
@@ -617,6 +717,7 @@ fn load_element_wet_seabed(
     e: &crate::Element,
     s: &[f64; 6],
     t: &[f64; 2],
+    contact: [f64; 3],
     power: &mut [f64; crate::POWER_TERMS],
 ) -> [f64; 3] {
     let mut fx = 0.0;
@@ -629,8 +730,7 @@ fn load_element_wet_seabed(
     let half = 0.5 * e.length;
     let (za, zb) = (s[1] + half * sin, s[1] - half * sin);
     let mut embedded = 0.0;
-    let (v, s_bar) = (lp
-        .embedded_volume)(e.radius, e.length, za - lp.seabed_z, zb - lp.seabed_z);
+    let [v, s_bar, _] = contact;
     if v > 0.0 {
         embedded = v;
         let xi = s_bar - half;
@@ -739,6 +839,9 @@ pub fn loads_wet_seabed_friction(
         "every argument must hold N = {n} entries"
     );
     *power = [0.0; crate::POWER_TERMS];
+    for k in 1..n - 1 {
+        loads[k] = contact_wet_seabed_friction(lp, &e[k], &bodies[k], &trig[k]);
+    }
     loads[0] = load_anchor_wet_seabed_friction(&p[0], lp, &bodies[0], power);
     for k in 1..n - 1 {
         loads[k] = load_element_wet_seabed_friction(
@@ -747,6 +850,7 @@ pub fn loads_wet_seabed_friction(
             &e[k],
             &bodies[k],
             &trig[k],
+            loads[k],
             power,
         );
     }
@@ -771,7 +875,28 @@ fn load_anchor_wet_seabed_friction(
     power[4] += drag * s[3];
     [fx, fz, 0.0]
 }
-/// The load of a line element (or of the rod in air) at its state `s` and rotation `t`.
+/// A line element's seabed contact at its state `s` and rotation `t`: [V^S, s̄, 0].
+#[inline(always)]
+fn contact_wet_seabed_friction(
+    lp: &crate::LoadParams,
+    e: &crate::Element,
+    s: &[f64; 6],
+    t: &[f64; 2],
+) -> [f64; 3] {
+    if !e.line {
+        return [0.0; 3];
+    }
+    let half = 0.5 * e.length;
+    let (za, zb) = (s[1] + half * t[1], s[1] - half * t[1]);
+    let (ha, hb) = (za - lp.seabed_z, zb - lp.seabed_z);
+    if ha >= e.radius && hb >= e.radius {
+        return [0.0; 3];
+    }
+    let (v, s_bar) = (lp.embedded_volume)(e.radius, e.length, ha, hb);
+    [v, s_bar, 0.0]
+}
+/// The load of a line element (or of the rod in air) at its state `s` and rotation `t`,
+/// with its seabed contact (embedded volume and centroid, zeros without a seabed).
 #[inline(always)]
 fn load_element_wet_seabed_friction(
     p: &crate::BodyParams,
@@ -779,6 +904,7 @@ fn load_element_wet_seabed_friction(
     e: &crate::Element,
     s: &[f64; 6],
     t: &[f64; 2],
+    contact: [f64; 3],
     power: &mut [f64; crate::POWER_TERMS],
 ) -> [f64; 3] {
     let mut fx = 0.0;
@@ -791,8 +917,7 @@ fn load_element_wet_seabed_friction(
     let half = 0.5 * e.length;
     let (za, zb) = (s[1] + half * sin, s[1] - half * sin);
     let mut embedded = 0.0;
-    let (v, s_bar) = (lp
-        .embedded_volume)(e.radius, e.length, za - lp.seabed_z, zb - lp.seabed_z);
+    let [v, s_bar, _] = contact;
     if v > 0.0 {
         embedded = v;
         let xi = s_bar - half;
@@ -907,6 +1032,9 @@ pub fn loads_wet_seabed_current(
         "every argument must hold N = {n} entries"
     );
     *power = [0.0; crate::POWER_TERMS];
+    for k in 1..n - 1 {
+        loads[k] = contact_wet_seabed_current(lp, &e[k], &bodies[k], &trig[k]);
+    }
     loads[0] = load_anchor_wet_seabed_current(&p[0], lp, &bodies[0], power);
     for k in 1..n - 1 {
         loads[k] = load_element_wet_seabed_current(
@@ -915,6 +1043,7 @@ pub fn loads_wet_seabed_current(
             &e[k],
             &bodies[k],
             &trig[k],
+            loads[k],
             power,
         );
     }
@@ -942,7 +1071,28 @@ fn load_anchor_wet_seabed_current(
     power[4] += drag * s[3];
     [fx, fz, 0.0]
 }
-/// The load of a line element (or of the rod in air) at its state `s` and rotation `t`.
+/// A line element's seabed contact at its state `s` and rotation `t`: [V^S, s̄, 0].
+#[inline(always)]
+fn contact_wet_seabed_current(
+    lp: &crate::LoadParams,
+    e: &crate::Element,
+    s: &[f64; 6],
+    t: &[f64; 2],
+) -> [f64; 3] {
+    if !e.line {
+        return [0.0; 3];
+    }
+    let half = 0.5 * e.length;
+    let (za, zb) = (s[1] + half * t[1], s[1] - half * t[1]);
+    let (ha, hb) = (za - lp.seabed_z, zb - lp.seabed_z);
+    if ha >= e.radius && hb >= e.radius {
+        return [0.0; 3];
+    }
+    let (v, s_bar) = (lp.embedded_volume)(e.radius, e.length, ha, hb);
+    [v, s_bar, 0.0]
+}
+/// The load of a line element (or of the rod in air) at its state `s` and rotation `t`,
+/// with its seabed contact (embedded volume and centroid, zeros without a seabed).
 #[inline(always)]
 fn load_element_wet_seabed_current(
     p: &crate::BodyParams,
@@ -950,6 +1100,7 @@ fn load_element_wet_seabed_current(
     e: &crate::Element,
     s: &[f64; 6],
     t: &[f64; 2],
+    contact: [f64; 3],
     power: &mut [f64; crate::POWER_TERMS],
 ) -> [f64; 3] {
     let mut fx = 0.0;
@@ -962,8 +1113,7 @@ fn load_element_wet_seabed_current(
     let half = 0.5 * e.length;
     let (za, zb) = (s[1] + half * sin, s[1] - half * sin);
     let mut embedded = 0.0;
-    let (v, s_bar) = (lp
-        .embedded_volume)(e.radius, e.length, za - lp.seabed_z, zb - lp.seabed_z);
+    let [v, s_bar, _] = contact;
     if v > 0.0 {
         embedded = v;
         let xi = s_bar - half;
@@ -1078,6 +1228,9 @@ pub fn loads_wet_seabed_friction_current(
         "every argument must hold N = {n} entries"
     );
     *power = [0.0; crate::POWER_TERMS];
+    for k in 1..n - 1 {
+        loads[k] = contact_wet_seabed_friction_current(lp, &e[k], &bodies[k], &trig[k]);
+    }
     loads[0] = load_anchor_wet_seabed_friction_current(&p[0], lp, &bodies[0], power);
     for k in 1..n - 1 {
         loads[k] = load_element_wet_seabed_friction_current(
@@ -1086,6 +1239,7 @@ pub fn loads_wet_seabed_friction_current(
             &e[k],
             &bodies[k],
             &trig[k],
+            loads[k],
             power,
         );
     }
@@ -1118,7 +1272,28 @@ fn load_anchor_wet_seabed_friction_current(
     power[4] += drag * s[3];
     [fx, fz, 0.0]
 }
-/// The load of a line element (or of the rod in air) at its state `s` and rotation `t`.
+/// A line element's seabed contact at its state `s` and rotation `t`: [V^S, s̄, 0].
+#[inline(always)]
+fn contact_wet_seabed_friction_current(
+    lp: &crate::LoadParams,
+    e: &crate::Element,
+    s: &[f64; 6],
+    t: &[f64; 2],
+) -> [f64; 3] {
+    if !e.line {
+        return [0.0; 3];
+    }
+    let half = 0.5 * e.length;
+    let (za, zb) = (s[1] + half * t[1], s[1] - half * t[1]);
+    let (ha, hb) = (za - lp.seabed_z, zb - lp.seabed_z);
+    if ha >= e.radius && hb >= e.radius {
+        return [0.0; 3];
+    }
+    let (v, s_bar) = (lp.embedded_volume)(e.radius, e.length, ha, hb);
+    [v, s_bar, 0.0]
+}
+/// The load of a line element (or of the rod in air) at its state `s` and rotation `t`,
+/// with its seabed contact (embedded volume and centroid, zeros without a seabed).
 #[inline(always)]
 fn load_element_wet_seabed_friction_current(
     p: &crate::BodyParams,
@@ -1126,6 +1301,7 @@ fn load_element_wet_seabed_friction_current(
     e: &crate::Element,
     s: &[f64; 6],
     t: &[f64; 2],
+    contact: [f64; 3],
     power: &mut [f64; crate::POWER_TERMS],
 ) -> [f64; 3] {
     let mut fx = 0.0;
@@ -1138,8 +1314,7 @@ fn load_element_wet_seabed_friction_current(
     let half = 0.5 * e.length;
     let (za, zb) = (s[1] + half * sin, s[1] - half * sin);
     let mut embedded = 0.0;
-    let (v, s_bar) = (lp
-        .embedded_volume)(e.radius, e.length, za - lp.seabed_z, zb - lp.seabed_z);
+    let [v, s_bar, _] = contact;
     if v > 0.0 {
         embedded = v;
         let xi = s_bar - half;

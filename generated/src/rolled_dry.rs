@@ -360,8 +360,8 @@ fn kin_first(
     body: &mut [f64; 6],
     trig: &mut [f64; 2],
 ) -> [f64; 8] {
-    let c_k = q.cos();
-    let s_k = q.sin();
+    let c_k = crate::trig::cos(q);
+    let s_k = crate::trig::sin(q);
     let o_k_x = p.joint[0] + c[4];
     let o_k_z = p.joint[1] + c[5];
     let t22 = p.centroid[0] * c_k;
@@ -391,8 +391,8 @@ fn kin_rod(
     trig: &mut [f64; 2],
 ) -> [f64; 8] {
     let theta_k = c[0] + q;
-    let c_k = theta_k.cos();
-    let s_k = theta_k.sin();
+    let c_k = crate::trig::cos(theta_k);
+    let s_k = crate::trig::sin(theta_k);
     let w_k = c[3] + u;
     let t19 = p.joint[0] * c[1];
     let t20 = p.joint[0] * c[2];
@@ -427,8 +427,8 @@ fn kin_ship(
     trig: &mut [f64; 2],
 ) -> [f64; 8] {
     let theta_k = c[0] + q;
-    let c_k = theta_k.cos();
-    let s_k = theta_k.sin();
+    let c_k = crate::trig::cos(theta_k);
+    let s_k = crate::trig::sin(theta_k);
     let w_k = c[3] + u;
     let t20 = p.joint[0] * c[1];
     let t21 = p.joint[0] * c[2];

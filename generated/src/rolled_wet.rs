@@ -287,8 +287,8 @@ fn kin_first(
     body: &mut [f64; 6],
     trig: &mut [f64; 2],
 ) -> [f64; 8] {
-    let c_k = q.cos();
-    let s_k = q.sin();
+    let c_k = crate::trig::cos(q);
+    let s_k = crate::trig::sin(q);
     let o_k_x = p.joint[0] + c[4];
     let o_k_z = p.joint[1] + c[5];
     let t23 = p.centroid[0] * c_k;
@@ -318,8 +318,8 @@ fn kin_rod(
     trig: &mut [f64; 2],
 ) -> [f64; 8] {
     let theta_k = c[0] + q;
-    let c_k = theta_k.cos();
-    let s_k = theta_k.sin();
+    let c_k = crate::trig::cos(theta_k);
+    let s_k = crate::trig::sin(theta_k);
     let w_k = c[3] + u;
     let t20 = p.joint[0] * c[1];
     let t21 = p.joint[0] * c[2];
@@ -354,8 +354,8 @@ fn kin_ship(
     trig: &mut [f64; 2],
 ) -> [f64; 8] {
     let theta_k = c[0] + q;
-    let c_k = theta_k.cos();
-    let s_k = theta_k.sin();
+    let c_k = crate::trig::cos(theta_k);
+    let s_k = crate::trig::sin(theta_k);
     let w_k = c[3] + u;
     let t20 = p.joint[0] * c[1];
     let t21 = p.joint[0] * c[2];

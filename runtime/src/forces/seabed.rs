@@ -152,95 +152,130 @@ fn nearly_level(r: f64, len: f64, h: f64, dh: f64) -> (f64, f64) {
 }
 
 /// Terms of the depth series of `near_edge` at most (they shrink by δ/2r ≤ 1/8 there, so
-/// about 19 reach 1e-17 of the sums).
-const SERIES_TERMS: usize = 64;
+/// about 20 reach 1e-17 of the sums; [`SERIES_REACH`] says how many a depth needs).
+const SERIES_TERMS: usize = 32;
 
-/// Per term k of the depth series, p = k + 3/2: [C(½, k)/p, 1/(p + 1), 1/(p + 2),
-/// 1/((p + 1)(p + 2))], the coefficients without the power of −1/2r, so the series sums
-/// without a division per term. C(½, k + 1) = C(½, k)(½ − k)/(k + 1).
-static SERIES: [[f64; 4]; SERIES_TERMS] = {
-    let mut out = [[0.0; 4]; SERIES_TERMS];
-    let mut binomial = 1.0;
+/// The depth series' coefficients and how far a number of terms reaches, built at compile
+/// time (see [`SERIES`] and [`SERIES_REACH`]).
+const fn depth_series() -> ([[f64; 2]; SERIES_TERMS], [f64; SERIES_TERMS]) {
+    // C(½, k) by C(½, k + 1) = C(½, k)(½ − k)/(k + 1), for k = 0 … SERIES_TERMS.
+    let mut binomial = [0.0; SERIES_TERMS + 1];
+    binomial[0] = 1.0;
     let mut k = 0;
     while k < SERIES_TERMS {
-        let p = k as f64 + 1.5;
-        out[k] = [binomial / p, 1.0 / (p + 1.0), 1.0 / (p + 2.0), 1.0 / ((p + 1.0) * (p + 2.0))];
-        binomial *= (0.5 - k as f64) / (k as f64 + 1.0);
+        binomial[k + 1] = binomial[k] * (0.5 - k as f64) / (k as f64 + 1.0);
         k += 1;
     }
-    out
-};
+    const fn coefficient(binomial: f64, k: usize) -> [f64; 2] {
+        let p = k as f64 + 1.5;
+        [binomial / (p * (p + 1.0)), binomial / (p * (p + 1.0) * (p + 2.0))]
+    }
+    let mut series = [[0.0; 2]; SERIES_TERMS];
+    let mut reach = [0.0; SERIES_TERMS];
+    let lead = coefficient(binomial[0], 0)[0];
+    let mut n = 0;
+    while n < SERIES_TERMS {
+        series[n] = coefficient(binomial[n], n);
+        // n terms leave out the term of degree n, |c_n| y^n; its divided differences carry
+        // up to n² more: reach[n] is the y with |c_n| y^n (n + 1)² = 1e-17 |c_0|, by bisection.
+        let omitted = coefficient(binomial[n], n)[0];
+        let omitted = if omitted < 0.0 { -omitted } else { omitted };
+        let target = 1e-17 * lead / (omitted * ((n + 1) * (n + 1)) as f64);
+        let (mut lo, mut hi) = (0.0, 1.0);
+        let mut step = 0;
+        while n > 0 && step < 64 {
+            let mid = 0.5 * (lo + hi);
+            let mut power = 1.0;
+            let mut i = 0;
+            while i < n {
+                power *= mid;
+                i += 1;
+            }
+            if power <= target {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+            step += 1;
+        }
+        reach[n] = lo;
+        n += 1;
+    }
+    (series, reach)
+}
+
+/// Per term k of the depth series, p = k + 3/2: the coefficients of x^k (x = −δ/2r) in
+/// F₁(δ)/(c₀ δ^(5/2)) and F₂(δ)/(c₀ δ^(7/2)), C(½, k)/(p(p + 1)) and C(½, k)/(p(p + 1)(p + 2)),
+/// with F₁ = ∫A dδ, F₂ = ∫F₁ dδ (both 0 at δ = 0) and c₀ = 2√(2r).
+static SERIES: [[f64; 2]; SERIES_TERMS] = depth_series().0;
+
+/// `SERIES_REACH[n]`: the largest δ/2r at which the first n terms leave out less than 1e-17
+/// of the leading one, in the sums and in their first and second divided differences
+/// (increasing in n; `SERIES_REACH[0]` = 0).
+static SERIES_REACH: [f64; SERIES_TERMS] = depth_series().1;
 
 /// A rod near the top of its section, its ends `da` and `db` deep (either may be ≤ 0: that
 /// end is clear of the seabed; the deeper one is > 0). With dA/dδ = 2√(2rδ − δ²) and the
 /// binomial series of √(1 − δ/2r),
 ///
-/// A(δ) = Σ_k a_k δ^(k + 3/2), a_k = 2√(2r) C(½, k) (−1/2r)^k / (k + 3/2),
+/// A(δ) = Σ_k a_k δ^(k + 3/2), a_k = c₀ C(½, k) (−1/2r)^k / (k + 3/2), c₀ = 2√(2r),
 ///
-/// and δ linear along the axis, V^S/L is the mean of A over [δ_a, δ_b] and the moment
-/// about the `da` end M/L² = ∫ A(δ)(δ − δ_a) dδ / Δ² (Δ = δ_b − δ_a): term by term, the first
-/// and second divided differences of the powers, P_q = δ^q[δ_a, δ_b] and
-/// R_q = δ^q[δ_a, δ_b, δ_b]: V/L = Σ a_k P_(p+1)/(p + 1), M/L² = Σ a_k R_(p+2)/((p + 1)(p + 2)),
-/// p = k + 3/2. They are formed from P_½ = 1/(√δ_a + √δ_b), R_(3/2) = (2√δ_a + √δ_b)/(2(√δ_a +
-/// √δ_b)²) by P_(q+1) = δ_a^q + δ_b P_q and R_(q+1) = P_q + δ_b R_q (the divided differences of
-/// δ·u), sums of positive terms: no cancellation as Δ → 0, and no branch on the tilt. With the
-/// shallow end clear (δ_a ≤ 0) the integrals run over [0, δ_b]: V/L = Σ a_k δ_b^(p+1)/((p + 1) Δ)
-/// and M/L² = Σ a_k (δ_b^(p+2)/(p + 2) − δ_a δ_b^(p+1)/(p + 1)) / Δ². Terms are summed until
-/// they are below 1e-17 of the sums (they shrink by about δ_b/2r).
+/// and δ linear along the axis (a, b the ends' depths, the deeper one b), V^S/L is the mean
+/// of A over [a, b], the first divided difference F₁[a, b], and the moment about the `a` end
+/// M/L² = ∫ A(δ)(δ − a) dδ / (b − a)² the second, F₂[a, b, b]. With F₁ = c₀ δ^(5/2) P₁(x),
+/// F₂ = c₀ δ^(7/2) P₂(x), x = −δ/2r and P₁, P₂ polynomials ([`SERIES`]), Leibniz's rule
+/// splits them: F₁[a, b] = c₀ (a^(5/2) P₁[a, b] + δ^(5/2)[a, b] P₁(b)), F₂[a, b, b] =
+/// c₀ (a^(7/2) P₂[a, b, b] + δ^(7/2)[a, b] P₂′(b) + δ^(7/2)[a, b, b] P₂(b)). The powers'
+/// divided differences are sums of positive terms, from δ^(1/2)[a, b] = 1/(√a + √b) and
+/// δ^(3/2)[a, b, b] = (2√a + √b)/(2(√a + √b)²) by (δu)[a, b] = a^q + b u[a, b] and (δu)[a, b, b]
+/// = u[a, b] + b u[a, b, b]; the polynomials' by Horner's scheme, which carries the divided
+/// differences along (p = c + x q: p[a, b] = q(b) + a q[a, b], p′(b) = q(b) + b q′(b),
+/// p[a, b, b] = q′(b) + a q[a, b, b]). No cancellation as b − a → 0, no branch on the tilt,
+/// and as many terms as the depth needs ([`SERIES_REACH`]): about 12 for a chain resting on
+/// the seabed, 5 operations each. With the shallow end clear (a ≤ 0) the integrals run over
+/// [0, b]: V/L = F₁(b)/(b − a), M/L² = V/L − F₂(b)/(b − a)².
 fn near_edge(r: f64, len: f64, da: f64, db: f64) -> (f64, f64) {
-    if da > db {
-        // The series below wants the deeper end second; the centroid is then from the other end.
-        let (v, s) = near_edge(r, len, db, da);
-        return (v, len - s);
+    let (a, b) = (da.min(db), da.max(db));
+    let x = -0.5 / r; // dx/dδ
+                      // Counted without a branch (a search's branches would mispredict from element to element).
+    let y = -x * b;
+    let terms = SERIES_REACH.iter().map(|&reach| usize::from(reach < y)).sum::<usize>().clamp(1, SERIES_TERMS);
+    let (xa, xb) = (x * a, x * b);
+    // Horner from the highest term: P₁(x_b), P₁[x_a, x_b]; P₂(x_b), P₂′(x_b), P₂[x_a, x_b, x_b].
+    let [c1, c2] = SERIES[terms - 1];
+    let (mut p1, mut p1_ab) = (c1, 0.0);
+    let (mut p2, mut p2_bb, mut p2_abb) = (c2, 0.0, 0.0);
+    for &[c1, c2] in SERIES[..terms - 1].iter().rev() {
+        p1_ab = p1 + xa * p1_ab;
+        p1 = c1 + xb * p1;
+        p2_abb = p2_bb + xa * p2_abb;
+        p2_bb = p2 + xb * p2_bb;
+        p2 = c2 + xb * p2;
     }
-    let b = db;
     let sb = b.sqrt();
-    let c0 = 2.0 * (2.0 * r).sqrt();
-    // g = (−1/2r)^k; the k-th term's coefficient is a_k = c0 g C(½, k) / p ([`SERIES`]).
-    let x = -0.5 / r;
-    let mut g = 1.0;
-    let (mut v, mut m) = (0.0, 0.0);
-    let small = |t: f64, sum: f64| t.abs() <= 1e-17 * sum.abs();
-    if da > 0.0 {
-        // Both ends embedded: P_q and R_q for q = p + 1 and p + 2, and δ_a^(p+1).
-        let (a, sa) = (da, da.sqrt());
+    let (v, m) = if a > 0.0 {
+        let sa = a.sqrt();
         let s = sa + sb;
-        let p32 = sa + b / s;
-        let mut pq = a * sa + b * p32; // P_(5/2)
-        let mut rq = pq + b * (p32 + b * (2.0 * sa + sb) / (2.0 * s * s)); // R_(7/2)
-        let mut apow = a * a * sa; // δ_a^(5/2)
-        for &[cp, i1, _, i12] in &SERIES {
-            let c = c0 * g * cp;
-            let (tv, tm) = (c * pq * i1, c * rq * i12);
-            v += tv;
-            m += tm;
-            if small(tv, v) && small(tm, m) {
-                break;
-            }
-            g *= x;
-            pq = apow + b * pq;
-            rq = pq + b * rq;
-            apow *= a;
-        }
+        let p32 = sa + b / s; // δ^(3/2)[a, b]
+        let p52 = a * sa + b * p32;
+        let p72 = a * a * sa + b * p52;
+        let r32 = (2.0 * sa + sb) / (2.0 * s * s); // δ^(3/2)[a, b, b]
+        let r72 = p52 + b * (p32 + b * r32);
+        // The polynomials' divided differences in δ: one factor dx/dδ per order.
+        let v = a * a * sa * (x * p1_ab) + p52 * p1;
+        let m = a * a * a * sa * (x * x * p2_abb) + p72 * (x * p2_bb) + r72 * p2;
+        (v, m)
     } else {
-        // The shallow end clear of the seabed: integrals over [0, δ_b], divided at the end.
-        let dd = b - da;
-        let mut bpow = b * b * sb; // δ_b^(p+1)
-        for &[cp, i1, i2, _] in &SERIES {
-            let c = c0 * g * cp;
-            let (tv, tm) = (c * bpow * i1, c * bpow * (b * i2 - da * i1));
-            v += tv;
-            m += tm;
-            if small(tv, v) && small(tm, m) {
-                break;
-            }
-            g *= x;
-            bpow *= b;
-        }
-        (v, m) = (v / dd, m / (dd * dd));
-    }
-    (len * v, len * m / v)
+        let dd = b - a;
+        let (f1, f2) = (b * b * sb * p1, b * b * b * sb * p2);
+        (f1 / dd, f1 / dd - f2 / (dd * dd))
+    };
+    let c0 = 2.0 * (2.0 * r).sqrt();
+    let (v, m) = (c0 * v, c0 * m);
+    let s_bar = len * m / v; // from the `a` end
+    (len * v, if da <= db { s_bar } else { len - s_bar })
 }
+
 /// The embedded volume and its centroid as in [`embedded_volume`], by 8-point Gauss–Legendre
 /// quadrature of ∫ A(δ(s)) ds over the embedded part: the literal statement of the integral.
 pub fn embedded_volume_by_quadrature(r: f64, len: f64, h_a: f64, h_b: f64) -> (f64, f64) {
@@ -293,6 +328,99 @@ mod tests {
             m += a * x * len / n as f64;
         }
         (v, if v > 0.0 { m / v } else { 0.0 })
+    }
+
+    /// The depth series of `near_edge` summed term by term in increasing powers until the
+    /// terms fall below 1e-17 of the sums (the form before Horner's scheme): the powers'
+    /// divided differences P_q = δ^q[a, b], R_q = δ^q[a, b, b] formed by their recurrences.
+    fn near_edge_by_terms(r: f64, len: f64, da: f64, db: f64) -> (f64, f64) {
+        if da > db {
+            // The series below wants the deeper end second; the centroid is then from the other end.
+            let (v, s) = near_edge_by_terms(r, len, db, da);
+            return (v, len - s);
+        }
+        let b = db;
+        // [C(½, k)/p, 1/(p + 1), 1/(p + 2), 1/((p + 1)(p + 2))], p = k + 3/2, k < 64.
+        let mut terms = [[0.0; 4]; 64];
+        let mut binomial = 1.0;
+        for (k, t) in terms.iter_mut().enumerate() {
+            let p = k as f64 + 1.5;
+            *t = [binomial / p, 1.0 / (p + 1.0), 1.0 / (p + 2.0), 1.0 / ((p + 1.0) * (p + 2.0))];
+            binomial *= (0.5 - k as f64) / (k as f64 + 1.0);
+        }
+        let sb = b.sqrt();
+        let c0 = 2.0 * (2.0 * r).sqrt();
+        // g = (−1/2r)^k; the k-th term's coefficient is a_k = c0 g C(½, k) / p ([`SERIES`]).
+        let x = -0.5 / r;
+        let mut g = 1.0;
+        let (mut v, mut m) = (0.0, 0.0);
+        let small = |t: f64, sum: f64| t.abs() <= 1e-17 * sum.abs();
+        if da > 0.0 {
+            // Both ends embedded: P_q and R_q for q = p + 1 and p + 2, and δ_a^(p+1).
+            let (a, sa) = (da, da.sqrt());
+            let s = sa + sb;
+            let p32 = sa + b / s;
+            let mut pq = a * sa + b * p32; // P_(5/2)
+            let mut rq = pq + b * (p32 + b * (2.0 * sa + sb) / (2.0 * s * s)); // R_(7/2)
+            let mut apow = a * a * sa; // δ_a^(5/2)
+            for &[cp, i1, _, i12] in &terms {
+                let c = c0 * g * cp;
+                let (tv, tm) = (c * pq * i1, c * rq * i12);
+                v += tv;
+                m += tm;
+                if small(tv, v) && small(tm, m) {
+                    break;
+                }
+                g *= x;
+                pq = apow + b * pq;
+                rq = pq + b * rq;
+                apow *= a;
+            }
+        } else {
+            // The shallow end clear of the seabed: integrals over [0, δ_b], divided at the end.
+            let dd = b - da;
+            let mut bpow = b * b * sb; // δ_b^(p+1)
+            for &[cp, i1, i2, _] in &terms {
+                let c = c0 * g * cp;
+                let (tv, tm) = (c * bpow * i1, c * bpow * (b * i2 - da * i1));
+                v += tv;
+                m += tm;
+                if small(tv, v) && small(tm, m) {
+                    break;
+                }
+                g *= x;
+                bpow *= b;
+            }
+            (v, m) = (v / dd, m / (dd * dd));
+        }
+        (len * v, len * m / v)
+    }
+
+    #[test]
+    fn the_depth_series_by_horner_matches_it_summed_term_by_term() {
+        // Level, tilted either way, one end clear, at every depth of the near-edge region
+        // (and the terms Horner's scheme takes: from 1 at δ → 0 to the most at δ = r/4).
+        let r = 0.0763;
+        let depths = [1e-12, 1e-9, 1e-6, 1e-4, 1e-3, 0.01, 0.04, 0.08, 0.15, 0.2, 0.25];
+        let mut worst = (0.0f64, 0.0f64);
+        for &b in &depths {
+            for &ratio in &[1.0, 1.0 - 1e-12, 1.0 - 1e-6, 0.99, 0.9, 0.5, 0.1, 1e-6, 0.0, -0.3, -5.0] {
+                let (db, da) = (b * r, ratio * b * r);
+                for (da, db) in [(da, db), (db, da)] {
+                    let (v, s) = near_edge(r, 1.0, da, db);
+                    let (vt, st) = near_edge_by_terms(r, 1.0, da, db);
+                    worst = (worst.0.max((v - vt).abs() / vt), worst.1.max((s - st).abs()));
+                    assert!((v - vt).abs() <= 1e-15 * vt, "({da:e}, {db:e}): V {v:e} against {vt:e}");
+                    assert!((s - st).abs() <= 2e-15, "({da:e}, {db:e}): s̄ {s} against {st}");
+                }
+            }
+        }
+        assert!(worst.0 > 0.0, "the two sums differ in rounding somewhere: {worst:?}");
+        // The reach covers the near-edge region, and the count grows with the depth: 12
+        // terms for the paper's chain at rest, 0.08 r deep (docs/model-choices.md).
+        assert!(SERIES_REACH[SERIES_TERMS - 1] > NEAR_EDGE / 2.0);
+        assert!(SERIES_REACH.windows(2).all(|w| w[0] < w[1]));
+        assert_eq!(SERIES_REACH.iter().filter(|&&reach| reach < 0.08 / 2.0).count(), 12);
     }
 
     #[test]
