@@ -12,7 +12,7 @@
 //! OUT_DIR. Besides these unrolled kernels, two rolled ones (`src/rolled_dry.rs`,
 //! `src/rolled_wet.rs`, [`rolled`]) serve a chain of any N without a rebuild, and
 //! `src/loads.rs` holds the load code of every load signature ([`loads`], [`LoadParams`]).
-//! This file is written by hand.
+//! This file and [`trig`] (the kernels' sine and cosine) are written by hand.
 
 #[rustfmt::skip]
 mod kernels;
