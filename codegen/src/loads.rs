@@ -313,11 +313,11 @@ fn element(sig: &LoadSignature, report: &mut LoadReport) -> TokenStream {
                 }
             },
         );
-        // The element's ends, as `Forces::element_loads` (ex = (cos, −sin)).
+        // The rotation and the element's ends (`end_heights`).
+        let ends = end_heights();
         p.push_shared(quote! {
             let (cos, sin) = (t[0], t[1]);
-            let half = 0.5 * e.length;
-            let (za, zb) = (s[1] + half * sin, s[1] - half * sin);
+            #ends
         });
     }
     if sig.seabed {
@@ -454,6 +454,7 @@ fn element(sig: &LoadSignature, report: &mut LoadReport) -> TokenStream {
 /// independent, so the processor overlaps their chains of dependent operations, and the
 /// element loads then run without a call.
 fn contact(sig: &LoadSignature, report: &mut LoadReport) -> TokenStream {
+    let ends = end_heights();
     let mut p = Pieces::new();
     p.push(
         LoadTerm::Seabed,
@@ -461,8 +462,7 @@ fn contact(sig: &LoadSignature, report: &mut LoadReport) -> TokenStream {
             if !e.line {
                 return [0.0; 3];
             }
-            let half = 0.5 * e.length;
-            let (za, zb) = (s[1] + half * t[1], s[1] - half * t[1]);
+            #ends
             let (ha, hb) = (za - lp.seabed_z, zb - lp.seabed_z);
             if ha >= e.radius && hb >= e.radius {
                 return [0.0; 3];
@@ -480,6 +480,16 @@ fn contact(sig: &LoadSignature, report: &mut LoadReport) -> TokenStream {
             #body
             [v, s_bar, 0.0]
         }
+    }
+}
+
+/// A line element's half length and the heights of its ends `za`, `zb` (ex = (cos, −sin), as
+/// `Forces::element_loads`), from its state `s` and rotation `t`: the element's loads and its
+/// seabed contact state them alike.
+fn end_heights() -> TokenStream {
+    quote! {
+        let half = 0.5 * e.length;
+        let (za, zb) = (s[1] + half * t[1], s[1] - half * t[1]);
     }
 }
 

@@ -174,7 +174,7 @@ fn load_element_dry_seabed(
     }
     let (cos, sin) = (t[0], t[1]);
     let half = 0.5 * e.length;
-    let (za, zb) = (s[1] + half * sin, s[1] - half * sin);
+    let (za, zb) = (s[1] + half * t[1], s[1] - half * t[1]);
     let [v, s_bar, _] = contact;
     if v > 0.0 {
         let xi = s_bar - half;
@@ -286,7 +286,7 @@ fn load_element_dry_seabed_friction(
     }
     let (cos, sin) = (t[0], t[1]);
     let half = 0.5 * e.length;
-    let (za, zb) = (s[1] + half * sin, s[1] - half * sin);
+    let (za, zb) = (s[1] + half * t[1], s[1] - half * t[1]);
     let [v, s_bar, _] = contact;
     if v > 0.0 {
         let xi = s_bar - half;
@@ -389,7 +389,7 @@ fn load_element_wet(
     }
     let (cos, sin) = (t[0], t[1]);
     let half = 0.5 * e.length;
-    let (za, zb) = (s[1] + half * sin, s[1] - half * sin);
+    let (za, zb) = (s[1] + half * t[1], s[1] - half * t[1]);
     let (lo, hi) = (za.min(zb), za.max(zb));
     let fraction = if hi <= 0.0 {
         1.0
@@ -546,7 +546,7 @@ fn load_element_wet_current(
     }
     let (cos, sin) = (t[0], t[1]);
     let half = 0.5 * e.length;
-    let (za, zb) = (s[1] + half * sin, s[1] - half * sin);
+    let (za, zb) = (s[1] + half * t[1], s[1] - half * t[1]);
     let (lo, hi) = (za.min(zb), za.max(zb));
     let fraction = if hi <= 0.0 {
         1.0
@@ -728,7 +728,7 @@ fn load_element_wet_seabed(
     }
     let (cos, sin) = (t[0], t[1]);
     let half = 0.5 * e.length;
-    let (za, zb) = (s[1] + half * sin, s[1] - half * sin);
+    let (za, zb) = (s[1] + half * t[1], s[1] - half * t[1]);
     let mut embedded = 0.0;
     let [v, s_bar, _] = contact;
     if v > 0.0 {
@@ -915,7 +915,7 @@ fn load_element_wet_seabed_friction(
     }
     let (cos, sin) = (t[0], t[1]);
     let half = 0.5 * e.length;
-    let (za, zb) = (s[1] + half * sin, s[1] - half * sin);
+    let (za, zb) = (s[1] + half * t[1], s[1] - half * t[1]);
     let mut embedded = 0.0;
     let [v, s_bar, _] = contact;
     if v > 0.0 {
@@ -1111,7 +1111,7 @@ fn load_element_wet_seabed_current(
     }
     let (cos, sin) = (t[0], t[1]);
     let half = 0.5 * e.length;
-    let (za, zb) = (s[1] + half * sin, s[1] - half * sin);
+    let (za, zb) = (s[1] + half * t[1], s[1] - half * t[1]);
     let mut embedded = 0.0;
     let [v, s_bar, _] = contact;
     if v > 0.0 {
@@ -1312,7 +1312,7 @@ fn load_element_wet_seabed_friction_current(
     }
     let (cos, sin) = (t[0], t[1]);
     let half = 0.5 * e.length;
-    let (za, zb) = (s[1] + half * sin, s[1] - half * sin);
+    let (za, zb) = (s[1] + half * t[1], s[1] - half * t[1]);
     let mut embedded = 0.0;
     let [v, s_bar, _] = contact;
     if v > 0.0 {
