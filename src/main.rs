@@ -213,19 +213,20 @@ fn codegen(scene: Option<&PathBuf>, write: bool, root: &std::path::Path) -> Resu
     let forces = kanestop_runtime::forces::Forces::new(&model);
     let kernel = kanestop_runtime::generated::GeneratedKernel::new(&model.chain);
     // Whether a run fuses the loads into the kernel, and how: as the run's own dynamics decide it.
-    let (fused, gravity) = match kanestop_runtime::generated::GeneratedKernel::new(&model.chain) {
+    let fused = match kanestop_runtime::generated::GeneratedKernel::new(&model.chain) {
         Ok(mut k) => {
             use kanestop_runtime::kernel::Kernel;
-            let fused = kanestop_runtime::dynamics::fused_loads(&forces).is_some_and(|f| k.fuse_loads(&f));
-            (fused, k.is_gravity_fused())
+            kanestop_runtime::dynamics::fused_loads(&forces).is_some_and(|f| k.fuse_loads(&f))
         }
-        Err(_) => (false, false),
+        Err(_) => false,
     };
-    load_report(&model, &forces, fused, gravity);
+    load_report(&model, &forces, fused);
+    let sig = forces.signature().name();
     let kernel = match kernel.map(|k| k.form()) {
-        _ if gravity => {
-            "rolled_dry, its solves under weight alone (solve_free_gravity, solve_stuck_gravity)".to_string()
-        }
+        Ok(_) if fused => format!(
+            "rhs_free_{sig}, rhs_stuck_{sig}: the fused right-hand side on the steps of rolled_{} (any N)",
+            water.suffix()
+        ),
         Ok(kanestop_runtime::generated::Form::Unrolled) => {
             format!("{} (unrolled, built for N = {n})", variant.module())
         }
@@ -273,7 +274,7 @@ fn codegen(scene: Option<&PathBuf>, write: bool, root: &std::path::Path) -> Resu
 
 /// The scene's load signature, what its generated load code has and leaves out, and each
 /// term's operations over this chain.
-fn load_report(model: &Model, forces: &kanestop_runtime::forces::Forces, fused: bool, gravity: bool) {
+fn load_report(model: &Model, forces: &kanestop_runtime::forces::Forces, fused: bool) {
     use kanestop_chain::LoadTerm;
     use kanestop_codegen::loads::{signature_code, LoadBody};
     let sig = forces.signature();
@@ -286,10 +287,12 @@ fn load_report(model: &Model, forces: &kanestop_runtime::forces::Forces, fused: 
         println!("loads      {} (the runtime's force models)", forces.description());
         return;
     }
-    if gravity {
-        println!("loads      weight alone, fused into the generated solve (no load evaluation per call)");
+    if sig == kanestop_chain::LoadSignature::weight_only() {
+        println!("loads      weight alone, in the generated solve's own steps (no load array read)");
     } else {
-        println!("loads      generated: loads_{} before the solve (no force model per call)", sig.name());
+        println!(
+            "loads      generated, each body's where the solve's inward pass reaches it (no force model per call)"
+        );
     }
     let count = |f: fn(&kanestop_chain::BodyKind) -> bool| model.chain.bodies.iter().filter(|b| f(&b.kind)).count();
     let lines = count(|k| matches!(k, kanestop_chain::BodyKind::ChainLink | kanestop_chain::BodyKind::Cable { .. }));

@@ -401,7 +401,8 @@ fn run_json_is_the_documented_summary() {
         assert!(v.get(key).is_some(), "missing key {key}");
     }
     assert_eq!(v["bodies"], 46);
-    assert_eq!((&v["kernel"], &v["kernel_form"]), (&"generated".into(), &"unrolled".into()));
+    // The fused right-hand side of case 1's signature runs on the rolled steps.
+    assert_eq!((&v["kernel"], &v["kernel_form"]), (&"generated".into(), &"rolled".into()));
     assert_eq!(v["method"], "rk4");
     assert_eq!(v["status"], "end time");
     assert!(v["failure"].is_null() && v["stopping_distance"].is_null());
@@ -539,7 +540,8 @@ fn codegen_reports_the_scene_kernel_and_what_folding_saves() {
     let out = kanestop().args(["codegen", "--scene", "scenes/paper/case01.toml"]).output().unwrap();
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let text = String::from_utf8(out.stdout).unwrap();
-    assert!(text.contains("kernel     chain46_wet (unrolled, built for N = 46)"), "{text}");
+    assert!(text.contains("kernel     rhs_free_wet_seabed, rhs_stuck_wet_seabed: the fused right-hand side"), "{text}");
+    assert!(text.contains("chain46_wet.rs: 7632 lines (the unrolled expansion for this N)"), "{text}");
     assert!(text.contains("15 chain links, 28 cable elements in 3 stages"), "{text}");
     assert!(text.contains("signature  wet_seabed (weight, seabed, buoyancy, line_drag"), "{text}");
     assert!(text.contains("left out   line_friction, current"), "{text}");
@@ -553,7 +555,7 @@ fn codegen_reports_the_scene_kernel_and_what_folding_saves() {
     std::fs::write(&scene, format!("extends = {:?}\n[chain]\nelements = 20\n", base.display().to_string())).unwrap();
     let out = kanestop().arg("codegen").arg(&scene).output().unwrap();
     let text = String::from_utf8(out.stdout).unwrap();
-    assert!(text.contains("rolled_wet (any N; no unrolled kernel for N = 51 in this build)"), "{text}");
+    assert!(text.contains("the fused right-hand side on the steps of rolled_wet (any N)"), "{text}");
 }
 
 /// `codegen` says how a scene's loads run: a chain in vacuum (water and seabed off) with its
@@ -570,11 +572,15 @@ fn codegen_says_when_the_loads_are_fused() {
     let out = kanestop().arg("codegen").arg(&path).output().unwrap();
     let text = String::from_utf8(out.stdout).unwrap();
     assert!(text.contains("signature  dry (weight)"), "{text}");
-    assert!(text.contains("loads      weight alone, fused into the generated solve"), "{text}");
-    assert!(text.contains("kernel     rolled_dry, its solves under weight alone"), "{text}");
+    assert!(text.contains("loads      weight alone, in the generated solve's own steps"), "{text}");
+    assert!(
+        text.contains("kernel     rhs_free_dry, rhs_stuck_dry: the fused right-hand side on the steps of rolled_dry"),
+        "{text}"
+    );
     let out = kanestop().args(["codegen", "scenes/paper/case01.toml"]).output().unwrap();
     let text = String::from_utf8(out.stdout).unwrap();
-    assert!(text.contains("loads      generated: loads_wet_seabed before the solve"), "{text}");
+    assert!(text.contains("loads      generated, each body's where the solve's inward pass reaches it"), "{text}");
+    assert!(text.contains("kernel     rhs_free_wet_seabed, rhs_stuck_wet_seabed"), "{text}");
     let row = |term: &str| text.lines().find(|l| l.split_whitespace().next() == Some(term)).map(str::to_string);
     let share = |t: &str| {
         let r = row(t).unwrap_or_else(|| panic!("no {t} row: {text}"));

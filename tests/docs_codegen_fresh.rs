@@ -93,8 +93,8 @@ fn render_rolled(n: usize) -> String {
         spaced(unrolled(Water::On))
     ));
     o.push_str(&format!(
-        "`solve_free_gravity` at N = {n} (water off, the loads fused: weight alone, no load array read): {} operations \
-         with the weights computed, against {} for `solve_free` without its loads.\n\n",
+        "The solve inside `rhs_free_dry` at N = {n} (water off, weight alone: the steps compute −m g, no load array \
+         read): {} operations with the weights computed, against {} for `solve_free` without its loads.\n\n",
         spaced(solve_of(&dry, "_gravity")),
         spaced(solve(&dry))
     ));

@@ -52,6 +52,13 @@ fn loads() {
     insta::assert_snapshot!("loads", kanestop_codegen::loads::generate_loads().source);
 }
 
+/// The fused right-hand side of every load signature (`generated/src/rhs.rs`): which steps
+/// and load functions each drives, in which order.
+#[test]
+fn rhs() {
+    insta::assert_snapshot!("rhs", kanestop_codegen::rhs::generate_rhs().source);
+}
+
 /// The rolled steps fold per body kind what the unrolled kernels fold per body: the dry
 /// kernel reads no added mass, no step reads the anchor's inertia, the rods' centroid height
 /// or the ship's added mass, and only B_2 (the first) reads its joint height.

@@ -13,7 +13,7 @@ use proc_macro2::TokenStream;
 use quote::{format_ident, quote};
 
 use crate::emit::{body, header, FunctionReport};
-use crate::rolled::{steps, Loads, Step};
+use crate::rolled::{steps, Step};
 
 /// One emitted rolled kernel file.
 #[derive(Clone, Debug)]
@@ -49,7 +49,7 @@ fn step_item(step: &Step) -> (TokenStream, FunctionReport) {
     let item = quote! {
         #[doc = #doc]
         #[inline(always)]
-        fn #name(#params) #ret { #stmts }
+        pub(crate) fn #name(#params) #ret { #stmts }
     };
     (item, FunctionReport { name: step.name.clone(), ops, statements })
 }
@@ -65,14 +65,7 @@ pub fn generate_rolled(water: Water) -> RolledFile {
     }
     let wet = water == Water::On;
     let drivers = drivers();
-    let solves = solve_drivers(Loads::Inputs);
-    let (gravity, gravity_drivers) = match water {
-        Water::Off => (
-            quote!(Some(crate::GravityTable { solve_free: solve_free_gravity, solve_stuck: solve_stuck_gravity })),
-            solve_drivers(Loads::Gravity),
-        ),
-        Water::On => (quote!(None), quote!()),
-    };
+    let solves = solve_drivers();
     let tokens = quote! {
         /// This variant, for [`crate::rolled`].
         pub const KERNEL: crate::RolledTable = crate::RolledTable {
@@ -82,11 +75,9 @@ pub fn generate_rolled(water: Water) -> RolledFile {
             accelerations,
             solve_free,
             solve_stuck,
-            gravity: #gravity,
         };
         #drivers
         #solves
-        #gravity_drivers
         #items
     };
     let file: syn::File = syn::parse2(tokens).expect("generated rolled code parses");
@@ -98,35 +89,12 @@ pub fn generate_rolled(water: Water) -> RolledFile {
     RolledFile { water, file_name: format!("{}.rs", module(water)), source, steps: reports }
 }
 
-/// The O(N) solve's entry points for one source of the loads: the inward pass from the
-/// ship to B_2, then `solve_free` and `solve_stuck` (names suffixed as [`Loads::suffix`]).
-/// [`Loads::Inputs`] reads every body's load from `loads`; [`Loads::Gravity`] passes `g`
-/// (m/s²) to steps that compute −m g themselves, so no load array is read.
-fn solve_drivers(loads: Loads) -> TokenStream {
-    let suffix = loads.suffix();
-    let id = |name: &str| format_ident!("{name}{suffix}");
-    let (pass, free, stuck) = (id("inward_pass"), id("solve_free"), id("solve_stuck"));
-    let (ship, rod, first) = (id("inward_ship"), id("inward_rod"), id("inward_first"));
-    let (anchor_free, anchor_stuck) = (id("anchor_free"), id("anchor_stuck"));
-    let (param, lens, what) = match loads {
-        Loads::Inputs => (
-            quote!(loads: &[[f64; 3]],),
-            quote!(loads.len(),),
-            "with the loads `loads` ([F_x, F_z, M_y] of every body at its centroid)",
-        ),
-        Loads::Gravity => {
-            (quote!(g: f64,), quote!(), "with every body's load its weight −m g (Eq. 40), gravity `g` in m/s²")
-        }
-    };
-    let arg = |k: TokenStream| match loads {
-        Loads::Inputs => quote!(&loads[#k]),
-        Loads::Gravity => quote!(g),
-    };
-    let (l_ship, l_rod, l_first, l_anchor) = (arg(quote!(n - 1)), arg(quote!(k)), arg(quote!(1)), arg(quote!(0)));
-    let all = match loads {
-        Loads::Inputs => quote!(loads),
-        Loads::Gravity => quote!(g),
-    };
+/// The O(N) solve's entry points on loads computed elsewhere (the force modules): the
+/// inward pass from the ship to B_2, then `solve_free` and `solve_stuck`, every body's load
+/// read from `loads`. The scene's own loads run inside the fused right-hand sides
+/// ([`crate::rhs`]), which drive the same steps.
+fn solve_drivers() -> TokenStream {
+    let what = "with the loads `loads` ([F_x, F_z, M_y] of every body at its centroid)";
     let pass_doc =
         format!(" The inward pass of the O(N) solve, from the ship to B_2, {what}; returns what reaches the anchor.");
     let free_doc = format!(
@@ -138,57 +106,57 @@ fn solve_drivers(loads: Loads) -> TokenStream {
     );
     quote! {
         #[doc = #pass_doc]
-        fn #pass(
+        fn inward_pass(
             p: &[crate::BodyParams],
             trig: &[[f64; 2]],
-            #param
+            loads: &[[f64; 3]],
             scratch: &mut [[f64; crate::ROLLED_SCRATCH]],
         ) -> [f64; 9] {
             const W: usize = crate::ROLLED_SCRATCH - 1;
             let n = p.len();
             let (w, wp) = (scratch[n - 1][W], scratch[n - 2][W]);
-            let mut c = #ship(&p[n - 1], &trig[n - 1], w, &trig[n - 2], wp, #l_ship, &mut scratch[n - 1]);
+            let mut c = inward_ship(&p[n - 1], &trig[n - 1], w, &trig[n - 2], wp, &loads[n - 1], &mut scratch[n - 1]);
             for k in (2..n - 1).rev() {
                 let (w, wp) = (scratch[k][W], scratch[k - 1][W]);
-                c = #rod(&p[k], &trig[k], w, &trig[k - 1], wp, #l_rod, &c, &mut scratch[k]);
+                c = inward_rod(&p[k], &trig[k], w, &trig[k - 1], wp, &loads[k], &c, &mut scratch[k]);
             }
             let w = scratch[1][W];
-            #first(&p[1], &trig[1], w, #l_first, &c, &mut scratch[1])
+            inward_first(&p[1], &trig[1], w, &loads[1], &c, &mut scratch[1])
         }
 
         #[doc = #free_doc]
-        pub fn #free(
+        pub fn solve_free(
             p: &[crate::BodyParams],
             u: &[f64],
             trig: &[[f64; 2]],
-            #param
+            loads: &[[f64; 3]],
             friction: f64,
             qdd: &mut [f64],
             scratch: &mut [[f64; crate::ROLLED_SCRATCH]],
         ) -> [f64; 2] {
-            let n = self::bodies(p, &[u.len(), trig.len(), #lens qdd.len(), scratch.len()]);
+            let n = self::bodies(p, &[u.len(), trig.len(), loads.len(), qdd.len(), scratch.len()]);
             let scratch = &mut scratch[..n];
             angular_velocities(u, scratch);
-            let c = #pass(p, trig, #all, scratch);
-            let [s_dd, normal, factor] = #anchor_free(&p[0], #l_anchor, &c, friction);
+            let c = inward_pass(p, trig, loads, scratch);
+            let [s_dd, normal, factor] = anchor_free(&p[0], &loads[0], &c, friction);
             outward_pass(s_dd, scratch, qdd);
             [normal, factor]
         }
 
         #[doc = #stuck_doc]
-        pub fn #stuck(
+        pub fn solve_stuck(
             p: &[crate::BodyParams],
             u: &[f64],
             trig: &[[f64; 2]],
-            #param
+            loads: &[[f64; 3]],
             qdd: &mut [f64],
             scratch: &mut [[f64; crate::ROLLED_SCRATCH]],
         ) -> [f64; 2] {
-            let n = self::bodies(p, &[u.len(), trig.len(), #lens qdd.len(), scratch.len()]);
+            let n = self::bodies(p, &[u.len(), trig.len(), loads.len(), qdd.len(), scratch.len()]);
             let scratch = &mut scratch[..n];
             angular_velocities(u, scratch);
-            let c = #pass(p, trig, #all, scratch);
-            let [s_dd, holding, normal] = #anchor_stuck(&p[0], #l_anchor, &c);
+            let c = inward_pass(p, trig, loads, scratch);
+            let [s_dd, holding, normal] = anchor_stuck(&p[0], &loads[0], &c);
             outward_pass(s_dd, scratch, qdd);
             [holding, normal]
         }
@@ -238,7 +206,7 @@ fn drivers() -> TokenStream {
         }
 
         /// θ̇_k into the last column of every scratch row (θ̇_1 = 0).
-        fn angular_velocities(u: &[f64], scratch: &mut [[f64; crate::ROLLED_SCRATCH]]) {
+        pub(crate) fn angular_velocities(u: &[f64], scratch: &mut [[f64; crate::ROLLED_SCRATCH]]) {
             let mut w = 0.0;
             scratch[0][crate::ROLLED_SCRATCH - 1] = w;
             for k in 1..scratch.len() {
@@ -248,7 +216,7 @@ fn drivers() -> TokenStream {
         }
 
         /// The outward pass of the O(N) solve from the anchor's s̈.
-        fn outward_pass(s_dd: f64, scratch: &[[f64; crate::ROLLED_SCRATCH]], qdd: &mut [f64]) {
+        pub(crate) fn outward_pass(s_dd: f64, scratch: &[[f64; crate::ROLLED_SCRATCH]], qdd: &mut [f64]) {
             let n = scratch.len();
             qdd[n - 1] = s_dd;
             let mut c = [0.0, s_dd, 0.0];

@@ -25,6 +25,7 @@ pub mod emit;
 pub mod expr;
 pub mod loads;
 pub mod planar;
+pub mod rhs;
 pub mod rolled;
 pub mod scenes;
 
@@ -53,8 +54,8 @@ pub fn checked_in_variants(scenes_dir: &std::path::Path) -> Vec<Variant> {
 }
 
 /// Every checked-in file as (name under `generated/src/`, text): the unrolled kernels, the
-/// registry `kernels.rs`, which lists them, the two rolled kernels (any N) and the load
-/// code of every signature (`loads.rs`).
+/// registry `kernels.rs`, which lists them, the two rolled kernels (any N), the load
+/// code of every signature (`loads.rs`) and the fused right-hand sides (`rhs.rs`).
 pub fn checked_in_files(scenes_dir: &std::path::Path) -> Vec<(String, String)> {
     let variants = checked_in_variants(scenes_dir);
     let mut out: Vec<(String, String)> = variants
@@ -70,5 +71,6 @@ pub fn checked_in_files(scenes_dir: &std::path::Path) -> Vec<(String, String)> {
         out.push((rolled.file_name, rolled.source));
     }
     out.push(("loads.rs".to_string(), loads::generate_loads().source));
+    out.push(("rhs.rs".to_string(), rhs::generate_rhs().source));
     out
 }

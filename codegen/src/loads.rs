@@ -1,5 +1,7 @@
-//! The generated loads: one function per [`LoadSignature`], each term of Section 3.2 emitted
-//! only where the signature has it (`generated/src/loads.rs`).
+//! The generated loads: per [`LoadSignature`], one function per body kind (anchor, line
+//! element, ship) and, with a seabed, the elements' contact, each term of Section 3.2 emitted
+//! only where the signature has it (`generated/src/loads.rs`). The signature's fused
+//! right-hand side ([`crate::rhs`]) calls them where its pass over the chain reaches each body.
 //!
 //! The runtime's force modules (`runtime/src/forces/`) are the readable statement of the
 //! physics and the oracle of this code: the terms below are the same formulas, specialised
@@ -282,7 +284,7 @@ fn anchor(sig: &LoadSignature, report: &mut LoadReport) -> TokenStream {
     quote! {
         /// B_1's load at its state `s`.
         #[inline(always)]
-        fn #name(p: &crate::BodyParams, lp: &crate::LoadParams, s: &[f64; 6], power: &mut [f64; crate::POWER_TERMS]) -> [f64; 3] {
+        pub(crate) fn #name(p: &crate::BodyParams, lp: &crate::LoadParams, s: &[f64; 6], power: &mut [f64; crate::POWER_TERMS]) -> [f64; 3] {
             #body
             [fx, fz, 0.0]
         }
@@ -431,7 +433,7 @@ fn element(sig: &LoadSignature, report: &mut LoadReport) -> TokenStream {
         /// The load of a line element (or of the rod in air) at its state `s` and rotation `t`,
         /// with its seabed contact (embedded volume and centroid, zeros without a seabed).
         #[inline(always)]
-        fn #name(
+        pub(crate) fn #name(
             p: &crate::BodyParams,
             lp: &crate::LoadParams,
             e: &crate::Element,
@@ -476,7 +478,7 @@ fn contact(sig: &LoadSignature, report: &mut LoadReport) -> TokenStream {
     quote! {
         /// A line element's seabed contact at its state `s` and rotation `t`: [V^S, s̄, 0].
         #[inline(always)]
-        fn #name(lp: &crate::LoadParams, e: &crate::Element, s: &[f64; 6], t: &[f64; 2]) -> [f64; 3] {
+        pub(crate) fn #name(lp: &crate::LoadParams, e: &crate::Element, s: &[f64; 6], t: &[f64; 2]) -> [f64; 3] {
             #body
             [v, s_bar, 0.0]
         }
@@ -530,7 +532,7 @@ fn ship(sig: &LoadSignature, report: &mut LoadReport) -> TokenStream {
     quote! {
         /// B_N's load at its state `s`.
         #[inline(always)]
-        fn #name(p: &crate::BodyParams, lp: &crate::LoadParams, s: &[f64; 6], power: &mut [f64; crate::POWER_TERMS]) -> [f64; 3] {
+        pub(crate) fn #name(p: &crate::BodyParams, lp: &crate::LoadParams, s: &[f64; 6], power: &mut [f64; crate::POWER_TERMS]) -> [f64; 3] {
             #unused
             #body
             [fx, fz, my]
@@ -543,47 +545,7 @@ pub fn signature_code(sig: &LoadSignature) -> (TokenStream, LoadReport) {
     let mut report = LoadReport { signature: *sig, ops: BTreeMap::new(), shared: BTreeMap::new() };
     let (a, e, s) = (anchor(sig, &mut report), element(sig, &mut report), ship(sig, &mut report));
     let c = if sig.seabed { contact(sig, &mut report) } else { TokenStream::new() };
-    let n = sig.name();
-    let (la, le, ls) =
-        (format_ident!("load_anchor_{n}"), format_ident!("load_element_{n}"), format_ident!("load_ship_{n}"));
-    // With a seabed, the contacts first, parked in `loads`, each overwritten by its load.
-    let (contacts, contact) = if sig.seabed {
-        let lc = format_ident!("contact_{n}");
-        (
-            quote! {
-                for k in 1..n - 1 {
-                    loads[k] = #lc(lp, &e[k], &bodies[k], &trig[k]);
-                }
-            },
-            quote!(loads[k]),
-        )
-    } else {
-        (TokenStream::new(), quote!([0.0; 3]))
-    };
-    let entry = format_ident!("loads_{n}");
-    let doc = format!(" The loads of every body, signature `{n}`: {}.", term_list(sig));
     let tokens = quote! {
-        #[doc = #doc]
-        pub fn #entry(
-            p: &[crate::BodyParams],
-            lp: &crate::LoadParams,
-            e: &[crate::Element],
-            trig: &[[f64; 2]],
-            bodies: &[[f64; 6]],
-            loads: &mut [[f64; 3]],
-            power: &mut [f64; crate::POWER_TERMS],
-        ) {
-            let n = p.len();
-            assert!(n >= 3, "a chain has at least an anchor, one rod and a ship");
-            assert!([e.len(), trig.len(), bodies.len(), loads.len()].iter().all(|&l| l >= n), "every argument must hold N = {n} entries");
-            *power = [0.0; crate::POWER_TERMS];
-            #contacts
-            loads[0] = #la(&p[0], lp, &bodies[0], power);
-            for k in 1..n - 1 {
-                loads[k] = #le(&p[k], lp, &e[k], &bodies[k], &trig[k], #contact, power);
-            }
-            loads[n - 1] = #ls(&p[n - 1], lp, &bodies[n - 1], power);
-        }
         #a
         #c
         #e
@@ -592,11 +554,12 @@ pub fn signature_code(sig: &LoadSignature) -> (TokenStream, LoadReport) {
     (tokens, report)
 }
 
-fn term_list(sig: &LoadSignature) -> String {
+/// The terms of `sig`, comma-separated.
+pub(crate) fn term_list(sig: &LoadSignature) -> String {
     sig.terms().iter().map(|t| t.name()).collect::<Vec<_>>().join(", ")
 }
 
-/// The emitted `generated/src/loads.rs`: every signature's functions and the registry.
+/// The emitted `generated/src/loads.rs`: every signature's functions.
 pub struct LoadsFile {
     /// The source text.
     pub source: String,
@@ -608,23 +571,15 @@ pub struct LoadsFile {
 pub fn generate_loads() -> LoadsFile {
     let mut items = TokenStream::new();
     let mut reports = Vec::new();
-    let mut entries = Vec::new();
     for sig in LoadSignature::all() {
         let (tokens, report) = signature_code(&sig);
         items.extend(tokens);
         reports.push(report);
-        let (name, entry) = (sig.name(), format_ident!("loads_{}", sig.name()));
-        entries.push(quote!((#name, #entry as crate::LoadsFn)));
     }
-    let count = proc_macro2::Literal::usize_unsuffixed(entries.len());
-    let tokens = quote! {
-        /// Every signature's load function, by [`kanestop_chain::LoadSignature::name`].
-        pub const LOADS: [(&str, crate::LoadsFn); #count] = [#(#entries),*];
-        #items
-    };
-    let file: syn::File = syn::parse2(tokens).expect("generated load code parses");
-    let source =
-        header("the load terms of Section 3.2, one function per load signature") + "\n" + &prettyplease::unparse(&file);
+    let file: syn::File = syn::parse2(items).expect("generated load code parses");
+    let source = header("the load terms of Section 3.2, the functions of each load signature")
+        + "\n"
+        + &prettyplease::unparse(&file);
     LoadsFile { source, reports }
 }
 

@@ -10,8 +10,10 @@
 //! are stale. The build script generates any other count a scene under `scenes/` needs, and
 //! the counts in `KANESTOP_EXTRA_BODY_COUNTS` (e.g. `12,24,100,200` for the benchmarks), into
 //! OUT_DIR. Besides these unrolled kernels, two rolled ones (`src/rolled_dry.rs`,
-//! `src/rolled_wet.rs`, [`rolled`]) serve a chain of any N without a rebuild, and
-//! `src/loads.rs` holds the load code of every load signature ([`loads`], [`LoadParams`]).
+//! `src/rolled_wet.rs`, [`rolled`]) serve a chain of any N without a rebuild;
+//! `src/loads.rs` holds the load code of every load signature ([`LoadParams`]) and
+//! `src/rhs.rs` the fused right-hand sides ([`rhs`]): per signature, kinematics, loads and
+//! the O(N) solve in one pass each way over the chain, on the rolled kernel's steps.
 //! This file and [`trig`] (the kernels' sine and cosine) are written by hand.
 
 #[rustfmt::skip]
@@ -30,6 +32,11 @@ mod rolled_wet;
 #[rustfmt::skip]
 #[allow(clippy::all, unused_variables, unused_mut, dead_code)]
 mod loads;
+
+/// The fused right-hand side of every load signature.
+#[rustfmt::skip]
+#[allow(clippy::all, unused_variables, dead_code)]
+mod rhs;
 
 pub mod trig;
 
@@ -117,26 +124,6 @@ pub struct RolledTable {
     pub accelerations: AccelerationsFn,
     pub solve_free: RolledSolveFreeFn,
     pub solve_stuck: RolledSolveStuckFn,
-    /// The solves under weight alone, loads fused into the steps (dry only).
-    pub gravity: Option<GravityTable>,
-}
-
-/// `solve_free_gravity(p, u, trig, g, friction, qdd, scratch)`: a rolled free solve whose
-/// loads are the bodies' weights −m g (m/s² for `g`); returns `[N, 1 + friction·∂N/∂F_x]`.
-pub type GravitySolveFreeFn =
-    fn(&[BodyParams], &[f64], &[[f64; 2]], f64, f64, &mut [f64], &mut [[f64; ROLLED_SCRATCH]]) -> [f64; 2];
-/// `solve_stuck_gravity(p, u, trig, g, qdd, scratch)`: the stuck solve under weight alone;
-/// returns `[holding, normal]`.
-pub type GravitySolveStuckFn =
-    fn(&[BodyParams], &[f64], &[[f64; 2]], f64, &mut [f64], &mut [[f64; ROLLED_SCRATCH]]) -> [f64; 2];
-
-/// The entry points of a kernel with the loads fused: weight alone (Eq. 40), for a chain
-/// hanging in vacuum (water and seabed off). The generated steps compute −m g themselves,
-/// and the zero force along x and moment fold out of the code.
-#[derive(Clone, Copy, Debug)]
-pub struct GravityTable {
-    pub solve_free: GravitySolveFreeFn,
-    pub solve_stuck: GravitySolveStuckFn,
 }
 
 /// Work terms in the power array of the load functions (the runtime's `WORK_TERMS`).
@@ -207,15 +194,65 @@ pub struct Element {
     pub line: bool,
 }
 
-/// `loads(p, lp, elements, trig, bodies, loads, power)`: every body's load `[F_x, F_z, M_y]`
-/// at its centroid from the body states and rotations of the kinematics, and the power of
-/// each work term.
-pub type LoadsFn =
-    fn(&[BodyParams], &LoadParams, &[Element], &[[f64; 2]], &[[f64; 6]], &mut [[f64; 3]], &mut [f64; POWER_TERMS]);
+/// What a fused right-hand side leaves behind besides ẍ, for the caller to read, and the
+/// rows its O(N) solve keeps per body: allocated once per chain ([`Workspace::new`]).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Workspace {
+    /// `[cos θ, sin θ]` of every body.
+    pub trig: Vec<[f64; 2]>,
+    /// `[x, z, θ, v_x, v_z, ω]` of every body's centroid C_k (m, rad, m/s, rad/s).
+    pub bodies: Vec<[f64; 6]>,
+    /// `[F_x, F_z, M_y]` of every body at its centroid (N, N·m).
+    pub loads: Vec<[f64; 3]>,
+    /// The power of each work term (W), indexed as the runtime's `WORK_TERMS`.
+    pub power: [f64; POWER_TERMS],
+    /// The solve's rows, [`ROLLED_SCRATCH`] values per body.
+    pub scratch: Vec<[f64; ROLLED_SCRATCH]>,
+}
 
-/// The generated load function of a signature, by its name (`wet_seabed_friction`).
-pub fn loads(signature: &str) -> Option<LoadsFn> {
-    loads::LOADS.iter().find(|(n, _)| *n == signature).map(|(_, f)| *f)
+impl Workspace {
+    /// Room for a chain of `n` bodies.
+    pub fn new(n: usize) -> Self {
+        Workspace {
+            trig: vec![[0.0; 2]; n],
+            bodies: vec![[0.0; 6]; n],
+            loads: vec![[0.0; 3]; n],
+            power: [0.0; POWER_TERMS],
+            scratch: vec![[0.0; ROLLED_SCRATCH]; n],
+        }
+    }
+
+    /// The chain's length N, checked against the workspace and the arguments' lengths `lens`.
+    fn check(&self, p: &[BodyParams], lens: &[usize]) -> usize {
+        let n = p.len();
+        assert!(n >= 3, "a chain has at least an anchor, one rod and a ship");
+        let own = [self.trig.len(), self.bodies.len(), self.loads.len(), self.scratch.len()];
+        assert!(own.iter().chain(lens).all(|&l| l >= n), "every argument must hold N = {n} entries");
+        n
+    }
+}
+
+/// A fused right-hand side with the anchor free: `(p, lp, elements, q, u, friction, ws,
+/// qdd)` → `[N, 1 + friction·∂N/∂F_x]`, the states, loads and powers left in `ws`.
+pub type RhsFreeFn =
+    fn(&[BodyParams], &LoadParams, &[Element], &[f64], &[f64], f64, &mut Workspace, &mut [f64]) -> [f64; 2];
+/// A fused right-hand side with the anchor held: `(p, lp, elements, q, u, ws, qdd)` →
+/// `[holding, N]`.
+pub type RhsStuckFn =
+    fn(&[BodyParams], &LoadParams, &[Element], &[f64], &[f64], &mut Workspace, &mut [f64]) -> [f64; 2];
+
+/// One load signature's fused right-hand sides.
+#[derive(Clone, Copy, Debug)]
+pub struct RhsTable {
+    /// Whether they run the wet rolled steps (the added mass in a_lp): the signature's water.
+    pub wet: bool,
+    pub free: RhsFreeFn,
+    pub stuck: RhsStuckFn,
+}
+
+/// The fused right-hand sides of a signature, by its name (`wet_seabed_friction`).
+pub fn rhs(signature: &str) -> Option<RhsTable> {
+    rhs::RHS.iter().find(|(n, _)| *n == signature).map(|(_, t)| *t)
 }
 
 /// The rolled kernel for the water switch: any N.

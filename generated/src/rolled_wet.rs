@@ -9,7 +9,6 @@ pub const KERNEL: crate::RolledTable = crate::RolledTable {
     accelerations,
     solve_free,
     solve_stuck,
-    gravity: None,
 };
 /// The chain's length, checked against every argument.
 fn bodies(p: &[crate::BodyParams], lens: &[usize]) -> usize {
@@ -67,7 +66,10 @@ pub fn accelerations(
     );
 }
 /// θ̇_k into the last column of every scratch row (θ̇_1 = 0).
-fn angular_velocities(u: &[f64], scratch: &mut [[f64; crate::ROLLED_SCRATCH]]) {
+pub(crate) fn angular_velocities(
+    u: &[f64],
+    scratch: &mut [[f64; crate::ROLLED_SCRATCH]],
+) {
     let mut w = 0.0;
     scratch[0][crate::ROLLED_SCRATCH - 1] = w;
     for k in 1..scratch.len() {
@@ -76,7 +78,11 @@ fn angular_velocities(u: &[f64], scratch: &mut [[f64; crate::ROLLED_SCRATCH]]) {
     }
 }
 /// The outward pass of the O(N) solve from the anchor's s̈.
-fn outward_pass(s_dd: f64, scratch: &[[f64; crate::ROLLED_SCRATCH]], qdd: &mut [f64]) {
+pub(crate) fn outward_pass(
+    s_dd: f64,
+    scratch: &[[f64; crate::ROLLED_SCRATCH]],
+    qdd: &mut [f64],
+) {
     let n = scratch.len();
     qdd[n - 1] = s_dd;
     let mut c = [0.0, s_dd, 0.0];
@@ -257,7 +263,7 @@ pub fn solve_stuck(
 }
 /// Body state and rotation of one body from the parent's carry (Eqs. 9, 13, 14).
 #[inline(always)]
-fn kin_anchor(
+pub(crate) fn kin_anchor(
     p: &crate::BodyParams,
     q: f64,
     u: f64,
@@ -279,7 +285,7 @@ fn kin_anchor(
 }
 /// Body state and rotation of one body from the parent's carry (Eqs. 9, 13, 14).
 #[inline(always)]
-fn kin_first(
+pub(crate) fn kin_first(
     p: &crate::BodyParams,
     q: f64,
     u: f64,
@@ -309,7 +315,7 @@ fn kin_first(
 }
 /// Body state and rotation of one body from the parent's carry (Eqs. 9, 13, 14).
 #[inline(always)]
-fn kin_rod(
+pub(crate) fn kin_rod(
     p: &crate::BodyParams,
     q: f64,
     u: f64,
@@ -345,7 +351,7 @@ fn kin_rod(
 }
 /// Body state and rotation of one body from the parent's carry (Eqs. 9, 13, 14).
 #[inline(always)]
-fn kin_ship(
+pub(crate) fn kin_ship(
     p: &crate::BodyParams,
     q: f64,
     u: f64,
@@ -381,7 +387,11 @@ fn kin_ship(
 }
 /// Accelerations of one body (Eq. 17) for its β̈ (`qdd`; the anchor: s̈), from the parent's carry.
 #[inline(always)]
-fn acc_anchor(p: &crate::BodyParams, qdd: f64, acc: &mut [f64; 3]) -> [f64; 3] {
+pub(crate) fn acc_anchor(
+    p: &crate::BodyParams,
+    qdd: f64,
+    acc: &mut [f64; 3],
+) -> [f64; 3] {
     acc[0] = qdd;
     acc[1] = 0.0;
     acc[2] = 0.0;
@@ -389,7 +399,7 @@ fn acc_anchor(p: &crate::BodyParams, qdd: f64, acc: &mut [f64; 3]) -> [f64; 3] {
 }
 /// Accelerations of one body (Eq. 17) for its β̈ (`qdd`; the anchor: s̈), from the parent's carry.
 #[inline(always)]
-fn acc_first(
+pub(crate) fn acc_first(
     p: &crate::BodyParams,
     t: &[f64; 2],
     w: f64,
@@ -412,7 +422,7 @@ fn acc_first(
 }
 /// Accelerations of one body (Eq. 17) for its β̈ (`qdd`; the anchor: s̈), from the parent's carry.
 #[inline(always)]
-fn acc_rod(
+pub(crate) fn acc_rod(
     p: &crate::BodyParams,
     t: &[f64; 2],
     w: f64,
@@ -440,7 +450,7 @@ fn acc_rod(
 }
 /// Accelerations of one body (Eq. 17) for its β̈ (`qdd`; the anchor: s̈), from the parent's carry.
 #[inline(always)]
-fn acc_ship(
+pub(crate) fn acc_ship(
     p: &crate::BodyParams,
     t: &[f64; 2],
     w: f64,
@@ -468,7 +478,7 @@ fn acc_ship(
 }
 /// The inward pass at one body: its articulated inertia and bias, the hinge eliminated and carried to the parent.
 #[inline(always)]
-fn inward_ship(
+pub(crate) fn inward_ship(
     p: &crate::BodyParams,
     t: &[f64; 2],
     w: f64,
@@ -517,7 +527,7 @@ fn inward_ship(
 }
 /// The inward pass at one body: its articulated inertia and bias, the hinge eliminated and carried to the parent.
 #[inline(always)]
-fn inward_rod(
+pub(crate) fn inward_rod(
     p: &crate::BodyParams,
     t: &[f64; 2],
     w: f64,
@@ -572,7 +582,7 @@ fn inward_rod(
 }
 /// The inward pass at one body: its articulated inertia and bias, the hinge eliminated and carried to the parent.
 #[inline(always)]
-fn inward_first(
+pub(crate) fn inward_first(
     p: &crate::BodyParams,
     t: &[f64; 2],
     w: f64,
@@ -619,7 +629,7 @@ fn inward_first(
 }
 /// The anchor sliding with friction −`friction`·N: returns [s̈, normal force (Eq. 37), 1 + friction·∂N/∂F_x].
 #[inline(always)]
-fn anchor_free(
+pub(crate) fn anchor_free(
     p: &crate::BodyParams,
     f: &[f64; 3],
     c: &[f64; 9],
@@ -637,14 +647,22 @@ fn anchor_free(
 }
 /// The anchor held: returns [0, holding force (Eq. 50), normal force (Eq. 37)].
 #[inline(always)]
-fn anchor_stuck(p: &crate::BodyParams, f: &[f64; 3], c: &[f64; 9]) -> [f64; 3] {
+pub(crate) fn anchor_stuck(
+    p: &crate::BodyParams,
+    f: &[f64; 3],
+    c: &[f64; 9],
+) -> [f64; 3] {
     let pa_1_x = c[7] - f[0];
     let pa_1_z = c[8] - f[1];
     [0.0, pa_1_x, pa_1_z]
 }
 /// The outward pass across one hinge: [α, a_{o,x}, a_{o,z}] of the body and its β̈.
 #[inline(always)]
-fn outward(s: &[f64; crate::ROLLED_SCRATCH], wp: f64, c: &[f64; 3]) -> [f64; 4] {
+pub(crate) fn outward(
+    s: &[f64; crate::ROLLED_SCRATCH],
+    wp: f64,
+    c: &[f64; 3],
+) -> [f64; 4] {
     let t11 = wp * wp;
     let ao_k_x = c[1] + s[1] * c[0] - s[0] * t11;
     let ao_k_z = c[2] - s[0] * c[0] - s[1] * t11;
@@ -654,7 +672,7 @@ fn outward(s: &[f64; crate::ROLLED_SCRATCH], wp: f64, c: &[f64; 3]) -> [f64; 4] 
 }
 /// Outboard sums about the body's origin (Eq. 26), from the child's (`pc`, `c`).
 #[inline(always)]
-fn outboard_ship(
+pub(crate) fn outboard_ship(
     p: &crate::BodyParams,
     t: &[f64; 2],
     s: &mut [f64; crate::ROLLED_SCRATCH],
@@ -670,7 +688,7 @@ fn outboard_ship(
 }
 /// Outboard sums about the body's origin (Eq. 26), from the child's (`pc`, `c`).
 #[inline(always)]
-fn outboard_rod(
+pub(crate) fn outboard_rod(
     p: &crate::BodyParams,
     t: &[f64; 2],
     pc: &crate::BodyParams,
@@ -698,36 +716,36 @@ fn outboard_rod(
 }
 /// d_k = R(θ_{k−1}) (q_x, 0): the hinge-to-hinge vector of a rod or the ship.
 #[inline(always)]
-fn link(tp: &[f64; 2], jx: f64) -> [f64; 2] {
+pub(crate) fn link(tp: &[f64; 2], jx: f64) -> [f64; 2] {
     let t4 = tp[0] * jx;
     let t6 = -(tp[1] * jx);
     [t4, t6]
 }
 /// The body's share of a_ss and a_ws (the anchor's surge row of Eq. 26 and its heave row).
 #[inline(always)]
-fn surge_anchor(p: &crate::BodyParams) -> [f64; 2] {
+pub(crate) fn surge_anchor(p: &crate::BodyParams) -> [f64; 2] {
     [p.mass, 0.0]
 }
 /// The body's share of a_ss and a_ws (the anchor's surge row of Eq. 26 and its heave row).
 #[inline(always)]
-fn surge_rod(p: &crate::BodyParams, t: &[f64; 2]) -> [f64; 2] {
+pub(crate) fn surge_rod(p: &crate::BodyParams, t: &[f64; 2]) -> [f64; 2] {
     let t10 = p.mass + p.added_mass * (t[1] * t[1]);
     let t12 = p.added_mass * (t[0] * t[1]);
     [t10, t12]
 }
 /// The body's share of a_ss and a_ws (the anchor's surge row of Eq. 26 and its heave row).
 #[inline(always)]
-fn surge_ship(p: &crate::BodyParams, t: &[f64; 2]) -> [f64; 2] {
+pub(crate) fn surge_ship(p: &crate::BodyParams, t: &[f64; 2]) -> [f64; 2] {
     [p.mass, 0.0]
 }
 /// The effective force on one body (Eqs. 16, 22), the velocity-product acceleration carried from the parent.
 #[inline(always)]
-fn effective_anchor(p: &crate::BodyParams, f: &[f64; 3]) -> [f64; 4] {
+pub(crate) fn effective_anchor(p: &crate::BodyParams, f: &[f64; 3]) -> [f64; 4] {
     [0.0, 0.0, f[0], f[1]]
 }
 /// The effective force on one body (Eqs. 16, 22), the velocity-product acceleration carried from the parent.
 #[inline(always)]
-fn effective_first(
+pub(crate) fn effective_first(
     p: &crate::BodyParams,
     t: &[f64; 2],
     w: f64,
@@ -744,7 +762,7 @@ fn effective_first(
 }
 /// The effective force on one body (Eqs. 16, 22), the velocity-product acceleration carried from the parent.
 #[inline(always)]
-fn effective_rod(
+pub(crate) fn effective_rod(
     p: &crate::BodyParams,
     t: &[f64; 2],
     w: f64,
@@ -766,7 +784,7 @@ fn effective_rod(
 }
 /// The effective force on one body (Eqs. 16, 22), the velocity-product acceleration carried from the parent.
 #[inline(always)]
-fn effective_ship(
+pub(crate) fn effective_ship(
     p: &crate::BodyParams,
     t: &[f64; 2],
     w: f64,
@@ -787,7 +805,7 @@ fn effective_ship(
 }
 /// The generalised forces carried inward (Eqs. 23, 25): [G_x, G_z, H_k = f_{β_k}] from the child's.
 #[inline(always)]
-fn forces_ship(
+pub(crate) fn forces_ship(
     p: &crate::BodyParams,
     t: &[f64; 2],
     fe: &[f64; 2],
@@ -800,7 +818,7 @@ fn forces_ship(
 }
 /// The generalised forces carried inward (Eqs. 23, 25): [G_x, G_z, H_k = f_{β_k}] from the child's.
 #[inline(always)]
-fn forces_rod(
+pub(crate) fn forces_rod(
     p: &crate::BodyParams,
     t: &[f64; 2],
     fe: &[f64; 2],
@@ -817,7 +835,7 @@ fn forces_rod(
 }
 /// The generalised forces carried inward (Eqs. 23, 25): [G_x, G_z, H_k = f_{β_k}] from the child's.
 #[inline(always)]
-fn forces_anchor(fe: &[f64; 2], c: &[f64; 3]) -> [f64; 2] {
+pub(crate) fn forces_anchor(fe: &[f64; 2], c: &[f64; 3]) -> [f64; 2] {
     let g_k_x = fe[0] + c[0];
     let g_k_z = fe[1] + c[1];
     [g_k_x, g_k_z]

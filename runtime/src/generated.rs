@@ -16,7 +16,7 @@
 //! ([`SolvePath::Recursive`]); [`SolvePath::Assembled`] assembles the generated a_lp and f_l
 //! and factors them like the reference (kept for comparison and benchmarks).
 
-use kanestop_chain::{LoadSignature, ParamField, StructuralZero, Variant, Water};
+use kanestop_chain::{ParamField, StructuralZero, Variant, Water};
 use kanestop_generated::BodyParams;
 
 use crate::chain::Chain;
@@ -114,21 +114,15 @@ impl Form {
 /// The entry points in use.
 enum Table {
     Unrolled(kanestop_generated::KernelTable),
-    Rolled(kanestop_generated::RolledTable, Vec<[f64; kanestop_generated::ROLLED_SCRATCH]>),
+    Rolled(kanestop_generated::RolledTable),
 }
 
-/// The scene's loads, computed by generated code ([`Kernel::fuse_loads`]).
+/// The scene's whole right-hand side in generated code ([`Kernel::fuse_loads`]).
 struct Fusion {
-    /// The load code of the scene's signature.
-    loads: kanestop_generated::LoadsFn,
+    /// The fused right-hand sides of the scene's signature.
+    rhs: kanestop_generated::RhsTable,
     params: kanestop_generated::LoadParams,
     elements: Vec<kanestop_generated::Element>,
-    power: [f64; kanestop_generated::POWER_TERMS],
-    /// Weight alone on the rolled kernel: the solves that compute −m g in their own steps
-    /// and g (m/s²).
-    gravity: Option<(kanestop_generated::GravityTable, f64)>,
-    /// The weights those solves apply, for the model (from the load code, at fusing).
-    weights: Vec<Load>,
 }
 
 /// A generated kernel bound to one chain's numbers.
@@ -139,13 +133,13 @@ pub struct GeneratedKernel {
     wet: bool,
     solve_path: SolvePath,
     params: Vec<BodyParams>,
-    trig: Vec<[f64; 2]>,
-    /// The q that `trig` was computed at (empty before the first kinematics): body
+    /// The rotation table, body states, loads and powers of the last evaluation, and the
+    /// rolled solve's rows.
+    ws: kanestop_generated::Workspace,
+    /// The q that `ws.trig` was computed at (empty before the first kinematics): body
     /// accelerations at the state just solved, as every observation asks for, reuse it.
     trig_q: Vec<f64>,
-    states: Vec<[f64; 6]>,
     loads: Vec<Load>,
-    load_array: Vec<[f64; 3]>,
     acc: Vec<[f64; 3]>,
     /// a_{w,p} and f_w from `assemble`.
     heave: Vec<f64>,
@@ -172,9 +166,7 @@ impl GeneratedKernel {
             Form::Unrolled => {
                 Table::Unrolled(kanestop_generated::find(n, wet).ok_or(GeneratedError::NotBuilt { bodies: n, wet })?)
             }
-            Form::Rolled => {
-                Table::Rolled(kanestop_generated::rolled(wet), vec![[0.0; kanestop_generated::ROLLED_SCRATCH]; n])
-            }
+            Form::Rolled => Table::Rolled(kanestop_generated::rolled(wet)),
         };
         let params = body_params(chain);
         for StructuralZero { body: k, field } in variant.structural_zeros() {
@@ -195,11 +187,9 @@ impl GeneratedKernel {
             wet,
             solve_path: SolvePath::Recursive,
             params,
-            trig: vec![[0.0; 2]; n],
+            ws: kanestop_generated::Workspace::new(n),
             trig_q: Vec::with_capacity(n),
-            states: vec![[0.0; 6]; n],
             loads: vec![Load::default(); n],
-            load_array: vec![[0.0; 3]; n],
             acc: vec![[0.0; 3]; n],
             heave: vec![0.0; n + 1],
         })
@@ -225,14 +215,9 @@ impl GeneratedKernel {
         self.wet
     }
 
-    /// Whether the generated code computes the loads ([`Kernel::fuse_loads`]).
+    /// Whether the scene's fused right-hand side runs ([`Kernel::fuse_loads`]).
     pub fn is_fused(&self) -> bool {
         self.fusion.is_some()
-    }
-
-    /// Whether the loads are weight alone, computed inside the generated solve's steps.
-    pub fn is_gravity_fused(&self) -> bool {
-        self.fusion.as_ref().is_some_and(|f| f.gravity.is_some())
     }
 
     /// Unrolled or rolled.
@@ -246,12 +231,17 @@ impl GeneratedKernel {
     fn states(&mut self, q: &[f64], u: &[f64], bodies: &mut [BodyState]) {
         let kinematics = match &self.table {
             Table::Unrolled(t) => t.kinematics,
-            Table::Rolled(t, _) => t.kinematics,
+            Table::Rolled(t) => t.kinematics,
         };
-        kinematics(&self.params, q, u, &mut self.trig, &mut self.states);
+        kinematics(&self.params, q, u, &mut self.ws.trig, &mut self.ws.bodies);
+        self.computed_at(q, bodies);
+    }
+
+    /// Records that `ws` holds the kinematics at `q` and copies its states into `bodies`.
+    fn computed_at(&mut self, q: &[f64], bodies: &mut [BodyState]) {
         self.trig_q.clear();
         self.trig_q.extend_from_slice(q);
-        for ((b, s), t) in bodies.iter_mut().zip(&self.states).zip(&self.trig) {
+        for ((b, s), t) in bodies.iter_mut().zip(&self.ws.bodies).zip(&self.ws.trig) {
             *b = BodyState { x: s[0], z: s[1], theta: s[2], cos: t[0], sin: t[1], vx: s[3], vz: s[4], omega: s[5] };
         }
     }
@@ -266,47 +256,66 @@ impl GeneratedKernel {
         bodies: &[BodyState],
         qdd: &mut [f64],
     ) -> Result<AnchorReaction, RhsError> {
-        if self.fusion.is_some() {
-            self.fused_loads(model);
-        } else {
-            self.loads(model, bodies);
-        }
-        let (p, trig, loads) = (&self.params, &self.trig, &self.load_array);
-        Ok(match (anchor, &mut self.table) {
+        self.loads(model, bodies);
+        let (p, ws) = (&self.params, &mut self.ws);
+        Ok(match (anchor, &self.table) {
             (AnchorDof::Free, table) => {
                 let [normal, factor] = match table {
-                    Table::Unrolled(t) => (t.solve_free)(p, u, trig, loads, friction, qdd),
-                    Table::Rolled(t, scratch) => (t.solve_free)(p, u, trig, loads, friction, qdd, scratch),
+                    Table::Unrolled(t) => (t.solve_free)(p, u, &ws.trig, &ws.loads, friction, qdd),
+                    Table::Rolled(t) => (t.solve_free)(p, u, &ws.trig, &ws.loads, friction, qdd, &mut ws.scratch),
                 };
                 check_friction_factor(factor)?;
                 AnchorReaction { holding: 0.0, normal }
             }
             (AnchorDof::Stuck, table) => {
                 let [holding, normal] = match table {
-                    Table::Unrolled(t) => (t.solve_stuck)(p, u, trig, loads, qdd),
-                    Table::Rolled(t, scratch) => (t.solve_stuck)(p, u, trig, loads, qdd, scratch),
+                    Table::Unrolled(t) => (t.solve_stuck)(p, u, &ws.trig, &ws.loads, qdd),
+                    Table::Rolled(t) => (t.solve_stuck)(p, u, &ws.trig, &ws.loads, qdd, &mut ws.scratch),
                 };
                 AnchorReaction { holding, normal }
             }
         })
     }
 
-    fn loads(&mut self, model: &mut dyn LoadModel, bodies: &[BodyState]) {
-        model.loads(bodies, &mut self.loads);
-        for (a, l) in self.load_array.iter_mut().zip(&self.loads) {
-            *a = [l.fx, l.fz, l.my];
-        }
-    }
-
-    /// The loads by the generated load code, at the states of the last kinematics, told
-    /// to `model`.
-    fn fused_loads(&mut self, model: &mut dyn LoadModel) {
-        let f = self.fusion.as_mut().expect("fused");
-        (f.loads)(&self.params, &f.params, &f.elements, &self.trig, &self.states, &mut self.load_array, &mut f.power);
-        for (l, a) in self.loads.iter_mut().zip(&self.load_array) {
+    /// The scene's fused right-hand side at (q, u): states, loads and ẍ in one generated
+    /// function; the loads and powers are told to `model`.
+    #[allow(clippy::too_many_arguments)]
+    fn solve_fused(
+        &mut self,
+        q: &[f64],
+        u: &[f64],
+        anchor: AnchorDof,
+        friction: f64,
+        model: &mut dyn LoadModel,
+        bodies: &mut [BodyState],
+        qdd: &mut [f64],
+    ) -> Result<AnchorReaction, RhsError> {
+        let f = self.fusion.as_ref().expect("solve_fused runs with a fusion set");
+        let (p, lp, e, ws) = (&self.params, &f.params, &f.elements, &mut self.ws);
+        let reaction = match anchor {
+            AnchorDof::Free => {
+                let [normal, factor] = (f.rhs.free)(p, lp, e, q, u, friction, ws, qdd);
+                check_friction_factor(factor)?;
+                AnchorReaction { holding: 0.0, normal }
+            }
+            AnchorDof::Stuck => {
+                let [holding, normal] = (f.rhs.stuck)(p, lp, e, q, u, ws, qdd);
+                AnchorReaction { holding, normal }
+            }
+        };
+        self.computed_at(q, bodies);
+        for (l, a) in self.loads.iter_mut().zip(&self.ws.loads) {
             *l = Load { fx: a[0], fz: a[1], my: a[2] };
         }
-        model.fused(&self.loads, &f.power);
+        model.fused(&self.loads, &self.ws.power);
+        Ok(reaction)
+    }
+
+    fn loads(&mut self, model: &mut dyn LoadModel, bodies: &[BodyState]) {
+        model.loads(bodies, &mut self.loads);
+        for (a, l) in self.ws.loads.iter_mut().zip(&self.loads) {
+            *a = [l.fx, l.fz, l.my];
+        }
     }
 }
 
@@ -323,42 +332,22 @@ impl Kernel for GeneratedKernel {
         Some(GeneratedKernel::form(self).name())
     }
 
-    /// Any signature on the recursive path: the generated load code of the signature runs
-    /// before the solve. Weight alone on a dry chain goes further: the rolled kernel's
-    /// gravity solves compute −m g in their own steps, and an unrolled kernel switches to
-    /// them (the rolled form runs within a few per cent of the unrolled one, and says so in
-    /// [`GeneratedKernel::form`]). Not on the assembled path, which reads loads.
+    /// Any signature on the recursive path: the scene's fused right-hand side (kinematics,
+    /// the signature's load code and the O(N) solve in one generated function, on the rolled
+    /// steps) replaces kinematics, loads and solve. An unrolled kernel switches to the rolled
+    /// one, whose steps the fused functions drive (measured faster than the unrolled kernel
+    /// fed by the force modules: docs/codegen.md), and says so in [`GeneratedKernel::form`].
+    /// Not on the assembled path, which reads loads, nor when the signature's water differs
+    /// from the kernel's (added mass without water, or water without added mass).
     fn fuse_loads(&mut self, fused: &FusedLoads) -> bool {
-        let Some(loads) = kanestop_generated::loads(&fused.signature.name()) else { return false };
-        if self.solve_path != SolvePath::Recursive || fused.elements.len() != self.bodies {
+        let Some(rhs) = kanestop_generated::rhs(&fused.signature.name()) else { return false };
+        if self.solve_path != SolvePath::Recursive || fused.elements.len() != self.bodies || rhs.wet != self.wet {
             return false;
         }
-        let rolled = kanestop_generated::rolled(self.wet);
-        let g = fused.params.g;
-        let gravity = rolled.gravity.filter(|_| fused.signature == LoadSignature::weight_only() && g.is_finite());
-        if gravity.is_some() {
-            if let Table::Unrolled(_) = self.table {
-                self.table = Table::Rolled(rolled, vec![[0.0; kanestop_generated::ROLLED_SCRATCH]; self.bodies]);
-            }
+        if let Table::Unrolled(_) = self.table {
+            self.table = Table::Rolled(kanestop_generated::rolled(self.wet));
         }
-        let mut fusion = Fusion {
-            loads,
-            params: fused.params,
-            elements: fused.elements.clone(),
-            power: [0.0; kanestop_generated::POWER_TERMS],
-            gravity: gravity.map(|t| (t, g)),
-            weights: Vec::new(),
-        };
-        if fusion.gravity.is_some() {
-            // The weights do not depend on the state: the load code at any state gives them.
-            let states = vec![[0.0; 6]; self.bodies];
-            let trig = vec![[1.0, 0.0]; self.bodies];
-            let mut weights = vec![[0.0; 3]; self.bodies];
-            let f = &mut fusion;
-            (f.loads)(&self.params, &f.params, &f.elements, &trig, &states, &mut weights, &mut f.power);
-            f.weights = weights.iter().map(|a| Load { fx: a[0], fz: a[1], my: a[2] }).collect();
-        }
-        self.fusion = Some(fusion);
+        self.fusion = Some(Fusion { rhs, params: fused.params, elements: fused.elements.clone() });
         true
     }
 
@@ -370,11 +359,10 @@ impl Kernel for GeneratedKernel {
         self.states(q, u, &mut out.bodies);
         self.loads(model, &out.bodies);
         let (m, f, heave) = (out.mass.as_mut_slice(), out.rhs.as_mut_slice(), &mut self.heave);
-        match &mut self.table {
-            Table::Unrolled(t) => (t.assemble)(&self.params, u, &self.trig, &self.load_array, m, f, heave),
-            Table::Rolled(t, scratch) => {
-                (t.assemble)(&self.params, u, &self.trig, &self.load_array, m, f, heave, scratch)
-            }
+        let (p, ws) = (&self.params, &mut self.ws);
+        match &self.table {
+            Table::Unrolled(t) => (t.assemble)(p, u, &ws.trig, &ws.loads, m, f, heave),
+            Table::Rolled(t) => (t.assemble)(p, u, &ws.trig, &ws.loads, m, f, heave, &mut ws.scratch),
         }
         let n = self.heave.len() - 1;
         out.heave.copy_from_slice(&self.heave[..n]);
@@ -384,14 +372,14 @@ impl Kernel for GeneratedKernel {
     fn accelerations(&mut self, q: &[f64], u: &[f64], qdd: &[f64], out: &mut [BodyAcceleration]) {
         let (kinematics, accelerations) = match &self.table {
             Table::Unrolled(t) => (t.kinematics, t.accelerations),
-            Table::Rolled(t, _) => (t.kinematics, t.accelerations),
+            Table::Rolled(t) => (t.kinematics, t.accelerations),
         };
         if self.trig_q != q {
-            kinematics(&self.params, q, u, &mut self.trig, &mut self.states);
+            kinematics(&self.params, q, u, &mut self.ws.trig, &mut self.ws.bodies);
             self.trig_q.clear();
             self.trig_q.extend_from_slice(q);
         }
-        accelerations(&self.params, u, &self.trig, qdd, &mut self.acc);
+        accelerations(&self.params, u, &self.ws.trig, qdd, &mut self.acc);
         for (o, a) in out.iter_mut().zip(&self.acc) {
             *o = BodyAcceleration { ax: a[0], az: a[1], alpha: a[2] };
         }
@@ -411,25 +399,11 @@ impl Kernel for GeneratedKernel {
             self.assemble(q, u, model, scratch);
             return solve_assembled(scratch, anchor, friction, qdd);
         }
-        self.states(q, u, &mut scratch.bodies);
-        let gravity = self.fusion.as_ref().and_then(|f| f.gravity.map(|t| (t, &f.weights)));
-        let reaction = match (gravity, &mut self.table) {
-            (Some(((fused, g), weights)), Table::Rolled(_, scratch)) => {
-                let (p, trig) = (&self.params, &self.trig);
-                model.fused(weights, &[0.0; kanestop_generated::POWER_TERMS]);
-                match anchor {
-                    AnchorDof::Free => {
-                        let [normal, factor] = (fused.solve_free)(p, u, trig, g, friction, qdd, scratch);
-                        check_friction_factor(factor)?;
-                        AnchorReaction { holding: 0.0, normal }
-                    }
-                    AnchorDof::Stuck => {
-                        let [holding, normal] = (fused.solve_stuck)(p, u, trig, g, qdd, scratch);
-                        AnchorReaction { holding, normal }
-                    }
-                }
-            }
-            _ => self.solve_with_loads(u, anchor, friction, model, &scratch.bodies, qdd)?,
+        let reaction = if self.fusion.is_some() {
+            self.solve_fused(q, u, anchor, friction, model, &mut scratch.bodies, qdd)?
+        } else {
+            self.states(q, u, &mut scratch.bodies);
+            self.solve_with_loads(u, anchor, friction, model, &scratch.bodies, qdd)?
         };
         if !reaction.holding.is_finite() || !reaction.normal.is_finite() || qdd.iter().any(|x| !x.is_finite()) {
             return Err(RhsError::NonFiniteAcceleration);
