@@ -678,3 +678,88 @@ fn the_gravity_steps_read_no_load_and_do_less() {
     assert!(pass.contains("inward_rod_gravity"), "{pass}");
     assert!(!kanestop_codegen::drivers::generate_rolled(Water::On).source.contains("_gravity"));
 }
+
+// --- The joint forces from the solve's rows ------------------------------------------------
+
+/// The force through every hinge from the rows the solve left (`Kernel::joint_forces`)
+/// against Newton's form on the body accelerations of the same solve (`joints`, the oracle):
+/// within 1e-10 of the size of what Newton's form sums (each body's inertia force and load,
+/// plus the chain's weight), on the fused right-hand
+/// side of every paper and stress scene and on the rolled kernel fed by the force modules;
+/// the unrolled kernels and the reference keep no rows and say so.
+#[test]
+fn the_solve_s_joint_forces_are_newton_s() {
+    // Newton's form sums inertia forces and loads that nearly cancel (a 500 t ship's weight
+    // and buoyancy, the line's), and the two forms round differently: measured 9.3e-12.
+    const JOINT_TOL: f64 = 1e-10;
+    use kanestop_runtime::joints;
+    let mut worst = 0.0f64;
+    let mut models = scenes("scenes/paper");
+    models.extend(scenes("scenes/stress"));
+    for (name, model) in &models {
+        let (chain, n) = (&model.chain, model.body_count());
+        let mut forces = Forces::new(model);
+        let mut fused = GeneratedKernel::new(chain).unwrap();
+        assert!(fused.fuse_loads(&fused_loads(&forces).unwrap()), "{name}");
+        let mut fed = GeneratedKernel::with_form(chain, Form::Rolled).unwrap();
+        let weight = chain.bodies.iter().map(|b| b.mass).sum::<f64>() * model.scene.environment.gravity;
+        let mut rng = rng(9000);
+        for trial in 0..20 {
+            let (q, mut u) = near_start(model, &mut rng, 0.3);
+            let (anchor, friction) = if trial % 2 == 0 { (AnchorDof::Free, 0.3) } else { (AnchorDof::Stuck, 0.0) };
+            if anchor == AnchorDof::Stuck {
+                u[n - 1] = 0.0;
+            }
+            for (kernel, fuses) in [(&mut fused, true), (&mut fed, false)] {
+                let (mut scratch, mut qdd, mut told) = (Assembly::new(n), vec![0.0; n], Told::default());
+                let loads = if fuses {
+                    kernel.solve(&q, &u, anchor, friction, &mut told, &mut scratch, &mut qdd).unwrap();
+                    told.loads.clone()
+                } else {
+                    kernel.solve(&q, &u, anchor, friction, &mut forces, &mut scratch, &mut qdd).unwrap();
+                    let mut l = vec![Load::default(); n];
+                    forces.loads(&scratch.bodies, &mut l);
+                    l
+                };
+                let mut own = vec![[0.0; 2]; n - 1];
+                assert!(kernel.joint_forces(&mut own), "{name}: the rolled solve keeps its rows");
+                let mut acc = vec![Default::default(); n];
+                kernel.accelerations(&q, &u, &qdd, &mut acc);
+                let mut newton = vec![[0.0; 2]; n - 1];
+                joints::from_accelerations(chain, &scratch.bodies, &acc, &loads, &mut newton);
+                // The size of what Newton's form sums: each body's inertia force and load.
+                let terms: f64 = (1..n)
+                    .map(|k| {
+                        let (b, a, l) = (&chain.bodies[k], &acc[k], &loads[k]);
+                        (b.mass + b.added_mass) * (a.ax.abs() + a.az.abs()) + l.fx.abs() + l.fz.abs()
+                    })
+                    .sum();
+                let scale = weight + terms;
+                for (k, (a, b)) in own.iter().zip(&newton).enumerate() {
+                    let d = (a[0] - b[0]).abs().max((a[1] - b[1]).abs()) / scale;
+                    assert!(d <= JOINT_TOL, "{name} state {trial}: joint {} {a:?} against {b:?} ({d:e})", k + 2);
+                    worst = worst.max(d);
+                }
+            }
+        }
+    }
+    eprintln!("joint forces from the solve's rows against Newton's form: worst {worst:e} of the scale");
+    // The kernels that keep no rows.
+    let chain = &models[0].1.chain;
+    let mut unrolled = GeneratedKernel::with_form(chain, Form::Unrolled).unwrap();
+    let n = chain.len();
+    let (q, u) = (models[0].1.q0.clone(), models[0].1.u0.clone());
+    let (mut scratch, mut qdd, mut out) = (Assembly::new(n), vec![0.0; n], vec![[0.0; 2]; n - 1]);
+    let mut forces = Forces::new(&models[0].1);
+    unrolled.solve(&q, &u, AnchorDof::Stuck, 0.0, &mut forces, &mut scratch, &mut qdd).unwrap();
+    assert!(!unrolled.joint_forces(&mut out));
+    let mut reference = ReferenceKernel::new(chain);
+    reference.solve(&q, &u, AnchorDof::Stuck, 0.0, &mut forces, &mut scratch, &mut qdd).unwrap();
+    assert!(!reference.joint_forces(&mut out));
+    // After an assembly the rows are gone.
+    let mut rolled = GeneratedKernel::with_form(chain, Form::Rolled).unwrap();
+    rolled.solve(&q, &u, AnchorDof::Stuck, 0.0, &mut forces, &mut scratch, &mut qdd).unwrap();
+    assert!(rolled.joint_forces(&mut out));
+    rolled.assemble(&q, &u, &mut forces, &mut scratch);
+    assert!(!rolled.joint_forces(&mut out));
+}

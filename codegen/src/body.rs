@@ -328,8 +328,17 @@ pub(crate) fn articulated_body(
 /// Eliminates hinge k from IA_k, pA_k and carries the rest across d_k to o_{k−1}:
 /// Ia = IA − U Uᵀ / D, pa = pA − U pA_0 / D (U = IA e_0; the angular row and column vanish
 /// exactly), then X = [[1, 0, 0], [j_x, 1, 0], [j_z, 0, 1]] with (j_x, j_z) = J(d_k) and the
-/// joint's velocity product c = (0, −θ̇_{k−1}² d_k). Returns (1/D, Xᵀ Ia X, Xᵀ(Ia c + pa)).
-pub(crate) fn eliminate_hinge(dag: &mut Dag, ab: Articulated, d: V2, omega_prev: Id, tag: &str) -> (Id, Articulated) {
+/// joint's velocity product c = (0, −θ̇_{k−1}² d_k). Returns the hinge's gains for the
+/// outward pass, (IA_01/D, IA_02/D, pA_0/D), the carry (Xᵀ Ia X, Xᵀ(Ia c + pa)), and the
+/// hinge's force row: Ia's translational block and pa's forces, (Ia_11, Ia_12, Ia_22, pa_1,
+/// pa_2), from which [`hinge_force`] gives the force through the hinge.
+pub(crate) fn eliminate_hinge(
+    dag: &mut Dag,
+    ab: Articulated,
+    d: V2,
+    omega_prev: Id,
+    tag: &str,
+) -> ([Id; 3], Articulated, [Id; 5]) {
     let (i, p) = ab;
     let one = dag.one();
     let inv = dag.div(one, i[0]);
@@ -344,6 +353,7 @@ pub(crate) fn eliminate_hinge(dag: &mut Dag, ab: Articulated, d: V2, omega_prev:
     let r22 = dag.sub(i[5], t22);
     let q1 = dag.mul(u1, p[0]);
     let q2 = dag.mul(u2, p[0]);
+    let pm = dag.mul(p[0], inv);
     let pa1 = dag.sub(p[1], q1);
     let pa2 = dag.sub(p[2], q2);
     let jd = perp(dag, d);
@@ -358,7 +368,7 @@ pub(crate) fn eliminate_hinge(dag: &mut Dag, ab: Articulated, d: V2, omega_prev:
     let y2 = dag.dot2([r12, r22], jd);
     let x00 = dag.dot2(jd, [y1, y2]);
     let xp0 = dag.dot2(jd, [z1, z2]);
-    (inv, ([x00, y1, y2, r11, r12, r22], [xp0, z1, z2]))
+    ([u1, u2, pm], ([x00, y1, y2, r11, r12, r22], [xp0, z1, z2]), [r11, r12, r22, pa1, pa2])
 }
 
 /// The anchor's row once every hinge is eliminated. The seabed supplies the wrench IA_1 (0,
@@ -391,9 +401,13 @@ pub(crate) fn anchor_solve(dag: &mut Dag, anchor: Articulated, stuck: bool) -> (
     (s_dd, vec![normal, factor])
 }
 
-/// The outward pass across hinge k: the origin's acceleration a_{o_k} = a_{o_{k−1}} +
-/// α_{k−1} J(d_k) − θ̇_{k−1}² d_k, then α_k = −(IA_01 a_x + IA_02 a_z + pA_0) / D and
-/// β̈_k = α_k − α_{k−1}. `row` = (IA_01, IA_02, pA_0, 1/D). Returns (α_k, a_{o_k}, β̈_k).
+/// The outward pass across hinge k: the origin's acceleration a_{o_k} = (a_{o_{k−1}} −
+/// θ̇_{k−1}² d_k) + α_{k−1} J(d_k), then α_k = −(IA_01/D a_x + IA_02/D a_z + pA_0/D) and
+/// β̈_k = α_k − α_{k−1}. `gains` = (IA_01/D, IA_02/D, pA_0/D) from [`eliminate_hinge`].
+/// The pass is a chain from body to body through α; the operations are ordered so that
+/// α_{k−1} enters last and the division was done in the inward pass: six dependent
+/// operations a body (a product and a sum into a_{o_k}, two products summed and the
+/// constant added into α_k), where dividing here took eight. Returns (α_k, a_{o_k}, β̈_k).
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn outward_step(
     dag: &mut Dag,
@@ -401,7 +415,7 @@ pub(crate) fn outward_step(
     omega_prev: Id,
     alpha: Id,
     acc: V2,
-    row: [Id; 4],
+    gains: [Id; 3],
     tag: &str,
     coordinate: &str,
 ) -> (Id, V2, Id) {
@@ -409,17 +423,26 @@ pub(crate) fn outward_step(
     let w2p = dag.mul(omega_prev, omega_prev);
     let cv = scale2(dag, w2p, d);
     let t = scale2(dag, alpha, jd);
-    let a = add2(dag, acc, t);
-    let a = sub2(dag, a, cv);
+    let a = sub2(dag, acc, cv);
+    let a = add2(dag, a, t);
     let a = name2(dag, a, &format!("ao{tag}"));
-    let num = dag.dot2([row[0], row[1]], a);
-    let num = dag.add(num, row[2]);
-    let q = dag.mul(num, row[3]);
+    let num = dag.dot2([gains[0], gains[1]], a);
+    let q = dag.add(num, gains[2]);
     let new_alpha = dag.neg(q);
     let new_alpha = dag.name(new_alpha, format!("alpha{tag}"));
     let beta_dd = dag.sub(new_alpha, alpha);
     let beta_dd = dag.name(beta_dd, format!("qdd{coordinate}"));
     (new_alpha, a, beta_dd)
+}
+
+/// The force on the bodies outboard of hinge k from B_{k−1}, through the hinge at o_k
+/// (Eq. 52): with the hinge's freedom eliminated, F = Ia a_{o_k} + pa in its translational
+/// rows (`row` = (Ia_11, Ia_12, Ia_22, pa_1, pa_2) from [`eliminate_hinge`], `acc` = a_{o_k}
+/// from [`outward_step`]); the hinge transmits no moment about y.
+pub(crate) fn hinge_force(dag: &mut Dag, row: [Id; 5], acc: V2) -> V2 {
+    let fx = dag.dot2([row[0], row[1]], acc);
+    let fz = dag.dot2([row[1], row[2]], acc);
+    [dag.add(fx, row[3]), dag.add(fz, row[4])]
 }
 
 /// Body accelerations (Eq. 17) across hinge k (`hinge` = (d_k, θ̇_{k−1}, β̈_k), absent at

@@ -75,6 +75,7 @@ pub fn generate_rolled(water: Water) -> RolledFile {
             accelerations,
             solve_free,
             solve_stuck,
+            joint_forces,
         };
         #drivers
         #solves
@@ -167,6 +168,7 @@ fn solve_drivers() -> TokenStream {
 /// The loops over the chain: the public entry points but the solves ([`solve_drivers`]; the
 /// signatures of the unrolled kernels plus `scratch`) and the passes they share.
 fn drivers() -> TokenStream {
+    let hinge_acceleration = proc_macro2::Literal::usize_unsuffixed(crate::rolled::HINGE_ACCELERATION);
     quote! {
         /// The chain's length, checked against every argument.
         fn bodies(p: &[crate::BodyParams], lens: &[usize]) -> usize {
@@ -215,15 +217,28 @@ fn drivers() -> TokenStream {
             }
         }
 
-        /// The outward pass of the O(N) solve from the anchor's s̈.
-        pub(crate) fn outward_pass(s_dd: f64, scratch: &[[f64; crate::ROLLED_SCRATCH]], qdd: &mut [f64]) {
+        /// The outward pass of the O(N) solve from the anchor's s̈; keeps each hinge's a_{o_k}
+        /// in its row, for [`joint_forces`].
+        pub(crate) fn outward_pass(s_dd: f64, scratch: &mut [[f64; crate::ROLLED_SCRATCH]], qdd: &mut [f64]) {
+            const A: usize = #hinge_acceleration;
             let n = scratch.len();
             qdd[n - 1] = s_dd;
             let mut c = [0.0, s_dd, 0.0];
             for k in 1..n {
                 let [alpha, ax, az, beta_dd] = outward(&scratch[k], scratch[k - 1][crate::ROLLED_SCRATCH - 1], &c);
+                (scratch[k][A], scratch[k][A + 1]) = (ax, az);
                 qdd[k - 1] = beta_dd;
                 c = [alpha, ax, az];
+            }
+        }
+
+        /// The force on B_k from B_{k−1} through their hinge (Eq. 52), `out[k − 2]` = [F_x, F_z]
+        /// for k = 2 … N, from the rows the last solve left in `scratch` (`solve_free`,
+        /// `solve_stuck` or a fused right-hand side): no second pass over the chain's dynamics.
+        pub fn joint_forces(scratch: &[[f64; crate::ROLLED_SCRATCH]], out: &mut [[f64; 2]]) {
+            assert!(scratch.len() > out.len(), "the scratch must hold the N rows of the solve");
+            for (k, f) in out.iter_mut().enumerate() {
+                *f = hinge(&scratch[k + 1]);
             }
         }
 

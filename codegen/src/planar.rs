@@ -485,7 +485,7 @@ pub fn solve_with(variant: Variant, stuck: bool, source: ParamSource) -> Functio
     // Inward pass. ia[k] = IA_k as [00, 01, 02, 11, 12, 22]; pa[k] = pA_k.
     let mut ia: Vec<[Id; 6]> = vec![[zero; 6]; n];
     let mut pa: Vec<[Id; 3]> = vec![[zero; 3]; n];
-    let mut inv_d = vec![zero; n];
+    let mut gains = vec![[zero; 3]; n];
     // Carried from the child: (Xᵀ Ia X) as [00, 01, 02, 11, 12, 22] and Xᵀ(Ia c + pa).
     let mut carry: Option<Articulated> = None;
     for k in (0..n).rev() {
@@ -496,22 +496,22 @@ pub fn solve_with(variant: Variant, stuck: bool, source: ParamSource) -> Functio
         if k == 0 {
             break;
         }
-        let (inv, c) = eliminate_hinge(&mut dag, (i, p), kin.d[k], kin.omega[k - 1], &tag);
-        inv_d[k] = inv;
+        let (g, c, _) = eliminate_hinge(&mut dag, (i, p), kin.d[k], kin.omega[k - 1], &tag);
+        gains[k] = g;
         carry = Some(c);
     }
     let (s_dd, ret) = anchor_solve(&mut dag, (ia[0], pa[0]), stuck);
     f.ret = ret;
     f.store(Slot::at("qdd", n - 1), s_dd);
 
-    // Outward pass: (α, a_o) of each body; α_k = −(IA_01 â_x + IA_02 â_z + pA_0) / D.
+    // Outward pass: (α, a_o) of each body; α_k = −(IA_01 â_x + IA_02 â_z + pA_0) / D, with
+    // the divisions by D done in the inward pass (the hinge's gains).
     let mut alpha = zero;
     let mut acc = [s_dd, zero];
-    for k in 1..n {
-        let row = [ia[k][1], ia[k][2], pa[k][0], inv_d[k]];
+    for (k, &g) in gains.iter().enumerate().skip(1) {
         let tags = (format!("_{}", k + 1), format!("_{}", k - 1));
         let (new_alpha, a, beta_dd) =
-            outward_step(&mut dag, kin.d[k], kin.omega[k - 1], alpha, acc, row, &tags.0, &tags.1);
+            outward_step(&mut dag, kin.d[k], kin.omega[k - 1], alpha, acc, g, &tags.0, &tags.1);
         f.store(Slot::at("qdd", k - 1), beta_dd);
         alpha = new_alpha;
         acc = a;

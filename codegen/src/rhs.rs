@@ -140,7 +140,7 @@ fn signature_rhs(sig: &LoadSignature) -> TokenStream {
             let n = ws.check(p, &[e.len(), q.len(), u.len(), qdd.len()]);
             let c = #pass(p, lp, e, q, u, ws);
             let [s_dd, normal, factor] = crate::#r::#anchor_free(&p[0], #f_anchor, &c, friction);
-            crate::#r::outward_pass(s_dd, &ws.scratch[..n], qdd);
+            crate::#r::outward_pass(s_dd, &mut ws.scratch[..n], qdd);
             [normal, factor]
         }
 
@@ -157,7 +157,7 @@ fn signature_rhs(sig: &LoadSignature) -> TokenStream {
             let n = ws.check(p, &[e.len(), q.len(), u.len(), qdd.len()]);
             let c = #pass(p, lp, e, q, u, ws);
             let [s_dd, holding, normal] = crate::#r::#anchor_stuck(&p[0], #f_anchor, &c);
-            crate::#r::outward_pass(s_dd, &ws.scratch[..n], qdd);
+            crate::#r::outward_pass(s_dd, &mut ws.scratch[..n], qdd);
             [holding, normal]
         }
     }

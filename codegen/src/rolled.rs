@@ -23,8 +23,8 @@ use kanestop_chain::{ParamField, Variant, Water};
 
 use crate::body::{
     acceleration_step, anchor_solve, angle_step, articulated_body, centripetal_step, centroid_kinematics,
-    effective_force, eliminate_hinge, force_sums, hinge_kinematics, outboard_step, outward_step, rot, BodySyms,
-    Outboard, V2,
+    effective_force, eliminate_hinge, force_sums, hinge_force, hinge_kinematics, outboard_step, outward_step, rot,
+    BodySyms, Outboard, V2,
 };
 use crate::expr::{Dag, Id};
 use crate::planar::{Function, Slot};
@@ -300,7 +300,8 @@ fn load_syms(dag: &mut Dag, loads: Loads, mass: Id) -> (V2, Id) {
 
 /// `inward_<kind>` (not the anchor): the body's articulated inertia, its hinge eliminated
 /// and carried to the parent (the inward pass of the O(N) solve). Stores the row the
-/// outward pass needs, `s` = [d_x, d_z, IA_01, IA_02, pA_0, 1/D]; returns the carry
+/// outward pass needs, `s` = [d_x, d_z, IA_01/D, IA_02/D, pA_0/D], and the hinge's force
+/// row (`s[5..10]` = Ia_11, Ia_12, Ia_22, pa_1, pa_2, for [`hinge`]); returns the carry
 /// [Xᵀ Ia X (6), Xᵀ(Ia c + pa) (3)]. With [`Loads::Gravity`], `inward_<kind>_gravity`.
 pub fn inward(kind: Kind, water: Water, loads: Loads) -> Step {
     assert_ne!(kind, Kind::Anchor, "the anchor closes the inward pass (anchor_free, anchor_stuck)");
@@ -314,8 +315,8 @@ pub fn inward(kind: Kind, water: Water, loads: Loads) -> Step {
     let carry = (kind != Kind::Ship).then(|| articulated_carry(&mut dag));
     let ab = articulated_body(&mut dag, &b, load, carry, TAG);
     let d = rot(&mut dag, parent, p.joint);
-    let (inv, (ci, cp)) = eliminate_hinge(&mut dag, ab, d, wp, TAG);
-    for (j, v) in [d[0], d[1], ab.0[1], ab.0[2], ab.1[0], inv].into_iter().enumerate() {
+    let (gains, (ci, cp), force_row) = eliminate_hinge(&mut dag, ab, d, wp, TAG);
+    for (j, v) in [d[0], d[1], gains[0], gains[1], gains[2]].into_iter().chain(force_row).enumerate() {
         f.store(Slot::at("s", j), v);
     }
     f.ret = ci.into_iter().chain(cp).collect();
@@ -367,16 +368,39 @@ pub fn anchor(water: Water, stuck: bool, loads: Loads) -> Step {
     )
 }
 
+/// Where the scratch row keeps a_{o_k} after the outward pass, for [`hinge`].
+pub const HINGE_ACCELERATION: usize = 10;
+
+/// `hinge`: the force on the bodies outboard of the hinge from the inner body (Eq. 52),
+/// [F_x, F_z], from the row `s` the solve left: the force row of the inward pass and a_{o_k}
+/// of the outward pass (`s[10..12]`).
+pub fn hinge() -> Step {
+    let mut dag = Dag::new();
+    let mut f = Function::new(Dag::new());
+    let s: Vec<Id> = (0..HINGE_ACCELERATION + 2).map(|i| dag.input(format!("s[{i}]"))).collect();
+    let row = [s[5], s[6], s[7], s[8], s[9]];
+    let force = hinge_force(&mut dag, row, [s[HINGE_ACCELERATION], s[HINGE_ACCELERATION + 1]]);
+    f.ret = force.to_vec();
+    f.dag = dag;
+    step(
+        "hinge".to_string(),
+        None,
+        "The force on the bodies outboard of one hinge from the inner body (Eq. 52), [F_x, F_z], from the solve's row.",
+        "s: &[f64; crate::ROLLED_SCRATCH]".to_string(),
+        f,
+    )
+}
+
 /// `outward`: the outward pass across one hinge from the row `s` the inward pass stored;
 /// the carry is [α, a_{o,x}, a_{o,z}]; returns it and β̈.
 pub fn outward() -> Step {
     let mut dag = Dag::new();
     let mut f = Function::new(Dag::new());
-    let s: Vec<Id> = (0..6).map(|i| dag.input(format!("s[{i}]"))).collect();
+    let s: Vec<Id> = (0..5).map(|i| dag.input(format!("s[{i}]"))).collect();
     let wp = dag.input("wp");
     let c = carry_in(&mut dag, 3);
-    let row = [s[2], s[3], s[4], s[5]];
-    let (alpha, a, beta_dd) = outward_step(&mut dag, [s[0], s[1]], wp, c[0], [c[1], c[2]], row, TAG, TAG);
+    let gains = [s[2], s[3], s[4]];
+    let (alpha, a, beta_dd) = outward_step(&mut dag, [s[0], s[1]], wp, c[0], [c[1], c[2]], gains, TAG, TAG);
     f.ret = vec![alpha, a[0], a[1], beta_dd];
     f.dag = dag;
     step(
@@ -561,6 +585,7 @@ pub fn steps(water: Water) -> Vec<Step> {
         out.push(anchor(water, true, loads));
     }
     out.push(outward());
+    out.push(hinge());
     out.push(outboard(Ship, water));
     out.push(outboard(Rod, water));
     out.push(link());

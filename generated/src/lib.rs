@@ -91,8 +91,9 @@ pub struct KernelTable {
     pub solve_stuck: SolveStuckFn,
 }
 
-/// Values per body in the scratch rows of the rolled kernels.
-pub const ROLLED_SCRATCH: usize = 8;
+/// Values per body in the scratch rows of the rolled kernels: the solve's row (the hinge,
+/// its gains and force row, a_{o_k}) and θ̇_k last.
+pub const ROLLED_SCRATCH: usize = 13;
 
 /// Rolled a_lp, f_l and heave row: `(p, u, trig, loads, m, f, heave, scratch)`.
 pub type RolledAssembleFn = fn(
@@ -124,7 +125,13 @@ pub struct RolledTable {
     pub accelerations: AccelerationsFn,
     pub solve_free: RolledSolveFreeFn,
     pub solve_stuck: RolledSolveStuckFn,
+    /// The force through every hinge at the last solve, from its rows (`scratch`, out).
+    pub joint_forces: JointForcesFn,
 }
+
+/// `(scratch, out)`: the force on B_k from B_{k−1} (Eq. 52), `out[k − 2]` = [F_x, F_z],
+/// k = 2 … N, from the rows the last rolled solve left in `scratch`.
+pub type JointForcesFn = fn(&[[f64; ROLLED_SCRATCH]], &mut [[f64; 2]]);
 
 /// Work terms in the power array of the load functions (the runtime's `WORK_TERMS`).
 pub const POWER_TERMS: usize = 9;

@@ -166,7 +166,7 @@ pub fn rhs_free_dry(
         &c,
         friction,
     );
-    crate::rolled_dry::outward_pass(s_dd, &ws.scratch[..n], qdd);
+    crate::rolled_dry::outward_pass(s_dd, &mut ws.scratch[..n], qdd);
     [normal, factor]
 }
 /// The right-hand side of signature `dry` with the anchor held: ẍ of Eq. 27 at (q, u). Returns the holding force (Eq. 50) and the normal force (Eq. 37); the states, loads and powers are left in `ws`.
@@ -186,7 +186,7 @@ pub fn rhs_stuck_dry(
         lp.g,
         &c,
     );
-    crate::rolled_dry::outward_pass(s_dd, &ws.scratch[..n], qdd);
+    crate::rolled_dry::outward_pass(s_dd, &mut ws.scratch[..n], qdd);
     [holding, normal]
 }
 /// Kinematics, then the loads of signature `dry_seabed` (weight, seabed) with the inward pass of the O(N) solve, each body's loads where the pass reaches it; returns what reaches the anchor.
@@ -287,7 +287,7 @@ pub fn rhs_free_dry_seabed(
         &c,
         friction,
     );
-    crate::rolled_dry::outward_pass(s_dd, &ws.scratch[..n], qdd);
+    crate::rolled_dry::outward_pass(s_dd, &mut ws.scratch[..n], qdd);
     [normal, factor]
 }
 /// The right-hand side of signature `dry_seabed` with the anchor held: ẍ of Eq. 27 at (q, u). Returns the holding force (Eq. 50) and the normal force (Eq. 37); the states, loads and powers are left in `ws`.
@@ -307,7 +307,7 @@ pub fn rhs_stuck_dry_seabed(
         &ws.loads[0],
         &c,
     );
-    crate::rolled_dry::outward_pass(s_dd, &ws.scratch[..n], qdd);
+    crate::rolled_dry::outward_pass(s_dd, &mut ws.scratch[..n], qdd);
     [holding, normal]
 }
 /// Kinematics, then the loads of signature `dry_seabed_friction` (weight, seabed, line_friction) with the inward pass of the O(N) solve, each body's loads where the pass reaches it; returns what reaches the anchor.
@@ -418,7 +418,7 @@ pub fn rhs_free_dry_seabed_friction(
         &c,
         friction,
     );
-    crate::rolled_dry::outward_pass(s_dd, &ws.scratch[..n], qdd);
+    crate::rolled_dry::outward_pass(s_dd, &mut ws.scratch[..n], qdd);
     [normal, factor]
 }
 /// The right-hand side of signature `dry_seabed_friction` with the anchor held: ẍ of Eq. 27 at (q, u). Returns the holding force (Eq. 50) and the normal force (Eq. 37); the states, loads and powers are left in `ws`.
@@ -438,7 +438,7 @@ pub fn rhs_stuck_dry_seabed_friction(
         &ws.loads[0],
         &c,
     );
-    crate::rolled_dry::outward_pass(s_dd, &ws.scratch[..n], qdd);
+    crate::rolled_dry::outward_pass(s_dd, &mut ws.scratch[..n], qdd);
     [holding, normal]
 }
 /// Kinematics, then the loads of signature `wet` (weight, buoyancy, line_drag, anchor_drag, hydrostatics, hull_resistance) with the inward pass of the O(N) solve, each body's loads where the pass reaches it; returns what reaches the anchor.
@@ -531,7 +531,7 @@ pub fn rhs_free_wet(
         &c,
         friction,
     );
-    crate::rolled_wet::outward_pass(s_dd, &ws.scratch[..n], qdd);
+    crate::rolled_wet::outward_pass(s_dd, &mut ws.scratch[..n], qdd);
     [normal, factor]
 }
 /// The right-hand side of signature `wet` with the anchor held: ẍ of Eq. 27 at (q, u). Returns the holding force (Eq. 50) and the normal force (Eq. 37); the states, loads and powers are left in `ws`.
@@ -551,7 +551,7 @@ pub fn rhs_stuck_wet(
         &ws.loads[0],
         &c,
     );
-    crate::rolled_wet::outward_pass(s_dd, &ws.scratch[..n], qdd);
+    crate::rolled_wet::outward_pass(s_dd, &mut ws.scratch[..n], qdd);
     [holding, normal]
 }
 /// Kinematics, then the loads of signature `wet_current` (weight, buoyancy, current, line_drag, anchor_drag, hydrostatics, hull_resistance) with the inward pass of the O(N) solve, each body's loads where the pass reaches it; returns what reaches the anchor.
@@ -649,7 +649,7 @@ pub fn rhs_free_wet_current(
         &c,
         friction,
     );
-    crate::rolled_wet::outward_pass(s_dd, &ws.scratch[..n], qdd);
+    crate::rolled_wet::outward_pass(s_dd, &mut ws.scratch[..n], qdd);
     [normal, factor]
 }
 /// The right-hand side of signature `wet_current` with the anchor held: ẍ of Eq. 27 at (q, u). Returns the holding force (Eq. 50) and the normal force (Eq. 37); the states, loads and powers are left in `ws`.
@@ -669,7 +669,7 @@ pub fn rhs_stuck_wet_current(
         &ws.loads[0],
         &c,
     );
-    crate::rolled_wet::outward_pass(s_dd, &ws.scratch[..n], qdd);
+    crate::rolled_wet::outward_pass(s_dd, &mut ws.scratch[..n], qdd);
     [holding, normal]
 }
 /// Kinematics, then the loads of signature `wet_seabed` (weight, seabed, buoyancy, line_drag, anchor_drag, hydrostatics, hull_resistance) with the inward pass of the O(N) solve, each body's loads where the pass reaches it; returns what reaches the anchor.
@@ -770,7 +770,7 @@ pub fn rhs_free_wet_seabed(
         &c,
         friction,
     );
-    crate::rolled_wet::outward_pass(s_dd, &ws.scratch[..n], qdd);
+    crate::rolled_wet::outward_pass(s_dd, &mut ws.scratch[..n], qdd);
     [normal, factor]
 }
 /// The right-hand side of signature `wet_seabed` with the anchor held: ẍ of Eq. 27 at (q, u). Returns the holding force (Eq. 50) and the normal force (Eq. 37); the states, loads and powers are left in `ws`.
@@ -790,7 +790,7 @@ pub fn rhs_stuck_wet_seabed(
         &ws.loads[0],
         &c,
     );
-    crate::rolled_wet::outward_pass(s_dd, &ws.scratch[..n], qdd);
+    crate::rolled_wet::outward_pass(s_dd, &mut ws.scratch[..n], qdd);
     [holding, normal]
 }
 /// Kinematics, then the loads of signature `wet_seabed_friction` (weight, seabed, line_friction, buoyancy, line_drag, anchor_drag, hydrostatics, hull_resistance) with the inward pass of the O(N) solve, each body's loads where the pass reaches it; returns what reaches the anchor.
@@ -901,7 +901,7 @@ pub fn rhs_free_wet_seabed_friction(
         &c,
         friction,
     );
-    crate::rolled_wet::outward_pass(s_dd, &ws.scratch[..n], qdd);
+    crate::rolled_wet::outward_pass(s_dd, &mut ws.scratch[..n], qdd);
     [normal, factor]
 }
 /// The right-hand side of signature `wet_seabed_friction` with the anchor held: ẍ of Eq. 27 at (q, u). Returns the holding force (Eq. 50) and the normal force (Eq. 37); the states, loads and powers are left in `ws`.
@@ -921,7 +921,7 @@ pub fn rhs_stuck_wet_seabed_friction(
         &ws.loads[0],
         &c,
     );
-    crate::rolled_wet::outward_pass(s_dd, &ws.scratch[..n], qdd);
+    crate::rolled_wet::outward_pass(s_dd, &mut ws.scratch[..n], qdd);
     [holding, normal]
 }
 /// Kinematics, then the loads of signature `wet_seabed_current` (weight, seabed, buoyancy, current, line_drag, anchor_drag, hydrostatics, hull_resistance) with the inward pass of the O(N) solve, each body's loads where the pass reaches it; returns what reaches the anchor.
@@ -1032,7 +1032,7 @@ pub fn rhs_free_wet_seabed_current(
         &c,
         friction,
     );
-    crate::rolled_wet::outward_pass(s_dd, &ws.scratch[..n], qdd);
+    crate::rolled_wet::outward_pass(s_dd, &mut ws.scratch[..n], qdd);
     [normal, factor]
 }
 /// The right-hand side of signature `wet_seabed_current` with the anchor held: ẍ of Eq. 27 at (q, u). Returns the holding force (Eq. 50) and the normal force (Eq. 37); the states, loads and powers are left in `ws`.
@@ -1052,7 +1052,7 @@ pub fn rhs_stuck_wet_seabed_current(
         &ws.loads[0],
         &c,
     );
-    crate::rolled_wet::outward_pass(s_dd, &ws.scratch[..n], qdd);
+    crate::rolled_wet::outward_pass(s_dd, &mut ws.scratch[..n], qdd);
     [holding, normal]
 }
 /// Kinematics, then the loads of signature `wet_seabed_friction_current` (weight, seabed, line_friction, buoyancy, current, line_drag, anchor_drag, hydrostatics, hull_resistance) with the inward pass of the O(N) solve, each body's loads where the pass reaches it; returns what reaches the anchor.
@@ -1163,7 +1163,7 @@ pub fn rhs_free_wet_seabed_friction_current(
         &c,
         friction,
     );
-    crate::rolled_wet::outward_pass(s_dd, &ws.scratch[..n], qdd);
+    crate::rolled_wet::outward_pass(s_dd, &mut ws.scratch[..n], qdd);
     [normal, factor]
 }
 /// The right-hand side of signature `wet_seabed_friction_current` with the anchor held: ẍ of Eq. 27 at (q, u). Returns the holding force (Eq. 50) and the normal force (Eq. 37); the states, loads and powers are left in `ws`.
@@ -1183,6 +1183,6 @@ pub fn rhs_stuck_wet_seabed_friction_current(
         &ws.loads[0],
         &c,
     );
-    crate::rolled_wet::outward_pass(s_dd, &ws.scratch[..n], qdd);
+    crate::rolled_wet::outward_pass(s_dd, &mut ws.scratch[..n], qdd);
     [holding, normal]
 }

@@ -9,6 +9,7 @@ pub const KERNEL: crate::RolledTable = crate::RolledTable {
     accelerations,
     solve_free,
     solve_stuck,
+    joint_forces,
 };
 /// The chain's length, checked against every argument.
 fn bodies(p: &[crate::BodyParams], lens: &[usize]) -> usize {
@@ -77,12 +78,14 @@ pub(crate) fn angular_velocities(
         scratch[k][crate::ROLLED_SCRATCH - 1] = w;
     }
 }
-/// The outward pass of the O(N) solve from the anchor's s̈.
+/// The outward pass of the O(N) solve from the anchor's s̈; keeps each hinge's a_{o_k}
+/// in its row, for [`joint_forces`].
 pub(crate) fn outward_pass(
     s_dd: f64,
-    scratch: &[[f64; crate::ROLLED_SCRATCH]],
+    scratch: &mut [[f64; crate::ROLLED_SCRATCH]],
     qdd: &mut [f64],
 ) {
+    const A: usize = 10;
     let n = scratch.len();
     qdd[n - 1] = s_dd;
     let mut c = [0.0, s_dd, 0.0];
@@ -92,8 +95,18 @@ pub(crate) fn outward_pass(
             scratch[k - 1][crate::ROLLED_SCRATCH - 1],
             &c,
         );
+        (scratch[k][A], scratch[k][A + 1]) = (ax, az);
         qdd[k - 1] = beta_dd;
         c = [alpha, ax, az];
+    }
+}
+/// The force on B_k from B_{k−1} through their hinge (Eq. 52), `out[k − 2]` = [F_x, F_z]
+/// for k = 2 … N, from the rows the last solve left in `scratch` (`solve_free`,
+/// `solve_stuck` or a fused right-hand side): no second pass over the chain's dynamics.
+pub fn joint_forces(scratch: &[[f64; crate::ROLLED_SCRATCH]], out: &mut [[f64; 2]]) {
+    assert!(scratch.len() > out.len(), "the scratch must hold the N rows of the solve");
+    for (k, f) in out.iter_mut().enumerate() {
+        *f = hinge(&scratch[k + 1]);
     }
 }
 /// a_lp (Eq. 26), f_l (Eq. 25) and the anchor's heave row, as the unrolled `assemble`.
@@ -493,10 +506,8 @@ pub(crate) fn inward_ship(
         + p.mass * (p.centroid[0] * p.centroid[0] + p.centroid[1] * p.centroid[1]);
     let t27 = p.mass * t15;
     let ia_k_01 = p.mass * t18;
-    let ia_k_02 = -t27;
     let t34 = w * w;
     let t46 = f[2] + (t18 * f[0] - t15 * f[1]);
-    let pa_k_m = -t46;
     let pa_k_x = -(t27 * t34) - f[0];
     let pa_k_z = -(ia_k_01 * t34) - f[1];
     let t50 = p.joint[0] * tp[0];
@@ -505,25 +516,33 @@ pub(crate) fn inward_ship(
     let inv_k = 1.0 / ia_k_00;
     let t54 = ia_k_01 * inv_k;
     let t55 = t27 * inv_k;
+    let t56 = -t55;
     let t58 = t27 * t54;
     let t61 = p.mass - ia_k_01 * t54;
     let t62 = p.mass - t27 * t55;
-    let t69 = wp * wp;
-    let t70 = t50 * t69;
-    let t71 = t51 * t69;
-    let t78 = pa_k_x + t46 * t54 + (t58 * t71 - t61 * t70);
-    let t83 = pa_k_z - t46 * t55 + (t62 * t71 - t58 * t70);
-    let t88 = -(t51 * t61) - t50 * t58;
-    let t93 = -(t51 * t58) - t50 * t62;
-    let t98 = -(t51 * t88) - t50 * t93;
-    let t103 = -(t51 * t78) - t50 * t83;
+    let t67 = -(t46 * inv_k);
+    let t68 = pa_k_x + t46 * t54;
+    let t69 = pa_k_z - t46 * t55;
+    let t71 = wp * wp;
+    let t72 = t50 * t71;
+    let t73 = t51 * t71;
+    let t80 = t68 + (t58 * t73 - t61 * t72);
+    let t85 = t69 + (t62 * t73 - t58 * t72);
+    let t90 = -(t51 * t61) - t50 * t58;
+    let t95 = -(t51 * t58) - t50 * t62;
+    let t100 = -(t51 * t90) - t50 * t95;
+    let t105 = -(t51 * t80) - t50 * t85;
     s[0] = t50;
     s[1] = t52;
-    s[2] = ia_k_01;
-    s[3] = ia_k_02;
-    s[4] = pa_k_m;
-    s[5] = inv_k;
-    [t98, t88, t93, t61, t58, t62, t103, t78, t83]
+    s[2] = t54;
+    s[3] = t56;
+    s[4] = t67;
+    s[5] = t61;
+    s[6] = t58;
+    s[7] = t62;
+    s[8] = t68;
+    s[9] = t69;
+    [t100, t90, t95, t61, t58, t62, t105, t80, t85]
 }
 /// The inward pass at one body: its articulated inertia and bias, the hinge eliminated and carried to the parent.
 #[inline(always)]
@@ -559,22 +578,29 @@ pub(crate) fn inward_rod(
     let t72 = ia_k_11 - ia_k_01 * t67;
     let t73 = c[4] - ia_k_02 * t67;
     let t74 = ia_k_22 - ia_k_02 * t68;
-    let t80 = wp * wp;
-    let t81 = t63 * t80;
-    let t82 = t64 * t80;
-    let t89 = pa_k_x - pa_k_m * t67 + (t73 * t82 - t72 * t81);
-    let t94 = pa_k_z - pa_k_m * t68 + (t74 * t82 - t73 * t81);
-    let t99 = -(t64 * t72) - t63 * t73;
-    let t104 = -(t64 * t73) - t63 * t74;
-    let t109 = -(t64 * t99) - t63 * t104;
-    let t114 = -(t64 * t89) - t63 * t94;
+    let t77 = pa_k_m * inv_k;
+    let t78 = pa_k_x - pa_k_m * t67;
+    let t79 = pa_k_z - pa_k_m * t68;
+    let t81 = wp * wp;
+    let t82 = t63 * t81;
+    let t83 = t64 * t81;
+    let t90 = t78 + (t73 * t83 - t72 * t82);
+    let t95 = t79 + (t74 * t83 - t73 * t82);
+    let t100 = -(t64 * t72) - t63 * t73;
+    let t105 = -(t64 * t73) - t63 * t74;
+    let t110 = -(t64 * t100) - t63 * t105;
+    let t115 = -(t64 * t90) - t63 * t95;
     s[0] = t63;
     s[1] = t65;
-    s[2] = ia_k_01;
-    s[3] = ia_k_02;
-    s[4] = pa_k_m;
-    s[5] = inv_k;
-    [t109, t99, t104, t72, t73, t74, t114, t89, t94]
+    s[2] = t67;
+    s[3] = t68;
+    s[4] = t77;
+    s[5] = t72;
+    s[6] = t73;
+    s[7] = t74;
+    s[8] = t78;
+    s[9] = t79;
+    [t110, t100, t105, t72, t73, t74, t115, t90, t95]
 }
 /// The inward pass at one body: its articulated inertia and bias, the hinge eliminated and carried to the parent.
 #[inline(always)]
@@ -605,19 +631,24 @@ pub(crate) fn inward_first(
     let t67 = ia_k_11 - ia_k_01 * t62;
     let t68 = c[4] - ia_k_02 * t62;
     let t69 = ia_k_22 - ia_k_02 * t63;
-    let t72 = pa_k_x - pa_k_m * t62;
-    let t73 = pa_k_z - pa_k_m * t63;
-    let t78 = p.joint[1] * t67 - p.joint[0] * t68;
-    let t82 = p.joint[1] * t68 - p.joint[0] * t69;
-    let t86 = p.joint[1] * t78 - p.joint[0] * t82;
-    let t90 = p.joint[1] * t72 - p.joint[0] * t73;
+    let t72 = pa_k_m * inv_k;
+    let t73 = pa_k_x - pa_k_m * t62;
+    let t74 = pa_k_z - pa_k_m * t63;
+    let t79 = p.joint[1] * t67 - p.joint[0] * t68;
+    let t83 = p.joint[1] * t68 - p.joint[0] * t69;
+    let t87 = p.joint[1] * t79 - p.joint[0] * t83;
+    let t91 = p.joint[1] * t73 - p.joint[0] * t74;
     s[0] = p.joint[0];
     s[1] = p.joint[1];
-    s[2] = ia_k_01;
-    s[3] = ia_k_02;
-    s[4] = pa_k_m;
-    s[5] = inv_k;
-    [t86, t78, t82, t67, t68, t69, t90, t72, t73]
+    s[2] = t62;
+    s[3] = t63;
+    s[4] = t72;
+    s[5] = t67;
+    s[6] = t68;
+    s[7] = t69;
+    s[8] = t73;
+    s[9] = t74;
+    [t87, t79, t83, t67, t68, t69, t91, t73, t74]
 }
 /// The anchor sliding with friction −`friction`·N: returns [s̈, normal force (Eq. 37), 1 + friction·∂N/∂F_x].
 #[inline(always)]
@@ -665,10 +696,8 @@ pub(crate) fn inward_ship_gravity(
         + p.mass * (p.centroid[0] * p.centroid[0] + p.centroid[1] * p.centroid[1]);
     let t27 = p.mass * t15;
     let ia_k_01 = p.mass * (p.centroid[1] * t[0] - p.centroid[0] * t[1]);
-    let ia_k_02 = -t27;
     let t34 = w * w;
     let t43 = t15 * t20;
-    let pa_k_m = -t43;
     let pa_k_z = t20 - ia_k_01 * t34;
     let t46 = p.joint[0] * tp[0];
     let t47 = p.joint[0] * tp[1];
@@ -676,25 +705,33 @@ pub(crate) fn inward_ship_gravity(
     let inv_k = 1.0 / ia_k_00;
     let t50 = ia_k_01 * inv_k;
     let t51 = t27 * inv_k;
+    let t52 = -t51;
     let t54 = t27 * t50;
     let t57 = p.mass - ia_k_01 * t50;
     let t58 = p.mass - t27 * t51;
-    let t65 = wp * wp;
-    let t66 = t46 * t65;
-    let t67 = t47 * t65;
-    let t74 = t43 * t50 - t27 * t34 + (t54 * t67 - t57 * t66);
-    let t79 = pa_k_z - t43 * t51 + (t58 * t67 - t54 * t66);
-    let t84 = -(t47 * t57) - t46 * t54;
-    let t89 = -(t47 * t54) - t46 * t58;
-    let t94 = -(t47 * t84) - t46 * t89;
-    let t99 = -(t47 * t74) - t46 * t79;
+    let t63 = -(t43 * inv_k);
+    let t64 = t43 * t50 - t27 * t34;
+    let t65 = pa_k_z - t43 * t51;
+    let t67 = wp * wp;
+    let t68 = t46 * t67;
+    let t69 = t47 * t67;
+    let t76 = t64 + (t54 * t69 - t57 * t68);
+    let t81 = t65 + (t58 * t69 - t54 * t68);
+    let t86 = -(t47 * t57) - t46 * t54;
+    let t91 = -(t47 * t54) - t46 * t58;
+    let t96 = -(t47 * t86) - t46 * t91;
+    let t101 = -(t47 * t76) - t46 * t81;
     s[0] = t46;
     s[1] = t48;
-    s[2] = ia_k_01;
-    s[3] = ia_k_02;
-    s[4] = pa_k_m;
-    s[5] = inv_k;
-    [t94, t84, t89, t57, t54, t58, t99, t74, t79]
+    s[2] = t50;
+    s[3] = t52;
+    s[4] = t63;
+    s[5] = t57;
+    s[6] = t54;
+    s[7] = t58;
+    s[8] = t64;
+    s[9] = t65;
+    [t96, t86, t91, t57, t54, t58, t101, t76, t81]
 }
 /// The inward pass at one body under its weight alone (−m g through the centroid, Eq. 40): its articulated inertia and bias, the hinge eliminated and carried to the parent.
 #[inline(always)]
@@ -730,22 +767,29 @@ pub(crate) fn inward_rod_gravity(
     let t67 = ia_k_11 - ia_k_01 * t62;
     let t68 = c[4] - ia_k_02 * t62;
     let t69 = ia_k_22 - ia_k_02 * t63;
-    let t75 = wp * wp;
-    let t76 = t58 * t75;
-    let t77 = t59 * t75;
-    let t84 = pa_k_x - pa_k_m * t62 + (t68 * t77 - t67 * t76);
-    let t89 = pa_k_z - pa_k_m * t63 + (t69 * t77 - t68 * t76);
-    let t94 = -(t59 * t67) - t58 * t68;
-    let t99 = -(t59 * t68) - t58 * t69;
-    let t104 = -(t59 * t94) - t58 * t99;
-    let t109 = -(t59 * t84) - t58 * t89;
+    let t72 = pa_k_m * inv_k;
+    let t73 = pa_k_x - pa_k_m * t62;
+    let t74 = pa_k_z - pa_k_m * t63;
+    let t76 = wp * wp;
+    let t77 = t58 * t76;
+    let t78 = t59 * t76;
+    let t85 = t73 + (t68 * t78 - t67 * t77);
+    let t90 = t74 + (t69 * t78 - t68 * t77);
+    let t95 = -(t59 * t67) - t58 * t68;
+    let t100 = -(t59 * t68) - t58 * t69;
+    let t105 = -(t59 * t95) - t58 * t100;
+    let t110 = -(t59 * t85) - t58 * t90;
     s[0] = t58;
     s[1] = t60;
-    s[2] = ia_k_01;
-    s[3] = ia_k_02;
-    s[4] = pa_k_m;
-    s[5] = inv_k;
-    [t104, t94, t99, t67, t68, t69, t109, t84, t89]
+    s[2] = t62;
+    s[3] = t63;
+    s[4] = t72;
+    s[5] = t67;
+    s[6] = t68;
+    s[7] = t69;
+    s[8] = t73;
+    s[9] = t74;
+    [t105, t95, t100, t67, t68, t69, t110, t85, t90]
 }
 /// The inward pass at one body under its weight alone (−m g through the centroid, Eq. 40): its articulated inertia and bias, the hinge eliminated and carried to the parent.
 #[inline(always)]
@@ -776,19 +820,24 @@ pub(crate) fn inward_first_gravity(
     let t62 = ia_k_11 - ia_k_01 * t57;
     let t63 = c[4] - ia_k_02 * t57;
     let t64 = ia_k_22 - ia_k_02 * t58;
-    let t67 = pa_k_x - pa_k_m * t57;
-    let t68 = pa_k_z - pa_k_m * t58;
-    let t73 = p.joint[1] * t62 - p.joint[0] * t63;
-    let t77 = p.joint[1] * t63 - p.joint[0] * t64;
-    let t81 = p.joint[1] * t73 - p.joint[0] * t77;
-    let t85 = p.joint[1] * t67 - p.joint[0] * t68;
+    let t67 = pa_k_m * inv_k;
+    let t68 = pa_k_x - pa_k_m * t57;
+    let t69 = pa_k_z - pa_k_m * t58;
+    let t74 = p.joint[1] * t62 - p.joint[0] * t63;
+    let t78 = p.joint[1] * t63 - p.joint[0] * t64;
+    let t82 = p.joint[1] * t74 - p.joint[0] * t78;
+    let t86 = p.joint[1] * t68 - p.joint[0] * t69;
     s[0] = p.joint[0];
     s[1] = p.joint[1];
-    s[2] = ia_k_01;
-    s[3] = ia_k_02;
-    s[4] = pa_k_m;
-    s[5] = inv_k;
-    [t81, t73, t77, t62, t63, t64, t85, t67, t68]
+    s[2] = t57;
+    s[3] = t58;
+    s[4] = t67;
+    s[5] = t62;
+    s[6] = t63;
+    s[7] = t64;
+    s[8] = t68;
+    s[9] = t69;
+    [t82, t74, t78, t62, t63, t64, t86, t68, t69]
 }
 /// The anchor sliding with friction −`friction`·N: returns [s̈, normal force (Eq. 37), 1 + friction·∂N/∂F_x].
 #[inline(always)]
@@ -824,12 +873,19 @@ pub(crate) fn outward(
     wp: f64,
     c: &[f64; 3],
 ) -> [f64; 4] {
-    let t11 = wp * wp;
-    let ao_k_x = c[1] + s[1] * c[0] - s[0] * t11;
-    let ao_k_z = c[2] - s[0] * c[0] - s[1] * t11;
-    let alpha_k = -(s[5] * (s[4] + (s[2] * ao_k_x + s[3] * ao_k_z)));
+    let t10 = wp * wp;
+    let ao_k_x = s[1] * c[0] + (c[1] - s[0] * t10);
+    let ao_k_z = c[2] - s[1] * t10 - s[0] * c[0];
+    let alpha_k = -(s[4] + (s[2] * ao_k_x + s[3] * ao_k_z));
     let qdd_k = alpha_k - c[0];
     [alpha_k, ao_k_x, ao_k_z, qdd_k]
+}
+/// The force on the bodies outboard of one hinge from the inner body (Eq. 52), [F_x, F_z], from the solve's row.
+#[inline(always)]
+pub(crate) fn hinge(s: &[f64; crate::ROLLED_SCRATCH]) -> [f64; 2] {
+    let t18 = s[8] + (s[5] * s[10] + s[6] * s[11]);
+    let t19 = s[9] + (s[6] * s[10] + s[7] * s[11]);
+    [t18, t19]
 }
 /// Outboard sums about the body's origin (Eq. 26), from the child's (`pc`, `c`).
 #[inline(always)]

@@ -9,6 +9,7 @@ pub const KERNEL: crate::RolledTable = crate::RolledTable {
     accelerations,
     solve_free,
     solve_stuck,
+    joint_forces,
 };
 /// The chain's length, checked against every argument.
 fn bodies(p: &[crate::BodyParams], lens: &[usize]) -> usize {
@@ -77,12 +78,14 @@ pub(crate) fn angular_velocities(
         scratch[k][crate::ROLLED_SCRATCH - 1] = w;
     }
 }
-/// The outward pass of the O(N) solve from the anchor's s̈.
+/// The outward pass of the O(N) solve from the anchor's s̈; keeps each hinge's a_{o_k}
+/// in its row, for [`joint_forces`].
 pub(crate) fn outward_pass(
     s_dd: f64,
-    scratch: &[[f64; crate::ROLLED_SCRATCH]],
+    scratch: &mut [[f64; crate::ROLLED_SCRATCH]],
     qdd: &mut [f64],
 ) {
+    const A: usize = 10;
     let n = scratch.len();
     qdd[n - 1] = s_dd;
     let mut c = [0.0, s_dd, 0.0];
@@ -92,8 +95,18 @@ pub(crate) fn outward_pass(
             scratch[k - 1][crate::ROLLED_SCRATCH - 1],
             &c,
         );
+        (scratch[k][A], scratch[k][A + 1]) = (ax, az);
         qdd[k - 1] = beta_dd;
         c = [alpha, ax, az];
+    }
+}
+/// The force on B_k from B_{k−1} through their hinge (Eq. 52), `out[k − 2]` = [F_x, F_z]
+/// for k = 2 … N, from the rows the last solve left in `scratch` (`solve_free`,
+/// `solve_stuck` or a fused right-hand side): no second pass over the chain's dynamics.
+pub fn joint_forces(scratch: &[[f64; crate::ROLLED_SCRATCH]], out: &mut [[f64; 2]]) {
+    assert!(scratch.len() > out.len(), "the scratch must hold the N rows of the solve");
+    for (k, f) in out.iter_mut().enumerate() {
+        *f = hinge(&scratch[k + 1]);
     }
 }
 /// a_lp (Eq. 26), f_l (Eq. 25) and the anchor's heave row, as the unrolled `assemble`.
@@ -493,10 +506,8 @@ pub(crate) fn inward_ship(
         + p.mass * (p.centroid[0] * p.centroid[0] + p.centroid[1] * p.centroid[1]);
     let t27 = p.mass * t15;
     let ia_k_01 = p.mass * t18;
-    let ia_k_02 = -t27;
     let t34 = w * w;
     let t46 = f[2] + (t18 * f[0] - t15 * f[1]);
-    let pa_k_m = -t46;
     let pa_k_x = -(t27 * t34) - f[0];
     let pa_k_z = -(ia_k_01 * t34) - f[1];
     let t50 = p.joint[0] * tp[0];
@@ -505,25 +516,33 @@ pub(crate) fn inward_ship(
     let inv_k = 1.0 / ia_k_00;
     let t54 = ia_k_01 * inv_k;
     let t55 = t27 * inv_k;
+    let t56 = -t55;
     let t58 = t27 * t54;
     let t61 = p.mass - ia_k_01 * t54;
     let t62 = p.mass - t27 * t55;
-    let t69 = wp * wp;
-    let t70 = t50 * t69;
-    let t71 = t51 * t69;
-    let t78 = pa_k_x + t46 * t54 + (t58 * t71 - t61 * t70);
-    let t83 = pa_k_z - t46 * t55 + (t62 * t71 - t58 * t70);
-    let t88 = -(t51 * t61) - t50 * t58;
-    let t93 = -(t51 * t58) - t50 * t62;
-    let t98 = -(t51 * t88) - t50 * t93;
-    let t103 = -(t51 * t78) - t50 * t83;
+    let t67 = -(t46 * inv_k);
+    let t68 = pa_k_x + t46 * t54;
+    let t69 = pa_k_z - t46 * t55;
+    let t71 = wp * wp;
+    let t72 = t50 * t71;
+    let t73 = t51 * t71;
+    let t80 = t68 + (t58 * t73 - t61 * t72);
+    let t85 = t69 + (t62 * t73 - t58 * t72);
+    let t90 = -(t51 * t61) - t50 * t58;
+    let t95 = -(t51 * t58) - t50 * t62;
+    let t100 = -(t51 * t90) - t50 * t95;
+    let t105 = -(t51 * t80) - t50 * t85;
     s[0] = t50;
     s[1] = t52;
-    s[2] = ia_k_01;
-    s[3] = ia_k_02;
-    s[4] = pa_k_m;
-    s[5] = inv_k;
-    [t98, t88, t93, t61, t58, t62, t103, t78, t83]
+    s[2] = t54;
+    s[3] = t56;
+    s[4] = t67;
+    s[5] = t61;
+    s[6] = t58;
+    s[7] = t62;
+    s[8] = t68;
+    s[9] = t69;
+    [t100, t90, t95, t61, t58, t62, t105, t80, t85]
 }
 /// The inward pass at one body: its articulated inertia and bias, the hinge eliminated and carried to the parent.
 #[inline(always)]
@@ -563,22 +582,29 @@ pub(crate) fn inward_rod(
     let t92 = ia_k_11 - ia_k_01 * t87;
     let t93 = ia_k_12 - ia_k_02 * t87;
     let t94 = ia_k_22 - ia_k_02 * t88;
-    let t100 = wp * wp;
-    let t101 = t83 * t100;
-    let t102 = t84 * t100;
-    let t109 = pa_k_x - pa_k_m * t87 + (t93 * t102 - t92 * t101);
-    let t114 = pa_k_z - pa_k_m * t88 + (t94 * t102 - t93 * t101);
-    let t119 = -(t84 * t92) - t83 * t93;
-    let t124 = -(t84 * t93) - t83 * t94;
-    let t129 = -(t84 * t119) - t83 * t124;
-    let t134 = -(t84 * t109) - t83 * t114;
+    let t97 = pa_k_m * inv_k;
+    let t98 = pa_k_x - pa_k_m * t87;
+    let t99 = pa_k_z - pa_k_m * t88;
+    let t101 = wp * wp;
+    let t102 = t83 * t101;
+    let t103 = t84 * t101;
+    let t110 = t98 + (t93 * t103 - t92 * t102);
+    let t115 = t99 + (t94 * t103 - t93 * t102);
+    let t120 = -(t84 * t92) - t83 * t93;
+    let t125 = -(t84 * t93) - t83 * t94;
+    let t130 = -(t84 * t120) - t83 * t125;
+    let t135 = -(t84 * t110) - t83 * t115;
     s[0] = t83;
     s[1] = t85;
-    s[2] = ia_k_01;
-    s[3] = ia_k_02;
-    s[4] = pa_k_m;
-    s[5] = inv_k;
-    [t129, t119, t124, t92, t93, t94, t134, t109, t114]
+    s[2] = t87;
+    s[3] = t88;
+    s[4] = t97;
+    s[5] = t92;
+    s[6] = t93;
+    s[7] = t94;
+    s[8] = t98;
+    s[9] = t99;
+    [t130, t120, t125, t92, t93, t94, t135, t110, t115]
 }
 /// The inward pass at one body: its articulated inertia and bias, the hinge eliminated and carried to the parent.
 #[inline(always)]
@@ -613,19 +639,24 @@ pub(crate) fn inward_first(
     let t87 = ia_k_11 - ia_k_01 * t82;
     let t88 = ia_k_12 - ia_k_02 * t82;
     let t89 = ia_k_22 - ia_k_02 * t83;
-    let t92 = pa_k_x - pa_k_m * t82;
-    let t93 = pa_k_z - pa_k_m * t83;
-    let t98 = p.joint[1] * t87 - p.joint[0] * t88;
-    let t102 = p.joint[1] * t88 - p.joint[0] * t89;
-    let t106 = p.joint[1] * t98 - p.joint[0] * t102;
-    let t110 = p.joint[1] * t92 - p.joint[0] * t93;
+    let t92 = pa_k_m * inv_k;
+    let t93 = pa_k_x - pa_k_m * t82;
+    let t94 = pa_k_z - pa_k_m * t83;
+    let t99 = p.joint[1] * t87 - p.joint[0] * t88;
+    let t103 = p.joint[1] * t88 - p.joint[0] * t89;
+    let t107 = p.joint[1] * t99 - p.joint[0] * t103;
+    let t111 = p.joint[1] * t93 - p.joint[0] * t94;
     s[0] = p.joint[0];
     s[1] = p.joint[1];
-    s[2] = ia_k_01;
-    s[3] = ia_k_02;
-    s[4] = pa_k_m;
-    s[5] = inv_k;
-    [t106, t98, t102, t87, t88, t89, t110, t92, t93]
+    s[2] = t82;
+    s[3] = t83;
+    s[4] = t92;
+    s[5] = t87;
+    s[6] = t88;
+    s[7] = t89;
+    s[8] = t93;
+    s[9] = t94;
+    [t107, t99, t103, t87, t88, t89, t111, t93, t94]
 }
 /// The anchor sliding with friction −`friction`·N: returns [s̈, normal force (Eq. 37), 1 + friction·∂N/∂F_x].
 #[inline(always)]
@@ -663,12 +694,19 @@ pub(crate) fn outward(
     wp: f64,
     c: &[f64; 3],
 ) -> [f64; 4] {
-    let t11 = wp * wp;
-    let ao_k_x = c[1] + s[1] * c[0] - s[0] * t11;
-    let ao_k_z = c[2] - s[0] * c[0] - s[1] * t11;
-    let alpha_k = -(s[5] * (s[4] + (s[2] * ao_k_x + s[3] * ao_k_z)));
+    let t10 = wp * wp;
+    let ao_k_x = s[1] * c[0] + (c[1] - s[0] * t10);
+    let ao_k_z = c[2] - s[1] * t10 - s[0] * c[0];
+    let alpha_k = -(s[4] + (s[2] * ao_k_x + s[3] * ao_k_z));
     let qdd_k = alpha_k - c[0];
     [alpha_k, ao_k_x, ao_k_z, qdd_k]
+}
+/// The force on the bodies outboard of one hinge from the inner body (Eq. 52), [F_x, F_z], from the solve's row.
+#[inline(always)]
+pub(crate) fn hinge(s: &[f64; crate::ROLLED_SCRATCH]) -> [f64; 2] {
+    let t18 = s[8] + (s[5] * s[10] + s[6] * s[11]);
+    let t19 = s[9] + (s[6] * s[10] + s[7] * s[11]);
+    [t18, t19]
 }
 /// Outboard sums about the body's origin (Eq. 26), from the child's (`pc`, `c`).
 #[inline(always)]

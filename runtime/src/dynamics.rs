@@ -192,6 +192,13 @@ impl Dynamics {
         self.kernel.accelerations(q, u, qdd, out);
     }
 
+    /// The force on B_k from B_{k−1} (Eq. 52) at the last evaluation, `out[k − 2]` =
+    /// [F_x, F_z], k = 2 … N, from the kernel's own solve when it kept them
+    /// ([`Kernel::joint_forces`]). Returns whether it wrote them.
+    pub fn joint_forces(&self, out: &mut [[f64; 2]]) -> bool {
+        self.kernel.joint_forces(out)
+    }
+
     /// Whether the anchor is held or sliding now.
     pub fn anchor(&self) -> AnchorDof {
         self.anchor

@@ -139,6 +139,9 @@ pub struct GeneratedKernel {
     /// The q that `ws.trig` was computed at (empty before the first kinematics): body
     /// accelerations at the state just solved, as every observation asks for, reuse it.
     trig_q: Vec<f64>,
+    /// Whether `ws.scratch` holds the rows of the last solve, which was a rolled one (an
+    /// unrolled solve keeps no rows; `assemble` overwrites them).
+    rows_of_last_solve: bool,
     loads: Vec<Load>,
     acc: Vec<[f64; 3]>,
     /// a_{w,p} and f_w from `assemble`.
@@ -189,6 +192,7 @@ impl GeneratedKernel {
             params,
             ws: kanestop_generated::Workspace::new(n),
             trig_q: Vec::with_capacity(n),
+            rows_of_last_solve: false,
             loads: vec![Load::default(); n],
             acc: vec![[0.0; 3]; n],
             heave: vec![0.0; n + 1],
@@ -356,6 +360,7 @@ impl Kernel for GeneratedKernel {
     }
 
     fn assemble(&mut self, q: &[f64], u: &[f64], model: &mut dyn LoadModel, out: &mut Assembly) {
+        self.rows_of_last_solve = false;
         self.states(q, u, &mut out.bodies);
         self.loads(model, &out.bodies);
         let (m, f, heave) = (out.mass.as_mut_slice(), out.rhs.as_mut_slice(), &mut self.heave);
@@ -399,6 +404,7 @@ impl Kernel for GeneratedKernel {
             self.assemble(q, u, model, scratch);
             return solve_assembled(scratch, anchor, friction, qdd);
         }
+        self.rows_of_last_solve = matches!(self.table, Table::Rolled(_));
         let reaction = if self.fusion.is_some() {
             self.solve_fused(q, u, anchor, friction, model, &mut scratch.bodies, qdd)?
         } else {
@@ -409,5 +415,17 @@ impl Kernel for GeneratedKernel {
             return Err(RhsError::NonFiniteAcceleration);
         }
         Ok(reaction)
+    }
+
+    /// From the rows the rolled solve left (`joint_forces` of the rolled table): the fused
+    /// right-hand sides and the rolled solves keep them, the unrolled ones do not.
+    fn joint_forces(&self, out: &mut [[f64; 2]]) -> bool {
+        match &self.table {
+            Table::Rolled(t) if self.rows_of_last_solve => {
+                (t.joint_forces)(&self.ws.scratch, out);
+                true
+            }
+            _ => false,
+        }
     }
 }

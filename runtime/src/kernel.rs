@@ -221,6 +221,15 @@ pub trait Kernel {
         self.assemble(q, u, model, scratch);
         solve_assembled(scratch, anchor, friction, qdd)
     }
+
+    /// The force on B_k from B_{k−1} through their hinge (Eq. 52) at the last
+    /// [`Kernel::solve`], `out[k − 2]` = [F_x, F_z] (N) for k = 2 … N, when the solve kept
+    /// what they need (a recursive solve has them in its rows). Returns whether it wrote
+    /// them; the default cannot, and the observation computes them from the body
+    /// accelerations instead.
+    fn joint_forces(&self, _out: &mut [[f64; 2]]) -> bool {
+        false
+    }
 }
 
 /// Solves an assembled system over the active speeds (see [`Kernel::solve`]).

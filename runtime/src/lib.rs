@@ -23,6 +23,7 @@ pub mod fusion;
 pub mod generated;
 pub mod geometry;
 pub mod integrate;
+pub mod joints;
 pub mod kernel;
 pub mod model;
 pub mod overrides;

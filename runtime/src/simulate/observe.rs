@@ -4,6 +4,7 @@
 
 use crate::dynamics::{Dynamics, WORK_COUNT};
 use crate::energy::Energy;
+use crate::joints;
 use crate::kernel::{AnchorReaction, BodyAcceleration, BodyState, RhsError};
 use crate::model::Model;
 
@@ -30,16 +31,17 @@ impl Observation {
     }
 }
 
-/// Scratch of the observation: generalised and body accelerations.
+/// Scratch of the observation: generalised and body accelerations, joint forces.
 pub(crate) struct Observer {
     qdd: Vec<f64>,
     acc: Vec<BodyAcceleration>,
+    joints: Vec<[f64; 2]>,
 }
 
 impl Observer {
     /// Scratch for `n` bodies.
     pub fn new(n: usize) -> Self {
-        Observer { qdd: vec![0.0; n], acc: vec![BodyAcceleration::default(); n] }
+        Observer { qdd: vec![0.0; n], acc: vec![BodyAcceleration::default(); n], joints: vec![[0.0; 2]; n - 1] }
     }
 
     /// Observes y = (q, u, W) under `dynamics`' current anchor state.
@@ -49,19 +51,13 @@ impl Observer {
         let (u, w) = rest.split_at(n);
         let reaction = dynamics.accelerations(q, u, &mut self.qdd)?;
         let bodies = dynamics.assembly().bodies.clone();
-        dynamics.body_accelerations(q, u, &self.qdd, &mut self.acc);
-        // Eq. 52 in Newton's form: the joint force on B_k balances the outboard bodies'
-        // inertia (with added mass) less their applied loads.
-        let mut tensions = vec![0.0; n - 1];
-        let mut sum = [0.0, 0.0];
-        for k in (1..n).rev() {
-            let (b, a, l, s) = (&model.chain.bodies[k], &self.acc[k], &dynamics.loads()[k], &bodies[k]);
-            let (sin, cos) = (s.sin, s.cos);
-            let a_n = a.ax * sin + a.az * cos;
-            sum[0] += b.mass * a.ax + b.added_mass * a_n * sin - l.fx;
-            sum[1] += b.mass * a.az + b.added_mass * a_n * cos - l.fz;
-            tensions[k - 1] = (sum[0] * sum[0] + sum[1] * sum[1]).sqrt(); // no overflow below 1e150 N
+        // Eq. 52: from the solve's own rows when the kernel kept them, else in Newton's form
+        // from the body accelerations.
+        if !dynamics.joint_forces(&mut self.joints) {
+            dynamics.body_accelerations(q, u, &self.qdd, &mut self.acc);
+            joints::from_accelerations(&model.chain, &bodies, &self.acc, dynamics.loads(), &mut self.joints);
         }
+        let tensions = self.joints.iter().map(|&f| joints::magnitude(f)).collect();
         let mut work = [0.0; WORK_COUNT];
         work.copy_from_slice(w);
         let env = &model.scene.environment;
