@@ -211,15 +211,12 @@ fn codegen(scene: Option<&PathBuf>, write: bool, root: &std::path::Path) -> Resu
         if t.cable_stages.len() == 1 { "" } else { "s" }
     );
     let forces = kanestop_runtime::forces::Forces::new(&model);
-    let kernel = kanestop_runtime::generated::GeneratedKernel::new(&model.chain);
-    // Whether a run fuses the loads into the kernel, and how: as the run's own dynamics decide it.
-    let fused = match kanestop_runtime::generated::GeneratedKernel::new(&model.chain) {
-        Ok(mut k) => {
-            use kanestop_runtime::kernel::Kernel;
-            kanestop_runtime::dynamics::fused_loads(&forces).is_some_and(|f| k.fuse_loads(&f))
-        }
-        Err(_) => false,
-    };
+    let mut kernel = kanestop_runtime::generated::GeneratedKernel::new(&model.chain);
+    // Whether a run fuses the loads into the kernel: as the run's own dynamics decide it.
+    let fused = kernel.as_mut().is_ok_and(|k| {
+        use kanestop_runtime::kernel::Kernel;
+        kanestop_runtime::dynamics::fused_loads(&forces).is_some_and(|f| k.fuse_loads(&f))
+    });
     load_report(&model, &forces, fused);
     let sig = forces.signature().name();
     let kernel = match kernel.map(|k| k.form()) {

@@ -443,47 +443,6 @@ fn a_chain_out_of_order_keeps_the_force_modules() {
     assert!(fused_loads(&Forces::gravity_only(&model.chain, G)).is_some());
 }
 
-/// A kernel that is the generated one but cannot fuse (the trait's default), so that
-/// `Dynamics` calls the force modules: the same right-hand side, entry for entry.
-struct Unfused(GeneratedKernel);
-
-impl Kernel for Unfused {
-    fn name(&self) -> &'static str {
-        "unfused"
-    }
-    fn body_count(&self) -> usize {
-        self.0.body_count()
-    }
-    fn kinematics(&mut self, q: &[f64], u: &[f64], bodies: &mut [BodyState]) {
-        self.0.kinematics(q, u, bodies)
-    }
-    fn assemble(&mut self, q: &[f64], u: &[f64], model: &mut dyn LoadModel, out: &mut Assembly) {
-        self.0.assemble(q, u, model, out)
-    }
-    fn accelerations(
-        &mut self,
-        q: &[f64],
-        u: &[f64],
-        qdd: &[f64],
-        out: &mut [kanestop_runtime::kernel::BodyAcceleration],
-    ) {
-        self.0.accelerations(q, u, qdd, out)
-    }
-    #[allow(clippy::too_many_arguments)]
-    fn solve(
-        &mut self,
-        q: &[f64],
-        u: &[f64],
-        anchor: AnchorDof,
-        friction: f64,
-        model: &mut dyn LoadModel,
-        scratch: &mut Assembly,
-        qdd: &mut [f64],
-    ) -> Result<kanestop_runtime::kernel::AnchorReaction, kanestop_runtime::kernel::RhsError> {
-        self.0.solve(q, u, anchor, friction, model, scratch, qdd)
-    }
-}
-
 /// `Dynamics` with the loads fused against `Dynamics` on the force modules (the same rolled
 /// steps): the whole right-hand side (q̇ and ü equal, the work terms' power, the anchor's
 /// friction included, to round-off), the loads it reports and the seabed's reaction, equal,

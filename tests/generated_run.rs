@@ -1,5 +1,8 @@
 //! Whole runs with the generated kernel and with the reference: the same trajectory.
 
+mod common;
+
+use common::Unfused;
 use kanestop_runtime::generated::GeneratedKernel;
 use kanestop_runtime::model::Model;
 use kanestop_runtime::paper::DEFAULT_SCENE;
@@ -71,15 +74,18 @@ fn case1_stopping_time_is_the_same_with_both_kernels() {
     }
 }
 
-/// Case 1 on the rolled kernel (any N) and on the unrolled one built for N = 46: the same
-/// operations on every value the run depends on, so the same run bit for bit: stopping
-/// time, every sample's body states and tensions.
+/// Case 1 on the rolled kernel (any N) and on the unrolled one built for N = 46, both fed
+/// by the force modules (fusing would move the unrolled kernel to the rolled steps) and
+/// both with Newton's joint forces: the same operations on every value the run depends on,
+/// so the same run bit for bit: stopping time, every sample's body states and tensions.
 #[test]
 fn case1_is_the_same_on_the_rolled_kernel() {
     use kanestop_runtime::generated::Form;
     let model = case1(None);
-    let unrolled = simulate::run(&model, Box::new(GeneratedKernel::with_form(&model.chain, Form::Unrolled).unwrap()));
-    let rolled = simulate::run(&model, Box::new(GeneratedKernel::with_form(&model.chain, Form::Rolled).unwrap()));
+    let kernel = |form| Box::new(Unfused(GeneratedKernel::with_form(&model.chain, form).unwrap()));
+    let unrolled = simulate::run(&model, kernel(Form::Unrolled));
+    let rolled = simulate::run(&model, kernel(Form::Rolled));
+    assert_eq!((unrolled.kernel_form, rolled.kernel_form), (Some("unrolled"), Some("rolled")));
     assert_eq!(unrolled.stop, rolled.stop);
     let (a, b) = (unrolled.stopping_time.expect("case 1 stops"), rolled.stopping_time.expect("case 1 stops"));
     assert_eq!(a.to_bits(), b.to_bits(), "stopping time {a} vs {b}");

@@ -27,6 +27,7 @@ use quote::{format_ident, quote};
 use crate::drivers::module;
 use crate::emit::header;
 use crate::loads::term_list;
+use crate::rolled::Loads;
 
 /// The emitted `generated/src/rhs.rs`.
 pub struct RhsFile {
@@ -55,7 +56,7 @@ fn signature_rhs(sig: &LoadSignature) -> TokenStream {
     let (la, le, ls) =
         (format_ident!("load_anchor_{n}"), format_ident!("load_element_{n}"), format_ident!("load_ship_{n}"));
     let gravity = weight_alone(sig);
-    let sfx = if gravity { "_gravity" } else { "" };
+    let sfx = if gravity { Loads::Gravity } else { Loads::Inputs }.suffix();
     let id = |name: &str| format_ident!("{name}{sfx}");
     let (ship, rod, first) = (id("inward_ship"), id("inward_rod"), id("inward_first"));
     let (anchor_free, anchor_stuck) = (id("anchor_free"), id("anchor_stuck"));

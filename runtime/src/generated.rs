@@ -5,7 +5,8 @@
 //! for the scenes under `scenes/` and `KANESTOP_EXTRA_BODY_COUNTS`; and **rolled**, the same
 //! per-body steps generated once per body kind and driven by loops, for any N.
 //! [`GeneratedKernel::new`] takes the unrolled kernel when the build has one and the rolled
-//! one otherwise, and [`GeneratedKernel::form`] says which. The reference is never a
+//! one otherwise, and [`GeneratedKernel::form`] says which; a kernel that takes the scene's
+//! loads ([`Kernel::fuse_loads`]) runs the rolled steps its fused right-hand side drives. The reference is never a
 //! fallback: it is the oracle and an explicit choice.
 //!
 //! One kernel serves every scene with the same shape: masses, lengths and inertias are
@@ -296,18 +297,19 @@ impl GeneratedKernel {
     ) -> Result<AnchorReaction, RhsError> {
         let f = self.fusion.as_ref().expect("solve_fused runs with a fusion set");
         let (p, lp, e, ws) = (&self.params, &f.params, &f.elements, &mut self.ws);
-        let reaction = match anchor {
+        let (reaction, factor) = match anchor {
             AnchorDof::Free => {
                 let [normal, factor] = (f.rhs.free)(p, lp, e, q, u, friction, ws, qdd);
-                check_friction_factor(factor)?;
-                AnchorReaction { holding: 0.0, normal }
+                (AnchorReaction { holding: 0.0, normal }, factor)
             }
             AnchorDof::Stuck => {
                 let [holding, normal] = (f.rhs.stuck)(p, lp, e, q, u, ws, qdd);
-                AnchorReaction { holding, normal }
+                (AnchorReaction { holding, normal }, 1.0)
             }
         };
+        // The workspace holds the kinematics at q whether or not the solve is refused.
         self.computed_at(q, bodies);
+        check_friction_factor(factor)?;
         for (l, a) in self.loads.iter_mut().zip(&self.ws.loads) {
             *l = Load { fx: a[0], fz: a[1], my: a[2] };
         }
@@ -404,7 +406,7 @@ impl Kernel for GeneratedKernel {
             self.assemble(q, u, model, scratch);
             return solve_assembled(scratch, anchor, friction, qdd);
         }
-        self.rows_of_last_solve = matches!(self.table, Table::Rolled(_));
+        self.rows_of_last_solve = false;
         let reaction = if self.fusion.is_some() {
             self.solve_fused(q, u, anchor, friction, model, &mut scratch.bodies, qdd)?
         } else {
@@ -414,14 +416,16 @@ impl Kernel for GeneratedKernel {
         if !reaction.holding.is_finite() || !reaction.normal.is_finite() || qdd.iter().any(|x| !x.is_finite()) {
             return Err(RhsError::NonFiniteAcceleration);
         }
+        self.rows_of_last_solve = matches!(self.table, Table::Rolled(_));
         Ok(reaction)
     }
 
-    /// From the rows the rolled solve left (`joint_forces` of the rolled table): the fused
-    /// right-hand sides and the rolled solves keep them, the unrolled ones do not.
+    /// From the rows the last successful rolled solve left (`joint_forces` of the rolled
+    /// table): the fused right-hand sides and the rolled solves keep them, the unrolled ones
+    /// do not. False too when `out` does not hold N − 1 joints.
     fn joint_forces(&self, out: &mut [[f64; 2]]) -> bool {
         match &self.table {
-            Table::Rolled(t) if self.rows_of_last_solve => {
+            Table::Rolled(t) if self.rows_of_last_solve && out.len() + 1 == self.bodies => {
                 (t.joint_forces)(&self.ws.scratch, out);
                 true
             }

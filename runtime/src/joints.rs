@@ -19,7 +19,10 @@ pub fn from_accelerations(
     out: &mut [[f64; 2]],
 ) {
     let n = chain.len();
-    assert!(out.len() + 1 >= n && bodies.len() >= n && acc.len() >= n && loads.len() >= n);
+    assert!(
+        out.len() + 1 >= n && bodies.len() >= n && acc.len() >= n && loads.len() >= n,
+        "the states, accelerations and loads of N = {n} bodies and N − 1 joints"
+    );
     let mut sum = [0.0, 0.0];
     for k in (1..n).rev() {
         let (b, a, l, s) = (&chain.bodies[k], &acc[k], &loads[k], &bodies[k]);

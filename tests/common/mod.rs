@@ -5,8 +5,11 @@ use kanestop_chain::BodyKind;
 use kanestop_runtime::chain::{box_inertia, Body, Chain, Shape};
 use kanestop_runtime::dynamics::{Dynamics, WORK_COUNT};
 use kanestop_runtime::forces::Forces;
+use kanestop_runtime::generated::GeneratedKernel;
 use kanestop_runtime::integrate::{Integrator, Rk4};
-use kanestop_runtime::kernel::{AnchorDof, Assembly, BodyState, Kernel};
+use kanestop_runtime::kernel::{
+    AnchorDof, AnchorReaction, Assembly, BodyAcceleration, BodyState, Kernel, LoadModel, RhsError,
+};
 use kanestop_runtime::reference::ReferenceKernel;
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
@@ -140,4 +143,43 @@ pub fn backward_error(asm: &Assembly, active: usize, friction: f64, qdd: &[f64])
     let (m, f) = reference_system(asm, active, friction);
     let x = nalgebra::DVector::from_column_slice(&qdd[..active]);
     (&m * &x - &f).norm() / (m.norm() * x.norm() + f.norm())
+}
+
+/// A kernel that is the generated one but cannot fuse (the trait's default), so that
+/// `Dynamics` calls the force modules, and keeps no rows for the joint forces (the
+/// observation takes Newton's form): the same right-hand side, entry for entry.
+pub struct Unfused(pub GeneratedKernel);
+
+impl Kernel for Unfused {
+    fn name(&self) -> &'static str {
+        "unfused"
+    }
+    fn body_count(&self) -> usize {
+        self.0.body_count()
+    }
+    fn form(&self) -> Option<&'static str> {
+        Kernel::form(&self.0)
+    }
+    fn kinematics(&mut self, q: &[f64], u: &[f64], bodies: &mut [BodyState]) {
+        self.0.kinematics(q, u, bodies)
+    }
+    fn assemble(&mut self, q: &[f64], u: &[f64], model: &mut dyn LoadModel, out: &mut Assembly) {
+        self.0.assemble(q, u, model, out)
+    }
+    fn accelerations(&mut self, q: &[f64], u: &[f64], qdd: &[f64], out: &mut [BodyAcceleration]) {
+        self.0.accelerations(q, u, qdd, out)
+    }
+    #[allow(clippy::too_many_arguments)]
+    fn solve(
+        &mut self,
+        q: &[f64],
+        u: &[f64],
+        anchor: AnchorDof,
+        friction: f64,
+        model: &mut dyn LoadModel,
+        scratch: &mut Assembly,
+        qdd: &mut [f64],
+    ) -> Result<AnchorReaction, RhsError> {
+        self.0.solve(q, u, anchor, friction, model, scratch, qdd)
+    }
 }
