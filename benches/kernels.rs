@@ -105,6 +105,32 @@ fn per_solve(kernel: &mut dyn Kernel, chain: &Chain, anchor: AnchorDof) -> f64 {
 }
 
 fn main() {
+    // `cargo bench --bench kernels -- whole_rhs whole_runs`: only the named sections.
+    let only: Vec<String> = std::env::args().skip(1).filter(|a| !a.starts_with('-')).collect();
+    let wanted = |name: &str| only.is_empty() || only.iter().any(|o| o == name);
+    let sections: [(&str, fn()); 5] = [
+        ("rolled_vs_unrolled", rolled_vs_unrolled),
+        ("fused_gravity", fused_gravity),
+        ("whole_rhs", whole_rhs),
+        ("folded", folded),
+        ("whole_runs", whole_runs),
+    ];
+    if !wanted("solves") {
+        for (name, section) in sections {
+            if wanted(name) {
+                section();
+            }
+        }
+        return;
+    }
+    solves();
+    for (_, section) in sections {
+        section();
+    }
+}
+
+/// Gravity-only solves by N, and the variants at N = 46.
+fn solves() {
     let built = available();
     println!("µs per evaluation of qdd (gravity only, anchor free; median of 15 batches)");
     println!(
@@ -158,11 +184,6 @@ fn main() {
     for (name, [a, b]) in rows {
         println!("{name:>22} {a:>10.2} {b:>10.2}");
     }
-
-    rolled_vs_unrolled();
-    fused_gravity();
-    whole_rhs();
-    whole_runs();
 }
 
 /// Weight alone, the loads included: the kernel handed `Forces::gravity_only`'s loads
@@ -247,6 +268,44 @@ fn whole_rhs() {
             fused.1,
             fused.0 / fed.0
         );
+    }
+}
+
+/// Parameters kept or folded (docs/codegen.md): case 1's right-hand side with the loads of
+/// the force modules on the unrolled kernel with the parameters as inputs and on the checked-in
+/// kernel with case 1's numbers folded in, beside the default (the fused right-hand side on the
+/// rolled steps), side by side, µs per solve (wall median; CPU over the measurement).
+fn folded() {
+    use kanestop_runtime::dynamics::fused_loads;
+    use kanestop_runtime::model::Model;
+    use kanestop_runtime::paper::CASES;
+    println!("\nparameters kept or folded, case 1 (N = 46, water on), anchor free (µs per solve)");
+    println!("{:>34} {:>9} {:>9}", "kernel", "wall", "CPU");
+    let model = Model::new(&CASES[0].scene()).unwrap();
+    let (q, u) = (model.q0.clone(), model.u0.clone());
+    let n = model.body_count();
+    let timed = |form: Form, fuse: bool| {
+        let mut k = GeneratedKernel::with_form(&model.chain, form).unwrap();
+        let mut forces = Forces::new(&model);
+        if fuse {
+            assert!(k.fuse_loads(&fused_loads(&forces).unwrap()));
+        }
+        let (mut scratch, mut qdd) = (Assembly::new(n), vec![0.0; n]);
+        let (cpu, mut calls) = (thread_cpu(), 0u64);
+        let wall = time(|| {
+            calls += 1;
+            let f = k.solve(black_box(&q), black_box(&u), AnchorDof::Free, 0.3, &mut forces, &mut scratch, &mut qdd);
+            black_box((f.unwrap(), &qdd));
+        });
+        (wall, (thread_cpu() - cpu) * 1e6 / calls as f64)
+    };
+    for (name, form, fuse) in [
+        ("unrolled, kept, force modules", Form::Unrolled, false),
+        ("unrolled, folded, force modules", Form::Folded, false),
+        ("rolled, fused (the default)", Form::Rolled, true),
+    ] {
+        let (wall, cpu) = timed(form, fuse);
+        println!("{name:>34} {wall:>9.2} {cpu:>9.2}");
     }
 }
 

@@ -1,7 +1,9 @@
 //! Generates the kernels that are not checked in: the body counts of the scenes under
 //! `../scenes` without a file in `src/`, and the counts listed in the environment variable
 //! `KANESTOP_EXTRA_BODY_COUNTS` (comma-separated, e.g. `12,24,100,200` for the benchmarks).
-//! They go to OUT_DIR with a registry `extra.rs` that `src/lib.rs` includes.
+//! They go to OUT_DIR with a registry `extra.rs` that `src/lib.rs` includes. The folded
+//! kernels in the folder `KANESTOP_FOLDED_KERNELS` names (`kanestop codegen --scene SCENE
+//! --fold DIR`) are listed in `folded.rs` there.
 //!
 //! Counts above [`MAX_GENERATED_BODIES`] are not generated: the generator's expression DAG
 //! recurses and overflows the build script's default stack from about N = 490 (with a
@@ -11,7 +13,7 @@
 
 use std::path::Path;
 
-use kanestop_codegen::emit::{generate, out_dir_registry};
+use kanestop_codegen::emit::{folded_registry, generate, out_dir_registry};
 use kanestop_codegen::variants_for;
 
 /// The largest body count the build script generates a kernel for.
@@ -60,6 +62,36 @@ fn main() {
         write_if_changed(&Path::new(&out).join(&file.file_name), &file.source);
     }
     write_if_changed(&Path::new(&out).join("extra.rs"), &out_dir_registry(&wanted));
+    let folded = folded_kernels(Path::new(&manifest));
+    write_if_changed(&Path::new(&out).join("folded.rs"), &folded_registry(&folded));
+}
+
+/// The folded kernels in the folder `KANESTOP_FOLDED_KERNELS` names (written by `kanestop
+/// codegen --scene SCENE --fold DIR`; a relative path is taken from the repository's root):
+/// every `<name>.rs` in it, by name and absolute path.
+fn folded_kernels(manifest: &Path) -> Vec<(String, Option<String>)> {
+    println!("cargo:rerun-if-env-changed=KANESTOP_FOLDED_KERNELS");
+    let Ok(dir) = std::env::var("KANESTOP_FOLDED_KERNELS") else { return Vec::new() };
+    let dir = manifest.join("..").join(dir);
+    let entries = std::fs::read_dir(&dir)
+        .unwrap_or_else(|e| panic!("KANESTOP_FOLDED_KERNELS: cannot read the folder {}: {e}", dir.display()));
+    println!("cargo:rerun-if-changed={}", dir.display());
+    let mut kernels = Vec::new();
+    for path in entries.flatten().map(|e| e.path()).filter(|p| p.extension().is_some_and(|x| x == "rs")) {
+        println!("cargo:rerun-if-changed={}", path.display());
+        let name = path.file_stem().and_then(|s| s.to_str()).unwrap_or_default().to_string();
+        let identifier = name.chars().next().is_some_and(|c| c.is_ascii_lowercase() || c == '_')
+            && name.chars().all(|c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '_');
+        assert!(
+            identifier,
+            "KANESTOP_FOLDED_KERNELS: {} is not named as a Rust module (lower case, digits, _)",
+            path.display()
+        );
+        let absolute = path.canonicalize().unwrap_or_else(|e| panic!("cannot resolve {}: {e}", path.display()));
+        kernels.push((name, Some(absolute.to_string_lossy().into_owned())));
+    }
+    kernels.sort();
+    kernels
 }
 
 fn write_if_changed(path: &Path, text: &str) {

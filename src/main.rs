@@ -7,7 +7,7 @@ mod sweep;
 
 use commands::RunOutcome;
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use anyhow::{Context, Result};
@@ -123,8 +123,8 @@ enum Command {
     Sweep(sweep::SweepArgs),
     /// Show what the generator makes of a scene: its signature, the kernel chosen (unrolled or
     /// rolled) and what it leaves out, operation counts with the parameters kept as inputs and
-    /// folded as the scene's literals; `--write` regenerates the checked-in kernels under
-    /// generated/src/.
+    /// folded as the scene's literals; `--fold DIR` writes the scene's folded kernel, `--write`
+    /// regenerates the checked-in kernels under generated/src/.
     Codegen {
         /// Scene TOML file; omitted: the embedded case 1.
         scene: Option<PathBuf>,
@@ -134,6 +134,12 @@ enum Command {
         /// Rewrite every checked-in kernel (the test sizes and the counts of scenes/paper).
         #[arg(long)]
         write: bool,
+        /// Write the scene's unrolled kernel with its parameters folded in as literals into
+        /// this folder, as folded_<scene file name>.rs; `KANESTOP_FOLDED_KERNELS=DIR cargo
+        /// build --release` builds it in, and a chain with exactly these numbers runs on it
+        /// (docs/codegen.md, "Parameters: kept as inputs or folded").
+        #[arg(long, value_name = "DIR")]
+        fold: Option<PathBuf>,
         /// Repository root holding scenes/ and generated/ (for --write).
         #[arg(long, default_value = ".")]
         root: PathBuf,
@@ -194,8 +200,18 @@ impl KernelArg {
 }
 
 /// `codegen`: what would be generated for a scene, and optionally write the checked-in files.
-fn codegen(scene: Option<&PathBuf>, write: bool, root: &std::path::Path) -> Result<()> {
+fn codegen(scene: Option<&PathBuf>, write: bool, fold: Option<&Path>, root: &Path) -> Result<()> {
     use kanestop_chain::{Variant, Water};
+    // The folded kernel's name, from the scene's file name, and its folder, checked first.
+    let fold = fold
+        .map(|dir| -> Result<(PathBuf, String)> {
+            let stem = scene.and_then(|s| s.file_stem()).map_or("case01".into(), |s| s.to_string_lossy());
+            let name = folded_name(&stem);
+            kanestop_workflow::output::check_dir_target(dir)
+                .with_context(|| format!("--fold: cannot write into {}", dir.display()))?;
+            Ok((dir.join(format!("{name}.rs")), name))
+        })
+        .transpose()?;
     let model = load_model(scene)?;
     let n = model.body_count();
     let wet = model.chain.bodies.iter().any(|b| b.added_mass != 0.0);
@@ -227,6 +243,9 @@ fn codegen(scene: Option<&PathBuf>, write: bool, root: &std::path::Path) -> Resu
         Ok(kanestop_runtime::generated::Form::Unrolled) => {
             format!("{} (unrolled, built for N = {n})", variant.module())
         }
+        Ok(kanestop_runtime::generated::Form::Folded) => {
+            format!("{} (unrolled, this scene's parameters folded in)", variant.module())
+        }
         Ok(kanestop_runtime::generated::Form::Rolled) => {
             format!("rolled_{} (any N; no unrolled kernel for N = {n} in this build)", water.suffix())
         }
@@ -254,10 +273,27 @@ fn codegen(scene: Option<&PathBuf>, write: bool, root: &std::path::Path) -> Resu
             .collect::<Vec<_>>()
             .join(", ")
     );
+    if let Some((path, name)) = fold {
+        anyhow::ensure!(n <= 400, "--fold: no unrolled kernel is expanded above N = 400 bodies (this scene has {n})");
+        let file = kanestop_codegen::emit::generate_folded(variant, &folded_values(&model), &name);
+        if let Some(dir) = path.parent() {
+            std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+        }
+        kanestop_workflow::output::write_atomically(&path, file.source.as_bytes())
+            .with_context(|| format!("cannot write {}", path.display()))?;
+        println!(
+            "written    {} ({} lines); build it in: KANESTOP_FOLDED_KERNELS={} cargo build --release",
+            path.display(),
+            file.lines(),
+            path.parent().map_or(".".into(), |d| d.display().to_string())
+        );
+    }
     if write {
         let dir = root.join("generated/src");
         anyhow::ensure!(dir.is_dir(), "{} is not a directory: pass --root <repository>", dir.display());
-        for (name, text) in kanestop_codegen::checked_in_files(&root.join("scenes/paper")) {
+        let mut files = kanestop_codegen::checked_in_files(&root.join("scenes/paper"));
+        files.push(checked_in_folded(&root.join("scenes/paper/case01.toml"))?);
+        for (name, text) in files {
             let path = dir.join(&name);
             let old = std::fs::read_to_string(&path).unwrap_or_default();
             if old != text {
@@ -323,18 +359,7 @@ fn load_report(model: &Model, forces: &kanestop_runtime::forces::Forces, fused: 
 /// The unrolled kernel's operation counts for `model`, parameters kept and folded.
 fn unrolled_op_counts(model: &Model, variant: kanestop_chain::Variant) {
     let kept = kanestop_codegen::generate(variant);
-    // The very numbers the runtime hands the kernel.
-    let values: Vec<kanestop_codegen::planar::BodyValues> = kanestop_runtime::generated::body_params(&model.chain)
-        .into_iter()
-        .map(|b| kanestop_codegen::planar::BodyValues {
-            mass: b.mass,
-            inertia: b.inertia,
-            centroid: b.centroid,
-            joint: b.joint,
-            added_mass: b.added_mass,
-        })
-        .collect();
-    let folded = kanestop_codegen::emit::folded_op_counts(variant, &values);
+    let folded = kanestop_codegen::emit::folded_op_counts(variant, &folded_values(model));
     println!("{}: {} lines (the unrolled expansion for this N)", kept.file_name, kept.lines());
     println!(
         "  {:<14} {:>10} {:>12} {:>8}   (operations; sin/cos in kinematics)",
@@ -344,6 +369,40 @@ fn unrolled_op_counts(model: &Model, variant: kanestop_chain::Variant) {
         let (a, b) = (k.ops.total(), f.ops.total());
         println!("  {:<14} {a:>10} {b:>12} {:>7.1}%", k.name, 100.0 * (a as f64 - b as f64) / a as f64);
     }
+}
+
+/// The checked-in folded kernel (`kanestop_codegen::CHECKED_IN_FOLDED`) of the scene `case1`:
+/// its file name and text.
+fn checked_in_folded(case1: &Path) -> Result<(String, String)> {
+    let model = load_model(Some(&case1.to_path_buf()))?;
+    let wet = model.chain.bodies.iter().any(|b| b.added_mass != 0.0);
+    let water = if wet { kanestop_chain::Water::On } else { kanestop_chain::Water::Off };
+    let variant = kanestop_chain::Variant::new(model.body_count(), water);
+    let name = kanestop_codegen::CHECKED_IN_FOLDED;
+    let file = kanestop_codegen::emit::generate_folded(variant, &folded_values(&model), name);
+    Ok((file.file_name, file.source))
+}
+
+/// The very numbers the runtime hands the kernel, for the generator to fold in.
+fn folded_values(model: &Model) -> Vec<kanestop_codegen::planar::BodyValues> {
+    kanestop_runtime::generated::body_params(&model.chain)
+        .into_iter()
+        .map(|b| kanestop_codegen::planar::BodyValues {
+            mass: b.mass,
+            inertia: b.inertia,
+            centroid: b.centroid,
+            joint: b.joint,
+            added_mass: b.added_mass,
+        })
+        .collect()
+}
+
+/// A folded kernel's module name from a scene's file name: `folded_` and the name in lower
+/// case, anything but letters and digits as `_`.
+fn folded_name(stem: &str) -> String {
+    let tail: String =
+        stem.chars().map(|c| if c.is_ascii_alphanumeric() { c.to_ascii_lowercase() } else { '_' }).collect();
+    format!("folded_{tail}")
 }
 
 fn load_model(scene: Option<&PathBuf>) -> Result<Model> {
@@ -579,8 +638,8 @@ fn try_main() -> Result<Exit> {
                 commands::BatchOutcome::CheckFailed => Exit::CheckFailed,
             })
         }
-        Command::Codegen { scene, scene_flag, write, root } => {
-            codegen(scene.as_ref().or(scene_flag.as_ref()), write, &root)?;
+        Command::Codegen { scene, scene_flag, write, fold, root } => {
+            codegen(scene.as_ref().or(scene_flag.as_ref()), write, fold.as_deref(), &root)?;
             Ok(Exit::Done)
         }
     }

@@ -182,6 +182,8 @@ fn drivers() -> TokenStream {
         /// `trig[k] = [cos θ, sin θ]`, `bodies[k] = [x, z, θ, v_x, v_z, ω]` of C_k, B_1 first.
         pub fn kinematics(p: &[crate::BodyParams], q: &[f64], u: &[f64], trig: &mut [[f64; 2]], bodies: &mut [[f64; 6]]) {
             let n = self::bodies(p, &[q.len(), u.len(), trig.len(), bodies.len()]);
+            // Cut to N: the loop's indices need no bounds checks.
+            let (q, u, trig, bodies) = (&q[..n], &u[..n], &mut trig[..n], &mut bodies[..n]);
             let mut c = kin_anchor(&p[0], q[n - 1], u[n - 1], &mut bodies[0], &mut trig[0]);
             c = kin_first(&p[1], q[0], u[0], &c, &mut bodies[1], &mut trig[1]);
             for k in 2..n - 1 {
@@ -194,6 +196,7 @@ fn drivers() -> TokenStream {
         /// accelerations `qdd`.
         pub fn accelerations(p: &[crate::BodyParams], u: &[f64], trig: &[[f64; 2]], qdd: &[f64], acc: &mut [[f64; 3]]) {
             let n = self::bodies(p, &[u.len(), trig.len(), qdd.len(), acc.len()]);
+            let (u, trig, qdd, acc) = (&u[..n], &trig[..n], &qdd[..n], &mut acc[..n]);
             let mut c = acc_anchor(&p[0], qdd[n - 1], &mut acc[0]);
             let mut w = u[0];
             c = acc_first(&p[1], &trig[1], w, qdd[0], &c, &mut acc[1]);
@@ -210,6 +213,7 @@ fn drivers() -> TokenStream {
         /// θ̇_k into the last column of every scratch row (θ̇_1 = 0).
         pub(crate) fn angular_velocities(u: &[f64], scratch: &mut [[f64; crate::ROLLED_SCRATCH]]) {
             let mut w = 0.0;
+            let u = &u[..scratch.len() - 1];
             scratch[0][crate::ROLLED_SCRATCH - 1] = w;
             for k in 1..scratch.len() {
                 w += u[k - 1];

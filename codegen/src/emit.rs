@@ -245,15 +245,48 @@ fn fixed(name: &str, ty: TokenStream, len: usize, mutable: bool) -> TokenStream 
     }
 }
 
-// Long by design: the five kernels' signatures and docs side by side, as they appear in the file.
-/// Generates the kernel file of `variant`.
+/// Generates the kernel file of `variant`, its parameters runtime inputs.
 pub fn generate(variant: Variant) -> GeneratedFile {
+    generate_with(variant, planar::ParamSource::Inputs)
+}
+
+/// The kernel of `variant` with one scene's parameter values folded in as literals
+/// (`kanestop codegen --scene SCENE --fold DIR`), named `name` (a Rust identifier: the file
+/// is `<name>.rs`). Its `PARAMS` lists the values, so that the runtime takes it only for a
+/// chain with exactly these numbers; its `KERNEL` has the unrolled kernel's signatures and
+/// ignores its `p` argument.
+pub fn generate_folded(variant: Variant, values: &[planar::BodyValues], name: &str) -> GeneratedFile {
+    assert_eq!(values.len(), variant.bodies, "one value set per body");
+    let mut file = generate_with(variant, planar::ParamSource::Folded(values));
+    let rows = values.iter().map(|b| {
+        let (m, i, a) = (literal(b.mass), literal(b.inertia), literal(b.added_mass));
+        let (c0, c1, j0, j1) =
+            (literal(b.centroid[0]), literal(b.centroid[1]), literal(b.joint[0]), literal(b.joint[1]));
+        quote!(crate::BodyParams { mass: #m, inertia: #i, centroid: [#c0, #c1], joint: [#j0, #j1], added_mass: #a })
+    });
+    let tokens = quote! {
+        /// The body parameters folded into this kernel: it serves a chain with exactly these.
+        pub const PARAMS: &[crate::BodyParams] = &[#(#rows),*];
+    };
+    let file_tokens: syn::File = syn::parse2(tokens).expect("folded parameters parse");
+    file.source.push('\n');
+    file.source.push_str(&prettyplease::unparse(&file_tokens));
+    file.file_name = format!("{name}.rs");
+    file
+}
+
+// Long by design: the five kernels' signatures and docs side by side, as they appear in the file.
+fn generate_with(variant: Variant, source: planar::ParamSource) -> GeneratedFile {
     let n = variant.bodies;
     let water = match variant.water {
         Water::Off => "water off (no added mass)",
         Water::On => "water on (added mass on the rods, Eq. 46)",
     };
-    let what = format!("the planar chain of N = {n} bodies, {water}");
+    let folded = match source {
+        planar::ParamSource::Inputs => "",
+        planar::ParamSource::Folded(_) => ", one scene's parameters folded in",
+    };
+    let what = format!("the planar chain of N = {n} bodies, {water}{folded}");
     let f64_ = quote!(f64);
     let params = fixed("p", quote!(crate::BodyParams), n, false);
     let q = fixed("q", f64_.clone(), n, false);
@@ -292,7 +325,7 @@ pub fn generate(variant: Variant) -> GeneratedFile {
 
     function(
         "kinematics",
-        planar::kinematics(variant),
+        planar::kinematics_with(variant, source),
         format!(
             "Body states (Eqs. 9, 13, 14) of the N = {n} bodies and the rotation table.\n\n\
              θ_k = β_2 + … + β_k, `trig[k] = [cos θ, sin θ]` (the planar S^(0k) of Eqs. 1, 4), and per body\n\
@@ -303,7 +336,7 @@ pub fn generate(variant: Variant) -> GeneratedFile {
     );
     function(
         "assemble",
-        planar::assemble(variant),
+        planar::assemble_with(variant, source),
         format!(
             "The reduced Kane equations a_lp ẍ_p = f_l (Eqs. 25–27) over all N = {n} speeds.\n\n\
              `m` receives a_lp (Eq. 26), row-major and symmetric; `f` receives f_l (Eq. 25) with the\n\
@@ -317,14 +350,14 @@ pub fn generate(variant: Variant) -> GeneratedFile {
     );
     function(
         "accelerations",
-        planar::accelerations(variant),
+        planar::accelerations_with(variant, source),
         "Body accelerations (Eq. 17): `acc[k] = [a_x, a_z, α]` of C_k for generalised accelerations `qdd`.".to_string(),
         quote!(pub fn accelerations(p: &[crate::BodyParams], u: &[f64], trig: &[[f64; 2]], qdd: &[f64], acc: &mut [[f64; 3]])),
         quote!(#params #u #trig_in #qdd_in #acc),
     );
     function(
         "solve_free",
-        planar::solve(variant, false),
+        planar::solve_with(variant, false, source),
         "ẍ of Eq. 27 with the anchor free (all N speeds), by the O(N) articulated-body recursion\n\
          on the Kane quantities of Eqs. 15–17 and 22–23: inward over the hinges, then outward.\n\n\
          The anchor slides with friction −`friction`·N along x (`friction` = μ times the direction\n\
@@ -336,7 +369,7 @@ pub fn generate(variant: Variant) -> GeneratedFile {
     );
     function(
         "solve_stuck",
-        planar::solve(variant, true),
+        planar::solve_with(variant, true, source),
         "ẍ of Eq. 27 with the anchor stuck (ẍ_{3N+1} = 0), by the O(N) recursion; returns the\n\
          anchor's holding force F^C_{3N+1} = a_{3N+1,p} ẍ_p − f_{3N+1} (Eq. 50), N along +x, and\n\
          the seabed's normal force on it (Eq. 37), N along +z."
@@ -389,6 +422,45 @@ pub fn folded_op_counts(variant: Variant, values: &[planar::BodyValues]) -> Vec<
             FunctionReport { name: name.to_string(), ops, statements: 0 }
         })
         .collect()
+}
+
+/// The registry of folded kernels (`generated/src/folded.rs`, and `folded.rs` in OUT_DIR for
+/// those the build takes from `KANESTOP_FOLDED_KERNELS`): one module per file, by name
+/// (`<name>.rs` beside the registry, or at the absolute path given), and the list `FOLDED`.
+pub fn folded_registry(kernels: &[(String, Option<String>)]) -> String {
+    let mut mods = TokenStream::new();
+    let mut entries = Vec::new();
+    for (name, path) in kernels {
+        let module = ident(name);
+        let doc = format!(" The folded kernel `{name}`.");
+        // Literals emitted as `(-x)` stand alone where a folded value is stored.
+        let allow = quote!(#[allow(clippy::all, unused_variables, unused_parens, dead_code)]);
+        mods.extend(match path {
+            Some(path) => quote! {
+                #[doc = #doc]
+                #allow
+                pub mod #module { include!(#path); }
+            },
+            None => {
+                let file = format!("{name}.rs");
+                quote! {
+                    #[doc = #doc]
+                    #[rustfmt::skip]
+                    #allow
+                    #[path = #file]
+                    pub mod #module;
+                }
+            }
+        });
+        entries.push(quote!(crate::FoldedKernel { name: #name, kernel: #module::KERNEL, params: #module::PARAMS }));
+    }
+    let tokens = quote! {
+        #mods
+        /// Every folded kernel here.
+        pub const FOLDED: &[crate::FoldedKernel] = &[#(#entries),*];
+    };
+    let file: syn::File = syn::parse2(tokens).expect("folded registry parses");
+    header("the folded kernels' names") + "\n" + &prettyplease::unparse(&file)
 }
 
 /// The registry `generated/src/kernels.rs` for the checked-in variants.
@@ -468,6 +540,43 @@ mod tests {
 
     use super::{generate, registry, slot};
     use crate::planar::Slot;
+
+    /// A folded kernel reads no parameter, lists the values it folded (bit for bit, as Rust
+    /// literals), costs fewer operations than the kept one, and is registered by name.
+    #[test]
+    fn a_folded_kernel_reads_no_parameter_and_lists_its_values() {
+        use crate::planar::BodyValues;
+        let v = Variant::new(5, Water::On);
+        let values: Vec<BodyValues> = (0..5)
+            .map(|k| BodyValues {
+                mass: 1000.0 / (k as f64 + 3.0),
+                inertia: if k == 0 { 0.0 } else { 0.1 + k as f64 / 7.0 },
+                centroid: [0.5 + 0.1 * k as f64, if k == 0 { 1.05 } else { 0.0 }],
+                joint: [if k == 0 { 0.0 } else { 1.0 / 3.0 }, if k < 2 { -0.5 } else { 0.0 }],
+                added_mass: if k == 0 || k == 4 { 0.0 } else { 0.3 * k as f64 },
+            })
+            .collect();
+        let (kept, folded) = (generate(v), super::generate_folded(v, &values, "folded_test"));
+        assert_eq!(folded.file_name, "folded_test.rs");
+        assert!(kept.source.contains("p[1].mass") && !folded.source.contains("p[1]"), "no parameter is read");
+        syn::parse_file(&folded.source).expect("parses");
+        let params = &folded.source[folded.source.find("pub const PARAMS").expect("PARAMS")..];
+        for b in &values {
+            for x in [b.mass, b.inertia, b.centroid[0], b.joint[0], b.added_mass] {
+                let text = format!("{:?}", x.abs());
+                assert!(params.contains(&text), "{text} listed");
+                let parsed: f64 = text.parse().unwrap();
+                assert_eq!(parsed.to_bits(), x.abs().to_bits(), "the literal is the value, bit for bit");
+            }
+        }
+        for (k, f) in kept.functions.iter().zip(&folded.functions) {
+            assert!(f.ops.total() < k.ops.total(), "{}: {} < {}", k.name, f.ops.total(), k.ops.total());
+        }
+        let registry =
+            super::folded_registry(&[("folded_test".into(), None), ("elsewhere".into(), Some("/x/e.rs".into()))]);
+        assert!(registry.contains("#[path = \"folded_test.rs\"]") && registry.contains("include!(\"/x/e.rs\")"));
+        assert!(registry.contains("name: \"elsewhere\""), "{registry}");
+    }
 
     #[test]
     fn slots_render_as_rust_places() {

@@ -53,6 +53,13 @@ pub fn checked_in_variants(scenes_dir: &std::path::Path) -> Vec<Variant> {
     variants_for(&counts)
 }
 
+/// The folded kernel checked in (`generated/src/folded_case01.rs`): the paper's case 1 with
+/// its parameters as literals, for the benchmark of folded against kept parameters and the
+/// tests of the folded path. Its values come from the runtime's model of
+/// `scenes/paper/case01.toml`, so `kanestop codegen --write` and `tests/generated_fresh.rs`
+/// write and check it; [`checked_in_files`] has only its registry `folded.rs`.
+pub const CHECKED_IN_FOLDED: &str = "folded_case01";
+
 /// Every checked-in file as (name under `generated/src/`, text): the unrolled kernels, the
 /// registry `kernels.rs`, which lists them, the two rolled kernels (any N), the load
 /// code of every signature (`loads.rs`) and the fused right-hand sides (`rhs.rs`).
@@ -70,6 +77,7 @@ pub fn checked_in_files(scenes_dir: &std::path::Path) -> Vec<(String, String)> {
         let rolled = drivers::generate_rolled(water);
         out.push((rolled.file_name, rolled.source));
     }
+    out.push(("folded.rs".to_string(), emit::folded_registry(&[(CHECKED_IN_FOLDED.to_string(), None)])));
     out.push(("loads.rs".to_string(), loads::generate_loads().source));
     out.push(("rhs.rs".to_string(), rhs::generate_rhs().source));
     out

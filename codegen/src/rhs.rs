@@ -106,12 +106,17 @@ fn signature_rhs(sig: &LoadSignature) -> TokenStream {
         ) -> [f64; 9] {
             const W: usize = crate::ROLLED_SCRATCH - 1;
             let n = p.len();
-            let crate::Workspace { trig, bodies, loads, power, scratch } = ws;
+            let crate::Workspace { trig, bodies, loads, power: powers, scratch } = ws;
             crate::#r::kinematics(p, q, u, trig, bodies);
-            let scratch = &mut scratch[..n];
+            // Every array cut to N: the indices below need no bounds checks.
+            let (e, trig, bodies) = (&e[..n], &trig[..n], &bodies[..n]);
+            let (loads, scratch) = (&mut loads[..n], &mut scratch[..n]);
             crate::#r::angular_velocities(u, scratch);
             #contacts
-            *power = [0.0; crate::POWER_TERMS];
+            // Summed in a local, which stays in registers (`ws`'s arrays could alias
+            // `ws.power` for all the compiler knows), and stored once.
+            let mut sums = [0.0; crate::POWER_TERMS];
+            let power = &mut sums;
             loads[n - 1] = crate::loads::#ls(&p[n - 1], lp, &bodies[n - 1], power);
             let (w, wp) = (scratch[n - 1][W], scratch[n - 2][W]);
             let mut c = crate::#r::#ship(&p[n - 1], &trig[n - 1], w, &trig[n - 2], wp, #f_ship, &mut scratch[n - 1]);
@@ -123,6 +128,7 @@ fn signature_rhs(sig: &LoadSignature) -> TokenStream {
             loads[1] = crate::loads::#le(&p[1], lp, &e[1], &bodies[1], &trig[1], #contact_first, power);
             let c = crate::#r::#first(&p[1], &trig[1], scratch[1][W], #f_first, &c, &mut scratch[1]);
             loads[0] = crate::loads::#la(&p[0], lp, &bodies[0], power);
+            *powers = sums;
             c
         }
 

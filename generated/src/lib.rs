@@ -44,6 +44,15 @@ mod extra {
     include!(concat!(env!("OUT_DIR"), "/extra.rs"));
 }
 
+/// The checked-in folded kernels (`src/folded.rs`: the paper's case 1).
+#[rustfmt::skip]
+mod folded;
+
+/// The folded kernels the build takes from `KANESTOP_FOLDED_KERNELS`.
+mod folded_extra {
+    include!(concat!(env!("OUT_DIR"), "/folded.rs"));
+}
+
 pub use kernels::*;
 
 /// The numeric parameters of one body B_k, as the kernels read them. Structurally zero
@@ -260,6 +269,35 @@ pub struct RhsTable {
 /// The fused right-hand sides of a signature, by its name (`wet_seabed_friction`).
 pub fn rhs(signature: &str) -> Option<RhsTable> {
     rhs::RHS.iter().find(|(n, _)| *n == signature).map(|(_, t)| *t)
+}
+
+/// An unrolled kernel with one scene's body parameters folded in as literals
+/// (`kanestop codegen --scene SCENE --fold DIR`): it serves a chain with exactly these
+/// numbers, and ignores the `p` its functions are handed.
+#[derive(Clone, Copy, Debug)]
+pub struct FoldedKernel {
+    /// The module's name (`folded_case01`).
+    pub name: &'static str,
+    pub kernel: KernelTable,
+    /// The parameters folded in, B_1 first.
+    pub params: &'static [BodyParams],
+}
+
+/// The folded kernel for a chain whose parameters are `p`, bit for bit, with the water
+/// switch `wet`: checked in or built from `KANESTOP_FOLDED_KERNELS`.
+pub fn find_folded(p: &[BodyParams], wet: bool) -> Option<FoldedKernel> {
+    let bits = |b: &BodyParams| {
+        [b.mass, b.inertia, b.centroid[0], b.centroid[1], b.joint[0], b.joint[1], b.added_mass].map(f64::to_bits)
+    };
+    let same = |f: &FoldedKernel| {
+        f.kernel.wet == wet && f.params.len() == p.len() && f.params.iter().zip(p).all(|(a, b)| bits(a) == bits(b))
+    };
+    folded::FOLDED.iter().chain(folded_extra::FOLDED).find(|f| same(f)).copied()
+}
+
+/// The names of every folded kernel in this build.
+pub fn folded_kernels() -> Vec<&'static str> {
+    folded::FOLDED.iter().chain(folded_extra::FOLDED).map(|f| f.name).collect()
 }
 
 /// The rolled kernel for the water switch: any N.

@@ -88,11 +88,13 @@ fn pass_dry(
 ) -> [f64; 9] {
     const W: usize = crate::ROLLED_SCRATCH - 1;
     let n = p.len();
-    let crate::Workspace { trig, bodies, loads, power, scratch } = ws;
+    let crate::Workspace { trig, bodies, loads, power: powers, scratch } = ws;
     crate::rolled_dry::kinematics(p, q, u, trig, bodies);
-    let scratch = &mut scratch[..n];
+    let (e, trig, bodies) = (&e[..n], &trig[..n], &bodies[..n]);
+    let (loads, scratch) = (&mut loads[..n], &mut scratch[..n]);
     crate::rolled_dry::angular_velocities(u, scratch);
-    *power = [0.0; crate::POWER_TERMS];
+    let mut sums = [0.0; crate::POWER_TERMS];
+    let power = &mut sums;
     loads[n - 1] = crate::loads::load_ship_dry(&p[n - 1], lp, &bodies[n - 1], power);
     let (w, wp) = (scratch[n - 1][W], scratch[n - 2][W]);
     let mut c = crate::rolled_dry::inward_ship_gravity(
@@ -144,6 +146,7 @@ fn pass_dry(
         &mut scratch[1],
     );
     loads[0] = crate::loads::load_anchor_dry(&p[0], lp, &bodies[0], power);
+    *powers = sums;
     c
 }
 /// The right-hand side of signature `dry` with the anchor free: ẍ of Eq. 27 at (q, u), sliding friction −`friction`·N along x. Returns `[N, 1 + friction·∂N/∂F_x]`; the states, loads and powers are left in `ws`.
@@ -201,14 +204,16 @@ fn pass_dry_seabed(
 ) -> [f64; 9] {
     const W: usize = crate::ROLLED_SCRATCH - 1;
     let n = p.len();
-    let crate::Workspace { trig, bodies, loads, power, scratch } = ws;
+    let crate::Workspace { trig, bodies, loads, power: powers, scratch } = ws;
     crate::rolled_dry::kinematics(p, q, u, trig, bodies);
-    let scratch = &mut scratch[..n];
+    let (e, trig, bodies) = (&e[..n], &trig[..n], &bodies[..n]);
+    let (loads, scratch) = (&mut loads[..n], &mut scratch[..n]);
     crate::rolled_dry::angular_velocities(u, scratch);
     for k in 1..n - 1 {
         loads[k] = crate::loads::contact_dry_seabed(lp, &e[k], &bodies[k], &trig[k]);
     }
-    *power = [0.0; crate::POWER_TERMS];
+    let mut sums = [0.0; crate::POWER_TERMS];
+    let power = &mut sums;
     loads[n - 1] = crate::loads::load_ship_dry_seabed(
         &p[n - 1],
         lp,
@@ -265,6 +270,7 @@ fn pass_dry_seabed(
         &mut scratch[1],
     );
     loads[0] = crate::loads::load_anchor_dry_seabed(&p[0], lp, &bodies[0], power);
+    *powers = sums;
     c
 }
 /// The right-hand side of signature `dry_seabed` with the anchor free: ẍ of Eq. 27 at (q, u), sliding friction −`friction`·N along x. Returns `[N, 1 + friction·∂N/∂F_x]`; the states, loads and powers are left in `ws`.
@@ -322,9 +328,10 @@ fn pass_dry_seabed_friction(
 ) -> [f64; 9] {
     const W: usize = crate::ROLLED_SCRATCH - 1;
     let n = p.len();
-    let crate::Workspace { trig, bodies, loads, power, scratch } = ws;
+    let crate::Workspace { trig, bodies, loads, power: powers, scratch } = ws;
     crate::rolled_dry::kinematics(p, q, u, trig, bodies);
-    let scratch = &mut scratch[..n];
+    let (e, trig, bodies) = (&e[..n], &trig[..n], &bodies[..n]);
+    let (loads, scratch) = (&mut loads[..n], &mut scratch[..n]);
     crate::rolled_dry::angular_velocities(u, scratch);
     for k in 1..n - 1 {
         loads[k] = crate::loads::contact_dry_seabed_friction(
@@ -334,7 +341,8 @@ fn pass_dry_seabed_friction(
             &trig[k],
         );
     }
-    *power = [0.0; crate::POWER_TERMS];
+    let mut sums = [0.0; crate::POWER_TERMS];
+    let power = &mut sums;
     loads[n - 1] = crate::loads::load_ship_dry_seabed_friction(
         &p[n - 1],
         lp,
@@ -396,6 +404,7 @@ fn pass_dry_seabed_friction(
         &bodies[0],
         power,
     );
+    *powers = sums;
     c
 }
 /// The right-hand side of signature `dry_seabed_friction` with the anchor free: ẍ of Eq. 27 at (q, u), sliding friction −`friction`·N along x. Returns `[N, 1 + friction·∂N/∂F_x]`; the states, loads and powers are left in `ws`.
@@ -453,11 +462,13 @@ fn pass_wet(
 ) -> [f64; 9] {
     const W: usize = crate::ROLLED_SCRATCH - 1;
     let n = p.len();
-    let crate::Workspace { trig, bodies, loads, power, scratch } = ws;
+    let crate::Workspace { trig, bodies, loads, power: powers, scratch } = ws;
     crate::rolled_wet::kinematics(p, q, u, trig, bodies);
-    let scratch = &mut scratch[..n];
+    let (e, trig, bodies) = (&e[..n], &trig[..n], &bodies[..n]);
+    let (loads, scratch) = (&mut loads[..n], &mut scratch[..n]);
     crate::rolled_wet::angular_velocities(u, scratch);
-    *power = [0.0; crate::POWER_TERMS];
+    let mut sums = [0.0; crate::POWER_TERMS];
+    let power = &mut sums;
     loads[n - 1] = crate::loads::load_ship_wet(&p[n - 1], lp, &bodies[n - 1], power);
     let (w, wp) = (scratch[n - 1][W], scratch[n - 2][W]);
     let mut c = crate::rolled_wet::inward_ship(
@@ -509,6 +520,7 @@ fn pass_wet(
         &mut scratch[1],
     );
     loads[0] = crate::loads::load_anchor_wet(&p[0], lp, &bodies[0], power);
+    *powers = sums;
     c
 }
 /// The right-hand side of signature `wet` with the anchor free: ẍ of Eq. 27 at (q, u), sliding friction −`friction`·N along x. Returns `[N, 1 + friction·∂N/∂F_x]`; the states, loads and powers are left in `ws`.
@@ -566,11 +578,13 @@ fn pass_wet_current(
 ) -> [f64; 9] {
     const W: usize = crate::ROLLED_SCRATCH - 1;
     let n = p.len();
-    let crate::Workspace { trig, bodies, loads, power, scratch } = ws;
+    let crate::Workspace { trig, bodies, loads, power: powers, scratch } = ws;
     crate::rolled_wet::kinematics(p, q, u, trig, bodies);
-    let scratch = &mut scratch[..n];
+    let (e, trig, bodies) = (&e[..n], &trig[..n], &bodies[..n]);
+    let (loads, scratch) = (&mut loads[..n], &mut scratch[..n]);
     crate::rolled_wet::angular_velocities(u, scratch);
-    *power = [0.0; crate::POWER_TERMS];
+    let mut sums = [0.0; crate::POWER_TERMS];
+    let power = &mut sums;
     loads[n - 1] = crate::loads::load_ship_wet_current(
         &p[n - 1],
         lp,
@@ -627,6 +641,7 @@ fn pass_wet_current(
         &mut scratch[1],
     );
     loads[0] = crate::loads::load_anchor_wet_current(&p[0], lp, &bodies[0], power);
+    *powers = sums;
     c
 }
 /// The right-hand side of signature `wet_current` with the anchor free: ẍ of Eq. 27 at (q, u), sliding friction −`friction`·N along x. Returns `[N, 1 + friction·∂N/∂F_x]`; the states, loads and powers are left in `ws`.
@@ -684,14 +699,16 @@ fn pass_wet_seabed(
 ) -> [f64; 9] {
     const W: usize = crate::ROLLED_SCRATCH - 1;
     let n = p.len();
-    let crate::Workspace { trig, bodies, loads, power, scratch } = ws;
+    let crate::Workspace { trig, bodies, loads, power: powers, scratch } = ws;
     crate::rolled_wet::kinematics(p, q, u, trig, bodies);
-    let scratch = &mut scratch[..n];
+    let (e, trig, bodies) = (&e[..n], &trig[..n], &bodies[..n]);
+    let (loads, scratch) = (&mut loads[..n], &mut scratch[..n]);
     crate::rolled_wet::angular_velocities(u, scratch);
     for k in 1..n - 1 {
         loads[k] = crate::loads::contact_wet_seabed(lp, &e[k], &bodies[k], &trig[k]);
     }
-    *power = [0.0; crate::POWER_TERMS];
+    let mut sums = [0.0; crate::POWER_TERMS];
+    let power = &mut sums;
     loads[n - 1] = crate::loads::load_ship_wet_seabed(
         &p[n - 1],
         lp,
@@ -748,6 +765,7 @@ fn pass_wet_seabed(
         &mut scratch[1],
     );
     loads[0] = crate::loads::load_anchor_wet_seabed(&p[0], lp, &bodies[0], power);
+    *powers = sums;
     c
 }
 /// The right-hand side of signature `wet_seabed` with the anchor free: ẍ of Eq. 27 at (q, u), sliding friction −`friction`·N along x. Returns `[N, 1 + friction·∂N/∂F_x]`; the states, loads and powers are left in `ws`.
@@ -805,9 +823,10 @@ fn pass_wet_seabed_friction(
 ) -> [f64; 9] {
     const W: usize = crate::ROLLED_SCRATCH - 1;
     let n = p.len();
-    let crate::Workspace { trig, bodies, loads, power, scratch } = ws;
+    let crate::Workspace { trig, bodies, loads, power: powers, scratch } = ws;
     crate::rolled_wet::kinematics(p, q, u, trig, bodies);
-    let scratch = &mut scratch[..n];
+    let (e, trig, bodies) = (&e[..n], &trig[..n], &bodies[..n]);
+    let (loads, scratch) = (&mut loads[..n], &mut scratch[..n]);
     crate::rolled_wet::angular_velocities(u, scratch);
     for k in 1..n - 1 {
         loads[k] = crate::loads::contact_wet_seabed_friction(
@@ -817,7 +836,8 @@ fn pass_wet_seabed_friction(
             &trig[k],
         );
     }
-    *power = [0.0; crate::POWER_TERMS];
+    let mut sums = [0.0; crate::POWER_TERMS];
+    let power = &mut sums;
     loads[n - 1] = crate::loads::load_ship_wet_seabed_friction(
         &p[n - 1],
         lp,
@@ -879,6 +899,7 @@ fn pass_wet_seabed_friction(
         &bodies[0],
         power,
     );
+    *powers = sums;
     c
 }
 /// The right-hand side of signature `wet_seabed_friction` with the anchor free: ẍ of Eq. 27 at (q, u), sliding friction −`friction`·N along x. Returns `[N, 1 + friction·∂N/∂F_x]`; the states, loads and powers are left in `ws`.
@@ -936,9 +957,10 @@ fn pass_wet_seabed_current(
 ) -> [f64; 9] {
     const W: usize = crate::ROLLED_SCRATCH - 1;
     let n = p.len();
-    let crate::Workspace { trig, bodies, loads, power, scratch } = ws;
+    let crate::Workspace { trig, bodies, loads, power: powers, scratch } = ws;
     crate::rolled_wet::kinematics(p, q, u, trig, bodies);
-    let scratch = &mut scratch[..n];
+    let (e, trig, bodies) = (&e[..n], &trig[..n], &bodies[..n]);
+    let (loads, scratch) = (&mut loads[..n], &mut scratch[..n]);
     crate::rolled_wet::angular_velocities(u, scratch);
     for k in 1..n - 1 {
         loads[k] = crate::loads::contact_wet_seabed_current(
@@ -948,7 +970,8 @@ fn pass_wet_seabed_current(
             &trig[k],
         );
     }
-    *power = [0.0; crate::POWER_TERMS];
+    let mut sums = [0.0; crate::POWER_TERMS];
+    let power = &mut sums;
     loads[n - 1] = crate::loads::load_ship_wet_seabed_current(
         &p[n - 1],
         lp,
@@ -1010,6 +1033,7 @@ fn pass_wet_seabed_current(
         &bodies[0],
         power,
     );
+    *powers = sums;
     c
 }
 /// The right-hand side of signature `wet_seabed_current` with the anchor free: ẍ of Eq. 27 at (q, u), sliding friction −`friction`·N along x. Returns `[N, 1 + friction·∂N/∂F_x]`; the states, loads and powers are left in `ws`.
@@ -1067,9 +1091,10 @@ fn pass_wet_seabed_friction_current(
 ) -> [f64; 9] {
     const W: usize = crate::ROLLED_SCRATCH - 1;
     let n = p.len();
-    let crate::Workspace { trig, bodies, loads, power, scratch } = ws;
+    let crate::Workspace { trig, bodies, loads, power: powers, scratch } = ws;
     crate::rolled_wet::kinematics(p, q, u, trig, bodies);
-    let scratch = &mut scratch[..n];
+    let (e, trig, bodies) = (&e[..n], &trig[..n], &bodies[..n]);
+    let (loads, scratch) = (&mut loads[..n], &mut scratch[..n]);
     crate::rolled_wet::angular_velocities(u, scratch);
     for k in 1..n - 1 {
         loads[k] = crate::loads::contact_wet_seabed_friction_current(
@@ -1079,7 +1104,8 @@ fn pass_wet_seabed_friction_current(
             &trig[k],
         );
     }
-    *power = [0.0; crate::POWER_TERMS];
+    let mut sums = [0.0; crate::POWER_TERMS];
+    let power = &mut sums;
     loads[n - 1] = crate::loads::load_ship_wet_seabed_friction_current(
         &p[n - 1],
         lp,
@@ -1141,6 +1167,7 @@ fn pass_wet_seabed_friction_current(
         &bodies[0],
         power,
     );
+    *powers = sums;
     c
 }
 /// The right-hand side of signature `wet_seabed_friction_current` with the anchor free: ẍ of Eq. 27 at (q, u), sliding friction −`friction`·N along x. Returns `[N, 1 + friction·∂N/∂F_x]`; the states, loads and powers are left in `ws`.

@@ -28,6 +28,7 @@ pub fn kinematics(
     bodies: &mut [[f64; 6]],
 ) {
     let n = self::bodies(p, &[q.len(), u.len(), trig.len(), bodies.len()]);
+    let (q, u, trig, bodies) = (&q[..n], &u[..n], &mut trig[..n], &mut bodies[..n]);
     let mut c = kin_anchor(&p[0], q[n - 1], u[n - 1], &mut bodies[0], &mut trig[0]);
     c = kin_first(&p[1], q[0], u[0], &c, &mut bodies[1], &mut trig[1]);
     for k in 2..n - 1 {
@@ -45,6 +46,7 @@ pub fn accelerations(
     acc: &mut [[f64; 3]],
 ) {
     let n = self::bodies(p, &[u.len(), trig.len(), qdd.len(), acc.len()]);
+    let (u, trig, qdd, acc) = (&u[..n], &trig[..n], &qdd[..n], &mut acc[..n]);
     let mut c = acc_anchor(&p[0], qdd[n - 1], &mut acc[0]);
     let mut w = u[0];
     c = acc_first(&p[1], &trig[1], w, qdd[0], &c, &mut acc[1]);
@@ -72,6 +74,7 @@ pub(crate) fn angular_velocities(
     scratch: &mut [[f64; crate::ROLLED_SCRATCH]],
 ) {
     let mut w = 0.0;
+    let u = &u[..scratch.len() - 1];
     scratch[0][crate::ROLLED_SCRATCH - 1] = w;
     for k in 1..scratch.len() {
         w += u[k - 1];

@@ -58,6 +58,16 @@ pub enum GeneratedError {
         /// Whether the added-mass variant was wanted.
         wet: bool,
     },
+    /// The folded form was asked for, and this build has no folded kernel with this chain's
+    /// numbers.
+    #[error(
+        "no folded kernel for this chain of N = {bodies} bodies in this build: write one with `kanestop codegen \
+         --scene SCENE --fold DIR` and build with KANESTOP_FOLDED_KERNELS=DIR"
+    )]
+    NotFolded {
+        /// N.
+        bodies: usize,
+    },
     /// The chain has a non-zero value where the kernels fold a structural zero.
     #[error("B_{} ({kind}) has {field} = {value}, which the generated kernels fold to zero; use --kernel reference", body + 1)]
     FoldedParameter {
@@ -98,6 +108,9 @@ pub fn body_params(chain: &Chain) -> Vec<BodyParams> {
 pub enum Form {
     /// Flat code for this N, from the build.
     Unrolled,
+    /// Flat code for this N with this chain's parameters folded in as literals
+    /// (`kanestop codegen --scene SCENE --fold DIR`, docs/codegen.md).
+    Folded,
     /// Per-body-kind steps in a loop: any N, no rebuild.
     Rolled,
 }
@@ -107,6 +120,7 @@ impl Form {
     pub fn name(self) -> &'static str {
         match self {
             Form::Unrolled => "unrolled",
+            Form::Folded => "folded",
             Form::Rolled => "rolled",
         }
     }
@@ -114,7 +128,8 @@ impl Form {
 
 /// The entry points in use.
 enum Table {
-    Unrolled(kanestop_generated::KernelTable),
+    /// An unrolled kernel, its parameters kept (`folded` false) or folded in.
+    Unrolled(kanestop_generated::KernelTable, bool),
     Rolled(kanestop_generated::RolledTable),
 }
 
@@ -151,10 +166,17 @@ pub struct GeneratedKernel {
 
 impl GeneratedKernel {
     /// The generated kernel for `chain`, water on when any body has added mass: unrolled
-    /// when this build has one for N, rolled otherwise.
+    /// when this build has one for N (folded when it has one for exactly this chain's
+    /// numbers), rolled otherwise.
     pub fn new(chain: &Chain) -> Result<Self, GeneratedError> {
         let wet = chain.bodies.iter().any(|b| b.added_mass != 0.0);
-        let form = if kanestop_generated::find(chain.len(), wet).is_some() { Form::Unrolled } else { Form::Rolled };
+        let form = if kanestop_generated::find_folded(&body_params(chain), wet).is_some() {
+            Form::Folded
+        } else if kanestop_generated::find(chain.len(), wet).is_some() {
+            Form::Unrolled
+        } else {
+            Form::Rolled
+        };
         Self::with_form(chain, form)
     }
 
@@ -166,13 +188,18 @@ impl GeneratedKernel {
         }
         let wet = chain.bodies.iter().any(|b| b.added_mass != 0.0);
         let variant = Variant::new(n, if wet { Water::On } else { Water::Off });
+        let params = body_params(chain);
         let table = match form {
-            Form::Unrolled => {
-                Table::Unrolled(kanestop_generated::find(n, wet).ok_or(GeneratedError::NotBuilt { bodies: n, wet })?)
-            }
+            Form::Unrolled => Table::Unrolled(
+                kanestop_generated::find(n, wet).ok_or(GeneratedError::NotBuilt { bodies: n, wet })?,
+                false,
+            ),
+            Form::Folded => Table::Unrolled(
+                kanestop_generated::find_folded(&params, wet).ok_or(GeneratedError::NotFolded { bodies: n })?.kernel,
+                true,
+            ),
             Form::Rolled => Table::Rolled(kanestop_generated::rolled(wet)),
         };
-        let params = body_params(chain);
         for StructuralZero { body: k, field } in variant.structural_zeros() {
             let b = &params[k];
             let value = match field {
@@ -228,14 +255,15 @@ impl GeneratedKernel {
     /// Unrolled or rolled.
     pub fn form(&self) -> Form {
         match self.table {
-            Table::Unrolled(_) => Form::Unrolled,
+            Table::Unrolled(_, false) => Form::Unrolled,
+            Table::Unrolled(_, true) => Form::Folded,
             Table::Rolled(..) => Form::Rolled,
         }
     }
 
     fn states(&mut self, q: &[f64], u: &[f64], bodies: &mut [BodyState]) {
         let kinematics = match &self.table {
-            Table::Unrolled(t) => t.kinematics,
+            Table::Unrolled(t, _) => t.kinematics,
             Table::Rolled(t) => t.kinematics,
         };
         kinematics(&self.params, q, u, &mut self.ws.trig, &mut self.ws.bodies);
@@ -266,7 +294,7 @@ impl GeneratedKernel {
         Ok(match (anchor, &self.table) {
             (AnchorDof::Free, table) => {
                 let [normal, factor] = match table {
-                    Table::Unrolled(t) => (t.solve_free)(p, u, &ws.trig, &ws.loads, friction, qdd),
+                    Table::Unrolled(t, _) => (t.solve_free)(p, u, &ws.trig, &ws.loads, friction, qdd),
                     Table::Rolled(t) => (t.solve_free)(p, u, &ws.trig, &ws.loads, friction, qdd, &mut ws.scratch),
                 };
                 check_friction_factor(factor)?;
@@ -274,7 +302,7 @@ impl GeneratedKernel {
             }
             (AnchorDof::Stuck, table) => {
                 let [holding, normal] = match table {
-                    Table::Unrolled(t) => (t.solve_stuck)(p, u, &ws.trig, &ws.loads, qdd),
+                    Table::Unrolled(t, _) => (t.solve_stuck)(p, u, &ws.trig, &ws.loads, qdd),
                     Table::Rolled(t) => (t.solve_stuck)(p, u, &ws.trig, &ws.loads, qdd, &mut ws.scratch),
                 };
                 AnchorReaction { holding, normal }
@@ -350,7 +378,7 @@ impl Kernel for GeneratedKernel {
         if self.solve_path != SolvePath::Recursive || fused.elements.len() != self.bodies || rhs.wet != self.wet {
             return false;
         }
-        if let Table::Unrolled(_) = self.table {
+        if let Table::Unrolled(..) = self.table {
             self.table = Table::Rolled(kanestop_generated::rolled(self.wet));
         }
         self.fusion = Some(Fusion { rhs, params: fused.params, elements: fused.elements.clone() });
@@ -368,7 +396,7 @@ impl Kernel for GeneratedKernel {
         let (m, f, heave) = (out.mass.as_mut_slice(), out.rhs.as_mut_slice(), &mut self.heave);
         let (p, ws) = (&self.params, &mut self.ws);
         match &self.table {
-            Table::Unrolled(t) => (t.assemble)(p, u, &ws.trig, &ws.loads, m, f, heave),
+            Table::Unrolled(t, _) => (t.assemble)(p, u, &ws.trig, &ws.loads, m, f, heave),
             Table::Rolled(t) => (t.assemble)(p, u, &ws.trig, &ws.loads, m, f, heave, &mut ws.scratch),
         }
         let n = self.heave.len() - 1;
@@ -378,7 +406,7 @@ impl Kernel for GeneratedKernel {
 
     fn accelerations(&mut self, q: &[f64], u: &[f64], qdd: &[f64], out: &mut [BodyAcceleration]) {
         let (kinematics, accelerations) = match &self.table {
-            Table::Unrolled(t) => (t.kinematics, t.accelerations),
+            Table::Unrolled(t, _) => (t.kinematics, t.accelerations),
             Table::Rolled(t) => (t.kinematics, t.accelerations),
         };
         if self.trig_q != q {
