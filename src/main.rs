@@ -266,13 +266,17 @@ fn codegen(scene: Option<&PathBuf>, write: bool, fold: Option<&Path>, root: &Pat
     }
     let available = kanestop_runtime::generated::available();
     println!(
-        "built in  {}",
+        "built in  {}; folded: {}",
         available
             .iter()
             .map(|(n, w)| format!("{n}{}", if *w { " wet" } else { " dry" }))
             .collect::<Vec<_>>()
-            .join(", ")
+            .join(", "),
+        kanestop_runtime::generated::folded_kernels().join(", ")
     );
+    if let Some(name) = kanestop_runtime::generated::folded_for(&model.chain) {
+        println!("           {name} has this scene's numbers folded in (it runs where the loads are not fused)");
+    }
     if let Some((path, name)) = fold {
         anyhow::ensure!(n <= 400, "--fold: no unrolled kernel is expanded above N = 400 bodies (this scene has {n})");
         let file = kanestop_codegen::emit::generate_folded(variant, &folded_values(&model), &name);

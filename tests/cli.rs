@@ -546,6 +546,8 @@ fn codegen_reports_the_scene_kernel_and_what_folding_saves() {
     assert!(text.contains("15 chain links, 28 cable elements in 3 stages"), "{text}");
     assert!(text.contains("signature  wet_seabed (weight, seabed, buoyancy, line_drag"), "{text}");
     assert!(text.contains("left out   line_friction, current"), "{text}");
+    assert!(text.contains("folded: folded_case01"), "{text}");
+    assert!(text.contains("folded_case01 has this scene's numbers folded in"), "{text}");
     let solve = text.lines().find(|l| l.trim_start().starts_with("solve_free")).expect("solve_free row");
     let cols: Vec<&str> = solve.split_whitespace().collect();
     let (kept, folded): (usize, usize) = (cols[1].parse().unwrap(), cols[2].parse().unwrap());

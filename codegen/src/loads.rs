@@ -377,7 +377,7 @@ fn element(sig: &LoadSignature, report: &mut LoadReport) -> TokenStream {
                     let low_end = if za < zb { -half } else { half };
                     low_end - low_end.signum() * fraction * half
                 };
-                let volume = ::std::f64::consts::PI * e.radius * e.radius * e.length * fraction;
+                let volume = e.volume * fraction;
                 let buoyancy = lp.rho * lp.g * (volume - #embedded).max(0.0);
                 let m = -(wet_centre * cos * buoyancy);
                 fz += buoyancy;
@@ -396,11 +396,10 @@ fn element(sig: &LoadSignature, report: &mut LoadReport) -> TokenStream {
                 let v_t = rel_x * cos - rel_z * sin;
                 let u_n = rel_x * sin + rel_z * cos;
                 let (w, len) = (s[5], e.length);
-                let d = 2.0 * e.radius;
-                let k = 0.5 * lp.rho * d * lp.normal_drag;
+                let k = e.normal_drag;
                 let (f_n, m_n) = if u_n.abs() >= w.abs() * half {
                     let sign = u_n.signum();
-                    (k * sign * (u_n * u_n * len + w * w * len.powi(3) / 12.0), -k * sign * u_n * w * len.powi(3) / 6.0)
+                    (k * sign * (u_n * u_n * len + w * w * e.length_cubed / 12.0), -k * sign * u_n * w * e.length_cubed / 6.0)
                 } else {
                     let (wa, wb) = (u_n - w * half, u_n + w * half);
                     let (f2a, f2b) = (wa * wa * wa.abs() / 3.0, wb * wb * wb.abs() / 3.0);
@@ -409,7 +408,7 @@ fn element(sig: &LoadSignature, report: &mut LoadReport) -> TokenStream {
                     let first_moment = (f3b - f3a - u_n * (f2b - f2a)) / (w * w);
                     (k * force, -k * first_moment)
                 };
-                let f_t = 0.5 * ::std::f64::consts::PI * lp.rho * d * len * lp.tangential_drag * v_t * v_t.abs();
+                let f_t = e.tangential_drag * v_t * v_t.abs();
                 let (f_n, m_n, f_t) = (f_n * fraction, m_n * fraction, f_t * fraction);
                 let (dx, dz) = (f_n * sin + f_t * cos, f_n * cos - f_t * sin);
                 fx += dx;

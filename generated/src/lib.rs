@@ -208,6 +208,32 @@ pub struct Element {
     /// A chain link or cable element (buoyancy, drag, the seabed); false for the rod in
     /// air, the anchor and the ship.
     pub line: bool,
+    /// π r² L, its volume, m³ (Eq. 42).
+    pub volume: f64,
+    /// ½ ρ d C_D with d = 2r: Eq. 47's drag across the line per unit length and U|U|, kg/m².
+    pub normal_drag: f64,
+    /// ½ π ρ d L C_F: Eq. 45's friction along the line per U|U|, kg/m.
+    pub tangential_drag: f64,
+    /// L³, m³ (Eq. 47 over a spinning element).
+    pub length_cubed: f64,
+}
+
+impl Element {
+    /// A body's element of `length` and `radius` under the loads' numbers `lp`: the products
+    /// of parameters the load code would otherwise form at every evaluation, formed here
+    /// once, in the order the force modules form them (so the loads stay equal to theirs).
+    pub fn new(lp: &LoadParams, length: f64, radius: f64, line: bool) -> Self {
+        let d = 2.0 * radius;
+        Element {
+            length,
+            radius,
+            line,
+            volume: ::std::f64::consts::PI * radius * radius * length,
+            normal_drag: 0.5 * lp.rho * d * lp.normal_drag,
+            tangential_drag: 0.5 * ::std::f64::consts::PI * lp.rho * d * length * lp.tangential_drag,
+            length_cubed: length.powi(3),
+        }
+    }
 }
 
 /// What a fused right-hand side leaves behind besides ẍ, for the caller to read, and the

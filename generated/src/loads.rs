@@ -265,7 +265,7 @@ pub(crate) fn load_element_wet(
         let low_end = if za < zb { -half } else { half };
         low_end - low_end.signum() * fraction * half
     };
-    let volume = ::std::f64::consts::PI * e.radius * e.radius * e.length * fraction;
+    let volume = e.volume * fraction;
     let buoyancy = lp.rho * lp.g * (volume - 0.0).max(0.0);
     let m = -(wet_centre * cos * buoyancy);
     fz += buoyancy;
@@ -275,13 +275,12 @@ pub(crate) fn load_element_wet(
     let v_t = rel_x * cos - rel_z * sin;
     let u_n = rel_x * sin + rel_z * cos;
     let (w, len) = (s[5], e.length);
-    let d = 2.0 * e.radius;
-    let k = 0.5 * lp.rho * d * lp.normal_drag;
+    let k = e.normal_drag;
     let (f_n, m_n) = if u_n.abs() >= w.abs() * half {
         let sign = u_n.signum();
         (
-            k * sign * (u_n * u_n * len + w * w * len.powi(3) / 12.0),
-            -k * sign * u_n * w * len.powi(3) / 6.0,
+            k * sign * (u_n * u_n * len + w * w * e.length_cubed / 12.0),
+            -k * sign * u_n * w * e.length_cubed / 6.0,
         )
     } else {
         let (wa, wb) = (u_n - w * half, u_n + w * half);
@@ -291,8 +290,7 @@ pub(crate) fn load_element_wet(
         let first_moment = (f3b - f3a - u_n * (f2b - f2a)) / (w * w);
         (k * force, -k * first_moment)
     };
-    let f_t = 0.5 * ::std::f64::consts::PI * lp.rho * d * len * lp.tangential_drag * v_t
-        * v_t.abs();
+    let f_t = e.tangential_drag * v_t * v_t.abs();
     let (f_n, m_n, f_t) = (f_n * fraction, m_n * fraction, f_t * fraction);
     let (dx, dz) = (f_n * sin + f_t * cos, f_n * cos - f_t * sin);
     fx += dx;
@@ -391,7 +389,7 @@ pub(crate) fn load_element_wet_current(
         let low_end = if za < zb { -half } else { half };
         low_end - low_end.signum() * fraction * half
     };
-    let volume = ::std::f64::consts::PI * e.radius * e.radius * e.length * fraction;
+    let volume = e.volume * fraction;
     let buoyancy = lp.rho * lp.g * (volume - 0.0).max(0.0);
     let m = -(wet_centre * cos * buoyancy);
     fz += buoyancy;
@@ -404,13 +402,12 @@ pub(crate) fn load_element_wet_current(
     let v_t = rel_x * cos - rel_z * sin;
     let u_n = rel_x * sin + rel_z * cos;
     let (w, len) = (s[5], e.length);
-    let d = 2.0 * e.radius;
-    let k = 0.5 * lp.rho * d * lp.normal_drag;
+    let k = e.normal_drag;
     let (f_n, m_n) = if u_n.abs() >= w.abs() * half {
         let sign = u_n.signum();
         (
-            k * sign * (u_n * u_n * len + w * w * len.powi(3) / 12.0),
-            -k * sign * u_n * w * len.powi(3) / 6.0,
+            k * sign * (u_n * u_n * len + w * w * e.length_cubed / 12.0),
+            -k * sign * u_n * w * e.length_cubed / 6.0,
         )
     } else {
         let (wa, wb) = (u_n - w * half, u_n + w * half);
@@ -420,8 +417,7 @@ pub(crate) fn load_element_wet_current(
         let first_moment = (f3b - f3a - u_n * (f2b - f2a)) / (w * w);
         (k * force, -k * first_moment)
     };
-    let f_t = 0.5 * ::std::f64::consts::PI * lp.rho * d * len * lp.tangential_drag * v_t
-        * v_t.abs();
+    let f_t = e.tangential_drag * v_t * v_t.abs();
     let (f_n, m_n, f_t) = (f_n * fraction, m_n * fraction, f_t * fraction);
     let (dx, dz) = (f_n * sin + f_t * cos, f_n * cos - f_t * sin);
     fx += dx;
@@ -550,7 +546,7 @@ pub(crate) fn load_element_wet_seabed(
         let low_end = if za < zb { -half } else { half };
         low_end - low_end.signum() * fraction * half
     };
-    let volume = ::std::f64::consts::PI * e.radius * e.radius * e.length * fraction;
+    let volume = e.volume * fraction;
     let buoyancy = lp.rho * lp.g * (volume - embedded).max(0.0);
     let m = -(wet_centre * cos * buoyancy);
     fz += buoyancy;
@@ -560,13 +556,12 @@ pub(crate) fn load_element_wet_seabed(
     let v_t = rel_x * cos - rel_z * sin;
     let u_n = rel_x * sin + rel_z * cos;
     let (w, len) = (s[5], e.length);
-    let d = 2.0 * e.radius;
-    let k = 0.5 * lp.rho * d * lp.normal_drag;
+    let k = e.normal_drag;
     let (f_n, m_n) = if u_n.abs() >= w.abs() * half {
         let sign = u_n.signum();
         (
-            k * sign * (u_n * u_n * len + w * w * len.powi(3) / 12.0),
-            -k * sign * u_n * w * len.powi(3) / 6.0,
+            k * sign * (u_n * u_n * len + w * w * e.length_cubed / 12.0),
+            -k * sign * u_n * w * e.length_cubed / 6.0,
         )
     } else {
         let (wa, wb) = (u_n - w * half, u_n + w * half);
@@ -576,8 +571,7 @@ pub(crate) fn load_element_wet_seabed(
         let first_moment = (f3b - f3a - u_n * (f2b - f2a)) / (w * w);
         (k * force, -k * first_moment)
     };
-    let f_t = 0.5 * ::std::f64::consts::PI * lp.rho * d * len * lp.tangential_drag * v_t
-        * v_t.abs();
+    let f_t = e.tangential_drag * v_t * v_t.abs();
     let (f_n, m_n, f_t) = (f_n * fraction, m_n * fraction, f_t * fraction);
     let (dx, dz) = (f_n * sin + f_t * cos, f_n * cos - f_t * sin);
     fx += dx;
@@ -709,7 +703,7 @@ pub(crate) fn load_element_wet_seabed_friction(
         let low_end = if za < zb { -half } else { half };
         low_end - low_end.signum() * fraction * half
     };
-    let volume = ::std::f64::consts::PI * e.radius * e.radius * e.length * fraction;
+    let volume = e.volume * fraction;
     let buoyancy = lp.rho * lp.g * (volume - embedded).max(0.0);
     let m = -(wet_centre * cos * buoyancy);
     fz += buoyancy;
@@ -719,13 +713,12 @@ pub(crate) fn load_element_wet_seabed_friction(
     let v_t = rel_x * cos - rel_z * sin;
     let u_n = rel_x * sin + rel_z * cos;
     let (w, len) = (s[5], e.length);
-    let d = 2.0 * e.radius;
-    let k = 0.5 * lp.rho * d * lp.normal_drag;
+    let k = e.normal_drag;
     let (f_n, m_n) = if u_n.abs() >= w.abs() * half {
         let sign = u_n.signum();
         (
-            k * sign * (u_n * u_n * len + w * w * len.powi(3) / 12.0),
-            -k * sign * u_n * w * len.powi(3) / 6.0,
+            k * sign * (u_n * u_n * len + w * w * e.length_cubed / 12.0),
+            -k * sign * u_n * w * e.length_cubed / 6.0,
         )
     } else {
         let (wa, wb) = (u_n - w * half, u_n + w * half);
@@ -735,8 +728,7 @@ pub(crate) fn load_element_wet_seabed_friction(
         let first_moment = (f3b - f3a - u_n * (f2b - f2a)) / (w * w);
         (k * force, -k * first_moment)
     };
-    let f_t = 0.5 * ::std::f64::consts::PI * lp.rho * d * len * lp.tangential_drag * v_t
-        * v_t.abs();
+    let f_t = e.tangential_drag * v_t * v_t.abs();
     let (f_n, m_n, f_t) = (f_n * fraction, m_n * fraction, f_t * fraction);
     let (dx, dz) = (f_n * sin + f_t * cos, f_n * cos - f_t * sin);
     fx += dx;
@@ -865,7 +857,7 @@ pub(crate) fn load_element_wet_seabed_current(
         let low_end = if za < zb { -half } else { half };
         low_end - low_end.signum() * fraction * half
     };
-    let volume = ::std::f64::consts::PI * e.radius * e.radius * e.length * fraction;
+    let volume = e.volume * fraction;
     let buoyancy = lp.rho * lp.g * (volume - embedded).max(0.0);
     let m = -(wet_centre * cos * buoyancy);
     fz += buoyancy;
@@ -878,13 +870,12 @@ pub(crate) fn load_element_wet_seabed_current(
     let v_t = rel_x * cos - rel_z * sin;
     let u_n = rel_x * sin + rel_z * cos;
     let (w, len) = (s[5], e.length);
-    let d = 2.0 * e.radius;
-    let k = 0.5 * lp.rho * d * lp.normal_drag;
+    let k = e.normal_drag;
     let (f_n, m_n) = if u_n.abs() >= w.abs() * half {
         let sign = u_n.signum();
         (
-            k * sign * (u_n * u_n * len + w * w * len.powi(3) / 12.0),
-            -k * sign * u_n * w * len.powi(3) / 6.0,
+            k * sign * (u_n * u_n * len + w * w * e.length_cubed / 12.0),
+            -k * sign * u_n * w * e.length_cubed / 6.0,
         )
     } else {
         let (wa, wb) = (u_n - w * half, u_n + w * half);
@@ -894,8 +885,7 @@ pub(crate) fn load_element_wet_seabed_current(
         let first_moment = (f3b - f3a - u_n * (f2b - f2a)) / (w * w);
         (k * force, -k * first_moment)
     };
-    let f_t = 0.5 * ::std::f64::consts::PI * lp.rho * d * len * lp.tangential_drag * v_t
-        * v_t.abs();
+    let f_t = e.tangential_drag * v_t * v_t.abs();
     let (f_n, m_n, f_t) = (f_n * fraction, m_n * fraction, f_t * fraction);
     let (dx, dz) = (f_n * sin + f_t * cos, f_n * cos - f_t * sin);
     fx += dx;
@@ -1033,7 +1023,7 @@ pub(crate) fn load_element_wet_seabed_friction_current(
         let low_end = if za < zb { -half } else { half };
         low_end - low_end.signum() * fraction * half
     };
-    let volume = ::std::f64::consts::PI * e.radius * e.radius * e.length * fraction;
+    let volume = e.volume * fraction;
     let buoyancy = lp.rho * lp.g * (volume - embedded).max(0.0);
     let m = -(wet_centre * cos * buoyancy);
     fz += buoyancy;
@@ -1046,13 +1036,12 @@ pub(crate) fn load_element_wet_seabed_friction_current(
     let v_t = rel_x * cos - rel_z * sin;
     let u_n = rel_x * sin + rel_z * cos;
     let (w, len) = (s[5], e.length);
-    let d = 2.0 * e.radius;
-    let k = 0.5 * lp.rho * d * lp.normal_drag;
+    let k = e.normal_drag;
     let (f_n, m_n) = if u_n.abs() >= w.abs() * half {
         let sign = u_n.signum();
         (
-            k * sign * (u_n * u_n * len + w * w * len.powi(3) / 12.0),
-            -k * sign * u_n * w * len.powi(3) / 6.0,
+            k * sign * (u_n * u_n * len + w * w * e.length_cubed / 12.0),
+            -k * sign * u_n * w * e.length_cubed / 6.0,
         )
     } else {
         let (wa, wb) = (u_n - w * half, u_n + w * half);
@@ -1062,8 +1051,7 @@ pub(crate) fn load_element_wet_seabed_friction_current(
         let first_moment = (f3b - f3a - u_n * (f2b - f2a)) / (w * w);
         (k * force, -k * first_moment)
     };
-    let f_t = 0.5 * ::std::f64::consts::PI * lp.rho * d * len * lp.tangential_drag * v_t
-        * v_t.abs();
+    let f_t = e.tangential_drag * v_t * v_t.abs();
     let (f_n, m_n, f_t) = (f_n * fraction, m_n * fraction, f_t * fraction);
     let (dx, dz) = (f_n * sin + f_t * cos, f_n * cos - f_t * sin);
     fx += dx;

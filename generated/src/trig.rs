@@ -54,7 +54,10 @@ pub fn sin_cos(theta: f64) -> (f64, f64) {
     if theta.abs() > REDUCED_UP_TO || theta.is_nan() {
         return theta.sin_cos();
     }
-    let k = (theta * core::f64::consts::FRAC_2_PI + ROUND) - ROUND;
+    // k + 1.5·2⁵² holds k in its mantissa's low bits (one unit in its last place is 1, and
+    // 2⁵¹ ≡ 0 mod 4): its last two bits are k mod 4, the quadrant, with no conversion.
+    let shifted = theta * core::f64::consts::FRAC_2_PI + ROUND;
+    let k = shifted - ROUND;
     let r = ((theta - k * PIO2_HI) - k * PIO2_MID) - k * PIO2_LO;
     // The polynomials in z by Estrin's scheme (pairs, then pairs of pairs in z², z⁴): a
     // chain of four dependent operations instead of Horner's seven multiply-adds, and the
@@ -69,7 +72,7 @@ pub fn sin_cos(theta: f64) -> (f64, f64) {
     let half = 0.5 * z;
     let w = 1.0 - half;
     let cos = w + (((1.0 - w) - half) + z * z * pc);
-    match (k as i64) & 3 {
+    match shifted.to_bits() & 3 {
         0 => (sin, cos),
         1 => (cos, -sin),
         2 => (-sin, -cos),

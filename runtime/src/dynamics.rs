@@ -130,10 +130,8 @@ pub fn fused_loads(forces: &Forces) -> Option<FusedLoads> {
     let elements = forces
         .elements
         .iter()
-        .map(|e| Element {
-            length: e.length,
-            radius: e.radius,
-            line: matches!(e.kind, BodyKind::ChainLink | BodyKind::Cable { .. }),
+        .map(|e| {
+            Element::new(&params, e.length, e.radius, matches!(e.kind, BodyKind::ChainLink | BodyKind::Cable { .. }))
         })
         .collect();
     Some(FusedLoads { signature: forces.signature(), params, elements })

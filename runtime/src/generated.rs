@@ -87,6 +87,17 @@ pub fn available() -> Vec<(usize, bool)> {
     kanestop_generated::available()
 }
 
+/// The name of every folded kernel in this build (`kanestop codegen --fold`).
+pub fn folded_kernels() -> Vec<&'static str> {
+    kanestop_generated::folded_kernels()
+}
+
+/// The folded kernel with exactly `chain`'s numbers, if this build has one.
+pub fn folded_for(chain: &Chain) -> Option<&'static str> {
+    let wet = chain.bodies.iter().any(|b| b.added_mass != 0.0);
+    kanestop_generated::find_folded(&body_params(chain), wet).map(|f| f.name)
+}
+
 /// The numbers a generated kernel reads for each body of `chain`: the inertia about y plus
 /// the added inertia (Eqs. 18, 46), the centroid, the joint and the added mass.
 pub fn body_params(chain: &Chain) -> Vec<BodyParams> {

@@ -219,6 +219,34 @@ static SERIES: [[f64; 2]; SERIES_TERMS] = DEPTH_SERIES.0;
 /// (increasing in n; `SERIES_REACH[0]` = 0).
 static SERIES_REACH: [f64; SERIES_TERMS] = DEPTH_SERIES.1;
 
+/// The terms `near_edge` takes at y = δ/2r, by the top 12 bits of y (sign, exponent and the
+/// mantissa's first bit: y's half of a binade): the count [`SERIES_REACH`] gives at the top
+/// of that half, so never fewer than y needs and about half a term more (one table load in
+/// place of a comparison per term). At least one; NaN and ∞ take them all.
+static TERMS_BY_HALF_BINADE: [u8; 4096] = {
+    let mut table = [SERIES_TERMS as u8; 4096];
+    // The top of half-binade i of positive numbers, from the subnormals' up.
+    let mut binade = f64::MIN_POSITIVE / 2.0; // 2^(e − 1023) for e = 0, as if normal
+    let mut i = 0;
+    while i < 2046 * 2 {
+        let top = if i % 2 == 0 { binade * 1.5 } else { binade * 2.0 };
+        let mut count = 0;
+        let mut n = 0;
+        while n < SERIES_TERMS {
+            if DEPTH_SERIES.1[n] < top {
+                count += 1;
+            }
+            n += 1;
+        }
+        table[i] = if count < 1 { 1 } else { count as u8 };
+        if i % 2 == 1 {
+            binade *= 2.0;
+        }
+        i += 1;
+    }
+    table
+};
+
 /// A rod near the top of its section, its ends `da` and `db` deep (either may be ≤ 0: that
 /// end is clear of the seabed; the deeper one is > 0). With dA/dδ = 2√(2rδ − δ²) and the
 /// binomial series of √(1 − δ/2r),
@@ -243,9 +271,9 @@ fn near_edge(r: f64, len: f64, da: f64, db: f64) -> (f64, f64) {
     let (a, b) = (da.min(db), da.max(db));
     let x = -0.5 / r; // dx/dδ
 
-    // Counted without a branch (a search's branches would mispredict from element to element).
+    // Looked up without a branch (a search's branches would mispredict from element to element).
     let y = -x * b;
-    let terms = SERIES_REACH.iter().map(|&reach| usize::from(reach < y)).sum::<usize>().clamp(1, SERIES_TERMS);
+    let terms = usize::from(TERMS_BY_HALF_BINADE[(y.to_bits() >> 51) as usize]);
     let (xa, xb) = (x * a, x * b);
     // Horner from the highest term: P₁(x_b), P₁[x_a, x_b]; P₂(x_b), P₂′(x_b), P₂[x_a, x_b, x_b].
     let [c1, c2] = SERIES[terms - 1];
@@ -425,6 +453,16 @@ mod tests {
         assert!(SERIES_REACH.windows(2).all(|w| w[0] < w[1]));
         assert_eq!(SERIES_REACH.iter().filter(|&&reach| reach < 0.08 / 2.0).count(), 12);
         assert_eq!(SERIES_REACH.iter().filter(|&&reach| reach < 1e-17 / 2.0).count(), 1);
+        // The table by half-binades: never fewer terms than the depth needs and at most two
+        // more, over the depths near_edge sees below its limit (at y = 1/8 itself, the bottom
+        // of the next binade, it takes all 20).
+        for i in 0..200_000 {
+            let y = NEAR_EDGE / 2.0 * i as f64 / 200_000.0;
+            let needed = SERIES_REACH.iter().filter(|&&reach| reach < y).count().max(1);
+            let taken = usize::from(TERMS_BY_HALF_BINADE[(y.to_bits() >> 51) as usize]);
+            assert!((needed..=needed + 2).contains(&taken), "y = {y}: {taken} terms, {needed} needed");
+        }
+        assert_eq!(usize::from(TERMS_BY_HALF_BINADE[(f64::NAN.to_bits() >> 51) as usize]), SERIES_TERMS);
     }
 
     #[test]
