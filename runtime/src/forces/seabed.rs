@@ -217,7 +217,7 @@ static SERIES: [[f64; 2]; SERIES_TERMS] = DEPTH_SERIES.0;
 /// `SERIES_REACH[n]`: the largest δ/2r at which the first n terms leave out less than 1e-17
 /// of the leading one, in the sums and in their first and second divided differences
 /// (increasing in n; `SERIES_REACH[0]` = 0).
-static SERIES_REACH: [f64; SERIES_TERMS] = DEPTH_SERIES.1;
+const SERIES_REACH: [f64; SERIES_TERMS] = DEPTH_SERIES.1;
 
 /// The terms `near_edge` takes at y = δ/2r, by the top 12 bits of y (sign, exponent and the
 /// mantissa's first bit: y's half of a binade): the count [`SERIES_REACH`] gives at the top
@@ -233,7 +233,7 @@ static TERMS_BY_HALF_BINADE: [u8; 4096] = {
         let mut count = 0;
         let mut n = 0;
         while n < SERIES_TERMS {
-            if DEPTH_SERIES.1[n] < top {
+            if SERIES_REACH[n] < top {
                 count += 1;
             }
             n += 1;
