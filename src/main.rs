@@ -135,7 +135,7 @@ enum Command {
         #[arg(long)]
         write: bool,
         /// Write the scene's unrolled kernel with its parameters folded in as literals into
-        /// this folder, as folded_<scene file name>.rs; `KANESTOP_FOLDED_KERNELS=DIR cargo
+        /// this folder, as `folded_<scene file name>.rs`; `KANESTOP_FOLDED_KERNELS=DIR cargo
         /// build --release` builds it in, and a chain with exactly these numbers runs on it
         /// (docs/codegen.md, "Parameters: kept as inputs or folded").
         #[arg(long, value_name = "DIR")]

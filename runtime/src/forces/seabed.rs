@@ -449,7 +449,7 @@ mod tests {
         }
         // The reach covers the near-edge region, and the count grows with the depth: 12
         // terms for the paper's chain at rest, 0.08 r deep (docs/model-choices.md).
-        assert!(SERIES_REACH[SERIES_TERMS - 1] > NEAR_EDGE / 2.0);
+        const { assert!(SERIES_REACH[SERIES_TERMS - 1] > NEAR_EDGE / 2.0) };
         assert!(SERIES_REACH.windows(2).all(|w| w[0] < w[1]));
         assert_eq!(SERIES_REACH.iter().filter(|&&reach| reach < 0.08 / 2.0).count(), 12);
         assert_eq!(SERIES_REACH.iter().filter(|&&reach| reach < 1e-17 / 2.0).count(), 1);
