@@ -105,7 +105,8 @@ fn per_solve(kernel: &mut dyn Kernel, chain: &Chain, anchor: AnchorDof) -> f64 {
 }
 
 fn main() {
-    // `cargo bench --bench kernels -- whole_rhs whole_runs`: only the named sections.
+    // `cargo bench --bench kernels -- whole_rhs whole_runs`: only the named sections (solves,
+    // rolled_vs_unrolled, fused_gravity, whole_rhs, folded, whole_runs); none named: all.
     let only: Vec<String> = std::env::args().skip(1).filter(|a| !a.starts_with('-')).collect();
     let wanted = |name: &str| only.is_empty() || only.iter().any(|o| o == name);
     let sections: [(&str, fn()); 5] = [
@@ -115,17 +116,13 @@ fn main() {
         ("folded", folded),
         ("whole_runs", whole_runs),
     ];
-    if !wanted("solves") {
-        for (name, section) in sections {
-            if wanted(name) {
-                section();
-            }
-        }
-        return;
+    if wanted("solves") {
+        solves();
     }
-    solves();
-    for (_, section) in sections {
-        section();
+    for (name, section) in sections {
+        if wanted(name) {
+            section();
+        }
     }
 }
 

@@ -3,7 +3,7 @@
 //! `KANESTOP_EXTRA_BODY_COUNTS` (comma-separated, e.g. `12,24,100,200` for the benchmarks).
 //! They go to OUT_DIR with a registry `extra.rs` that `src/lib.rs` includes. The folded
 //! kernels in the folder `KANESTOP_FOLDED_KERNELS` names (`kanestop codegen --scene SCENE
-//! --fold DIR`) are listed in `folded.rs` there.
+//! --fold DIR`) are remade from their parameters there and listed in `folded.rs`.
 //!
 //! Counts above [`MAX_GENERATED_BODIES`] are not generated: the generator's expression DAG
 //! recurses and overflows the build script's default stack from about N = 490 (with a
@@ -13,7 +13,7 @@
 
 use std::path::Path;
 
-use kanestop_codegen::emit::{folded_registry, generate, out_dir_registry};
+use kanestop_codegen::emit::{folded_registry, generate, out_dir_registry, refold};
 use kanestop_codegen::variants_for;
 
 /// The largest body count the build script generates a kernel for.
@@ -62,33 +62,53 @@ fn main() {
         write_if_changed(&Path::new(&out).join(&file.file_name), &file.source);
     }
     write_if_changed(&Path::new(&out).join("extra.rs"), &out_dir_registry(&wanted));
-    let folded = folded_kernels(Path::new(&manifest));
+    let folded = folded_kernels(Path::new(&manifest), Path::new(&out));
     write_if_changed(&Path::new(&out).join("folded.rs"), &folded_registry(&folded));
 }
 
 /// The folded kernels in the folder `KANESTOP_FOLDED_KERNELS` names (written by `kanestop
-/// codegen --scene SCENE --fold DIR`; a relative path is taken from the repository's root):
-/// every `<name>.rs` in it, by name and absolute path.
-fn folded_kernels(manifest: &Path) -> Vec<(String, Option<String>)> {
+/// codegen --scene SCENE --fold DIR`; a relative path is taken from the repository's root,
+/// an empty value is no folder): every `folded_<name>.rs` in it, remade by this generator
+/// from the `PARAMS` it lists (so it cannot go stale) into `out`, by name and path there.
+fn folded_kernels(manifest: &Path, out: &Path) -> Vec<(String, Option<String>)> {
     println!("cargo:rerun-if-env-changed=KANESTOP_FOLDED_KERNELS");
-    let Ok(dir) = std::env::var("KANESTOP_FOLDED_KERNELS") else { return Vec::new() };
+    let Some(dir) = std::env::var_os("KANESTOP_FOLDED_KERNELS").filter(|d| !d.is_empty()) else { return Vec::new() };
     let dir = manifest.join("..").join(dir);
     let entries = std::fs::read_dir(&dir)
         .unwrap_or_else(|e| panic!("KANESTOP_FOLDED_KERNELS: cannot read the folder {}: {e}", dir.display()));
     println!("cargo:rerun-if-changed={}", dir.display());
     let mut kernels = Vec::new();
-    for path in entries.flatten().map(|e| e.path()).filter(|p| p.extension().is_some_and(|x| x == "rs")) {
+    for path in entries.flatten().map(|e| e.path()) {
+        let Some(name) = path.file_name().and_then(|n| n.to_str()).and_then(|n| n.strip_suffix(".rs")) else {
+            continue;
+        };
+        if !name.starts_with("folded_") {
+            continue;
+        }
         println!("cargo:rerun-if-changed={}", path.display());
-        let name = path.file_stem().and_then(|s| s.to_str()).unwrap_or_default().to_string();
-        let identifier = name.chars().next().is_some_and(|c| c.is_ascii_lowercase() || c == '_')
-            && name.chars().all(|c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '_');
+        let tail = &name["folded_".len()..];
         assert!(
-            identifier,
-            "KANESTOP_FOLDED_KERNELS: {} is not named as a Rust module (lower case, digits, _)",
+            !tail.is_empty() && tail.chars().all(|c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '_'),
+            "KANESTOP_FOLDED_KERNELS: {} is not named as `kanestop codegen --fold` names its files \
+             (folded_ then lower-case letters, digits and _)",
             path.display()
         );
-        let absolute = path.canonicalize().unwrap_or_else(|e| panic!("cannot resolve {}: {e}", path.display()));
-        kernels.push((name, Some(absolute.to_string_lossy().into_owned())));
+        assert!(
+            name != kanestop_codegen::CHECKED_IN_FOLDED,
+            "KANESTOP_FOLDED_KERNELS: {} has the name of the folded kernel checked in under generated/src; rename it",
+            path.display()
+        );
+        let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("cannot read {}: {e}", path.display()));
+        let file = refold(&text, name).unwrap_or_else(|e| panic!("KANESTOP_FOLDED_KERNELS: {}: {e}", path.display()));
+        if file.source != text {
+            println!(
+                "cargo:warning={} was written by another version of the generator: built from its PARAMS",
+                path.display()
+            );
+        }
+        let target = out.join(&file.file_name);
+        write_if_changed(&target, &file.source);
+        kernels.push((name.to_string(), Some(target.to_string_lossy().into_owned())));
     }
     kernels.sort();
     kernels

@@ -243,9 +243,10 @@ fn codegen(scene: Option<&PathBuf>, write: bool, fold: Option<&Path>, root: &Pat
         Ok(kanestop_runtime::generated::Form::Unrolled) => {
             format!("{} (unrolled, built for N = {n})", variant.module())
         }
-        Ok(kanestop_runtime::generated::Form::Folded) => {
-            format!("{} (unrolled, this scene's parameters folded in)", variant.module())
-        }
+        Ok(kanestop_runtime::generated::Form::Folded) => format!(
+            "{} (unrolled, this scene's parameters folded in)",
+            kanestop_runtime::generated::folded_for(&model.chain).unwrap_or_default()
+        ),
         Ok(kanestop_runtime::generated::Form::Rolled) => {
             format!("rolled_{} (any N; no unrolled kernel for N = {n} in this build)", water.suffix())
         }
@@ -279,17 +280,29 @@ fn codegen(scene: Option<&PathBuf>, write: bool, fold: Option<&Path>, root: &Pat
     }
     if let Some((path, name)) = fold {
         anyhow::ensure!(n <= 400, "--fold: no unrolled kernel is expanded above N = 400 bodies (this scene has {n})");
-        let file = kanestop_codegen::emit::generate_folded(variant, &folded_values(&model), &name);
-        if let Some(dir) = path.parent() {
-            std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+        let values = folded_values(&model);
+        // Another scene's kernel under the same name (a scene of the same file name
+        // elsewhere) is not overwritten.
+        if let Ok(old) = std::fs::read_to_string(&path) {
+            let same = kanestop_codegen::emit::folded_values_of(&old).is_ok_and(|v| v == values);
+            anyhow::ensure!(
+                same,
+                "--fold: {} holds another kernel (not this scene's numbers); remove it or fold into another folder",
+                path.display()
+            );
         }
+        let file = kanestop_codegen::emit::generate_folded(variant, &values, &name);
+        let dir = path.parent().unwrap_or(Path::new("."));
+        std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
         kanestop_workflow::output::write_atomically(&path, file.source.as_bytes())
             .with_context(|| format!("cannot write {}", path.display()))?;
+        // The folder as the build script reads it: absolute, whatever the directory now.
+        let dir = dir.canonicalize().unwrap_or_else(|_| dir.to_path_buf());
         println!(
             "written    {} ({} lines); build it in: KANESTOP_FOLDED_KERNELS={} cargo build --release",
             path.display(),
             file.lines(),
-            path.parent().map_or(".".into(), |d| d.display().to_string())
+            dir.display()
         );
     }
     if write {

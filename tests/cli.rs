@@ -541,8 +541,9 @@ fn codegen_reports_the_scene_kernel_and_what_folding_saves() {
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let text = String::from_utf8(out.stdout).unwrap();
     assert!(text.contains("kernel     rhs_free_wet_seabed, rhs_stuck_wet_seabed: the fused right-hand side"), "{text}");
-    let lines = text.lines().find(|l| l.starts_with("chain46_wet.rs: ")).expect("the unrolled kernel's line");
-    assert!(lines.ends_with(" lines (the unrolled expansion for this N)"), "{lines}");
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let lines = std::fs::read_to_string(root.join("generated/src/chain46_wet.rs")).unwrap().lines().count();
+    assert!(text.contains(&format!("chain46_wet.rs: {lines} lines (the unrolled expansion for this N)")), "{text}");
     assert!(text.contains("15 chain links, 28 cable elements in 3 stages"), "{text}");
     assert!(text.contains("signature  wet_seabed (weight, seabed, buoyancy, line_drag"), "{text}");
     assert!(text.contains("left out   line_friction, current"), "{text}");
@@ -575,6 +576,21 @@ fn codegen_fold_writes_the_scene_s_folded_kernel() {
     let written = std::fs::read_to_string(&path).unwrap();
     assert!(!written.contains("p[") && written.contains("pub const PARAMS"), "parameters folded, listed once");
 
+    // Folding it again is fine; another scene's kernel under the name is not overwritten.
+    let again = kanestop().args(["codegen", "scenes/paper/case01.toml", "--fold"]).arg(&dir).output().unwrap();
+    assert!(again.status.success(), "{}", String::from_utf8_lossy(&again.stderr));
+    let other = dir.join("elsewhere");
+    std::fs::create_dir_all(&other).unwrap();
+    let scene = other.join("case01.toml");
+    // Case 8's chain has N = 48: other numbers under the name folded_case01.
+    let base = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/paper/case08.toml");
+    std::fs::write(&scene, format!("extends = {:?}\n", base.display().to_string())).unwrap();
+    let out = kanestop().arg("codegen").arg(&scene).arg("--fold").arg(&dir).output().unwrap();
+    assert_eq!(out.status.code(), Some(2), "{}", String::from_utf8_lossy(&out.stderr));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("holds another kernel"), "{err}");
+    assert_eq!(std::fs::read_to_string(&path).unwrap(), written, "left as it was");
+
     let file = dir.join("a-file");
     std::fs::write(&file, "").unwrap();
     let out = kanestop().args(["codegen", "--fold"]).arg(&file).output().unwrap();
@@ -582,6 +598,11 @@ fn codegen_fold_writes_the_scene_s_folded_kernel() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("--fold: cannot write into") && err.contains("a-file"), "{err}");
     assert!(!out.stdout.starts_with(b"scene"), "refused before any work");
+    let mut names: Vec<String> =
+        std::fs::read_dir(&dir).unwrap().flatten().map(|e| e.file_name().to_string_lossy().into_owned()).collect();
+    names.sort();
+    assert_eq!(names, ["a-file", "elsewhere", "folded_case01.rs"], "nothing else written");
+    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 /// `codegen` says how a scene's loads run: a chain in vacuum (water and seabed off) with its

@@ -49,6 +49,7 @@ fn checked_in_folded_kernel_is_fresh() {
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let name = format!("{}.rs", kanestop_codegen::CHECKED_IN_FOLDED);
     let text = std::fs::read_to_string(dir.join(&name)).unwrap();
+    std::fs::remove_dir_all(&dir).unwrap();
     let path = root.join("generated/src").join(&name);
     if std::fs::read_to_string(&path).ok().as_deref() != Some(text.as_str()) {
         std::fs::write(&path, &text).unwrap();

@@ -258,6 +258,8 @@ pub fn generate(variant: Variant) -> GeneratedFile {
 pub fn generate_folded(variant: Variant, values: &[planar::BodyValues], name: &str) -> GeneratedFile {
     assert_eq!(values.len(), variant.bodies, "one value set per body");
     let mut file = generate_with(variant, planar::ParamSource::Folded(values));
+    let shared = file.source.lines().nth(1).unwrap_or_default().to_string();
+    file.source = file.source.replacen(&shared, FOLDED_REGENERATE, 1);
     let rows = values.iter().map(|b| {
         let (m, i, a) = (literal(b.mass), literal(b.inertia), literal(b.added_mass));
         let (c0, c1, j0, j1) =
@@ -273,6 +275,84 @@ pub fn generate_folded(variant: Variant, values: &[planar::BodyValues], name: &s
     file.source.push_str(&prettyplease::unparse(&file_tokens));
     file.file_name = format!("{name}.rs");
     file
+}
+
+/// The first line of a folded kernel's file beyond the shared header: how it is remade.
+const FOLDED_REGENERATE: &str =
+    "// Regenerate with `kanestop codegen --scene SCENE --fold DIR`; a build that takes it \
+     from KANESTOP_FOLDED_KERNELS remakes it from its PARAMS.";
+
+/// The body parameters a folded kernel's source lists as `PARAMS` (what [`generate_folded`]
+/// wrote), in order, or what is wrong with the source.
+pub fn folded_values_of(source: &str) -> Result<Vec<planar::BodyValues>, String> {
+    let file = syn::parse_file(source).map_err(|e| format!("not Rust source: {e}"))?;
+    let params = file
+        .items
+        .iter()
+        .find_map(|i| match i {
+            syn::Item::Const(c) if c.ident == "PARAMS" => Some(&*c.expr),
+            _ => None,
+        })
+        .ok_or("no `PARAMS` constant: not a folded kernel of `kanestop codegen --fold`")?;
+    let syn::Expr::Reference(r) = params else { return Err("`PARAMS` is not `&[BodyParams { .. }, ..]`".into()) };
+    let syn::Expr::Array(rows) = &*r.expr else { return Err("`PARAMS` is not `&[BodyParams { .. }, ..]`".into()) };
+    rows.elems.iter().enumerate().map(|(k, row)| body_values(row).map_err(|e| format!("PARAMS[{k}]: {e}"))).collect()
+}
+
+/// One `BodyParams { .. }` of `PARAMS`.
+fn body_values(row: &syn::Expr) -> Result<planar::BodyValues, String> {
+    let syn::Expr::Struct(row) = row else { return Err("not a `BodyParams { .. }`".into()) };
+    let mut b = planar::BodyValues::default();
+    let mut seen = 0;
+    for field in &row.fields {
+        let syn::Member::Named(name) = &field.member else { return Err("an unnamed field".into()) };
+        let pair = |e: &syn::Expr| -> Result<[f64; 2], String> {
+            match e {
+                syn::Expr::Array(a) if a.elems.len() == 2 => Ok([number(&a.elems[0])?, number(&a.elems[1])?]),
+                _ => Err(format!("`{name}` is not a pair of numbers")),
+            }
+        };
+        match name.to_string().as_str() {
+            "mass" => b.mass = number(&field.expr)?,
+            "inertia" => b.inertia = number(&field.expr)?,
+            "centroid" => b.centroid = pair(&field.expr)?,
+            "joint" => b.joint = pair(&field.expr)?,
+            "added_mass" => b.added_mass = number(&field.expr)?,
+            other => return Err(format!("unknown field `{other}`")),
+        }
+        seen += 1;
+    }
+    if seen != 5 {
+        return Err(format!("{seen} fields, not mass, inertia, centroid, joint and added_mass"));
+    }
+    Ok(b)
+}
+
+/// A number literal as [`literal`] writes it: `x` or `(-x)`.
+fn number(e: &syn::Expr) -> Result<f64, String> {
+    match e {
+        syn::Expr::Paren(p) => number(&p.expr),
+        syn::Expr::Unary(u) if matches!(u.op, syn::UnOp::Neg(_)) => Ok(-number(&u.expr)?),
+        syn::Expr::Lit(l) => match &l.lit {
+            syn::Lit::Float(f) => f.base10_parse().map_err(|e| e.to_string()),
+            syn::Lit::Int(i) => i.base10_parse::<i64>().map(|v| v as f64).map_err(|e| e.to_string()),
+            _ => Err("not a number".into()),
+        },
+        _ => Err("not a number literal".into()),
+    }
+}
+
+/// The folded kernel named `name` remade from the `PARAMS` of `source` (a file of
+/// `kanestop codegen --fold`, perhaps of an older generator) by this generator: N is their
+/// number, water on when any body has added mass (as the runtime decides it). The build
+/// script builds these, so a folded kernel never goes stale.
+pub fn refold(source: &str, name: &str) -> Result<GeneratedFile, String> {
+    let values = folded_values_of(source)?;
+    if values.len() < 3 {
+        return Err(format!("{} bodies: a chain has at least an anchor, one rod and a ship", values.len()));
+    }
+    let water = if values.iter().any(|b| b.added_mass != 0.0) { Water::On } else { Water::Off };
+    Ok(generate_folded(Variant::new(values.len(), water), &values, name))
 }
 
 // Long by design: the five kernels' signatures and docs side by side, as they appear in the file.
@@ -560,15 +640,17 @@ mod tests {
         assert_eq!(folded.file_name, "folded_test.rs");
         assert!(kept.source.contains("p[1].mass") && !folded.source.contains("p[1]"), "no parameter is read");
         syn::parse_file(&folded.source).expect("parses");
-        let params = &folded.source[folded.source.find("pub const PARAMS").expect("PARAMS")..];
-        for b in &values {
-            for x in [b.mass, b.inertia, b.centroid[0], b.joint[0], b.added_mass] {
-                let text = format!("{:?}", x.abs());
-                assert!(params.contains(&text), "{text} listed");
-                let parsed: f64 = text.parse().unwrap();
-                assert_eq!(parsed.to_bits(), x.abs().to_bits(), "the literal is the value, bit for bit");
-            }
-        }
+        // The literals read back are the values, bit for bit, in order; a build remakes the
+        // same file from them.
+        let read = super::folded_values_of(&folded.source).expect("PARAMS reads back");
+        let bits = |b: &BodyValues| {
+            [b.mass, b.inertia, b.centroid[0], b.centroid[1], b.joint[0], b.joint[1], b.added_mass].map(f64::to_bits)
+        };
+        assert_eq!(read.iter().map(bits).collect::<Vec<_>>(), values.iter().map(bits).collect::<Vec<_>>());
+        assert_eq!(super::refold(&folded.source, "folded_test").unwrap().source, folded.source);
+        assert!(super::folded_values_of("pub const X: u8 = 0;").unwrap_err().contains("no `PARAMS`"));
+        let broken = folded.source.replace("added_mass: ", "added_mass: \"x\" , y: ");
+        assert!(super::folded_values_of(&broken).is_err());
         for (k, f) in kept.functions.iter().zip(&folded.functions) {
             assert!(f.ops.total() < k.ops.total(), "{}: {} < {}", k.name, f.ops.total(), k.ops.total());
         }

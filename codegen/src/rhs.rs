@@ -113,8 +113,9 @@ fn signature_rhs(sig: &LoadSignature) -> TokenStream {
             let (loads, scratch) = (&mut loads[..n], &mut scratch[..n]);
             crate::#r::angular_velocities(u, scratch);
             #contacts
-            // Summed in a local, which stays in registers (`ws`'s arrays could alias
-            // `ws.power` for all the compiler knows), and stored once.
+            // Summed in a local, which stays in registers (the stores into `ws`'s heap arrays
+            // would otherwise make LLVM reload `ws.power`, whose disjointness it is not told),
+            // and stored once.
             let mut sums = [0.0; crate::POWER_TERMS];
             let power = &mut sums;
             loads[n - 1] = crate::loads::#ls(&p[n - 1], lp, &bodies[n - 1], power);

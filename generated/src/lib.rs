@@ -198,8 +198,8 @@ pub struct LoadParams {
     pub embedded_volume: fn(f64, f64, f64, f64) -> (f64, f64),
 }
 
-/// What the load code reads of one body besides its [`BodyParams`].
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+/// What the load code reads of one body besides its [`BodyParams`]; made by [`Element::new`].
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Element {
     /// Length, m.
     pub length: f64,
@@ -304,6 +304,7 @@ pub fn rhs(signature: &str) -> Option<RhsTable> {
 pub struct FoldedKernel {
     /// The module's name (`folded_case01`).
     pub name: &'static str,
+    /// Its entry points, those of an unrolled kernel.
     pub kernel: KernelTable,
     /// The parameters folded in, B_1 first.
     pub params: &'static [BodyParams],
@@ -312,8 +313,9 @@ pub struct FoldedKernel {
 /// The folded kernel for a chain whose parameters are `p`, bit for bit, with the water
 /// switch `wet`: checked in or built from `KANESTOP_FOLDED_KERNELS`.
 pub fn find_folded(p: &[BodyParams], wet: bool) -> Option<FoldedKernel> {
-    let bits = |b: &BodyParams| {
-        [b.mass, b.inertia, b.centroid[0], b.centroid[1], b.joint[0], b.joint[1], b.added_mass].map(f64::to_bits)
+    // Every field, so that a new one cannot be left out of the match.
+    let bits = |&BodyParams { mass, inertia, centroid, joint, added_mass }: &BodyParams| {
+        [mass, inertia, centroid[0], centroid[1], joint[0], joint[1], added_mass].map(f64::to_bits)
     };
     let same = |f: &FoldedKernel| {
         f.kernel.wet == wet && f.params.len() == p.len() && f.params.iter().zip(p).all(|(a, b)| bits(a) == bits(b))

@@ -15,6 +15,7 @@ pub struct FusedLoads {
     pub signature: LoadSignature,
     /// The scene's numbers.
     pub params: LoadParams,
-    /// Every body's length, radius and whether it is a line element, B_1 first.
+    /// Every body's length, radius, whether it is a line element and the products of its
+    /// numbers the load code reads ([`Element::new`]), B_1 first.
     pub elements: Vec<Element>,
 }

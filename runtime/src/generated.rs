@@ -1,17 +1,18 @@
 //! The generated kernel: code emitted by `kanestop-codegen` (crate `kanestop-generated`),
 //! behind the same [`Kernel`] interface as the reference.
 //!
-//! Two forms ([`Form`]): **unrolled**, flat code for one body count and water switch, built
-//! for the scenes under `scenes/` and `KANESTOP_EXTRA_BODY_COUNTS`; and **rolled**, the same
-//! per-body steps generated once per body kind and driven by loops, for any N.
-//! [`GeneratedKernel::new`] takes the unrolled kernel when the build has one and the rolled
-//! one otherwise, and [`GeneratedKernel::form`] says which; a kernel that takes the scene's
+//! Three forms ([`Form`]): **unrolled**, flat code for one body count and water switch, built
+//! for the scenes under `scenes/` and `KANESTOP_EXTRA_BODY_COUNTS`; **folded**, the same with
+//! one chain's numbers as literals (`kanestop codegen --fold`, `KANESTOP_FOLDED_KERNELS`); and
+//! **rolled**, the same per-body steps generated once per body kind and driven by loops, for
+//! any N. [`GeneratedKernel::new`] takes a folded kernel when the build has one with exactly
+//! the chain's numbers, else the unrolled kernel when it has one, else the rolled one, and [`GeneratedKernel::form`] says which; a kernel that takes the scene's
 //! loads ([`Kernel::fuse_loads`]) runs the rolled steps its fused right-hand side drives. The reference is never a
 //! fallback: it is the oracle and an explicit choice.
 //!
 //! One kernel serves every scene with the same shape: masses, lengths and inertias are
 //! runtime parameters ([`BodyParams`]); only the structurally zero ones are folded into the
-//! code, and [`GeneratedKernel::new`] checks that the chain agrees before using it.
+//! code (all of them in a folded kernel), and [`GeneratedKernel::new`] checks that the chain agrees before using it.
 //!
 //! [`Kernel::solve`] uses the generated O(N) articulated-body recursion by default
 //! ([`SolvePath::Recursive`]); [`SolvePath::Assembled`] assembles the generated a_lp and f_l
@@ -139,8 +140,9 @@ impl Form {
 
 /// The entry points in use.
 enum Table {
-    /// An unrolled kernel, its parameters kept (`folded` false) or folded in.
-    Unrolled(kanestop_generated::KernelTable, bool),
+    Unrolled(kanestop_generated::KernelTable),
+    /// An unrolled kernel with this chain's numbers folded in.
+    Folded(kanestop_generated::KernelTable),
     Rolled(kanestop_generated::RolledTable),
 }
 
@@ -201,13 +203,11 @@ impl GeneratedKernel {
         let variant = Variant::new(n, if wet { Water::On } else { Water::Off });
         let params = body_params(chain);
         let table = match form {
-            Form::Unrolled => Table::Unrolled(
-                kanestop_generated::find(n, wet).ok_or(GeneratedError::NotBuilt { bodies: n, wet })?,
-                false,
-            ),
-            Form::Folded => Table::Unrolled(
+            Form::Unrolled => {
+                Table::Unrolled(kanestop_generated::find(n, wet).ok_or(GeneratedError::NotBuilt { bodies: n, wet })?)
+            }
+            Form::Folded => Table::Folded(
                 kanestop_generated::find_folded(&params, wet).ok_or(GeneratedError::NotFolded { bodies: n })?.kernel,
-                true,
             ),
             Form::Rolled => Table::Rolled(kanestop_generated::rolled(wet)),
         };
@@ -263,18 +263,18 @@ impl GeneratedKernel {
         self.fusion.is_some()
     }
 
-    /// Unrolled or rolled.
+    /// Unrolled, folded or rolled.
     pub fn form(&self) -> Form {
         match self.table {
-            Table::Unrolled(_, false) => Form::Unrolled,
-            Table::Unrolled(_, true) => Form::Folded,
+            Table::Unrolled(_) => Form::Unrolled,
+            Table::Folded(_) => Form::Folded,
             Table::Rolled(..) => Form::Rolled,
         }
     }
 
     fn states(&mut self, q: &[f64], u: &[f64], bodies: &mut [BodyState]) {
         let kinematics = match &self.table {
-            Table::Unrolled(t, _) => t.kinematics,
+            Table::Unrolled(t) | Table::Folded(t) => t.kinematics,
             Table::Rolled(t) => t.kinematics,
         };
         kinematics(&self.params, q, u, &mut self.ws.trig, &mut self.ws.bodies);
@@ -305,7 +305,7 @@ impl GeneratedKernel {
         Ok(match (anchor, &self.table) {
             (AnchorDof::Free, table) => {
                 let [normal, factor] = match table {
-                    Table::Unrolled(t, _) => (t.solve_free)(p, u, &ws.trig, &ws.loads, friction, qdd),
+                    Table::Unrolled(t) | Table::Folded(t) => (t.solve_free)(p, u, &ws.trig, &ws.loads, friction, qdd),
                     Table::Rolled(t) => (t.solve_free)(p, u, &ws.trig, &ws.loads, friction, qdd, &mut ws.scratch),
                 };
                 check_friction_factor(factor)?;
@@ -313,7 +313,7 @@ impl GeneratedKernel {
             }
             (AnchorDof::Stuck, table) => {
                 let [holding, normal] = match table {
-                    Table::Unrolled(t, _) => (t.solve_stuck)(p, u, &ws.trig, &ws.loads, qdd),
+                    Table::Unrolled(t) | Table::Folded(t) => (t.solve_stuck)(p, u, &ws.trig, &ws.loads, qdd),
                     Table::Rolled(t) => (t.solve_stuck)(p, u, &ws.trig, &ws.loads, qdd, &mut ws.scratch),
                 };
                 AnchorReaction { holding, normal }
@@ -389,7 +389,7 @@ impl Kernel for GeneratedKernel {
         if self.solve_path != SolvePath::Recursive || fused.elements.len() != self.bodies || rhs.wet != self.wet {
             return false;
         }
-        if let Table::Unrolled(..) = self.table {
+        if let Table::Unrolled(_) | Table::Folded(_) = self.table {
             self.table = Table::Rolled(kanestop_generated::rolled(self.wet));
         }
         self.fusion = Some(Fusion { rhs, params: fused.params, elements: fused.elements.clone() });
@@ -407,7 +407,7 @@ impl Kernel for GeneratedKernel {
         let (m, f, heave) = (out.mass.as_mut_slice(), out.rhs.as_mut_slice(), &mut self.heave);
         let (p, ws) = (&self.params, &mut self.ws);
         match &self.table {
-            Table::Unrolled(t, _) => (t.assemble)(p, u, &ws.trig, &ws.loads, m, f, heave),
+            Table::Unrolled(t) | Table::Folded(t) => (t.assemble)(p, u, &ws.trig, &ws.loads, m, f, heave),
             Table::Rolled(t) => (t.assemble)(p, u, &ws.trig, &ws.loads, m, f, heave, &mut ws.scratch),
         }
         let n = self.heave.len() - 1;
@@ -417,7 +417,7 @@ impl Kernel for GeneratedKernel {
 
     fn accelerations(&mut self, q: &[f64], u: &[f64], qdd: &[f64], out: &mut [BodyAcceleration]) {
         let (kinematics, accelerations) = match &self.table {
-            Table::Unrolled(t, _) => (t.kinematics, t.accelerations),
+            Table::Unrolled(t) | Table::Folded(t) => (t.kinematics, t.accelerations),
             Table::Rolled(t) => (t.kinematics, t.accelerations),
         };
         if self.trig_q != q {

@@ -27,8 +27,8 @@ pub struct RunSummary {
     pub dt: f64,
     /// The kernel that evaluated the equations: `generated` or `reference`.
     pub kernel: String,
-    /// The generated kernel's form: `unrolled` (built for this N) or `rolled` (any N); none
-    /// for the reference.
+    /// The generated kernel's form: `rolled` (any N; the fused right-hand sides), `unrolled`
+    /// (built for this N) or `folded` (built for this chain's numbers); none for the reference.
     pub kernel_form: Option<String>,
     /// How the run ended: `stopped`, `end time` or `failed`.
     pub status: Status,

@@ -219,10 +219,11 @@ static SERIES: [[f64; 2]; SERIES_TERMS] = DEPTH_SERIES.0;
 /// (increasing in n; `SERIES_REACH[0]` = 0).
 const SERIES_REACH: [f64; SERIES_TERMS] = DEPTH_SERIES.1;
 
-/// The terms `near_edge` takes at y = δ/2r, by the top 12 bits of y (sign, exponent and the
-/// mantissa's first bit: y's half of a binade): the count [`SERIES_REACH`] gives at the top
-/// of that half, so never fewer than y needs and about half a term more (one table load in
-/// place of a comparison per term). At least one; NaN and ∞ take them all.
+/// The terms `near_edge` takes at y = δ/2r, by the 12 bits of |y| below its sign (exponent
+/// and the mantissa's first bit: y's half of a binade, [`terms_for`]): the count
+/// [`SERIES_REACH`] gives at the top of that half, so never fewer than y needs and about half
+/// a term more (one table load in place of a comparison per term). At least one; NaN and ∞
+/// take them all.
 static TERMS_BY_HALF_BINADE: [u8; 4096] = {
     let mut table = [SERIES_TERMS as u8; 4096];
     // The top of half-binade i of positive numbers, from the subnormals' up.
@@ -246,6 +247,12 @@ static TERMS_BY_HALF_BINADE: [u8; 4096] = {
     }
     table
 };
+
+/// The number of terms of the depth series at y = δ/2r ([`TERMS_BY_HALF_BINADE`]; the sign
+/// is ignored).
+fn terms_for(y: f64) -> usize {
+    usize::from(TERMS_BY_HALF_BINADE[((y.to_bits() >> 51) & 0xfff) as usize])
+}
 
 /// A rod near the top of its section, its ends `da` and `db` deep (either may be ≤ 0: that
 /// end is clear of the seabed; the deeper one is > 0). With dA/dδ = 2√(2rδ − δ²) and the
@@ -273,7 +280,7 @@ fn near_edge(r: f64, len: f64, da: f64, db: f64) -> (f64, f64) {
 
     // Looked up without a branch (a search's branches would mispredict from element to element).
     let y = -x * b;
-    let terms = usize::from(TERMS_BY_HALF_BINADE[(y.to_bits() >> 51) as usize]);
+    let terms = terms_for(y);
     let (xa, xb) = (x * a, x * b);
     // Horner from the highest term: P₁(x_b), P₁[x_a, x_b]; P₂(x_b), P₂′(x_b), P₂[x_a, x_b, x_b].
     let [c1, c2] = SERIES[terms - 1];
@@ -459,10 +466,14 @@ mod tests {
         for i in 0..200_000 {
             let y = NEAR_EDGE / 2.0 * i as f64 / 200_000.0;
             let needed = SERIES_REACH.iter().filter(|&&reach| reach < y).count().max(1);
-            let taken = usize::from(TERMS_BY_HALF_BINADE[(y.to_bits() >> 51) as usize]);
+            let taken = terms_for(y);
             assert!((needed..=needed + 2).contains(&taken), "y = {y}: {taken} terms, {needed} needed");
+            assert_eq!(terms_for(-y), taken, "the sign is ignored");
         }
-        assert_eq!(usize::from(TERMS_BY_HALF_BINADE[(f64::NAN.to_bits() >> 51) as usize]), SERIES_TERMS);
+        for y in [f64::NAN, -f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            assert_eq!(terms_for(y), SERIES_TERMS, "{y}");
+        }
+        assert_eq!((terms_for(0.0), terms_for(-0.0)), (1, 1));
     }
 
     #[test]
