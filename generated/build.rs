@@ -5,7 +5,7 @@
 //! kernels in the folder `KANESTOP_FOLDED_KERNELS` names (`kanestop codegen --scene SCENE
 //! --fold DIR`) are remade from their parameters there and listed in `folded.rs`.
 //!
-//! Counts above [`MAX_GENERATED_BODIES`] are not generated: the generator's expression DAG
+//! Counts above `kanestop_codegen::MAX_UNROLLED_BODIES` (400) are not generated: the generator's expression DAG
 //! recurses and overflows the build script's default stack from about N = 490 (with a
 //! 256 MB stack N = 518 builds in 15 min and 3.9 GB). Such a scene, from `../scenes`, is
 //! skipped with a cargo warning and runs on the rolled kernel (any N, checked in); in
@@ -17,7 +17,7 @@ use kanestop_codegen::emit::{folded_registry, generate, out_dir_registry, refold
 use kanestop_codegen::variants_for;
 
 /// The largest body count the build script generates a kernel for.
-const MAX_GENERATED_BODIES: usize = 400;
+const MAX_GENERATED_BODIES: usize = kanestop_codegen::MAX_UNROLLED_BODIES;
 
 fn main() {
     let manifest = std::env::var("CARGO_MANIFEST_DIR").expect("cargo sets CARGO_MANIFEST_DIR");

@@ -214,7 +214,7 @@ fn codegen(scene: Option<&PathBuf>, write: bool, fold: Option<&Path>, root: &Pat
         .transpose()?;
     let model = load_model(scene)?;
     let n = model.body_count();
-    let wet = model.chain.bodies.iter().any(|b| b.added_mass != 0.0);
+    let wet = model.chain.has_added_mass();
     let water = if wet { Water::On } else { Water::Off };
     let variant = Variant::new(n, water);
     let t = &model.topology;
@@ -259,11 +259,12 @@ fn codegen(scene: Option<&PathBuf>, write: bool, fold: Option<&Path>, root: &Pat
         if wet { "" } else { "; every added-mass term (water off)" }
     );
     // The unrolled expansion's DAG recurses with N (docs/codegen.md: the build script stops at
-    // 400 bodies for the same reason); above that only the rolled kernel exists.
-    if n <= 400 {
+    // MAX_UNROLLED_BODIES for the same reason); above that only the rolled kernel exists.
+    if n <= kanestop_codegen::MAX_UNROLLED_BODIES {
         unrolled_op_counts(&model, variant);
     } else {
-        println!("unrolled   not expanded above N = 400 (the rolled kernel's steps: docs/codegen.md)");
+        let max = kanestop_codegen::MAX_UNROLLED_BODIES;
+        println!("unrolled   not expanded above N = {max} (the rolled kernel's steps: docs/codegen.md)");
     }
     let available = kanestop_runtime::generated::available();
     println!(
@@ -279,7 +280,8 @@ fn codegen(scene: Option<&PathBuf>, write: bool, fold: Option<&Path>, root: &Pat
         println!("           {name} has this scene's numbers folded in (it runs where the loads are not fused)");
     }
     if let Some((path, name)) = fold {
-        anyhow::ensure!(n <= 400, "--fold: no unrolled kernel is expanded above N = 400 bodies (this scene has {n})");
+        let max = kanestop_codegen::MAX_UNROLLED_BODIES;
+        anyhow::ensure!(n <= max, "--fold: no unrolled kernel is expanded above N = {max} bodies (this scene has {n})");
         let values = folded_values(&model);
         // Another scene's kernel under the same name (a scene of the same file name
         // elsewhere) is not overwritten.
@@ -392,7 +394,7 @@ fn unrolled_op_counts(model: &Model, variant: kanestop_chain::Variant) {
 /// its file name and text.
 fn checked_in_folded(case1: &Path) -> Result<(String, String)> {
     let model = load_model(Some(&case1.to_path_buf()))?;
-    let wet = model.chain.bodies.iter().any(|b| b.added_mass != 0.0);
+    let wet = model.chain.has_added_mass();
     let water = if wet { kanestop_chain::Water::On } else { kanestop_chain::Water::Off };
     let variant = kanestop_chain::Variant::new(model.body_count(), water);
     let name = kanestop_codegen::CHECKED_IN_FOLDED;

@@ -348,8 +348,12 @@ fn number(e: &syn::Expr) -> Result<f64, String> {
 /// script builds these, so a folded kernel never goes stale.
 pub fn refold(source: &str, name: &str) -> Result<GeneratedFile, String> {
     let values = folded_values_of(source)?;
-    if values.len() < 3 {
-        return Err(format!("{} bodies: a chain has at least an anchor, one rod and a ship", values.len()));
+    if values.len() < 3 || values.len() > crate::MAX_UNROLLED_BODIES {
+        return Err(format!(
+            "{} bodies: a folded kernel has 3 (an anchor, one rod and a ship) to {}",
+            values.len(),
+            crate::MAX_UNROLLED_BODIES
+        ));
     }
     let water = if values.iter().any(|b| b.added_mass != 0.0) { Water::On } else { Water::Off };
     Ok(generate_folded(Variant::new(values.len(), water), &values, name))

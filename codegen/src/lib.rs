@@ -32,6 +32,12 @@ pub mod scenes;
 pub use emit::{generate, GeneratedFile};
 use kanestop_chain::{Variant, Water};
 
+/// The largest body count an unrolled kernel is expanded for (the build script's kernels,
+/// `kanestop codegen --fold`): the expression DAG recurses with N and overflows the build
+/// script's default stack from about N = 490 (docs/model-choices.md). Above it the rolled
+/// kernel serves.
+pub const MAX_UNROLLED_BODIES: usize = 400;
+
 /// Body counts generated for the tests (snapshots and generated-vs-reference checks) on top
 /// of the counts the scenes need.
 pub const TEST_BODY_COUNTS: [usize; 2] = [3, 5];

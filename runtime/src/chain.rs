@@ -113,4 +113,9 @@ impl Chain {
     pub fn is_empty(&self) -> bool {
         self.bodies.is_empty()
     }
+
+    /// Whether any body has added mass (Eq. 46): the kernels' water switch.
+    pub fn has_added_mass(&self) -> bool {
+        self.bodies.iter().any(|b| b.added_mass != 0.0)
+    }
 }

@@ -95,7 +95,7 @@ pub fn folded_kernels() -> Vec<&'static str> {
 
 /// The folded kernel with exactly `chain`'s numbers, if this build has one.
 pub fn folded_for(chain: &Chain) -> Option<&'static str> {
-    let wet = chain.bodies.iter().any(|b| b.added_mass != 0.0);
+    let wet = chain.has_added_mass();
     kanestop_generated::find_folded(&body_params(chain), wet).map(|f| f.name)
 }
 
@@ -182,7 +182,7 @@ impl GeneratedKernel {
     /// when this build has one for N (folded when it has one for exactly this chain's
     /// numbers), rolled otherwise.
     pub fn new(chain: &Chain) -> Result<Self, GeneratedError> {
-        let wet = chain.bodies.iter().any(|b| b.added_mass != 0.0);
+        let wet = chain.has_added_mass();
         let form = if kanestop_generated::find_folded(&body_params(chain), wet).is_some() {
             Form::Folded
         } else if kanestop_generated::find(chain.len(), wet).is_some() {
@@ -199,7 +199,7 @@ impl GeneratedKernel {
         if n < 3 {
             return Err(GeneratedError::TooFewBodies { bodies: n });
         }
-        let wet = chain.bodies.iter().any(|b| b.added_mass != 0.0);
+        let wet = chain.has_added_mass();
         let variant = Variant::new(n, if wet { Water::On } else { Water::Off });
         let params = body_params(chain);
         let table = match form {
