@@ -105,10 +105,7 @@ fn model_choices_figures_are_what_the_code_computes() {
             format!("{:.1} GB at N = {MAX_BODIES}", bytes_for_bodies(MAX_BODIES) / 1e9),
             format!("at most `MAX_STEPS` = {MAX_STEPS:e} steps"),
             format!("({:.2} µs per body and right-hand side", SECONDS_PER_BODY_EVALUATION * 1e6),
-            format!(
-                "kernels up to `MAX_GENERATED_BODIES` = {} bodies",
-                source_const("generated/build.rs", "MAX_GENERATED_BODIES")
-            ),
+            format!("kernels up to `MAX_UNROLLED_BODIES` = {} bodies", kanestop_codegen::MAX_UNROLLED_BODIES),
         ],
     );
     // `initial.horizontal_projection`'s doc comment (runtime/src/scene.rs, rendered into
