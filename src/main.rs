@@ -201,7 +201,7 @@ impl KernelArg {
 
 /// `codegen`: what would be generated for a scene, and optionally write the checked-in files.
 fn codegen(scene: Option<&PathBuf>, write: bool, fold: Option<&Path>, root: &Path) -> Result<()> {
-    use kanestop_chain::{Variant, Water};
+    use kanestop_chain::Water;
     // The folded kernel's name, from the scene's file name, and its folder, checked first.
     let fold = fold
         .map(|dir| -> Result<(PathBuf, String)> {
@@ -214,9 +214,8 @@ fn codegen(scene: Option<&PathBuf>, write: bool, fold: Option<&Path>, root: &Pat
         .transpose()?;
     let model = load_model(scene)?;
     let n = model.body_count();
-    let wet = model.chain.has_added_mass();
-    let water = if wet { Water::On } else { Water::Off };
-    let variant = Variant::new(n, water);
+    let variant = variant_of(&model);
+    let (water, wet) = (variant.water, variant.water == Water::On);
     let t = &model.topology;
     println!("scene      {} (N = {n})", model.scene.meta.name);
     println!(
@@ -394,12 +393,16 @@ fn unrolled_op_counts(model: &Model, variant: kanestop_chain::Variant) {
 /// its file name and text.
 fn checked_in_folded(case1: &Path) -> Result<(String, String)> {
     let model = load_model(Some(&case1.to_path_buf()))?;
-    let wet = model.chain.has_added_mass();
-    let water = if wet { kanestop_chain::Water::On } else { kanestop_chain::Water::Off };
-    let variant = kanestop_chain::Variant::new(model.body_count(), water);
+    let variant = variant_of(&model);
     let name = kanestop_codegen::CHECKED_IN_FOLDED;
     let file = kanestop_codegen::emit::generate_folded(variant, &folded_values(&model), name);
     Ok((file.file_name, file.source))
+}
+
+/// The unrolled kernel's variant for `model`'s chain: N, water on when any body has added mass.
+fn variant_of(model: &Model) -> kanestop_chain::Variant {
+    let water = if model.chain.has_added_mass() { kanestop_chain::Water::On } else { kanestop_chain::Water::Off };
+    kanestop_chain::Variant::new(model.body_count(), water)
 }
 
 /// The very numbers the runtime hands the kernel, for the generator to fold in.
