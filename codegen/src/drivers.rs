@@ -184,12 +184,14 @@ fn drivers() -> TokenStream {
             let n = self::bodies(p, &[q.len(), u.len(), trig.len(), bodies.len()]);
             // Cut to N: the loop's indices need no bounds checks.
             let (q, u, trig, bodies) = (&q[..n], &u[..n], &mut trig[..n], &mut bodies[..n]);
+            // The rotating bodies' rotations first, two angles at a time: θ_k = Σ β_j (Eq. 1).
+            crate::trig::rotations(&q[..n - 1], &mut trig[1..]);
             let mut c = kin_anchor(&p[0], q[n - 1], u[n - 1], &mut bodies[0], &mut trig[0]);
-            c = kin_first(&p[1], q[0], u[0], &c, &mut bodies[1], &mut trig[1]);
+            c = kin_first(&p[1], q[0], u[0], &c, &trig[1], &mut bodies[1]);
             for k in 2..n - 1 {
-                c = kin_rod(&p[k], q[k - 1], u[k - 1], &c, &mut bodies[k], &mut trig[k]);
+                c = kin_rod(&p[k], q[k - 1], u[k - 1], &c, &trig[k], &mut bodies[k]);
             }
-            kin_ship(&p[n - 1], q[n - 2], u[n - 2], &c, &mut bodies[n - 1], &mut trig[n - 1]);
+            kin_ship(&p[n - 1], q[n - 2], u[n - 2], &c, &trig[n - 1], &mut bodies[n - 1]);
         }
 
         /// Body accelerations (Eq. 17): `acc[k] = [a_x, a_z, α]` of C_k for generalised

@@ -22,9 +22,9 @@
 use kanestop_chain::{ParamField, Variant, Water};
 
 use crate::body::{
-    acceleration_step, anchor_solve, angle_step, articulated_body, centripetal_step, centroid_kinematics,
-    effective_force, eliminate_hinge, force_sums, hinge_force, hinge_kinematics, outboard_step, outward_step, rot,
-    BodySyms, Outboard, V2,
+    acceleration_step, anchor_solve, articulated_body, centripetal_step, centroid_kinematics, effective_force,
+    eliminate_hinge, force_sums, hinge_force, hinge_kinematics, outboard_step, outward_step, rot, BodySyms, Outboard,
+    V2,
 };
 use crate::expr::{Dag, Id};
 use crate::planar::{Function, Slot};
@@ -173,8 +173,10 @@ fn step(name: String, kind: Option<Kind>, doc: &str, params: String, function: F
     Step { name, kind, doc: doc.to_string(), params, returns, function }
 }
 
-/// `kin_<kind>`: θ_k, (cos θ_k, sin θ_k), the centroid's position and velocity (Eqs. 9, 13,
-/// 14); the carry is [θ, cos θ, sin θ, ω, o_x, o_z, v_{o,x}, v_{o,z}] of the body.
+/// `kin_<kind>`: θ_k, the centroid's position and velocity (Eqs. 9, 13, 14), with
+/// (cos θ_k, sin θ_k) read from the rotation table `t` ([`crate::drivers`] fills it first;
+/// the anchor's is (1, 0), stored here); the carry is [θ, cos θ, sin θ, ω, o_x, o_z, v_{o,x},
+/// v_{o,z}] of the body.
 pub fn kinematics(kind: Kind, water: Water) -> Step {
     let mut dag = Dag::new();
     let mut f = Function::new(Dag::new());
@@ -191,7 +193,12 @@ pub fn kinematics(kind: Kind, water: Water) -> Step {
         let (theta_prev, parent, omega_prev) =
             if first { (zero, [dag.one(), zero], zero) } else { (c[0], [c[1], c[2]], c[3]) };
         let q = dag.input("q");
-        let (theta, cs) = angle_step(&mut dag, theta_prev, q, TAG);
+        // θ_k is summed here as in `crate::trig`'s table (the same additions in the same
+        // order), whose (cos θ_k, sin θ_k) the step reads: the driver fills the table first,
+        // two angles at a time.
+        let theta = dag.add(theta_prev, q);
+        let theta = dag.name(theta, format!("theta{TAG}"));
+        let cs = pair(&mut dag, "t");
         let u = dag.input("u");
         let omega = dag.add(omega_prev, u);
         let omega = dag.name(omega, "w_k");
@@ -204,14 +211,16 @@ pub fn kinematics(kind: Kind, water: Water) -> Step {
     for (j, v) in [pos[0], pos[1], theta[0], vel[0], vel[1], omega].into_iter().enumerate() {
         f.store(Slot::at("body", j), v);
     }
-    f.store(Slot::at("trig", 0), cs[0]);
-    f.store(Slot::at("trig", 1), cs[1]);
+    if kind == Kind::Anchor {
+        f.store(Slot::at("trig", 0), cs[0]);
+        f.store(Slot::at("trig", 1), cs[1]);
+    }
     f.ret = vec![theta[0], theta[1], theta[2], theta[3], origin[0][0], origin[0][1], origin[1][0], origin[1][1]];
     f.dag = dag;
     let params = if kind == Kind::Anchor {
         format!("{PARAMS}, q: f64, u: f64, body: &mut [f64; 6], trig: &mut [f64; 2]")
     } else {
-        format!("{PARAMS}, q: f64, u: f64, c: &[f64; 8], body: &mut [f64; 6], trig: &mut [f64; 2]")
+        format!("{PARAMS}, q: f64, u: f64, c: &[f64; 8], t: &[f64; 2], body: &mut [f64; 6]")
     };
     step(
         format!("kin_{}", kind.name()),

@@ -14,7 +14,8 @@
 //! `src/loads.rs` holds the load code of every load signature ([`LoadParams`]) and
 //! `src/rhs.rs` the fused right-hand sides ([`rhs`]): per signature, kinematics, loads and
 //! the O(N) solve in one pass each way over the chain, on the rolled kernel's steps.
-//! This file and [`trig`] (the kernels' sine and cosine) are written by hand.
+//! This file, [`trig`] (the kernels' sine and cosine) and [`lanes`] (two f64 lanes) are
+//! written by hand.
 
 #[rustfmt::skip]
 mod kernels;
@@ -38,6 +39,7 @@ mod loads;
 #[allow(clippy::all, unused_variables, dead_code)]
 mod rhs;
 
+pub mod lanes;
 pub mod trig;
 
 mod extra {

@@ -29,12 +29,13 @@ pub fn kinematics(
 ) {
     let n = self::bodies(p, &[q.len(), u.len(), trig.len(), bodies.len()]);
     let (q, u, trig, bodies) = (&q[..n], &u[..n], &mut trig[..n], &mut bodies[..n]);
+    crate::trig::rotations(&q[..n - 1], &mut trig[1..]);
     let mut c = kin_anchor(&p[0], q[n - 1], u[n - 1], &mut bodies[0], &mut trig[0]);
-    c = kin_first(&p[1], q[0], u[0], &c, &mut bodies[1], &mut trig[1]);
+    c = kin_first(&p[1], q[0], u[0], &c, &trig[1], &mut bodies[1]);
     for k in 2..n - 1 {
-        c = kin_rod(&p[k], q[k - 1], u[k - 1], &c, &mut bodies[k], &mut trig[k]);
+        c = kin_rod(&p[k], q[k - 1], u[k - 1], &c, &trig[k], &mut bodies[k]);
     }
-    kin_ship(&p[n - 1], q[n - 2], u[n - 2], &c, &mut bodies[n - 1], &mut trig[n - 1]);
+    kin_ship(&p[n - 1], q[n - 2], u[n - 2], &c, &trig[n - 1], &mut bodies[n - 1]);
 }
 /// Body accelerations (Eq. 17): `acc[k] = [a_x, a_z, α]` of C_k for generalised
 /// accelerations `qdd`.
@@ -306,15 +307,13 @@ pub(crate) fn kin_first(
     q: f64,
     u: f64,
     c: &[f64; 8],
+    t: &[f64; 2],
     body: &mut [f64; 6],
-    trig: &mut [f64; 2],
 ) -> [f64; 8] {
-    let c_k = crate::trig::cos(q);
-    let s_k = crate::trig::sin(q);
     let o_k_x = p.joint[0] + c[4];
     let o_k_z = p.joint[1] + c[5];
-    let t22 = p.centroid[0] * c_k;
-    let t23 = p.centroid[0] * s_k;
+    let t22 = p.centroid[0] * t[0];
+    let t23 = p.centroid[0] * t[1];
     let p_k_x = o_k_x + t22;
     let p_k_z = o_k_z - t23;
     let v_k_x = c[6] - u * t23;
@@ -325,9 +324,7 @@ pub(crate) fn kin_first(
     body[3] = v_k_x;
     body[4] = v_k_z;
     body[5] = u;
-    trig[0] = c_k;
-    trig[1] = s_k;
-    [q, c_k, s_k, u, o_k_x, o_k_z, c[6], c[7]]
+    [q, t[0], t[1], u, o_k_x, o_k_z, c[6], c[7]]
 }
 /// Body state and rotation of one body from the parent's carry (Eqs. 9, 13, 14).
 #[inline(always)]
@@ -336,12 +333,10 @@ pub(crate) fn kin_rod(
     q: f64,
     u: f64,
     c: &[f64; 8],
+    t: &[f64; 2],
     body: &mut [f64; 6],
-    trig: &mut [f64; 2],
 ) -> [f64; 8] {
     let theta_k = c[0] + q;
-    let c_k = crate::trig::cos(theta_k);
-    let s_k = crate::trig::sin(theta_k);
     let w_k = c[3] + u;
     let t19 = p.joint[0] * c[1];
     let t20 = p.joint[0] * c[2];
@@ -349,8 +344,8 @@ pub(crate) fn kin_rod(
     let o_k_z = c[5] - t20;
     let vo_k_x = c[6] - c[3] * t20;
     let vo_k_z = c[7] - c[3] * t19;
-    let t31 = p.centroid[0] * c_k;
-    let t32 = p.centroid[0] * s_k;
+    let t31 = p.centroid[0] * t[0];
+    let t32 = p.centroid[0] * t[1];
     let p_k_x = o_k_x + t31;
     let p_k_z = o_k_z - t32;
     let v_k_x = vo_k_x - w_k * t32;
@@ -361,9 +356,7 @@ pub(crate) fn kin_rod(
     body[3] = v_k_x;
     body[4] = v_k_z;
     body[5] = w_k;
-    trig[0] = c_k;
-    trig[1] = s_k;
-    [theta_k, c_k, s_k, w_k, o_k_x, o_k_z, vo_k_x, vo_k_z]
+    [theta_k, t[0], t[1], w_k, o_k_x, o_k_z, vo_k_x, vo_k_z]
 }
 /// Body state and rotation of one body from the parent's carry (Eqs. 9, 13, 14).
 #[inline(always)]
@@ -372,12 +365,10 @@ pub(crate) fn kin_ship(
     q: f64,
     u: f64,
     c: &[f64; 8],
+    t: &[f64; 2],
     body: &mut [f64; 6],
-    trig: &mut [f64; 2],
 ) -> [f64; 8] {
     let theta_k = c[0] + q;
-    let c_k = crate::trig::cos(theta_k);
-    let s_k = crate::trig::sin(theta_k);
     let w_k = c[3] + u;
     let t20 = p.joint[0] * c[1];
     let t21 = p.joint[0] * c[2];
@@ -385,8 +376,8 @@ pub(crate) fn kin_ship(
     let o_k_z = c[5] - t21;
     let vo_k_x = c[6] - c[3] * t21;
     let vo_k_z = c[7] - c[3] * t20;
-    let t34 = p.centroid[0] * c_k + p.centroid[1] * s_k;
-    let t37 = p.centroid[1] * c_k - p.centroid[0] * s_k;
+    let t34 = p.centroid[0] * t[0] + p.centroid[1] * t[1];
+    let t37 = p.centroid[1] * t[0] - p.centroid[0] * t[1];
     let p_k_x = o_k_x + t34;
     let p_k_z = o_k_z + t37;
     let v_k_x = vo_k_x + w_k * t37;
@@ -397,9 +388,7 @@ pub(crate) fn kin_ship(
     body[3] = v_k_x;
     body[4] = v_k_z;
     body[5] = w_k;
-    trig[0] = c_k;
-    trig[1] = s_k;
-    [theta_k, c_k, s_k, w_k, o_k_x, o_k_z, vo_k_x, vo_k_z]
+    [theta_k, t[0], t[1], w_k, o_k_x, o_k_z, vo_k_x, vo_k_z]
 }
 /// Accelerations of one body (Eq. 17) for its β̈ (`qdd`; the anchor: s̈), from the parent's carry.
 #[inline(always)]
