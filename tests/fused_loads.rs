@@ -420,7 +420,7 @@ fn a_term_switched_off_is_not_in_the_generated_code() {
         for f in ["load_anchor", "load_element", "load_ship"] {
             assert_eq!(source.matches(&format!("pub(crate) fn {f}_{n}(")).count(), 1, "{f}_{n}");
         }
-        assert_eq!(source.matches(&format!("pub(crate) fn contact_{n}(")).count(), usize::from(sig.seabed), "{n}");
+        assert_eq!(source.matches(&format!("pub(crate) fn contacts_{n}(")).count(), usize::from(sig.seabed), "{n}");
     }
 }
 

@@ -13,10 +13,10 @@
 //! The loads are piecewise (the wetted fraction, U|U|, the two cases of Eq. 47), which the
 //! expression DAG of [`crate::expr`] does not model; they are emitted as Rust fragments, and
 //! their operations are counted on the emitted syntax ([`count`]). The seabed's embedded
-//! volume is the one call: the runtime hands its closed form in (`LoadParams::embedded_volume`),
+//! volume is the one call: the runtime hands its closed form in (`LoadParams::embedded_volumes`),
 //! so the generated crate depends on nothing and the volume has one statement. It runs in a
-//! pass of its own over the elements before their loads (`contact_<signature>`), where the
-//! volumes of consecutive elements overlap in the processor.
+//! pass of its own over the elements before their loads (`contacts_<signature>`), which marks
+//! the touching elements and makes one call for all of them.
 //!
 //! Per body the generated function reads the state `s = [x, z, θ, v_x, v_z, ω]` and the
 //! rotation `t = [cos θ, sin θ]` the kinematics computed (no transcendental function of θ
@@ -448,38 +448,44 @@ fn element(sig: &LoadSignature, report: &mut LoadReport) -> TokenStream {
     }
 }
 
-/// The seabed's contact of a line element: [V^S, s̄, 0] (Eq. 41's embedded volume and its
-/// centroid from the `za` end), zeros for the rod in air and for an element clear of the
-/// seabed (as `embedded_volume` gives there; a NaN height still reaches it). Run for every
-/// element before the loads, in a pass of its own: the volumes of consecutive elements are
-/// independent, so the processor overlaps their chains of dependent operations, and the
+/// The seabed's contact of every line element: `loads[k] = [V^S, s̄, 0]` (Eq. 41's embedded
+/// volume and its centroid from the `za` end), zeros for the rod in air and for an element
+/// clear of the seabed (as `embedded_volume` gives there; a NaN height still reaches it). Run
+/// over the elements before their loads, in a pass of its own: it marks each touching
+/// element's row with its end heights, `[h_a, h_b, 1]`, and one call of the runtime's
+/// `LoadParams::embedded_volumes` turns those into volumes, two elements at a time; the
 /// element loads then run without a call.
 fn contact(sig: &LoadSignature, report: &mut LoadReport) -> TokenStream {
     let ends = end_heights();
+    let marks = quote! {
+        if !e.line {
+            continue;
+        }
+        #ends
+        let (ha, hb) = (za - lp.seabed_z, zb - lp.seabed_z);
+        if ha >= e.radius && hb >= e.radius {
+            continue;
+        }
+        loads[k] = [ha, hb, 1.0];
+    };
+    let volumes = quote! { (lp.embedded_volumes)(elements, loads); };
     let mut p = Pieces::new();
-    p.push(
-        LoadTerm::Seabed,
-        quote! {
-            if !e.line {
-                return [0.0; 3];
-            }
-            #ends
-            let (ha, hb) = (za - lp.seabed_z, zb - lp.seabed_z);
-            if ha >= e.radius && hb >= e.radius {
-                return [0.0; 3];
-            }
-            let (v, s_bar) = (lp.embedded_volume)(e.radius, e.length, ha, hb);
-        },
-    );
+    p.push(LoadTerm::Seabed, marks.clone());
+    p.count(LoadTerm::Seabed, &volumes);
     p.record(LoadBody::Element, report);
-    let body = p.code();
-    let name = format_ident!("contact_{}", sig.name());
+    let name = format_ident!("contacts_{}", sig.name());
     quote! {
-        /// A line element's seabed contact at its state `s` and rotation `t`: [V^S, s̄, 0].
+        /// The seabed contact `[V^S, s̄, 0]` of every line element B_2 … B_{N−1} into `loads`,
+        /// from the states `bodies` and rotations `trig`; zeros where an element does not touch.
         #[inline(always)]
-        pub(crate) fn #name(lp: &crate::LoadParams, e: &crate::Element, s: &[f64; 6], t: &[f64; 2]) -> [f64; 3] {
-            #body
-            [v, s_bar, 0.0]
+        pub(crate) fn #name(lp: &crate::LoadParams, elements: &[crate::Element], bodies: &[[f64; 6]], trig: &[[f64; 2]], loads: &mut [[f64; 3]]) {
+            let n = elements.len();
+            for k in 1..n - 1 {
+                loads[k] = [0.0; 3];
+                let (e, s, t) = (&elements[k], &bodies[k], &trig[k]);
+                #marks
+            }
+            #volumes
         }
     }
 }

@@ -65,12 +65,10 @@ fn signature_rhs(sig: &LoadSignature) -> TokenStream {
     let (f_ship, f_rod, f_first) = (arg(quote!(n - 1)), arg(quote!(k)), arg(quote!(1)));
     let f_anchor = if gravity { quote!(lp.g) } else { quote!(&ws.loads[0]) };
     let (contacts, contact) = if sig.seabed {
-        let lc = format_ident!("contact_{n}");
+        let lc = format_ident!("contacts_{n}");
         (
             quote! {
-                for k in 1..n - 1 {
-                    loads[k] = crate::loads::#lc(lp, &e[k], &bodies[k], &trig[k]);
-                }
+                crate::loads::#lc(lp, e, bodies, trig, loads);
             },
             quote!(loads[k]),
         )
@@ -220,7 +218,7 @@ mod tests {
             let end = start + source[start..].find("\n}\n").unwrap();
             let pass = &source[start..end];
             assert_eq!(pass.contains("inward_rod_gravity"), weight_alone(&sig), "{}", sig.name());
-            assert_eq!(pass.contains("contact_"), sig.seabed, "{}", sig.name());
+            assert_eq!(pass.contains("contacts_"), sig.seabed, "{}", sig.name());
             assert!(pass.contains(&format!("crate::{}::kinematics", module(water(&sig)))), "{}", sig.name());
         }
     }

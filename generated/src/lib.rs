@@ -195,9 +195,11 @@ pub struct LoadParams {
     pub roughness_allowance: f64,
     /// The Reynolds number below which Eq. 60's coefficient is held.
     pub min_reynolds: f64,
-    /// The embedded volume of a rod, `(r, L, h_a, h_b) → (V^S m³, s̄ m from the h_a end)`:
-    /// the runtime's closed form, handed in so that it has one statement.
-    pub embedded_volume: fn(f64, f64, f64, f64) -> (f64, f64),
+    /// The embedded volumes of the touching line elements (Eq. 41), in place: each row
+    /// `contacts[k]` reading `[h_a, h_b, 1]` (element k's end heights above the seabed) becomes
+    /// `[V^S m³, s̄ m from the h_a end, 0]`; the runtime's closed form, handed in so that it has
+    /// one statement, and called once for the whole chain.
+    pub embedded_volumes: fn(&[Element], &mut [[f64; 3]]),
 }
 
 /// What the load code reads of one body besides its [`BodyParams`]; made by [`Element::new`].

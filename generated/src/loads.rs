@@ -57,25 +57,32 @@ pub(crate) fn load_anchor_dry_seabed(
     let mut fz = -p.mass * lp.g;
     [fx, fz, 0.0]
 }
-/// A line element's seabed contact at its state `s` and rotation `t`: [V^S, s̄, 0].
+/// The seabed contact `[V^S, s̄, 0]` of every line element B_2 … B_{N−1} into `loads`,
+/// from the states `bodies` and rotations `trig`; zeros where an element does not touch.
 #[inline(always)]
-pub(crate) fn contact_dry_seabed(
+pub(crate) fn contacts_dry_seabed(
     lp: &crate::LoadParams,
-    e: &crate::Element,
-    s: &[f64; 6],
-    t: &[f64; 2],
-) -> [f64; 3] {
-    if !e.line {
-        return [0.0; 3];
+    elements: &[crate::Element],
+    bodies: &[[f64; 6]],
+    trig: &[[f64; 2]],
+    loads: &mut [[f64; 3]],
+) {
+    let n = elements.len();
+    for k in 1..n - 1 {
+        loads[k] = [0.0; 3];
+        let (e, s, t) = (&elements[k], &bodies[k], &trig[k]);
+        if !e.line {
+            continue;
+        }
+        let half = 0.5 * e.length;
+        let (za, zb) = (s[1] + half * t[1], s[1] - half * t[1]);
+        let (ha, hb) = (za - lp.seabed_z, zb - lp.seabed_z);
+        if ha >= e.radius && hb >= e.radius {
+            continue;
+        }
+        loads[k] = [ha, hb, 1.0];
     }
-    let half = 0.5 * e.length;
-    let (za, zb) = (s[1] + half * t[1], s[1] - half * t[1]);
-    let (ha, hb) = (za - lp.seabed_z, zb - lp.seabed_z);
-    if ha >= e.radius && hb >= e.radius {
-        return [0.0; 3];
-    }
-    let (v, s_bar) = (lp.embedded_volume)(e.radius, e.length, ha, hb);
-    [v, s_bar, 0.0]
+    (lp.embedded_volumes)(elements, loads);
 }
 /// The load of a line element (or of the rod in air) at its state `s` and rotation `t`,
 /// with its seabed contact (embedded volume and centroid, zeros without a seabed).
@@ -135,25 +142,32 @@ pub(crate) fn load_anchor_dry_seabed_friction(
     let mut fz = -p.mass * lp.g;
     [fx, fz, 0.0]
 }
-/// A line element's seabed contact at its state `s` and rotation `t`: [V^S, s̄, 0].
+/// The seabed contact `[V^S, s̄, 0]` of every line element B_2 … B_{N−1} into `loads`,
+/// from the states `bodies` and rotations `trig`; zeros where an element does not touch.
 #[inline(always)]
-pub(crate) fn contact_dry_seabed_friction(
+pub(crate) fn contacts_dry_seabed_friction(
     lp: &crate::LoadParams,
-    e: &crate::Element,
-    s: &[f64; 6],
-    t: &[f64; 2],
-) -> [f64; 3] {
-    if !e.line {
-        return [0.0; 3];
+    elements: &[crate::Element],
+    bodies: &[[f64; 6]],
+    trig: &[[f64; 2]],
+    loads: &mut [[f64; 3]],
+) {
+    let n = elements.len();
+    for k in 1..n - 1 {
+        loads[k] = [0.0; 3];
+        let (e, s, t) = (&elements[k], &bodies[k], &trig[k]);
+        if !e.line {
+            continue;
+        }
+        let half = 0.5 * e.length;
+        let (za, zb) = (s[1] + half * t[1], s[1] - half * t[1]);
+        let (ha, hb) = (za - lp.seabed_z, zb - lp.seabed_z);
+        if ha >= e.radius && hb >= e.radius {
+            continue;
+        }
+        loads[k] = [ha, hb, 1.0];
     }
-    let half = 0.5 * e.length;
-    let (za, zb) = (s[1] + half * t[1], s[1] - half * t[1]);
-    let (ha, hb) = (za - lp.seabed_z, zb - lp.seabed_z);
-    if ha >= e.radius && hb >= e.radius {
-        return [0.0; 3];
-    }
-    let (v, s_bar) = (lp.embedded_volume)(e.radius, e.length, ha, hb);
-    [v, s_bar, 0.0]
+    (lp.embedded_volumes)(elements, loads);
 }
 /// The load of a line element (or of the rod in air) at its state `s` and rotation `t`,
 /// with its seabed contact (embedded volume and centroid, zeros without a seabed).
@@ -477,25 +491,32 @@ pub(crate) fn load_anchor_wet_seabed(
     power[4] += drag * s[3];
     [fx, fz, 0.0]
 }
-/// A line element's seabed contact at its state `s` and rotation `t`: [V^S, s̄, 0].
+/// The seabed contact `[V^S, s̄, 0]` of every line element B_2 … B_{N−1} into `loads`,
+/// from the states `bodies` and rotations `trig`; zeros where an element does not touch.
 #[inline(always)]
-pub(crate) fn contact_wet_seabed(
+pub(crate) fn contacts_wet_seabed(
     lp: &crate::LoadParams,
-    e: &crate::Element,
-    s: &[f64; 6],
-    t: &[f64; 2],
-) -> [f64; 3] {
-    if !e.line {
-        return [0.0; 3];
+    elements: &[crate::Element],
+    bodies: &[[f64; 6]],
+    trig: &[[f64; 2]],
+    loads: &mut [[f64; 3]],
+) {
+    let n = elements.len();
+    for k in 1..n - 1 {
+        loads[k] = [0.0; 3];
+        let (e, s, t) = (&elements[k], &bodies[k], &trig[k]);
+        if !e.line {
+            continue;
+        }
+        let half = 0.5 * e.length;
+        let (za, zb) = (s[1] + half * t[1], s[1] - half * t[1]);
+        let (ha, hb) = (za - lp.seabed_z, zb - lp.seabed_z);
+        if ha >= e.radius && hb >= e.radius {
+            continue;
+        }
+        loads[k] = [ha, hb, 1.0];
     }
-    let half = 0.5 * e.length;
-    let (za, zb) = (s[1] + half * t[1], s[1] - half * t[1]);
-    let (ha, hb) = (za - lp.seabed_z, zb - lp.seabed_z);
-    if ha >= e.radius && hb >= e.radius {
-        return [0.0; 3];
-    }
-    let (v, s_bar) = (lp.embedded_volume)(e.radius, e.length, ha, hb);
-    [v, s_bar, 0.0]
+    (lp.embedded_volumes)(elements, loads);
 }
 /// The load of a line element (or of the rod in air) at its state `s` and rotation `t`,
 /// with its seabed contact (embedded volume and centroid, zeros without a seabed).
@@ -628,25 +649,32 @@ pub(crate) fn load_anchor_wet_seabed_friction(
     power[4] += drag * s[3];
     [fx, fz, 0.0]
 }
-/// A line element's seabed contact at its state `s` and rotation `t`: [V^S, s̄, 0].
+/// The seabed contact `[V^S, s̄, 0]` of every line element B_2 … B_{N−1} into `loads`,
+/// from the states `bodies` and rotations `trig`; zeros where an element does not touch.
 #[inline(always)]
-pub(crate) fn contact_wet_seabed_friction(
+pub(crate) fn contacts_wet_seabed_friction(
     lp: &crate::LoadParams,
-    e: &crate::Element,
-    s: &[f64; 6],
-    t: &[f64; 2],
-) -> [f64; 3] {
-    if !e.line {
-        return [0.0; 3];
+    elements: &[crate::Element],
+    bodies: &[[f64; 6]],
+    trig: &[[f64; 2]],
+    loads: &mut [[f64; 3]],
+) {
+    let n = elements.len();
+    for k in 1..n - 1 {
+        loads[k] = [0.0; 3];
+        let (e, s, t) = (&elements[k], &bodies[k], &trig[k]);
+        if !e.line {
+            continue;
+        }
+        let half = 0.5 * e.length;
+        let (za, zb) = (s[1] + half * t[1], s[1] - half * t[1]);
+        let (ha, hb) = (za - lp.seabed_z, zb - lp.seabed_z);
+        if ha >= e.radius && hb >= e.radius {
+            continue;
+        }
+        loads[k] = [ha, hb, 1.0];
     }
-    let half = 0.5 * e.length;
-    let (za, zb) = (s[1] + half * t[1], s[1] - half * t[1]);
-    let (ha, hb) = (za - lp.seabed_z, zb - lp.seabed_z);
-    if ha >= e.radius && hb >= e.radius {
-        return [0.0; 3];
-    }
-    let (v, s_bar) = (lp.embedded_volume)(e.radius, e.length, ha, hb);
-    [v, s_bar, 0.0]
+    (lp.embedded_volumes)(elements, loads);
 }
 /// The load of a line element (or of the rod in air) at its state `s` and rotation `t`,
 /// with its seabed contact (embedded volume and centroid, zeros without a seabed).
@@ -788,25 +816,32 @@ pub(crate) fn load_anchor_wet_seabed_current(
     power[4] += drag * s[3];
     [fx, fz, 0.0]
 }
-/// A line element's seabed contact at its state `s` and rotation `t`: [V^S, s̄, 0].
+/// The seabed contact `[V^S, s̄, 0]` of every line element B_2 … B_{N−1} into `loads`,
+/// from the states `bodies` and rotations `trig`; zeros where an element does not touch.
 #[inline(always)]
-pub(crate) fn contact_wet_seabed_current(
+pub(crate) fn contacts_wet_seabed_current(
     lp: &crate::LoadParams,
-    e: &crate::Element,
-    s: &[f64; 6],
-    t: &[f64; 2],
-) -> [f64; 3] {
-    if !e.line {
-        return [0.0; 3];
+    elements: &[crate::Element],
+    bodies: &[[f64; 6]],
+    trig: &[[f64; 2]],
+    loads: &mut [[f64; 3]],
+) {
+    let n = elements.len();
+    for k in 1..n - 1 {
+        loads[k] = [0.0; 3];
+        let (e, s, t) = (&elements[k], &bodies[k], &trig[k]);
+        if !e.line {
+            continue;
+        }
+        let half = 0.5 * e.length;
+        let (za, zb) = (s[1] + half * t[1], s[1] - half * t[1]);
+        let (ha, hb) = (za - lp.seabed_z, zb - lp.seabed_z);
+        if ha >= e.radius && hb >= e.radius {
+            continue;
+        }
+        loads[k] = [ha, hb, 1.0];
     }
-    let half = 0.5 * e.length;
-    let (za, zb) = (s[1] + half * t[1], s[1] - half * t[1]);
-    let (ha, hb) = (za - lp.seabed_z, zb - lp.seabed_z);
-    if ha >= e.radius && hb >= e.radius {
-        return [0.0; 3];
-    }
-    let (v, s_bar) = (lp.embedded_volume)(e.radius, e.length, ha, hb);
-    [v, s_bar, 0.0]
+    (lp.embedded_volumes)(elements, loads);
 }
 /// The load of a line element (or of the rod in air) at its state `s` and rotation `t`,
 /// with its seabed contact (embedded volume and centroid, zeros without a seabed).
@@ -948,25 +983,32 @@ pub(crate) fn load_anchor_wet_seabed_friction_current(
     power[4] += drag * s[3];
     [fx, fz, 0.0]
 }
-/// A line element's seabed contact at its state `s` and rotation `t`: [V^S, s̄, 0].
+/// The seabed contact `[V^S, s̄, 0]` of every line element B_2 … B_{N−1} into `loads`,
+/// from the states `bodies` and rotations `trig`; zeros where an element does not touch.
 #[inline(always)]
-pub(crate) fn contact_wet_seabed_friction_current(
+pub(crate) fn contacts_wet_seabed_friction_current(
     lp: &crate::LoadParams,
-    e: &crate::Element,
-    s: &[f64; 6],
-    t: &[f64; 2],
-) -> [f64; 3] {
-    if !e.line {
-        return [0.0; 3];
+    elements: &[crate::Element],
+    bodies: &[[f64; 6]],
+    trig: &[[f64; 2]],
+    loads: &mut [[f64; 3]],
+) {
+    let n = elements.len();
+    for k in 1..n - 1 {
+        loads[k] = [0.0; 3];
+        let (e, s, t) = (&elements[k], &bodies[k], &trig[k]);
+        if !e.line {
+            continue;
+        }
+        let half = 0.5 * e.length;
+        let (za, zb) = (s[1] + half * t[1], s[1] - half * t[1]);
+        let (ha, hb) = (za - lp.seabed_z, zb - lp.seabed_z);
+        if ha >= e.radius && hb >= e.radius {
+            continue;
+        }
+        loads[k] = [ha, hb, 1.0];
     }
-    let half = 0.5 * e.length;
-    let (za, zb) = (s[1] + half * t[1], s[1] - half * t[1]);
-    let (ha, hb) = (za - lp.seabed_z, zb - lp.seabed_z);
-    if ha >= e.radius && hb >= e.radius {
-        return [0.0; 3];
-    }
-    let (v, s_bar) = (lp.embedded_volume)(e.radius, e.length, ha, hb);
-    [v, s_bar, 0.0]
+    (lp.embedded_volumes)(elements, loads);
 }
 /// The load of a line element (or of the rod in air) at its state `s` and rotation `t`,
 /// with its seabed contact (embedded volume and centroid, zeros without a seabed).

@@ -209,9 +209,7 @@ fn pass_dry_seabed(
     let (e, trig, bodies) = (&e[..n], &trig[..n], &bodies[..n]);
     let (loads, scratch) = (&mut loads[..n], &mut scratch[..n]);
     crate::rolled_dry::angular_velocities(u, scratch);
-    for k in 1..n - 1 {
-        loads[k] = crate::loads::contact_dry_seabed(lp, &e[k], &bodies[k], &trig[k]);
-    }
+    crate::loads::contacts_dry_seabed(lp, e, bodies, trig, loads);
     let mut sums = [0.0; crate::POWER_TERMS];
     let power = &mut sums;
     loads[n - 1] = crate::loads::load_ship_dry_seabed(
@@ -333,14 +331,7 @@ fn pass_dry_seabed_friction(
     let (e, trig, bodies) = (&e[..n], &trig[..n], &bodies[..n]);
     let (loads, scratch) = (&mut loads[..n], &mut scratch[..n]);
     crate::rolled_dry::angular_velocities(u, scratch);
-    for k in 1..n - 1 {
-        loads[k] = crate::loads::contact_dry_seabed_friction(
-            lp,
-            &e[k],
-            &bodies[k],
-            &trig[k],
-        );
-    }
+    crate::loads::contacts_dry_seabed_friction(lp, e, bodies, trig, loads);
     let mut sums = [0.0; crate::POWER_TERMS];
     let power = &mut sums;
     loads[n - 1] = crate::loads::load_ship_dry_seabed_friction(
@@ -704,9 +695,7 @@ fn pass_wet_seabed(
     let (e, trig, bodies) = (&e[..n], &trig[..n], &bodies[..n]);
     let (loads, scratch) = (&mut loads[..n], &mut scratch[..n]);
     crate::rolled_wet::angular_velocities(u, scratch);
-    for k in 1..n - 1 {
-        loads[k] = crate::loads::contact_wet_seabed(lp, &e[k], &bodies[k], &trig[k]);
-    }
+    crate::loads::contacts_wet_seabed(lp, e, bodies, trig, loads);
     let mut sums = [0.0; crate::POWER_TERMS];
     let power = &mut sums;
     loads[n - 1] = crate::loads::load_ship_wet_seabed(
@@ -828,14 +817,7 @@ fn pass_wet_seabed_friction(
     let (e, trig, bodies) = (&e[..n], &trig[..n], &bodies[..n]);
     let (loads, scratch) = (&mut loads[..n], &mut scratch[..n]);
     crate::rolled_wet::angular_velocities(u, scratch);
-    for k in 1..n - 1 {
-        loads[k] = crate::loads::contact_wet_seabed_friction(
-            lp,
-            &e[k],
-            &bodies[k],
-            &trig[k],
-        );
-    }
+    crate::loads::contacts_wet_seabed_friction(lp, e, bodies, trig, loads);
     let mut sums = [0.0; crate::POWER_TERMS];
     let power = &mut sums;
     loads[n - 1] = crate::loads::load_ship_wet_seabed_friction(
@@ -962,14 +944,7 @@ fn pass_wet_seabed_current(
     let (e, trig, bodies) = (&e[..n], &trig[..n], &bodies[..n]);
     let (loads, scratch) = (&mut loads[..n], &mut scratch[..n]);
     crate::rolled_wet::angular_velocities(u, scratch);
-    for k in 1..n - 1 {
-        loads[k] = crate::loads::contact_wet_seabed_current(
-            lp,
-            &e[k],
-            &bodies[k],
-            &trig[k],
-        );
-    }
+    crate::loads::contacts_wet_seabed_current(lp, e, bodies, trig, loads);
     let mut sums = [0.0; crate::POWER_TERMS];
     let power = &mut sums;
     loads[n - 1] = crate::loads::load_ship_wet_seabed_current(
@@ -1096,14 +1071,7 @@ fn pass_wet_seabed_friction_current(
     let (e, trig, bodies) = (&e[..n], &trig[..n], &bodies[..n]);
     let (loads, scratch) = (&mut loads[..n], &mut scratch[..n]);
     crate::rolled_wet::angular_velocities(u, scratch);
-    for k in 1..n - 1 {
-        loads[k] = crate::loads::contact_wet_seabed_friction_current(
-            lp,
-            &e[k],
-            &bodies[k],
-            &trig[k],
-        );
-    }
+    crate::loads::contacts_wet_seabed_friction_current(lp, e, bodies, trig, loads);
     let mut sums = [0.0; crate::POWER_TERMS];
     let power = &mut sums;
     loads[n - 1] = crate::loads::load_ship_wet_seabed_friction_current(

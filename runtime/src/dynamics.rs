@@ -86,7 +86,8 @@ impl LoadModel for Recording<'_> {
 }
 
 /// The loads of `forces` as the generated load code takes them: their signature, their
-/// numbers, and the seabed's closed form (`seabed::embedded_volume`), handed in. None when
+/// numbers, and the seabed's closed form (`seabed::embedded_volume`, by way of
+/// `contact::embedded_volumes`), handed in. None when
 /// the load code cannot state them: a chain not in Huston's order (the anchor first, the
 /// ship last, line elements and the rod between; the load code assumes it, the force
 /// modules dispatch on each body's kind), or, with water, a ship whose hydrostatics were
@@ -125,7 +126,7 @@ pub fn fused_loads(forces: &Forces) -> Option<FusedLoads> {
         viscosity: s.viscosity,
         roughness_allowance: s.roughness_allowance,
         min_reynolds: ship::MIN_REYNOLDS,
-        embedded_volume: seabed::embedded_volume,
+        embedded_volumes: crate::contact::embedded_volumes,
     };
     let elements = forces
         .elements

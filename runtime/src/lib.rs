@@ -14,6 +14,7 @@
 
 pub mod catenary;
 pub mod chain;
+pub mod contact;
 pub mod design;
 pub mod dynamics;
 pub mod energy;

@@ -76,7 +76,7 @@ fn antiderivatives(r: f64, h: f64) -> (f64, f64) {
 /// sums of the depth series of `near_edge` (terms shrinking by δ/2r ≤ 1/8), exact to about
 /// 1e-15 for any tilt. Elements resting on the seabed lie here (the paper's chain about
 /// 0.08 r deep, at k_z × 1e4 about 2e-4 r).
-const NEAR_EDGE: f64 = 0.25;
+pub(crate) const NEAR_EDGE: f64 = 0.25;
 
 /// Between the edges a rod is nearly level when |h_b − h_a| ≤ `TAYLOR` × the ends' distance
 /// from the section's edges (h = ±r, at least 0.22 r there): its Taylor series about the
@@ -212,7 +212,7 @@ const DEPTH_SERIES: ([[f64; 2]; SERIES_TERMS], [f64; SERIES_TERMS]) = {
 /// Per term k of the depth series, p = k + 3/2: the coefficients of x^k (x = −δ/2r) in
 /// F₁(δ)/(c₀ δ^(5/2)) and F₂(δ)/(c₀ δ^(7/2)), C(½, k)/(p(p + 1)) and C(½, k)/(p(p + 1)(p + 2)),
 /// with F₁ = ∫A dδ, F₂ = ∫F₁ dδ (both 0 at δ = 0) and c₀ = 2√(2r).
-static SERIES: [[f64; 2]; SERIES_TERMS] = DEPTH_SERIES.0;
+pub(crate) static SERIES: [[f64; 2]; SERIES_TERMS] = DEPTH_SERIES.0;
 
 /// `SERIES_REACH[n]`: the largest δ/2r at which the first n terms leave out less than 1e-17
 /// of the leading one, in the sums and in their first and second divided differences
@@ -250,7 +250,7 @@ static TERMS_BY_HALF_BINADE: [u8; 4096] = {
 
 /// The number of terms of the depth series at y = δ/2r ([`TERMS_BY_HALF_BINADE`]; the sign
 /// is ignored).
-fn terms_for(y: f64) -> usize {
+pub(crate) fn terms_for(y: f64) -> usize {
     usize::from(TERMS_BY_HALF_BINADE[((y.to_bits() >> 51) & 0xfff) as usize])
 }
 
