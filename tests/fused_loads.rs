@@ -359,7 +359,7 @@ fn every_scene_runs_fused_on_the_generated_kernel_and_not_on_the_reference() {
 fn markers(term: LoadTerm) -> &'static [&'static str] {
     match term {
         LoadTerm::Weight => &["lp.g"],
-        LoadTerm::Seabed => &["embedded_volume", "seabed_stiffness", "power[1]"],
+        LoadTerm::Seabed => &["embedded_volumes", "seabed_stiffness", "power[1]"],
         LoadTerm::LineFriction => &["tanh", "line_friction", "slip_speed", "power[3]"],
         LoadTerm::Buoyancy => &["fraction", "anchor_volume", "power[0]"],
         LoadTerm::Current => &["powf", "current_speed", "current_exponent"],

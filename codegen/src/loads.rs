@@ -468,7 +468,7 @@ fn contact(sig: &LoadSignature, report: &mut LoadReport) -> TokenStream {
         }
         loads[k] = [ha, hb, 1.0];
     };
-    let volumes = quote! { (lp.embedded_volumes)(elements, loads); };
+    let volumes = quote! { (lp.embedded_volumes)(&elements[1..n - 1], &mut loads[1..n - 1]); };
     let mut p = Pieces::new();
     p.push(LoadTerm::Seabed, marks.clone());
     p.count(LoadTerm::Seabed, &volumes);

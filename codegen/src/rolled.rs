@@ -193,7 +193,7 @@ pub fn kinematics(kind: Kind, water: Water) -> Step {
         let (theta_prev, parent, omega_prev) =
             if first { (zero, [dag.one(), zero], zero) } else { (c[0], [c[1], c[2]], c[3]) };
         let q = dag.input("q");
-        // θ_k is summed here as in `crate::trig`'s table (the same additions in the same
+        // θ_k is summed here as in `kanestop_generated::trig::rotations`'s table (the same additions in the same
         // order), whose (cos θ_k, sin θ_k) the step reads: the driver fills the table first,
         // two angles at a time.
         let theta = dag.add(theta_prev, q);
@@ -225,7 +225,7 @@ pub fn kinematics(kind: Kind, water: Water) -> Step {
     step(
         format!("kin_{}", kind.name()),
         Some(kind),
-        "Body state and rotation of one body from the parent's carry (Eqs. 9, 13, 14).",
+        "Body state of one body from the parent's carry and its row of the rotation table (Eqs. 9, 13, 14).",
         params,
         f,
     )

@@ -3,18 +3,21 @@
 //! elements in the runtime's fused load path). Each operation is one IEEE operation per lane,
 //! so a lane's result equals, bit for bit, the scalar code's doing the same operations.
 //!
-//! On x86-64 an [`F2`] is an SSE2 register (SSE2 is part of every x86-64 processor);
-//! elsewhere, two numbers. The SSE2 intrinsics are `unsafe` before Rust 1.87 and safe since
+//! On x86-64 with SSE2 (part of every x86-64 processor, on for every x86-64 target but the
+//! soft-float ones) an [`F2`] is an SSE2 register; elsewhere, two numbers. The SSE2 intrinsics are `unsafe` before Rust 1.87 and safe since
 //! wherever SSE2 is on, as on every x86-64 target: hence the `unsafe` blocks, with
 //! `unused_unsafe` allowed. None of them reads or writes memory.
 #![allow(unused_unsafe)]
 
-#[cfg(target_arch = "x86_64")]
+#[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
 use core::arch::x86_64::*;
 
 /// Two f64 lanes, `[lane 0, lane 1]`.
 #[derive(Clone, Copy, Debug)]
-pub struct F2(#[cfg(target_arch = "x86_64")] __m128d, #[cfg(not(target_arch = "x86_64"))] [f64; 2]);
+pub struct F2(
+    #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))] __m128d,
+    #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))] [f64; 2],
+);
 
 macro_rules! lanewise {
     ($($trait:ident $method:ident $intrinsic:ident $op:tt),*) => {$(
@@ -22,9 +25,9 @@ macro_rules! lanewise {
             type Output = F2;
             #[inline(always)]
             fn $method(self, o: F2) -> F2 {
-                #[cfg(target_arch = "x86_64")]
+                #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
                 return F2(unsafe { $intrinsic(self.0, o.0) });
-                #[cfg(not(target_arch = "x86_64"))]
+                #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
                 return F2([self.0[0] $op o.0[0], self.0[1] $op o.0[1]]);
             }
         }
@@ -38,9 +41,9 @@ impl F2 {
     /// `[a, b]`.
     #[inline(always)]
     pub fn new(a: f64, b: f64) -> F2 {
-        #[cfg(target_arch = "x86_64")]
+        #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
         return F2(unsafe { _mm_set_pd(b, a) });
-        #[cfg(not(target_arch = "x86_64"))]
+        #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
         return F2([a, b]);
     }
 
@@ -53,36 +56,36 @@ impl F2 {
     /// `[lane 0, lane 1]`.
     #[inline(always)]
     pub fn lanes(self) -> [f64; 2] {
-        #[cfg(target_arch = "x86_64")]
+        #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
         return unsafe { [_mm_cvtsd_f64(self.0), _mm_cvtsd_f64(_mm_unpackhi_pd(self.0, self.0))] };
-        #[cfg(not(target_arch = "x86_64"))]
+        #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
         return self.0;
     }
 
     /// √ of each lane (correctly rounded, as `f64::sqrt`).
     #[inline(always)]
     pub fn sqrt(self) -> F2 {
-        #[cfg(target_arch = "x86_64")]
+        #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
         return F2(unsafe { _mm_sqrt_pd(self.0) });
-        #[cfg(not(target_arch = "x86_64"))]
+        #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
         return F2(self.0.map(f64::sqrt));
     }
 
     /// Each lane's bits.
     #[inline(always)]
     fn bits(self) -> Bits {
-        #[cfg(target_arch = "x86_64")]
+        #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
         return Bits(unsafe { _mm_castpd_si128(self.0) });
-        #[cfg(not(target_arch = "x86_64"))]
+        #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
         return Bits(self.0.map(f64::to_bits));
     }
 
     /// The lanes of these bits.
     #[inline(always)]
     fn from_bits(b: Bits) -> F2 {
-        #[cfg(target_arch = "x86_64")]
+        #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
         return F2(unsafe { _mm_castsi128_pd(b.0) });
-        #[cfg(not(target_arch = "x86_64"))]
+        #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
         return F2(b.0.map(f64::from_bits));
     }
 
@@ -117,15 +120,18 @@ impl F2 {
 
 /// Two u64 lanes (an [`F2`]'s bits).
 #[derive(Clone, Copy)]
-struct Bits(#[cfg(target_arch = "x86_64")] __m128i, #[cfg(not(target_arch = "x86_64"))] [u64; 2]);
+struct Bits(
+    #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))] __m128i,
+    #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))] [u64; 2],
+);
 
 macro_rules! bitwise {
     ($($method:ident $intrinsic:ident $op:expr),*) => {$(
         #[inline(always)]
         fn $method(self, o: Bits) -> Bits {
-            #[cfg(target_arch = "x86_64")]
+            #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
             return Bits(unsafe { $intrinsic(self.0, o.0) });
-            #[cfg(not(target_arch = "x86_64"))]
+            #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
             return Bits([$op(self.0[0], o.0[0]), $op(self.0[1], o.0[1])]);
         }
     )*};
@@ -134,9 +140,9 @@ macro_rules! bitwise {
 impl Bits {
     #[inline(always)]
     fn splat(x: u64) -> Bits {
-        #[cfg(target_arch = "x86_64")]
+        #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
         return Bits(unsafe { _mm_set1_epi64x(x as i64) });
-        #[cfg(not(target_arch = "x86_64"))]
+        #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
         return Bits([x, x]);
     }
 
@@ -151,18 +157,18 @@ impl Bits {
     /// `self & !mask`.
     #[inline(always)]
     fn andnot(self, mask: Bits) -> Bits {
-        #[cfg(target_arch = "x86_64")]
+        #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
         return Bits(unsafe { _mm_andnot_si128(mask.0, self.0) });
-        #[cfg(not(target_arch = "x86_64"))]
+        #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
         return Bits([self.0[0] & !mask.0[0], self.0[1] & !mask.0[1]]);
     }
 
     /// Bit `bit` moved to bit 63 (the others of `self` are zero).
     #[inline(always)]
     fn shift_to_sign(self, bit: u32) -> Bits {
-        #[cfg(target_arch = "x86_64")]
+        #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
         return Bits(unsafe { _mm_sll_epi64(self.0, _mm_set_epi64x(0, i64::from(63 - bit))) });
-        #[cfg(not(target_arch = "x86_64"))]
+        #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
         return Bits(self.0.map(|x| x << (63 - bit)));
     }
 }

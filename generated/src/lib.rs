@@ -195,10 +195,11 @@ pub struct LoadParams {
     pub roughness_allowance: f64,
     /// The Reynolds number below which Eq. 60's coefficient is held.
     pub min_reynolds: f64,
-    /// The embedded volumes of the touching line elements (Eq. 41), in place: each row
-    /// `contacts[k]` reading `[h_a, h_b, 1]` (element k's end heights above the seabed) becomes
-    /// `[V^S m³, s̄ m from the h_a end, 0]`; the runtime's closed form, handed in so that it has
-    /// one statement, and called once for the whole chain.
+    /// The embedded volumes of the touching line elements (Eq. 41), in place, over the rows of
+    /// B_2 … B_{N−1} (the contact pass sets each to zeros or marks it): each row `contacts[k]`
+    /// reading `[h_a, h_b, 1]` (element k's end heights above the seabed) becomes
+    /// `[V^S m³, s̄ m from the h_a end, 0]`, the others stay; the runtime's closed form, handed
+    /// in so that it has one statement, and called once for the whole chain.
     pub embedded_volumes: fn(&[Element], &mut [[f64; 3]]),
 }
 

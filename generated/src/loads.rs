@@ -82,7 +82,7 @@ pub(crate) fn contacts_dry_seabed(
         }
         loads[k] = [ha, hb, 1.0];
     }
-    (lp.embedded_volumes)(elements, loads);
+    (lp.embedded_volumes)(&elements[1..n - 1], &mut loads[1..n - 1]);
 }
 /// The load of a line element (or of the rod in air) at its state `s` and rotation `t`,
 /// with its seabed contact (embedded volume and centroid, zeros without a seabed).
@@ -167,7 +167,7 @@ pub(crate) fn contacts_dry_seabed_friction(
         }
         loads[k] = [ha, hb, 1.0];
     }
-    (lp.embedded_volumes)(elements, loads);
+    (lp.embedded_volumes)(&elements[1..n - 1], &mut loads[1..n - 1]);
 }
 /// The load of a line element (or of the rod in air) at its state `s` and rotation `t`,
 /// with its seabed contact (embedded volume and centroid, zeros without a seabed).
@@ -516,7 +516,7 @@ pub(crate) fn contacts_wet_seabed(
         }
         loads[k] = [ha, hb, 1.0];
     }
-    (lp.embedded_volumes)(elements, loads);
+    (lp.embedded_volumes)(&elements[1..n - 1], &mut loads[1..n - 1]);
 }
 /// The load of a line element (or of the rod in air) at its state `s` and rotation `t`,
 /// with its seabed contact (embedded volume and centroid, zeros without a seabed).
@@ -674,7 +674,7 @@ pub(crate) fn contacts_wet_seabed_friction(
         }
         loads[k] = [ha, hb, 1.0];
     }
-    (lp.embedded_volumes)(elements, loads);
+    (lp.embedded_volumes)(&elements[1..n - 1], &mut loads[1..n - 1]);
 }
 /// The load of a line element (or of the rod in air) at its state `s` and rotation `t`,
 /// with its seabed contact (embedded volume and centroid, zeros without a seabed).
@@ -841,7 +841,7 @@ pub(crate) fn contacts_wet_seabed_current(
         }
         loads[k] = [ha, hb, 1.0];
     }
-    (lp.embedded_volumes)(elements, loads);
+    (lp.embedded_volumes)(&elements[1..n - 1], &mut loads[1..n - 1]);
 }
 /// The load of a line element (or of the rod in air) at its state `s` and rotation `t`,
 /// with its seabed contact (embedded volume and centroid, zeros without a seabed).
@@ -1008,7 +1008,7 @@ pub(crate) fn contacts_wet_seabed_friction_current(
         }
         loads[k] = [ha, hb, 1.0];
     }
-    (lp.embedded_volumes)(elements, loads);
+    (lp.embedded_volumes)(&elements[1..n - 1], &mut loads[1..n - 1]);
 }
 /// The load of a line element (or of the rod in air) at its state `s` and rotation `t`,
 /// with its seabed contact (embedded volume and centroid, zeros without a seabed).

@@ -278,7 +278,7 @@ pub fn solve_stuck(
     outward_pass(s_dd, scratch, qdd);
     [holding, normal]
 }
-/// Body state and rotation of one body from the parent's carry (Eqs. 9, 13, 14).
+/// Body state of one body from the parent's carry and its row of the rotation table (Eqs. 9, 13, 14).
 #[inline(always)]
 pub(crate) fn kin_anchor(
     p: &crate::BodyParams,
@@ -300,7 +300,7 @@ pub(crate) fn kin_anchor(
     trig[1] = 0.0;
     [0.0, 1.0, 0.0, 0.0, t8, p.joint[1], u, 0.0]
 }
-/// Body state and rotation of one body from the parent's carry (Eqs. 9, 13, 14).
+/// Body state of one body from the parent's carry and its row of the rotation table (Eqs. 9, 13, 14).
 #[inline(always)]
 pub(crate) fn kin_first(
     p: &crate::BodyParams,
@@ -326,7 +326,7 @@ pub(crate) fn kin_first(
     body[5] = u;
     [q, t[0], t[1], u, o_k_x, o_k_z, c[6], c[7]]
 }
-/// Body state and rotation of one body from the parent's carry (Eqs. 9, 13, 14).
+/// Body state of one body from the parent's carry and its row of the rotation table (Eqs. 9, 13, 14).
 #[inline(always)]
 pub(crate) fn kin_rod(
     p: &crate::BodyParams,
@@ -358,7 +358,7 @@ pub(crate) fn kin_rod(
     body[5] = w_k;
     [theta_k, t[0], t[1], w_k, o_k_x, o_k_z, vo_k_x, vo_k_z]
 }
-/// Body state and rotation of one body from the parent's carry (Eqs. 9, 13, 14).
+/// Body state of one body from the parent's carry and its row of the rotation table (Eqs. 9, 13, 14).
 #[inline(always)]
 pub(crate) fn kin_ship(
     p: &crate::BodyParams,

@@ -93,6 +93,7 @@ pub fn rotations(beta: &[f64], trig: &mut [[f64; 2]]) {
     let mut theta = 0.0;
     let mut j = 0;
     while j + 1 < m {
+        // θ_0 = β_0 itself, as the first link's step takes it (0 + β_0 would turn −0 into +0).
         let a = if j == 0 { beta[0] } else { theta + beta[j] };
         theta = a + beta[j + 1];
         [trig[j], trig[j + 1]] = sin_cos_pair(a, theta);

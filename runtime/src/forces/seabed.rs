@@ -274,6 +274,10 @@ pub(crate) fn terms_for(y: f64) -> usize {
 /// and as many terms as the depth needs ([`SERIES_REACH`]): about 12 for a chain resting on
 /// the seabed, five multiply–adds each. With the shallow end clear (a ≤ 0) the integrals run
 /// over [0, b]: V/L = F₁(b)/(b − a), M/L² = V/L − F₂(b)/(b − a)².
+///
+/// The `a > 0` branch is written again on two lanes in `crate::contact` (`resting_pair`, the
+/// fused load path), operation for operation: a change here is a change there, and that
+/// module's tests compare the two bit for bit.
 fn near_edge(r: f64, len: f64, da: f64, db: f64) -> (f64, f64) {
     let (a, b) = (da.min(db), da.max(db));
     let x = -0.5 / r; // dx/dδ
