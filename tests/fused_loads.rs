@@ -53,8 +53,8 @@ impl LoadModel for Told {
         panic!("a fused kernel computes its loads itself");
     }
 
-    fn fused(&mut self, loads: &[Load], power: &[f64]) {
-        self.loads = loads.to_vec();
+    fn fused(&mut self, loads: &[[f64; 3]], power: &[f64]) {
+        self.loads = loads.iter().map(|&[fx, fz, my]| Load { fx, fz, my }).collect();
         self.power = power.to_vec();
     }
 }
@@ -154,6 +154,7 @@ fn check_model(name: &str, model: &Model, seed: u64, states: usize) -> Worst {
         let (mut scratch, mut told) = (Assembly::new(n), Told::default());
         let (mut a, mut b) = (vec![0.0; n], vec![0.0; n]);
         let ra = fused.solve(&q, &u, anchor, friction, &mut told, &mut scratch, &mut a).unwrap();
+        assert!(fused.last_states(&mut scratch.bodies), "{name}: the fused solve keeps its states");
         assert_eq!((told.loads.len(), told.power.len()), (n, WORK_TERMS.len()), "{name}: the kernel told its loads");
         // The oracle's loads at the same body states.
         let mut oracle = vec![Load::default(); n];
@@ -676,6 +677,7 @@ fn the_solve_s_joint_forces_are_newton_s() {
                 let (mut scratch, mut qdd, mut told) = (Assembly::new(n), vec![0.0; n], Told::default());
                 let loads = if fuses {
                     kernel.solve(&q, &u, anchor, friction, &mut told, &mut scratch, &mut qdd).unwrap();
+                    assert!(kernel.last_states(&mut scratch.bodies), "{name}: the fused solve keeps its states");
                     told.loads.clone()
                 } else {
                     kernel.solve(&q, &u, anchor, friction, &mut forces, &mut scratch, &mut qdd).unwrap();

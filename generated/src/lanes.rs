@@ -89,6 +89,13 @@ impl F2 {
         return F2(b.0.map(f64::from_bits));
     }
 
+    /// Lane i where `keep[i]`, else +0 (all bits clear).
+    #[inline(always)]
+    pub fn keep(self, keep: [bool; 2]) -> F2 {
+        let mask = |k: bool| if k { u64::MAX } else { 0 };
+        F2::from_bits(self.bits().and(Bits::new(mask(keep[0]), mask(keep[1]))))
+    }
+
     /// |x| with the sign of `sign`, lane by lane (as `f64::copysign`).
     #[inline(always)]
     pub fn copysign(self, sign: F2) -> F2 {
@@ -138,6 +145,15 @@ macro_rules! bitwise {
 }
 
 impl Bits {
+    /// `[a, b]`.
+    #[inline(always)]
+    fn new(a: u64, b: u64) -> Bits {
+        #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+        return Bits(unsafe { _mm_set_epi64x(b as i64, a as i64) });
+        #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
+        return Bits([a, b]);
+    }
+
     #[inline(always)]
     fn splat(x: u64) -> Bits {
         #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]

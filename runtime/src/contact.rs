@@ -77,21 +77,28 @@ fn resting_pair(r: [f64; 2], len: [f64; 2], da: [f64; 2], db: [f64; 2]) -> [(f64
     let [y0, y1] = y.lanes();
     let (t0, t1) = (terms_for(y0), terms_for(y1));
     let (xa, xb) = (x * a, x * b);
-    // Each lane its own number of terms: Horner's scheme from the longer series' top, a
-    // lane's coefficients zero above its own. From a state of +0 a zero coefficient leaves +0
-    // (0 + x·0 = 0 + (−0) = +0: x < 0, the state ≥ 0), and at its own top term the lane takes
-    // exactly the scalar loop's starting state (c, 0, c₂, 0, 0): equal to it bit for bit.
-    let coefficient = |j: usize, t: usize| if j < t { SERIES[j] } else { [0.0; 2] };
+    // Each lane its own number of terms: Horner's scheme from the longer series' top, the
+    // other lane's coefficients +0 until its own top (`keep`). From a state of +0 a zero
+    // coefficient leaves +0 (0 + x·0 = 0 + (−0) = +0: x < 0, the state ≥ 0), and at its own
+    // top term the lane takes exactly the scalar loop's starting state (c, 0, c₂, 0, 0): equal
+    // to it bit for bit.
     let zero = F2::splat(0.0);
     let (mut p1, mut p1_ab) = (zero, zero);
     let (mut p2, mut p2_bb, mut p2_abb) = (zero, zero, zero);
-    for j in (0..t0.max(t1)).rev() {
-        let ([c1a, c2a], [c1b, c2b]) = (coefficient(j, t0), coefficient(j, t1));
+    let mut step = |c1: F2, c2: F2| {
         p1_ab = p1 + xa * p1_ab;
-        p1 = F2::new(c1a, c1b) + xb * p1;
+        p1 = c1 + xb * p1;
         p2_abb = p2_bb + xa * p2_abb;
         p2_bb = p2 + xb * p2_bb;
-        p2 = F2::new(c2a, c2b) + xb * p2;
+        p2 = c2 + xb * p2;
+    };
+    let (short, long) = (t0.min(t1), t0.max(t1));
+    let longer = [t0 == long, t1 == long];
+    for &[c1, c2] in SERIES[short..long].iter().rev() {
+        step(F2::splat(c1).keep(longer), F2::splat(c2).keep(longer));
+    }
+    for &[c1, c2] in SERIES[..short].iter().rev() {
+        step(F2::splat(c1), F2::splat(c2));
     }
     let (sa, sb) = (a.sqrt(), b.sqrt());
     let s = sa + sb;

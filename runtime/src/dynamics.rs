@@ -26,6 +26,9 @@ pub struct Dynamics {
     /// Direction of sliding (+1 toward the ship, −1 away, 0 for no friction) while free.
     direction: f64,
     assembly: Assembly,
+    /// Whether `assembly.bodies` holds the last solve's body states, or the kernel still
+    /// keeps them ([`Kernel::last_states`]).
+    states_settled: bool,
     evaluations: u64,
     loads: Vec<Load>,
     /// The seabed's reaction and the sliding friction force (N, along +x) of the last
@@ -78,10 +81,10 @@ impl LoadModel for Recording<'_> {
         self.loads.extend_from_slice(loads);
     }
 
-    fn fused(&mut self, loads: &[Load], power: &[f64]) {
+    fn fused(&mut self, loads: &[[f64; 3]], power: &[f64]) {
         self.forces.fused(loads, power);
         self.loads.clear();
-        self.loads.extend_from_slice(loads);
+        self.loads.extend(loads.iter().map(|&[fx, fz, my]| Load { fx, fz, my }));
     }
 }
 
@@ -154,6 +157,7 @@ impl Dynamics {
             anchor,
             direction: 0.0,
             assembly: Assembly::new(n),
+            states_settled: true,
             evaluations: 0,
             loads: vec![Load::default(); n],
             reaction: AnchorReaction::default(),
@@ -188,6 +192,7 @@ impl Dynamics {
     /// kinematics: it leaves the last evaluation valid, so the fixed-step driver's observation
     /// at the end of a step is also the next step's first stage.
     pub fn body_accelerations(&mut self, q: &[f64], u: &[f64], qdd: &[f64], out: &mut [BodyAcceleration]) {
+        self.settle_states();
         self.kernel.accelerations(q, u, qdd, out);
     }
 
@@ -228,9 +233,19 @@ impl Dynamics {
         self.evaluations
     }
 
-    /// The last evaluation's body states (and M, f when the kernel assembled them).
-    pub fn assembly(&self) -> &Assembly {
-        &self.assembly
+    /// The last evaluation's body states, B_1 first.
+    pub fn body_states(&mut self) -> &[BodyState] {
+        self.settle_states();
+        &self.assembly.bodies
+    }
+
+    /// The last solve's body states into `assembly.bodies` where the kernel kept them
+    /// itself: before any call that may overwrite them, and when they are asked for.
+    fn settle_states(&mut self) {
+        if !self.states_settled {
+            self.kernel.last_states(&mut self.assembly.bodies);
+            self.states_settled = true;
+        }
     }
 
     /// The applied loads of the last evaluation, per body, the anchor's sliding friction
@@ -274,6 +289,7 @@ impl Dynamics {
             AnchorDof::Free => self.forces.anchor.friction_factor(self.direction),
             AnchorDof::Stuck => 0.0,
         };
+        self.states_settled = false;
         let mut model = Recording { forces: &mut self.forces, loads: &mut self.loads };
         let mut reaction = self.kernel.solve(q, u, self.anchor, k, &mut model, &mut self.assembly, qdd)?;
         if k != 0.0 && reaction.normal < 0.0 {
@@ -290,6 +306,7 @@ impl Dynamics {
     /// a_lp and f_l at (q, u) with this system's loads, whatever path `accelerations` takes
     /// (for reports such as `eval`).
     pub fn assemble(&mut self, q: &[f64], u: &[f64], out: &mut Assembly) {
+        self.settle_states();
         self.last.valid = false;
         self.kernel.assemble(q, u, &mut self.forces, out);
     }

@@ -171,6 +171,9 @@ pub struct GeneratedKernel {
     /// Whether `ws.scratch` holds the rows of the last solve, which was a rolled one (an
     /// unrolled solve keeps no rows; `assemble` overwrites them).
     rows_of_last_solve: bool,
+    /// Whether `ws.bodies` and `ws.trig` hold the states of the last solve, a fused one,
+    /// which left `scratch.bodies` as it was ([`Kernel::last_states`]).
+    states_of_last_solve: bool,
     loads: Vec<Load>,
     acc: Vec<[f64; 3]>,
     /// a_{w,p} and f_w from `assemble`.
@@ -232,6 +235,7 @@ impl GeneratedKernel {
             ws: kanestop_generated::Workspace::new(n),
             trig_q: Vec::with_capacity(n),
             rows_of_last_solve: false,
+            states_of_last_solve: false,
             loads: vec![Load::default(); n],
             acc: vec![[0.0; 3]; n],
             heave: vec![0.0; n + 1],
@@ -273,6 +277,7 @@ impl GeneratedKernel {
     }
 
     fn states(&mut self, q: &[f64], u: &[f64], bodies: &mut [BodyState]) {
+        self.states_of_last_solve = false;
         let kinematics = match &self.table {
             Table::Unrolled(t) | Table::Folded(t) => t.kinematics,
             Table::Rolled(t) => t.kinematics,
@@ -283,8 +288,18 @@ impl GeneratedKernel {
 
     /// Records that `ws` holds the kinematics at `q` and copies its states into `bodies`.
     fn computed_at(&mut self, q: &[f64], bodies: &mut [BodyState]) {
+        self.kinematics_at(q);
+        self.copy_states(bodies);
+    }
+
+    /// Records that `ws` holds the kinematics at `q`.
+    fn kinematics_at(&mut self, q: &[f64]) {
         self.trig_q.clear();
         self.trig_q.extend_from_slice(q);
+    }
+
+    /// The states in `ws` as the runtime's body states.
+    fn copy_states(&self, bodies: &mut [BodyState]) {
         for ((b, s), t) in bodies.iter_mut().zip(&self.ws.bodies).zip(&self.ws.trig) {
             *b = BodyState { x: s[0], z: s[1], theta: s[2], cos: t[0], sin: t[1], vx: s[3], vz: s[4], omega: s[5] };
         }
@@ -322,8 +337,8 @@ impl GeneratedKernel {
     }
 
     /// The scene's fused right-hand side at (q, u): states, loads and ẍ in one generated
-    /// function; the loads and powers are told to `model`.
-    #[allow(clippy::too_many_arguments)]
+    /// function; the loads and powers are told to `model`, the states kept in `ws` for
+    /// [`Kernel::last_states`].
     fn solve_fused(
         &mut self,
         q: &[f64],
@@ -331,7 +346,6 @@ impl GeneratedKernel {
         anchor: AnchorDof,
         friction: f64,
         model: &mut dyn LoadModel,
-        bodies: &mut [BodyState],
         qdd: &mut [f64],
     ) -> Result<AnchorReaction, RhsError> {
         let f = self.fusion.as_ref().expect("solve_fused runs with a fusion set");
@@ -347,12 +361,10 @@ impl GeneratedKernel {
             }
         };
         // The workspace holds the kinematics at q whether or not the solve is refused.
-        self.computed_at(q, bodies);
+        self.kinematics_at(q);
+        self.states_of_last_solve = true;
         check_friction_factor(factor)?;
-        for (l, a) in self.loads.iter_mut().zip(&self.ws.loads) {
-            *l = Load { fx: a[0], fz: a[1], my: a[2] };
-        }
-        model.fused(&self.loads, &self.ws.power);
+        model.fused(&self.ws.loads, &self.ws.power);
         Ok(reaction)
     }
 
@@ -402,6 +414,7 @@ impl Kernel for GeneratedKernel {
 
     fn assemble(&mut self, q: &[f64], u: &[f64], model: &mut dyn LoadModel, out: &mut Assembly) {
         self.rows_of_last_solve = false;
+        self.states_of_last_solve = false;
         self.states(q, u, &mut out.bodies);
         self.loads(model, &out.bodies);
         let (m, f, heave) = (out.mass.as_mut_slice(), out.rhs.as_mut_slice(), &mut self.heave);
@@ -421,6 +434,7 @@ impl Kernel for GeneratedKernel {
             Table::Rolled(t) => (t.kinematics, t.accelerations),
         };
         if self.trig_q != q {
+            self.states_of_last_solve = false;
             kinematics(&self.params, q, u, &mut self.ws.trig, &mut self.ws.bodies);
             self.trig_q.clear();
             self.trig_q.extend_from_slice(q);
@@ -447,7 +461,7 @@ impl Kernel for GeneratedKernel {
         }
         self.rows_of_last_solve = false;
         let reaction = if self.fusion.is_some() {
-            self.solve_fused(q, u, anchor, friction, model, &mut scratch.bodies, qdd)?
+            self.solve_fused(q, u, anchor, friction, model, qdd)?
         } else {
             self.states(q, u, &mut scratch.bodies);
             self.solve_with_loads(u, anchor, friction, model, &scratch.bodies, qdd)?
@@ -457,6 +471,13 @@ impl Kernel for GeneratedKernel {
         }
         self.rows_of_last_solve = matches!(self.table, Table::Rolled(_));
         Ok(reaction)
+    }
+
+    fn last_states(&self, bodies: &mut [BodyState]) -> bool {
+        if self.states_of_last_solve {
+            self.copy_states(bodies);
+        }
+        self.states_of_last_solve
     }
 
     /// From the rows the last successful rolled solve left (`joint_forces` of the rolled

@@ -157,10 +157,11 @@ pub trait LoadModel {
     fn loads(&mut self, bodies: &[BodyState], loads: &mut [Load]);
 
     /// Told instead of [`LoadModel::loads`] by a kernel that computed the loads in its own
-    /// code ([`Kernel::fuse_loads`]): every body's load and the power of each work term
+    /// code ([`Kernel::fuse_loads`]): every body's load as the generated code holds it,
+    /// `[F_x, F_z, M_y]` (a [`Load`]'s fields in order), and the power of each work term
     /// (W, in the order of `forces::WORK_TERMS`), for the model to keep as if it had
     /// computed them.
-    fn fused(&mut self, loads: &[Load], power: &[f64]);
+    fn fused(&mut self, loads: &[[f64; 3]], power: &[f64]);
 }
 
 /// A Kane kernel for one chain.
@@ -204,7 +205,9 @@ pub trait Kernel {
     /// normal force of this very solve (implicit, Eq. 37; the paper lags it by one step).
     /// Returns the seabed's reaction.
     ///
-    /// `scratch.bodies` holds the body states of (q, u) afterwards. The default assembles
+    /// `scratch.bodies` holds the body states of (q, u) afterwards, or, for a kernel that
+    /// keeps them in its own storage, [`Kernel::last_states`] writes them there when asked.
+    /// The default assembles
     /// a_lp, f_l and the heave row and solves the active block by Cholesky; kernels with a
     /// recursive O(N) solve override it.
     #[allow(clippy::too_many_arguments)]
@@ -220,6 +223,15 @@ pub trait Kernel {
     ) -> Result<AnchorReaction, RhsError> {
         self.assemble(q, u, model, scratch);
         solve_assembled(scratch, anchor, friction, qdd)
+    }
+
+    /// The body states of the last [`Kernel::solve`] into `bodies`, when that solve kept
+    /// them in the kernel's own storage instead of `scratch.bodies` (the generated fused
+    /// right-hand side: converted only when asked, as an observation does once a step, not
+    /// at every evaluation). Valid until the kernel's next call. Returns whether it wrote
+    /// them; the default has nothing to write, its solve filled `scratch.bodies`.
+    fn last_states(&self, _bodies: &mut [BodyState]) -> bool {
+        false
     }
 
     /// The force on B_k from B_{k−1} through their hinge (Eq. 52) at the last

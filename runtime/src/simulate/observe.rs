@@ -50,7 +50,7 @@ impl Observer {
         let (q, rest) = y.split_at(n);
         let (u, w) = rest.split_at(n);
         let reaction = dynamics.accelerations(q, u, &mut self.qdd)?;
-        let bodies = dynamics.assembly().bodies.clone();
+        let bodies = dynamics.body_states().to_vec();
         // Eq. 52: from the solve's own rows when the kernel kept them, else in Newton's form
         // from the body accelerations.
         if !dynamics.joint_forces(&mut self.joints) {
