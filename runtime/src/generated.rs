@@ -414,7 +414,6 @@ impl Kernel for GeneratedKernel {
 
     fn assemble(&mut self, q: &[f64], u: &[f64], model: &mut dyn LoadModel, out: &mut Assembly) {
         self.rows_of_last_solve = false;
-        self.states_of_last_solve = false;
         self.states(q, u, &mut out.bodies);
         self.loads(model, &out.bodies);
         let (m, f, heave) = (out.mass.as_mut_slice(), out.rhs.as_mut_slice(), &mut self.heave);
@@ -436,8 +435,7 @@ impl Kernel for GeneratedKernel {
         if self.trig_q != q {
             self.states_of_last_solve = false;
             kinematics(&self.params, q, u, &mut self.ws.trig, &mut self.ws.bodies);
-            self.trig_q.clear();
-            self.trig_q.extend_from_slice(q);
+            self.kinematics_at(q);
         }
         accelerations(&self.params, u, &self.ws.trig, qdd, &mut self.acc);
         for (o, a) in out.iter_mut().zip(&self.acc) {
