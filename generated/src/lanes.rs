@@ -4,187 +4,351 @@
 //! so a lane's result equals, bit for bit, the scalar code's doing the same operations.
 //!
 //! On x86-64 with SSE2 (part of every x86-64 processor, on for every x86-64 target but the
-//! soft-float ones) an [`F2`] is an SSE2 register; elsewhere, two numbers. The SSE2 intrinsics are `unsafe` before Rust 1.87 and safe since
-//! wherever SSE2 is on, as on every x86-64 target: hence the `unsafe` blocks, with
-//! `unused_unsafe` allowed. None of them reads or writes memory.
+//! soft-float ones) an [`F2`] is an SSE2 register (`sse2::F2`); elsewhere, two numbers
+//! (`portable::F2`). Both are compiled on x86-64, and a test there holds the portable lanes
+//! to the SSE2 ones bit for bit, operation by operation, on special and random values: the
+//! trigonometric and seabed tests check the SSE2 lanes against the scalar code, so the
+//! portable ones, which no x86-64 build runs, are checked through them. The operations built
+//! on the lanes' bits (`keep`, `copysign`, the quadrant's selects) are written once for both
+//! (`derived!`). The SSE2 intrinsics are `unsafe` before Rust 1.87 and safe since wherever
+//! SSE2 is on, as on every x86-64 target: hence the `unsafe` blocks, with `unused_unsafe`
+//! allowed. None of them reads or writes memory.
 #![allow(unused_unsafe)]
 
 #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
-use core::arch::x86_64::*;
+pub use sse2::F2;
 
-/// Two f64 lanes, `[lane 0, lane 1]`.
-#[derive(Clone, Copy, Debug)]
-pub struct F2(
-    #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))] __m128d,
-    #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))] [f64; 2],
-);
+#[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
+pub use portable::F2;
 
-macro_rules! lanewise {
-    ($($trait:ident $method:ident $intrinsic:ident $op:tt),*) => {$(
-        impl core::ops::$trait for F2 {
-            type Output = F2;
+/// The operations built on an `F2`'s primitive ones (`new`, `lanes`, its bits and the
+/// `Bits` operations), the same for both kinds of lanes.
+macro_rules! derived {
+    () => {
+        impl F2 {
+            /// `x` in both lanes.
             #[inline(always)]
-            fn $method(self, o: F2) -> F2 {
-                #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
-                return F2(unsafe { $intrinsic(self.0, o.0) });
-                #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
-                return F2([self.0[0] $op o.0[0], self.0[1] $op o.0[1]]);
+            pub fn splat(x: f64) -> F2 {
+                F2::new(x, x)
+            }
+
+            /// Lane i where `keep[i]`, else +0 (all bits clear).
+            #[inline(always)]
+            pub fn keep(self, keep: [bool; 2]) -> F2 {
+                let mask = |k: bool| if k { u64::MAX } else { 0 };
+                F2::from_bits(self.bits().and(Bits::new(mask(keep[0]), mask(keep[1]))))
+            }
+
+            /// |x| with the sign of `sign`, lane by lane (as `f64::copysign`).
+            #[inline(always)]
+            pub fn copysign(self, sign: F2) -> F2 {
+                let s = Bits::splat(1 << 63);
+                F2::from_bits(self.bits().andnot(s).or(sign.bits().and(s)))
+            }
+
+            /// Per lane: `if_set` where bit 0 of `mask` (an integer's bits) is set, else `self`.
+            #[inline(always)]
+            pub fn select_odd(self, mask: F2, if_set: F2) -> F2 {
+                let odd = Bits::splat(0).sub(mask.bits().and(Bits::splat(1)));
+                F2::from_bits(self.bits().andnot(odd).or(if_set.bits().and(odd)))
+            }
+
+            /// Per lane: −x where bit `bit` of `mask`'s bits (plus `add`) is set, else x.
+            #[inline(always)]
+            pub fn negate_if(self, mask: F2, add: u64, bit: u32) -> F2 {
+                let b = mask.bits().add(Bits::splat(add)).and(Bits::splat(1 << bit)).shift_to_sign(bit);
+                F2::from_bits(self.bits().xor(b))
+            }
+
+            /// `[[a₀, b₀], [a₁, b₁]]`: lane i of `a` and of `b` side by side.
+            #[inline(always)]
+            pub fn zip(a: F2, b: F2) -> [[f64; 2]; 2] {
+                let (a, b) = (a.lanes(), b.lanes());
+                [[a[0], b[0]], [a[1], b[1]]]
             }
         }
-    )*};
-}
 
-// Each arm names the SSE2 intrinsic and the scalar operator; only one of the two is compiled.
-lanewise!(Add add _mm_add_pd +, Sub sub _mm_sub_pd -, Mul mul _mm_mul_pd *, Div div _mm_div_pd /);
-
-impl F2 {
-    /// `[a, b]`.
-    #[inline(always)]
-    pub fn new(a: f64, b: f64) -> F2 {
-        #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
-        return F2(unsafe { _mm_set_pd(b, a) });
-        #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
-        return F2([a, b]);
-    }
-
-    /// `x` in both lanes.
-    #[inline(always)]
-    pub fn splat(x: f64) -> F2 {
-        F2::new(x, x)
-    }
-
-    /// `[lane 0, lane 1]`.
-    #[inline(always)]
-    pub fn lanes(self) -> [f64; 2] {
-        #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
-        return unsafe { [_mm_cvtsd_f64(self.0), _mm_cvtsd_f64(_mm_unpackhi_pd(self.0, self.0))] };
-        #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
-        return self.0;
-    }
-
-    /// √ of each lane (correctly rounded, as `f64::sqrt`).
-    #[inline(always)]
-    pub fn sqrt(self) -> F2 {
-        #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
-        return F2(unsafe { _mm_sqrt_pd(self.0) });
-        #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
-        return F2(self.0.map(f64::sqrt));
-    }
-
-    /// Each lane's bits.
-    #[inline(always)]
-    fn bits(self) -> Bits {
-        #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
-        return Bits(unsafe { _mm_castpd_si128(self.0) });
-        #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
-        return Bits(self.0.map(f64::to_bits));
-    }
-
-    /// The lanes of these bits.
-    #[inline(always)]
-    fn from_bits(b: Bits) -> F2 {
-        #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
-        return F2(unsafe { _mm_castsi128_pd(b.0) });
-        #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
-        return F2(b.0.map(f64::from_bits));
-    }
-
-    /// Lane i where `keep[i]`, else +0 (all bits clear).
-    #[inline(always)]
-    pub fn keep(self, keep: [bool; 2]) -> F2 {
-        let mask = |k: bool| if k { u64::MAX } else { 0 };
-        F2::from_bits(self.bits().and(Bits::new(mask(keep[0]), mask(keep[1]))))
-    }
-
-    /// |x| with the sign of `sign`, lane by lane (as `f64::copysign`).
-    #[inline(always)]
-    pub fn copysign(self, sign: F2) -> F2 {
-        let s = Bits::splat(1 << 63);
-        F2::from_bits(self.bits().andnot(s).or(sign.bits().and(s)))
-    }
-
-    /// Per lane: `if_set` where bit 0 of `mask` (an integer's bits) is set, else `self`.
-    #[inline(always)]
-    pub fn select_odd(self, mask: F2, if_set: F2) -> F2 {
-        let odd = Bits::splat(0).sub(mask.bits().and(Bits::splat(1)));
-        F2::from_bits(self.bits().andnot(odd).or(if_set.bits().and(odd)))
-    }
-
-    /// Per lane: −x where bit `bit` of `mask`'s bits (plus `add`) is set, else x.
-    #[inline(always)]
-    pub fn negate_if(self, mask: F2, add: u64, bit: u32) -> F2 {
-        let b = mask.bits().add(Bits::splat(add)).and(Bits::splat(1 << bit)).shift_to_sign(bit);
-        F2::from_bits(self.bits().xor(b))
-    }
-
-    /// `[[a₀, b₀], [a₁, b₁]]`: lane i of `a` and of `b` side by side.
-    #[inline(always)]
-    pub fn zip(a: F2, b: F2) -> [[f64; 2]; 2] {
-        let (a, b) = (a.lanes(), b.lanes());
-        [[a[0], b[0]], [a[1], b[1]]]
-    }
-}
-
-/// Two u64 lanes (an [`F2`]'s bits).
-#[derive(Clone, Copy)]
-struct Bits(
-    #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))] __m128i,
-    #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))] [u64; 2],
-);
-
-macro_rules! bitwise {
-    ($($method:ident $intrinsic:ident $op:expr),*) => {$(
-        #[inline(always)]
-        fn $method(self, o: Bits) -> Bits {
-            #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
-            return Bits(unsafe { $intrinsic(self.0, o.0) });
-            #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
-            return Bits([$op(self.0[0], o.0[0]), $op(self.0[1], o.0[1])]);
+        impl Bits {
+            #[inline(always)]
+            fn splat(x: u64) -> Bits {
+                Bits::new(x, x)
+            }
         }
-    )*};
+    };
 }
 
-impl Bits {
-    /// `[a, b]`.
-    #[inline(always)]
-    fn new(a: u64, b: u64) -> Bits {
-        #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
-        return Bits(unsafe { _mm_set_epi64x(b as i64, a as i64) });
-        #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
-        return Bits([a, b]);
+/// Two plain numbers: the lanes wherever SSE2 is not. Compiled on x86-64 too, where only the
+/// test against the SSE2 lanes uses them.
+#[cfg_attr(all(target_arch = "x86_64", target_feature = "sse2", not(test)), allow(dead_code))]
+mod portable {
+    /// Two f64 lanes, `[lane 0, lane 1]`.
+    #[derive(Clone, Copy, Debug)]
+    pub struct F2([f64; 2]);
+
+    /// Two u64 lanes (an [`F2`]'s bits).
+    #[derive(Clone, Copy)]
+    struct Bits([u64; 2]);
+
+    macro_rules! lanewise {
+        ($($trait:ident $method:ident $op:tt),*) => {$(
+            impl core::ops::$trait for F2 {
+                type Output = F2;
+                #[inline(always)]
+                fn $method(self, o: F2) -> F2 {
+                    F2([self.0[0] $op o.0[0], self.0[1] $op o.0[1]])
+                }
+            }
+        )*};
+    }
+    lanewise!(Add add +, Sub sub -, Mul mul *, Div div /);
+
+    impl F2 {
+        /// `[a, b]`.
+        #[inline(always)]
+        pub fn new(a: f64, b: f64) -> F2 {
+            F2([a, b])
+        }
+
+        /// `[lane 0, lane 1]`.
+        #[inline(always)]
+        pub fn lanes(self) -> [f64; 2] {
+            self.0
+        }
+
+        /// √ of each lane (correctly rounded, as `f64::sqrt`).
+        #[inline(always)]
+        pub fn sqrt(self) -> F2 {
+            F2(self.0.map(f64::sqrt))
+        }
+
+        #[inline(always)]
+        fn bits(self) -> Bits {
+            Bits(self.0.map(f64::to_bits))
+        }
+
+        #[inline(always)]
+        fn from_bits(b: Bits) -> F2 {
+            F2(b.0.map(f64::from_bits))
+        }
     }
 
-    #[inline(always)]
-    fn splat(x: u64) -> Bits {
-        #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
-        return Bits(unsafe { _mm_set1_epi64x(x as i64) });
-        #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
-        return Bits([x, x]);
+    impl Bits {
+        #[inline(always)]
+        fn new(a: u64, b: u64) -> Bits {
+            Bits([a, b])
+        }
+
+        #[inline(always)]
+        fn map2(self, o: Bits, f: impl Fn(u64, u64) -> u64) -> Bits {
+            Bits([f(self.0[0], o.0[0]), f(self.0[1], o.0[1])])
+        }
+
+        #[inline(always)]
+        fn and(self, o: Bits) -> Bits {
+            self.map2(o, |a, b| a & b)
+        }
+
+        #[inline(always)]
+        fn or(self, o: Bits) -> Bits {
+            self.map2(o, |a, b| a | b)
+        }
+
+        #[inline(always)]
+        fn xor(self, o: Bits) -> Bits {
+            self.map2(o, |a, b| a ^ b)
+        }
+
+        #[inline(always)]
+        fn add(self, o: Bits) -> Bits {
+            self.map2(o, u64::wrapping_add)
+        }
+
+        #[inline(always)]
+        fn sub(self, o: Bits) -> Bits {
+            self.map2(o, u64::wrapping_sub)
+        }
+
+        /// `self & !mask`.
+        #[inline(always)]
+        fn andnot(self, mask: Bits) -> Bits {
+            self.map2(mask, |a, m| a & !m)
+        }
+
+        /// Bit `bit` moved to bit 63 (the others of `self` are zero).
+        #[inline(always)]
+        fn shift_to_sign(self, bit: u32) -> Bits {
+            Bits(self.0.map(|x| x << (63 - bit)))
+        }
     }
 
-    bitwise!(
-        and _mm_and_si128 |a: u64, b: u64| a & b,
-        or _mm_or_si128 |a: u64, b: u64| a | b,
-        xor _mm_xor_si128 |a: u64, b: u64| a ^ b,
-        add _mm_add_epi64 u64::wrapping_add,
-        sub _mm_sub_epi64 u64::wrapping_sub
-    );
+    derived!();
+}
 
-    /// `self & !mask`.
-    #[inline(always)]
-    fn andnot(self, mask: Bits) -> Bits {
-        #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
-        return Bits(unsafe { _mm_andnot_si128(mask.0, self.0) });
-        #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
-        return Bits([self.0[0] & !mask.0[0], self.0[1] & !mask.0[1]]);
+/// An SSE2 register of two f64.
+#[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+mod sse2 {
+    use core::arch::x86_64::*;
+
+    /// Two f64 lanes, `[lane 0, lane 1]`.
+    #[derive(Clone, Copy, Debug)]
+    pub struct F2(__m128d);
+
+    /// Two u64 lanes (an [`F2`]'s bits).
+    #[derive(Clone, Copy)]
+    struct Bits(__m128i);
+
+    macro_rules! lanewise {
+        ($($trait:ident $method:ident $intrinsic:ident),*) => {$(
+            impl core::ops::$trait for F2 {
+                type Output = F2;
+                #[inline(always)]
+                fn $method(self, o: F2) -> F2 {
+                    F2(unsafe { $intrinsic(self.0, o.0) })
+                }
+            }
+        )*};
+    }
+    lanewise!(Add add _mm_add_pd, Sub sub _mm_sub_pd, Mul mul _mm_mul_pd, Div div _mm_div_pd);
+
+    impl F2 {
+        /// `[a, b]`.
+        #[inline(always)]
+        pub fn new(a: f64, b: f64) -> F2 {
+            F2(unsafe { _mm_set_pd(b, a) })
+        }
+
+        /// `[lane 0, lane 1]`.
+        #[inline(always)]
+        pub fn lanes(self) -> [f64; 2] {
+            unsafe { [_mm_cvtsd_f64(self.0), _mm_cvtsd_f64(_mm_unpackhi_pd(self.0, self.0))] }
+        }
+
+        /// √ of each lane (correctly rounded, as `f64::sqrt`).
+        #[inline(always)]
+        pub fn sqrt(self) -> F2 {
+            F2(unsafe { _mm_sqrt_pd(self.0) })
+        }
+
+        #[inline(always)]
+        fn bits(self) -> Bits {
+            Bits(unsafe { _mm_castpd_si128(self.0) })
+        }
+
+        #[inline(always)]
+        fn from_bits(b: Bits) -> F2 {
+            F2(unsafe { _mm_castsi128_pd(b.0) })
+        }
     }
 
-    /// Bit `bit` moved to bit 63 (the others of `self` are zero).
-    #[inline(always)]
-    fn shift_to_sign(self, bit: u32) -> Bits {
-        #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
-        return Bits(unsafe { _mm_sll_epi64(self.0, _mm_set_epi64x(0, i64::from(63 - bit))) });
-        #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
-        return Bits(self.0.map(|x| x << (63 - bit)));
+    macro_rules! bitwise {
+        ($($method:ident $intrinsic:ident),*) => {$(
+            #[inline(always)]
+            fn $method(self, o: Bits) -> Bits {
+                Bits(unsafe { $intrinsic(self.0, o.0) })
+            }
+        )*};
+    }
+
+    impl Bits {
+        #[inline(always)]
+        fn new(a: u64, b: u64) -> Bits {
+            Bits(unsafe { _mm_set_epi64x(b as i64, a as i64) })
+        }
+
+        bitwise!(and _mm_and_si128, or _mm_or_si128, xor _mm_xor_si128, add _mm_add_epi64, sub _mm_sub_epi64);
+
+        /// `self & !mask`.
+        #[inline(always)]
+        fn andnot(self, mask: Bits) -> Bits {
+            Bits(unsafe { _mm_andnot_si128(mask.0, self.0) })
+        }
+
+        /// Bit `bit` moved to bit 63 (the others of `self` are zero).
+        #[inline(always)]
+        fn shift_to_sign(self, bit: u32) -> Bits {
+            Bits(unsafe { _mm_sll_epi64(self.0, _mm_set_epi64x(0, i64::from(63 - bit))) })
+        }
+    }
+
+    derived!();
+}
+
+#[cfg(all(test, target_arch = "x86_64", target_feature = "sse2"))]
+mod tests {
+    use super::{portable, sse2};
+
+    /// Special values (signed zeros, subnormals, the extremes, infinities, NaN, the integers
+    /// and quadrant patterns `sin_cos` feeds the selects) and seeded random bit patterns.
+    fn values() -> Vec<f64> {
+        let mut v = vec![
+            0.0,
+            -0.0,
+            1.0,
+            -1.0,
+            0.5,
+            2.0,
+            f64::MIN_POSITIVE,
+            -f64::MIN_POSITIVE,
+            5e-324,
+            -5e-324,
+            f64::MAX,
+            f64::MIN,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NAN,
+            -f64::NAN,
+            std::f64::consts::PI,
+            6_755_399_441_055_744.0,
+            6_755_399_441_055_745.0,
+            6_755_399_441_055_746.0,
+            6_755_399_441_055_747.0,
+        ];
+        let mut x: u64 = 0x9E37_79B9_7F4A_7C15;
+        for i in 0..400 {
+            // xorshift64*: bit patterns of every exponent, and ordinary magnitudes.
+            x ^= x >> 12;
+            x ^= x << 25;
+            x ^= x >> 27;
+            let r = x.wrapping_mul(0x2545_F491_4F6C_DD1D);
+            v.push(if i % 2 == 0 { f64::from_bits(r) } else { (r >> 11) as f64 / (1u64 << 40) as f64 - 4096.0 });
+        }
+        v
+    }
+
+    #[test]
+    fn the_portable_lanes_equal_the_sse2_lanes_bit_for_bit() {
+        let v = values();
+        let bits = |l: [f64; 2]| l.map(f64::to_bits);
+        let mut compared = 0usize;
+        for (i, &a) in v.iter().enumerate() {
+            // Each value against a spread of partners, in both lanes.
+            for &b in v.iter().skip(i % 7).step_by(7) {
+                let (p, s) = (portable::F2::new(a, b), sse2::F2::new(a, b));
+                let (pq, sq) = (portable::F2::new(b, a), sse2::F2::new(b, a));
+                let same = |x: [f64; 2], y: [f64; 2], what: &str| {
+                    assert_eq!(bits(x), bits(y), "{what} of [{a:e}, {b:e}]: portable {x:?}, sse2 {y:?}");
+                };
+                same(p.lanes(), s.lanes(), "lanes");
+                same(portable::F2::splat(a).lanes(), sse2::F2::splat(a).lanes(), "splat");
+                same((p + pq).lanes(), (s + sq).lanes(), "+");
+                same((p - pq).lanes(), (s - sq).lanes(), "−");
+                same((p * pq).lanes(), (s * sq).lanes(), "×");
+                same((p / pq).lanes(), (s / sq).lanes(), "÷");
+                same(p.sqrt().lanes(), s.sqrt().lanes(), "sqrt");
+                for keep in [[false, false], [true, false], [false, true], [true, true]] {
+                    same(p.keep(keep).lanes(), s.keep(keep).lanes(), "keep");
+                }
+                same(p.copysign(pq).lanes(), s.copysign(sq).lanes(), "copysign");
+                same(p.select_odd(pq, p * pq).lanes(), s.select_odd(sq, s * sq).lanes(), "select_odd");
+                for (add, bit) in [(0, 0), (0, 1), (1, 1), (3, 2)] {
+                    same(p.negate_if(pq, add, bit).lanes(), s.negate_if(sq, add, bit).lanes(), "negate_if");
+                }
+                let (zp, zs) = (portable::F2::zip(p, pq), sse2::F2::zip(s, sq));
+                same(zp[0], zs[0], "zip");
+                same(zp[1], zs[1], "zip");
+                compared += 1;
+            }
+        }
+        assert!(compared > 20_000, "{compared} pairs compared");
     }
 }
