@@ -29,7 +29,7 @@ use kanestop_runtime::kernel::{
 };
 use kanestop_runtime::model::Model;
 use kanestop_runtime::paper::CASES;
-use kanestop_runtime::simulate;
+use kanestop_runtime::simulate::{self, Stop};
 
 /// One solve of a run: the state and the anchor's degree of freedom and friction factor.
 struct Solve {
@@ -74,9 +74,16 @@ impl Kernel for Recorder {
         qdd: &mut [f64],
     ) -> Result<AnchorReaction, RhsError> {
         let mut solves = self.solves.borrow_mut();
-        // A second solve at the same state is Dynamics' retry without friction (the anchor
-        // lifted): the replay's Dynamics makes it itself.
-        if !solves.last().is_some_and(|s| s.q == q && s.u == u) {
+        // Dynamics retries a solve without friction when the seabed's normal force on the
+        // anchor comes out negative (the anchor lifts): the same state, anchor free, friction
+        // 0 right after the same state with friction. The replay's Dynamics makes that retry
+        // itself, so only the first of the two is recorded.
+        let retry = matches!(anchor, AnchorDof::Free)
+            && friction == 0.0
+            && solves
+                .last()
+                .is_some_and(|s| s.q == q && s.u == u && matches!(s.anchor, AnchorDof::Free) && s.friction != 0.0);
+        if !retry {
             solves.push(Solve { q: q.to_vec(), u: u.to_vec(), anchor, friction });
         }
         drop(solves);
@@ -84,12 +91,18 @@ impl Kernel for Recorder {
     }
 }
 
-/// Every distinct solve of paper case `number`'s run.
-fn record(model: &Model) -> Vec<Solve> {
+/// Every solve of the model's run (the friction-free retries left to the replay), or why the
+/// run is no fair sample (it failed).
+fn record(model: &Model) -> Result<Vec<Solve>, String> {
     let solves = Rc::new(RefCell::new(Vec::new()));
-    let kernel = Recorder { inner: GeneratedKernel::new(&model.chain).unwrap(), solves: solves.clone() };
-    simulate::run(model, Box::new(kernel));
-    Rc::try_unwrap(solves).ok().unwrap().into_inner()
+    let kernel = GeneratedKernel::new(&model.chain).map_err(|e| format!("no generated kernel: {e}"))?;
+    let result = simulate::run(model, Box::new(Recorder { inner: kernel, solves: solves.clone() }));
+    match result.stop {
+        Stop::ShipStopped | Stop::EndTime => {}
+        Stop::Failed(f) => return Err(format!("the recorded run failed: {f:?}")),
+    }
+    let solves = std::mem::take(&mut *solves.borrow_mut());
+    Ok(solves)
 }
 
 /// CPU time of this thread so far, s (Linux: the first field of schedstat, ns on the CPU).
@@ -114,22 +127,28 @@ fn median_per_call(passes: usize, calls: usize, mut f: impl FnMut()) -> (f64, f6
     (walls[passes / 2], cpus[passes / 2])
 }
 
-/// The run's solves replayed through the production right-hand side.
-fn replay(model: &Model, solves: &[Solve]) -> (f64, f64) {
+/// The run's solves replayed through the production right-hand side: (wall, CPU) µs per
+/// solve, or how many of them failed (the run itself solved every one).
+fn replay(model: &Model, solves: &[Solve]) -> Result<(f64, f64), String> {
     let mu = Forces::new(model).anchor.friction_coefficient;
-    let kernel = GeneratedKernel::new(&model.chain).unwrap();
+    let kernel = GeneratedKernel::new(&model.chain).map_err(|e| format!("no generated kernel: {e}"))?;
     let mut dynamics = Dynamics::new(Box::new(kernel), Forces::new(model), AnchorDof::Stuck);
     let mut qdd = vec![0.0; model.body_count()];
-    median_per_call(7, solves.len(), || {
+    let mut failed = 0usize;
+    let timing = median_per_call(7, solves.len(), || {
         for s in solves {
             match s.anchor {
                 AnchorDof::Stuck => dynamics.stick_anchor(),
                 AnchorDof::Free => dynamics.slide_anchor(if mu > 0.0 { s.friction / mu } else { 0.0 }),
             }
-            black_box(dynamics.accelerations(black_box(&s.q), black_box(&s.u), &mut qdd).ok());
+            failed += usize::from(dynamics.accelerations(black_box(&s.q), black_box(&s.u), &mut qdd).is_err());
         }
         black_box(&qdd);
-    })
+    });
+    match failed {
+        0 => Ok(timing),
+        n => Err(format!("{n} of {} replayed solves failed", 7 * solves.len())),
+    }
 }
 
 /// `kernels.rs`'s paper-like chain of `n` dry bodies: a 5 t anchor, 1–10 m rods, a 500 t ship.
@@ -177,17 +196,27 @@ fn gravity_only() -> (f64, f64) {
             (q, u)
         })
         .collect();
-    let kernel = GeneratedKernel::new(&c).unwrap();
+    let kernel = GeneratedKernel::new(&c).expect("N = 46 is one of the built kernels");
     let mut dynamics = Dynamics::new(Box::new(kernel), Forces::gravity_only(&c, 9.81), AnchorDof::Free);
     let mut qdd = vec![0.0; n];
     let calls = 200 * states.len();
-    median_per_call(7, calls, || {
+    let mut failed = 0usize;
+    let timing = median_per_call(7, calls, || {
         for _ in 0..200 {
             for (q, u) in &states {
-                black_box(dynamics.accelerations(black_box(q), black_box(u), &mut qdd).ok());
+                failed += usize::from(dynamics.accelerations(black_box(q), black_box(u), &mut qdd).is_err());
             }
         }
-    })
+        black_box(&qdd);
+    });
+    assert_eq!(failed, 0, "weight alone: solves failed on smooth states");
+    timing
+}
+
+/// Ends the bench with exit code 1: a replay that is not the run's is no measurement.
+fn fail(case: usize, why: &str) -> ! {
+    eprintln!("case {case}: {why}");
+    std::process::exit(1);
 }
 
 fn main() {
@@ -195,17 +224,24 @@ fn main() {
     if cases.is_empty() {
         cases = vec![1, 17];
     }
-    println!("whole right-hand side replayed over a run's solves, RK4 dt = 0.002 s (median of 7 passes)");
-    println!("{:>6} {:>8} {:>8} {:>12} {:>12}", "case", "N", "solves", "µs/solve", "CPU µs/solve");
+    println!("whole right-hand side replayed over a run's solves (median of 7 passes)");
+    println!("{:>6} {:>8} {:>8} {:>12} {:>12}  solver", "case", "N", "solves", "µs/solve", "CPU µs/solve");
     for number in cases {
         let Some(case) = CASES.get(number.wrapping_sub(1)) else {
             eprintln!("no paper case {number}: 1 to {}", CASES.len());
             std::process::exit(2);
         };
-        let model = Model::new(&case.scene()).unwrap();
-        let solves = record(&model);
-        let (wall, cpu) = replay(&model, &solves);
-        println!("{number:>6} {:>8} {:>8} {wall:>12.3} {cpu:>12.3}", model.body_count(), solves.len());
+        let model = Model::new(&case.scene()).unwrap_or_else(|e| fail(number, &e.to_string()));
+        let solves = record(&model).unwrap_or_else(|e| fail(number, &e));
+        let (wall, cpu) = replay(&model, &solves).unwrap_or_else(|e| fail(number, &e));
+        let solver = &model.scene.solver;
+        println!(
+            "{number:>6} {:>8} {:>8} {wall:>12.3} {cpu:>12.3}  {:?} dt = {} s",
+            model.body_count(),
+            solves.len(),
+            solver.integrator,
+            solver.dt
+        );
     }
     let (wall, cpu) = gravity_only();
     println!("\nweight alone, N = 46, anchor free (1000 states, 200 passes, median of 7)");

@@ -9,59 +9,96 @@
 # today against one quoted from yesterday says little; two builds alternated in one session do.
 # The baseline is checked out in a temporary git worktree, benches/replay.rs (which uses only
 # interfaces the baseline already had) is copied into it, and both are built in release mode.
-# Each round runs, alternately then and now: the replayed right-hand side (cases 1, every solve
-# of its run through Dynamics) and weight alone at N = 46 (benches/replay.rs), case 1's whole
-# `kanestop run`, and the 19 paper cases' `kanestop batch` (CPU time of the process and its
-# threads). Prints every measurement and, per round, now / then.
+# Each round runs both builds, the order alternating from
+# round to round: the replayed right-hand side (case 1, every solve of its run through
+# Dynamics) and weight alone at N = 46 (benches/replay.rs), case 1's whole `kanestop run`, and
+# the 19 paper cases' `kanestop batch` (CPU time of the process and its threads). Prints every
+# measurement and, per round, then / now. Any failed step ends the script with its error.
 set -euo pipefail
 
 rounds=${1:-3}
+case $rounds in
+'' | *[!0-9]* | 0)
+    echo "then_and_now.sh: ROUNDS must be a whole number of at least 1, not '$rounds'" >&2
+    exit 2
+    ;;
+esac
 base=${KANESTOP_BASELINE:-4cfb922}
 here=$(cd "$(dirname "$0")/.." && pwd)
 work=$(mktemp -d)
 trap 'git -C "$here" worktree remove --force "$work/then" >/dev/null 2>&1 || true; rm -rf "$work"' EXIT
 
-git -C "$here" worktree add --detach "$work/then" "$base" >/dev/null 2>&1
+git -C "$here" worktree add --quiet --detach "$work/then" "$base"
 cp "$here/benches/replay.rs" "$work/then/benches/replay.rs"
 grep -q 'name = "replay"' "$work/then/Cargo.toml" ||
     printf '\n[[bench]]\nname = "replay"\nharness = false\n' >>"$work/then/Cargo.toml"
 
-build() { # DIR -> prints the replay bench's executable
-    (cd "$1" && cargo build --release --quiet --bin kanestop &&
-        cargo bench --bench replay --no-run --message-format=json 2>/dev/null |
-        sed -n 's/.*"executable":"\([^"]*replay-[^"]*\)".*/\1/p' | tail -1)
+declare -A dir bench kanestop
+dir[then]=$work/then
+dir[now]=$here
+
+build() { # WHICH: builds kanestop and the replay bench of that tree, notes their executables
+    local which=$1 json
+    json=$(cd "${dir[$which]}" && cargo build --release --quiet --bin kanestop --message-format=json-render-diagnostics)
+    kanestop[$which]=$(printf '%s\n' "$json" |
+        sed -n '/"kind":\["bin"\][^}]*"name":"kanestop"/s/.*"executable":"\([^"]*\)".*/\1/p' | tail -1)
+    json=$(cd "${dir[$which]}" && cargo bench --bench replay --no-run --quiet --message-format=json-render-diagnostics)
+    bench[$which]=$(printf '%s\n' "$json" |
+        sed -n '/"name":"replay"/s/.*"executable":"\([^"]*\)".*/\1/p' | tail -1)
+    for exe in "${kanestop[$which]}" "${bench[$which]}"; do
+        [ -n "$exe" ] && [ -x "$exe" ] || {
+            echo "then_and_now.sh: the $which build left no executable '$exe'" >&2
+            exit 1
+        }
+    done
 }
 echo "building $base (then) and this checkout (now)…" >&2
-then_bench=$(build "$work/then")
-now_bench=$(build "$here")
+build then
+build now
 
 cpu_of() { # command… -> user + system CPU seconds of the command and its threads
+    # kanestop's exit codes 0 (done) and 4 (a design check failed: a result like any other)
+    # are measurements; 1, 2 and 3 (a scene failed or was refused) are not.
     python3 -c '
 import resource, subprocess, sys
-subprocess.run(sys.argv[1:], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+p = subprocess.run(sys.argv[1:], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+if p.returncode not in (0, 4):
+    sys.exit(f"{sys.argv[1:]} exited with {p.returncode}:\n{p.stderr}")
 r = resource.getrusage(resource.RUSAGE_CHILDREN)
 print(f"{r.ru_utime + r.ru_stime:.3f}")' "$@"
 }
 
-replay() { # DIR BENCH -> "rhs_cpu_us gravity_cpu_us"
-    (cd "$1" && "$2" 1 | awk '$1 == "1" && NF == 5 { r = $5 } NF == 2 && $1 ~ /^[0-9.]+$/ { g = $2 } END { print r, g }')
+replay() { # WHICH -> "rhs_cpu_us gravity_cpu_us"
+    local out
+    out=$(cd "${dir[$1]}" && "${bench[$1]}" 1)
+    printf '%s\n' "$out" | awk '
+        $1 == "1" && NF >= 5 { r = $5 }
+        NF == 2 && $1 ~ /^[0-9.]+$/ { g = $2 }
+        END { if (r == "" || g == "") exit 1; print r, g }' || {
+        echo "then_and_now.sh: the $1 replay bench printed no timing:" >&2
+        printf '%s\n' "$out" >&2
+        exit 1
+    }
 }
 
 printf '%-6s %-5s %14s %14s %12s %12s\n' round build "RHS µs (CPU)" "weight µs" "case 1 s" "19 cases s"
-declare -a ratios
+declare -A row
+ratios=()
 for r in $(seq 1 "$rounds"); do
-    for which in then now; do
-        if [ "$which" = then ]; then dir=$work/then bench=$then_bench; else dir=$here bench=$now_bench; fi
-        read -r rhs grav < <(replay "$dir" "$bench")
-        run=$(cd "$dir" && cpu_of target/release/kanestop run scenes/paper/case01.toml)
-        batch=$(cd "$dir" && cpu_of target/release/kanestop batch scenes/paper --out "$work/batch-$which")
-        printf '%-6s %-5s %14s %14s %12s %12s\n' "$r" "$which" "$rhs" "$grav" "$run" "$batch"
-        eval "${which}_row=(\$rhs \$grav \$run \$batch)"
+    order=(then now)
+    [ $((r % 2)) = 0 ] && order=(now then)
+    for which in "${order[@]}"; do
+        timings=$(replay "$which")
+        run=$(cd "${dir[$which]}" && cpu_of "${kanestop[$which]}" run scenes/paper/case01.toml)
+        batch=$(cd "${dir[$which]}" &&
+            cpu_of "${kanestop[$which]}" batch scenes/paper --out "$work/batch-$which-$r")
+        row[$which]="$timings $run $batch"
+        printf '%-6s %-5s %14s %14s %12s %12s\n' "$r" "$which" $timings "$run" "$batch"
     done
-    ratios+=("$(python3 -c "
-t = [float(x) for x in '${then_row[*]}'.split()]
-n = [float(x) for x in '${now_row[*]}'.split()]
-print(' '.join(f'{a / b:.2f}x' for a, b in zip(t, n)))")")
+    ratios+=("$(python3 -c '
+import sys
+t, n = ([float(x) for x in a.split()] for a in sys.argv[1:])
+print(" ".join(f"{a / b:.2f}x" for a, b in zip(t, n)))' "${row[then]}" "${row[now]}")")
 done
 echo
 echo "then / now per round (RHS, weight alone, case 1 run, 19 cases):"
@@ -71,9 +108,13 @@ if [ "${KANESTOP_CALLGRIND:-0}" = 1 ]; then
     echo
     echo "instructions, kanestop run scenes/paper/case01.toml (valgrind --tool=callgrind):"
     for which in then now; do
-        if [ "$which" = then ]; then dir=$work/then; else dir=$here; fi
-        (cd "$dir" && valgrind --tool=callgrind --callgrind-out-file=/dev/null \
-            target/release/kanestop run scenes/paper/case01.toml 2>&1 >/dev/null |
-            sed -n "s/.*refs: *\([0-9,]*\).*/  $which \1/p")
+        refs=$(cd "${dir[$which]}" && valgrind --tool=callgrind --callgrind-out-file=/dev/null \
+            "${kanestop[$which]}" run scenes/paper/case01.toml 2>&1 >/dev/null |
+            sed -n 's/.*refs: *\([0-9,]*\).*/\1/p')
+        [ -n "$refs" ] || {
+            echo "then_and_now.sh: callgrind printed no count for $which" >&2
+            exit 1
+        }
+        echo "  $which $refs"
     done
 fi

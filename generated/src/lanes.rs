@@ -8,17 +8,20 @@
 //! (`portable::F2`). Both are compiled on x86-64, and a test there holds the portable lanes
 //! to the SSE2 ones bit for bit, operation by operation, on special and random values: the
 //! trigonometric and seabed tests check the SSE2 lanes against the scalar code, so the
-//! portable ones, which no x86-64 build runs, are checked through them. The operations built
+//! portable ones are checked through them. Built with `RUSTFLAGS="--cfg
+//! kanestop_portable_lanes"`, an x86-64 build puts the portable lanes in for the SSE2 ones, as
+//! a target without SSE2 does: `.ci/run` runs the generated and runtime crates' own tests so,
+//! which compiles and runs the other targets' wiring here. The operations built
 //! on the lanes' bits (`keep`, `copysign`, the quadrant's selects) are written once for both
 //! (`derived!`). The SSE2 intrinsics are `unsafe` before Rust 1.87 and safe since wherever
 //! SSE2 is on, as on every x86-64 target: hence the `unsafe` blocks, with `unused_unsafe`
 //! allowed. None of them reads or writes memory.
 #![allow(unused_unsafe)]
 
-#[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+#[cfg(all(target_arch = "x86_64", target_feature = "sse2", not(kanestop_portable_lanes)))]
 pub use sse2::F2;
 
-#[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
+#[cfg(any(not(all(target_arch = "x86_64", target_feature = "sse2")), kanestop_portable_lanes))]
 pub use portable::F2;
 
 /// The operations built on an `F2`'s primitive ones (`new`, `lanes`, its bits and the
@@ -78,8 +81,11 @@ macro_rules! derived {
 }
 
 /// Two plain numbers: the lanes wherever SSE2 is not. Compiled on x86-64 too, where only the
-/// test against the SSE2 lanes uses them.
-#[cfg_attr(all(target_arch = "x86_64", target_feature = "sse2", not(test)), allow(dead_code))]
+/// test against the SSE2 lanes uses them (unless built with `--cfg kanestop_portable_lanes`).
+#[cfg_attr(
+    all(target_arch = "x86_64", target_feature = "sse2", not(test), not(kanestop_portable_lanes)),
+    allow(dead_code)
+)]
 mod portable {
     /// Two f64 lanes, `[lane 0, lane 1]`.
     #[derive(Clone, Copy, Debug)]
@@ -186,6 +192,7 @@ mod portable {
 
 /// An SSE2 register of two f64.
 #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+#[cfg_attr(all(kanestop_portable_lanes, not(test)), allow(dead_code))]
 mod sse2 {
     use core::arch::x86_64::*;
 
@@ -350,5 +357,18 @@ mod tests {
             }
         }
         assert!(compared > 20_000, "{compared} pairs compared");
+    }
+}
+
+#[cfg(test)]
+mod wiring {
+    /// The lanes in use are the ones the target and `--cfg kanestop_portable_lanes` call for:
+    /// the run of these tests under the cfg (`.ci/run`) does exercise the portable lanes.
+    #[test]
+    fn the_lanes_in_use_are_the_configured_ones() {
+        let portable = cfg!(kanestop_portable_lanes) || !cfg!(all(target_arch = "x86_64", target_feature = "sse2"));
+        let name = std::any::type_name::<super::F2>();
+        let expected = if portable { "::portable::F2" } else { "::sse2::F2" };
+        assert!(name.ends_with(expected), "F2 is {name}, expected {expected}");
     }
 }
