@@ -95,14 +95,17 @@ impl Kernel for Recorder {
 /// run is no fair sample (it failed).
 fn record(model: &Model) -> Result<Vec<Solve>, String> {
     let solves = Rc::new(RefCell::new(Vec::new()));
-    let kernel = GeneratedKernel::new(&model.chain).map_err(|e| format!("no generated kernel: {e}"))?;
-    let result = simulate::run(model, Box::new(Recorder { inner: kernel, solves: solves.clone() }));
+    let result = simulate::run(model, Box::new(Recorder { inner: kernel(model)?, solves: solves.clone() }));
     match result.stop {
         Stop::ShipStopped | Stop::EndTime => {}
         Stop::Failed(f) => return Err(format!("the recorded run failed: {f:?}")),
     }
-    let solves = std::mem::take(&mut *solves.borrow_mut());
-    Ok(solves)
+    Ok(solves.take())
+}
+
+/// The generated kernel of the model's chain, or why there is none.
+fn kernel(model: &Model) -> Result<GeneratedKernel, String> {
+    GeneratedKernel::new(&model.chain).map_err(|e| format!("no generated kernel: {e}"))
 }
 
 /// CPU time of this thread so far, s (Linux: the first field of schedstat, ns on the CPU).
@@ -131,7 +134,7 @@ fn median_per_call(passes: usize, calls: usize, mut f: impl FnMut()) -> (f64, f6
 /// solve, or how many of them failed (the run itself solved every one).
 fn replay(model: &Model, solves: &[Solve]) -> Result<(f64, f64), String> {
     let mu = Forces::new(model).anchor.friction_coefficient;
-    let kernel = GeneratedKernel::new(&model.chain).map_err(|e| format!("no generated kernel: {e}"))?;
+    let kernel = kernel(model)?;
     let mut dynamics = Dynamics::new(Box::new(kernel), Forces::new(model), AnchorDof::Stuck);
     let mut qdd = vec![0.0; model.body_count()];
     let mut failed = 0usize;
