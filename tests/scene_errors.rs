@@ -50,6 +50,23 @@ fn nan_and_infinity() {
 }
 
 #[test]
+fn extreme_values_are_written_with_an_exponent() {
+    // The value as typed, and a bound computed from it, not hundreds of digits.
+    let e = error(&edited("gravity = 9.81", "gravity = 1e300"));
+    assert_mentions(&e, &["environment.gravity = 1e300", "(0, 100]"]);
+    assert!(!e.contains("000000000"), "{e:?}");
+    let e = error(&edited("seabed_stiffness = 5000000.0", "seabed_stiffness = 1e-300"));
+    assert_mentions(&e, &["environment.seabed_stiffness = 1e-300"]);
+    assert!(!e.contains("000000000"), "{e:?}");
+    let e = error(&edited("water_density = 1025.0", "water_density = 1e300"));
+    assert_mentions(&e, &["= 1.68e301 kg (the anchor would float)", "= 1.829e298 kg/m (the chain"]);
+    assert!(!e.contains("000000000"), "{e:?}");
+    // Ordinary values stay as written.
+    let e = error(&edited("[anchor]\nmass = 40000.0", "[anchor]\nmass = -40000.0"));
+    assert_mentions(&e, &["anchor.mass = -40000:"]);
+}
+
+#[test]
 fn unknown_key() {
     let e = error(&edited("[anchor]\n", "[anchor]\ncolour = \"red\"\n"));
     assert_mentions(&e, &["bad.toml", "unknown field `colour`", "mass"]);

@@ -548,9 +548,10 @@ impl Scene {
                 "cable.stages[0].element_length",
                 &fmt_value(lengths[0]),
                 &format!(
-                    "> {bound:.6} m: the first cable element must span the rise from the chain's resting height \
-                     to its upper joint ({:.6} m above the seabed)",
-                    joint[1]
+                    "> {} m: the first cable element must span the rise from the chain's resting height \
+                     to its upper joint ({} m above the seabed)",
+                    fmt_rounded(bound, 6),
+                    fmt_rounded(joint[1], 6)
                 ),
             );
         }
@@ -577,7 +578,9 @@ impl Scene {
             if self.environment.water && height >= depth {
                 let value = if field == "ship.mass" { fmt_value(ship.mass) } else { fmt_value(height) };
                 let why = format!(
-                    "such that {what} ({height:.3} m) is below the water depth d ≈ h_L + rod.length − ship.hinge_z = {depth:.3} m (raise initial.vertical_projection)"
+                    "such that {what} ({} m) is below the water depth d ≈ h_L + rod.length − ship.hinge_z = {} m (raise initial.vertical_projection)",
+                    fmt_rounded(height, 3),
+                    fmt_rounded(depth, 3)
                 );
                 c.push(field, &value, &why);
             }
@@ -605,8 +608,10 @@ impl Scene {
         for (name, radius, mpl, _) in lines.into_iter().filter(|l| l.3) {
             let area = std::f64::consts::PI * radius * radius;
             if mpl <= rho * area {
-                let why =
-                    format!("> ρ π R² = {:.3} kg/m (the {name} would float: no catenary, Eqs. 30–31)", rho * area);
+                let why = format!(
+                    "> ρ π R² = {} kg/m (the {name} would float: no catenary, Eqs. 30–31)",
+                    fmt_rounded(rho * area, 3)
+                );
                 c.push(&format!("{name}.mass_per_length"), &fmt_value(mpl), &why);
             } else if e.seabed {
                 let least = rho * e.gravity + (mpl - rho * area) * e.gravity / area;
@@ -695,10 +700,10 @@ impl Scene {
                 "ship.mass",
                 &fmt_value(s.mass),
                 &format!(
-                    "< ρ·L·w·depth = {} kg (the ship would float with a draught of {:.3} m > depth {} m)",
+                    "< ρ·L·w·depth = {} kg (the ship would float with a draught of {} m > depth {} m)",
                     fmt_value(e.water_density * s.length * s.beam * s.depth),
-                    self.ship_draught(),
-                    s.depth
+                    fmt_rounded(self.ship_draught(), 3),
+                    fmt_value(s.depth)
                 ),
             );
         }
@@ -811,9 +816,10 @@ impl Scene {
             let seconds = steps * 4.0 * self.body_count() as f64 * SECONDS_PER_BODY_EVALUATION;
             let why = format!(
                 "≥ solver.end_time / {MAX_STEPS:e} = {:.3e} s: {steps:.3e} steps exceed the limit of {MAX_STEPS:e} \
-                 (about {seconds:.1e} s of RK4 wall time at N = {})",
+                 (about {seconds:.1e} s of RK4 wall time at N = {}); or solver.end_time ≤ {} s",
                 so.end_time / MAX_STEPS,
-                self.body_count()
+                self.body_count(),
+                fmt_rounded(so.dt * MAX_STEPS, 1)
             );
             c.push("solver.dt", &fmt_value(so.dt), &why);
         }
@@ -842,7 +848,7 @@ fn vertical_hint(lc: f64, x: f64) -> String {
             hi = mid;
         }
     }
-    format!("; or, for this x_L, initial.vertical_projection in ({}, {:.6}] m", fmt_value(lc - x), lo)
+    format!("; or, for this x_L, initial.vertical_projection in ({}, {}] m", fmt_value(lc - x), fmt_rounded(lo, 6))
 }
 
 impl Scene {
@@ -854,13 +860,32 @@ impl Scene {
     }
 }
 
-/// Formats a value the way a user would write it in the TOML file.
+/// Formats a value the way a user would write it in the TOML file: as written for ordinary
+/// magnitudes, with an exponent (`1e300`, `2.5e-12`) beyond them rather than hundreds of digits.
 fn fmt_value(v: f64) -> String {
     if v.is_nan() {
         "nan".into()
+    } else if extreme(v) {
+        format!("{v:e}")
     } else {
         format!("{v}")
     }
+}
+
+/// A value the message computed (a bound, a depth), rounded to `decimals` places; in
+/// scientific notation with `decimals` digits after the point where positional notation would
+/// show no significant digit or hundreds of them.
+fn fmt_rounded(v: f64, decimals: usize) -> String {
+    if extreme(v) {
+        format!("{v:.decimals$e}")
+    } else {
+        format!("{v:.decimals$}")
+    }
+}
+
+/// Whether a finite, non-zero `v` is too large or too small to read in positional notation.
+fn extreme(v: f64) -> bool {
+    v.is_finite() && v != 0.0 && !(1e-9..1e15).contains(&v.abs())
 }
 
 #[derive(Default)]
