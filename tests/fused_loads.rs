@@ -10,7 +10,8 @@
 //! - the loads against the force modules (`Forces`, the oracle of the physics): equal, as
 //!   floating-point numbers (within 1e-12 of their scale is allowed per entry, and equality
 //!   asserted over each set); the work terms' power within 1e-14 of its scale (the fused
-//!   pass sums from the ship inward, the force modules from the anchor outward);
+//!   pass sums from the ship inward, two elements at a time, the force modules from the
+//!   anchor outward);
 //! - ẍ from the fused solve against the same kernel fed by the force modules, and through
 //!   its normwise backward error in the reference system (the oracle of the dynamics), to
 //!   1e-12 (the residual relative to ‖f‖ alone is reported beside the reference's own
@@ -342,6 +343,14 @@ fn random_scenes_fuse_and_match_the_force_modules() {
             Err(e) => refused.push(e.to_string()),
         }
     }
+    // Both parities of the element count N − 2: the fused pass pairs the elements, and an
+    // odd one out (B_1) runs alone.
+    let odd = models.iter().filter(|(_, m)| m.body_count() % 2 == 1).count();
+    assert!(
+        odd > 0 && odd < models.len(),
+        "element counts of one parity only: {:?}",
+        models.iter().map(|m| &m.0).collect::<Vec<_>>()
+    );
     as_documented("random scenes", check_all(&models, 5000), false);
 }
 

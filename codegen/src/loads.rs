@@ -22,11 +22,17 @@
 //! rotation `t = [cos θ, sin θ]` the kinematics computed (no transcendental function of θ
 //! again), and adds each term's power (the work terms of the energy balance, Eq. 63) into
 //! `power`, indexed as the runtime's `WORK_TERMS`.
+//!
+//! The line elements' loads come in two forms: one element (`load_element_<signature>`) and
+//! two at once on the lanes of the generated crate's `F2` (`load_element_pair_<signature>`,
+//! which the fused pass runs), the same statements with each branch a select, so each lane
+//! equals the single element's function bit for bit. The operation counts ([`LoadReport`])
+//! are the single element's.
 
 use std::collections::BTreeMap;
 
 use kanestop_chain::{LoadSignature, LoadTerm};
-use proc_macro2::TokenStream;
+use proc_macro2::{Literal, TokenStream};
 use quote::{format_ident, quote};
 use syn::visit::Visit;
 
@@ -448,6 +454,156 @@ fn element(sig: &LoadSignature, report: &mut LoadReport) -> TokenStream {
     }
 }
 
+/// Two line elements' loads at once, element `[0]` on lane 0 and `[1]` on lane 1 of the
+/// generated crate's `lanes::F2`: the statements of [`element`], each
+/// lane doing the scalar code's operations in its order, so each lane's load equals the scalar
+/// function's bit for bit. A branch of the scalar code becomes a select: both sides computed,
+/// the lane's taken (the contact's `v > 0`, the wetted fraction's cases, Eq. 47's two cases);
+/// a term the scalar code skips adds nothing to the lane (its update selected away, its power
+/// masked to +0). A function with no lane form (`tanh`, `powf`) runs once per lane. The
+/// powers accumulate per lane, in `power`, for the pass to add up at its end.
+fn element_pair(sig: &LoadSignature) -> TokenStream {
+    debug_assert!(sig.seabed || sig.water, "weight alone has no element term to pair");
+    // `let name = F2::new(field(0), field(1));`: a number of each element in its lane.
+    let gather = |name: &str, field: &dyn Fn(Literal) -> TokenStream| {
+        let name = format_ident!("{name}");
+        let (a, b) = (field(Literal::usize_unsuffixed(0)), field(Literal::usize_unsuffixed(1)));
+        quote!(let #name = F2::new(#a, #b);)
+    };
+    let mut body = TokenStream::new();
+    body.extend(gather("weight", &|i| quote!(-p[#i].mass * lp.g)));
+    body.extend(quote! {
+        let zero = F2::splat(0.0);
+        let (mut fx, mut fz, mut my) = (zero, weight, zero);
+        // The rod in air keeps its weight: every other term is masked by `line`.
+        let line = F2::mask([e[0].line, e[1].line]);
+    });
+    body.extend(gather("cos", &|i| quote!(t[#i][0])));
+    body.extend(gather("sin", &|i| quote!(t[#i][1])));
+    body.extend(gather("z", &|i| quote!(s[#i][1])));
+    body.extend(quote! {
+        let half = F2::splat(0.5) * F2::new(e[0].length, e[1].length);
+        let (za, zb) = (z + half * sin, z - half * sin);
+    });
+    if sig.water || sig.line_friction {
+        body.extend(gather("vx", &|i| quote!(s[#i][3])));
+    }
+    body.extend(gather("vz", &|i| quote!(s[#i][4])));
+    body.extend(gather("w", &|i| quote!(s[#i][5])));
+    if sig.seabed {
+        let ps = power("seabed");
+        body.extend(gather("v", &|i| quote!(contact[#i][0])));
+        body.extend(gather("s_bar", &|i| quote!(contact[#i][1])));
+        body.extend(quote! {
+            let touching = v.gt(zero).keep_mask(line);
+            let xi = s_bar - half;
+            let reaction = F2::splat(lp.seabed_stiffness) * v;
+            let m = -(xi * cos * reaction);
+            fz = fz.select(touching, fz + reaction);
+            my = my.select(touching, my + m);
+            #ps = #ps + (reaction * vz + m * w).keep_mask(touching);
+        });
+        if sig.line_friction {
+            let pf = power("line_friction");
+            body.extend(quote! {
+                let slip = vx - xi * w * sin;
+                let friction = F2::splat(-lp.line_friction) * reaction * (slip / F2::splat(lp.slip_speed)).map(f64::tanh);
+                let m = -(xi * sin) * friction;
+                fx = fx.select(touching, fx + friction);
+                my = my.select(touching, my + m);
+                #pf = #pf + (friction * vx + m * w).keep_mask(touching);
+            });
+        }
+        if sig.water {
+            body.extend(quote!(let embedded = zero.select(touching, v);));
+        }
+    }
+    if sig.water {
+        let (pb, pd, pa) = (power("buoyancy"), power("line_drag"), power("added_mass"));
+        let embedded = if sig.seabed { quote!(embedded) } else { quote!(zero) };
+        body.extend(gather("volume", &|i| quote!(e[#i].volume)));
+        body.extend(quote! {
+            let lower = za.lt(zb);
+            let (lo, hi) = (zb.select(lower, za), za.select(lower, zb));
+            let fraction = (-lo / (hi - lo)).select(lo.ge(zero), zero).select(hi.le(zero), F2::splat(1.0));
+            let wet = fraction.ne(zero).keep_mask(line);
+            let low_end = half.select(lower, -half);
+            let wet_centre = (low_end - F2::splat(1.0).copysign(low_end) * fraction * half).select(fraction.eq(F2::splat(1.0)), zero);
+            let volume = volume * fraction;
+            let above = volume - #embedded;
+            let buoyancy = F2::splat(lp.rho * lp.g) * zero.select(above.gt(zero), above);
+            let m = -(wet_centre * cos * buoyancy);
+            let (mut fx_wet, mut fz_wet, mut my_wet) = (fx, fz + buoyancy, my + m);
+            #pb = #pb + (buoyancy * vz + m * w).keep_mask(wet);
+        });
+        let u_c = if sig.current {
+            body.extend(quote! {
+                let depth = F2::splat(lp.water_depth);
+                let current = F2::splat(lp.current_speed)
+                    * ((z - F2::splat(lp.seabed_z)).clamp(zero, depth) / depth).map(|h| h.powf(lp.current_exponent));
+            });
+            quote!(current)
+        } else {
+            quote!(zero)
+        };
+        body.extend(gather("len", &|i| quote!(e[#i].length)));
+        body.extend(gather("cubed", &|i| quote!(e[#i].length_cubed)));
+        body.extend(gather("k", &|i| quote!(e[#i].normal_drag)));
+        body.extend(gather("tangential", &|i| quote!(e[#i].tangential_drag)));
+        body.extend(gather("added_mass", &|i| quote!(p[#i].added_mass)));
+        body.extend(quote! {
+            let (rel_x, rel_z) = (#u_c - vx, -vz);
+            let v_t = rel_x * cos - rel_z * sin;
+            let u_n = rel_x * sin + rel_z * cos;
+            // Eq. 47's two cases, the lane's selected.
+            let clear = u_n.abs().ge(w.abs() * half);
+            let sign = F2::splat(1.0).copysign(u_n);
+            let f_clear = k * sign * (u_n * u_n * len + w * w * cubed / F2::splat(12.0));
+            let m_clear = -k * sign * u_n * w * cubed / F2::splat(6.0);
+            let (wa, wb) = (u_n - w * half, u_n + w * half);
+            let (f2a, f2b) = (wa * wa * wa.abs() / F2::splat(3.0), wb * wb * wb.abs() / F2::splat(3.0));
+            let (f3a, f3b) = (wa * wa * wa * wa.abs() / F2::splat(4.0), wb * wb * wb * wb.abs() / F2::splat(4.0));
+            let force = (f2b - f2a) / w;
+            let first_moment = (f3b - f3a - u_n * (f2b - f2a)) / (w * w);
+            let f_n = (k * force).select(clear, f_clear);
+            let m_n = (-k * first_moment).select(clear, m_clear);
+            let f_t = tangential * v_t * v_t.abs();
+            let (f_n, m_n, f_t) = (f_n * fraction, m_n * fraction, f_t * fraction);
+            let (dx, dz) = (f_n * sin + f_t * cos, f_n * cos - f_t * sin);
+            fx_wet = fx_wet + dx;
+            fz_wet = fz_wet + dz;
+            my_wet = my_wet + m_n;
+            #pd = #pd + (dx * vx + dz * vz + m_n * w).keep_mask(wet);
+            let (bt, bn) = (vx * cos - vz * sin, vx * sin + vz * cos);
+            #pa = #pa + (added_mass * w * bt * bn).keep_mask(wet);
+            fx = fx.select(wet, fx_wet);
+            fz = fz.select(wet, fz_wet);
+            my = my.select(wet, my_wet);
+        });
+    }
+    let name = format_ident!("load_element_pair_{}", sig.name());
+    let scalar =
+        format!(" The loads of two elements, as [`load_element_{}`] gives each, on the lanes of an `F2`.", sig.name());
+    quote! {
+        #[doc = #scalar]
+        #[inline(always)]
+        pub(crate) fn #name(
+            p: [&crate::BodyParams; 2],
+            lp: &crate::LoadParams,
+            e: [&crate::Element; 2],
+            s: [&[f64; 6]; 2],
+            t: [&[f64; 2]; 2],
+            contact: [[f64; 3]; 2],
+            power: &mut [crate::lanes::F2; crate::POWER_TERMS],
+        ) -> [[f64; 3]; 2] {
+            use crate::lanes::F2;
+            #body
+            let [fx, fz, my] = [fx.lanes(), fz.lanes(), my.lanes()];
+            [[fx[0], fz[0], my[0]], [fx[1], fz[1], my[1]]]
+        }
+    }
+}
+
 /// The seabed's contact of every line element: `loads[k] = [V^S, s̄, 0]` (Eq. 41's embedded
 /// volume and its centroid from the `za` end), zeros for the rod in air and for an element
 /// clear of the seabed (as `embedded_volume` gives there; a NaN height still reaches it). Run
@@ -550,10 +706,12 @@ pub fn signature_code(sig: &LoadSignature) -> (TokenStream, LoadReport) {
     let mut report = LoadReport { signature: *sig, ops: BTreeMap::new(), shared: BTreeMap::new() };
     let (a, e, s) = (anchor(sig, &mut report), element(sig, &mut report), ship(sig, &mut report));
     let c = if sig.seabed { contact(sig, &mut report) } else { TokenStream::new() };
+    let pair = if sig.seabed || sig.water { element_pair(sig) } else { TokenStream::new() };
     let tokens = quote! {
         #a
         #c
         #e
+        #pair
         #s
     };
     (tokens, report)

@@ -4,11 +4,12 @@
 //!
 //! 1. the kinematics, from B_1 outward (Eqs. 9, 13, 14): body states and rotations;
 //! 2. with a seabed, every element's contact (its embedded volume, [`crate::loads`]);
-//! 3. from the ship inward, each body's loads where the inward pass of the O(N) solve
-//!    reaches it, then the pass's step at that body: the loads of one element and the
-//!    articulated-body step of the next are independent, so the processor overlaps the
-//!    loads' arithmetic with the pass's chain of dependent operations (one division per
-//!    body);
+//! 3. from the ship inward, the loads of two elements at a time (on the two lanes of an
+//!    `F2`, [`crate::loads`]'s pair functions) where the inward pass of the O(N) solve reaches
+//!    them, then the pass's steps at those two bodies: the elements' loads and the
+//!    articulated-body steps are independent, so the processor overlaps the loads'
+//!    arithmetic with the pass's chain of dependent operations (one division per body);
+//!    an odd element out, B_1, runs alone;
 //! 4. the anchor (free with friction, or held), then the outward pass: ẍ.
 //!
 //! The steps are the rolled kernel's ([`crate::drivers`]) of the signature's water switch and
@@ -17,8 +18,9 @@
 //! compute −m g themselves ([`crate::rolled::Loads::Gravity`]), so no load is read.
 //!
 //! The loads and the work terms' powers are left in the caller's `Workspace` for the
-//! observation. The powers are summed from the ship inward, the order of the pass: the
-//! force modules sum from the anchor outward, so the two agree to round-off, not to the bit.
+//! observation. The powers are summed from the ship inward, the order of the pass, the
+//! paired elements' in a sum per lane added at the end: the force modules sum from the anchor
+//! outward, so the two agree to round-off, not to the bit.
 
 use kanestop_chain::{LoadSignature, Water};
 use proc_macro2::TokenStream;
@@ -76,6 +78,55 @@ fn signature_rhs(sig: &LoadSignature) -> TokenStream {
         (TokenStream::new(), quote!([0.0; 3]))
     };
     let contact_first = if sig.seabed { quote!(loads[1]) } else { quote!([0.0; 3]) };
+    let elements = if gravity {
+        // Weight alone: the steps compute −m g; the loads are kept for the observation.
+        quote! {
+            for k in (2..n - 1).rev() {
+                loads[k] = crate::loads::#le(&p[k], lp, &e[k], &bodies[k], &trig[k], #contact, power);
+                let (w, wp) = (scratch[k][W], scratch[k - 1][W]);
+                c = crate::#r::#rod(&p[k], &trig[k], w, &trig[k - 1], wp, #f_rod, &c, &mut scratch[k]);
+            }
+            loads[1] = crate::loads::#le(&p[1], lp, &e[1], &bodies[1], &trig[1], #contact_first, power);
+        }
+    } else {
+        // The elements' loads two at a time (B_k and B_{k−1} on the lanes), then the two
+        // steps; an odd element out, B_1, alone.
+        let pair = format_ident!("load_element_pair_{n}");
+        let load_pair = |k: TokenStream, j: TokenStream| {
+            let contact = if sig.seabed { quote!([loads[#k], loads[#j]]) } else { quote!([[0.0; 3]; 2]) };
+            quote! {
+                [loads[#k], loads[#j]] = crate::loads::#pair(
+                    [&p[#k], &p[#j]], lp, [&e[#k], &e[#j]], [&bodies[#k], &bodies[#j]],
+                    [&trig[#k], &trig[#j]], #contact, &mut lanes,
+                );
+            }
+        };
+        let (pair_k, pair_2) = (load_pair(quote!(k), quote!(k - 1)), load_pair(quote!(2), quote!(1)));
+        let f_rod_prev = quote!(&loads[k - 1]);
+        quote! {
+            let mut lanes = [crate::lanes::F2::splat(0.0); crate::POWER_TERMS];
+            let mut k = n - 2;
+            while k >= 3 {
+                #pair_k
+                let (w, wp) = (scratch[k][W], scratch[k - 1][W]);
+                c = crate::#r::#rod(&p[k], &trig[k], w, &trig[k - 1], wp, #f_rod, &c, &mut scratch[k]);
+                let (w, wp) = (scratch[k - 1][W], scratch[k - 2][W]);
+                c = crate::#r::#rod(&p[k - 1], &trig[k - 1], w, &trig[k - 2], wp, #f_rod_prev, &c, &mut scratch[k - 1]);
+                k -= 2;
+            }
+            if k == 2 {
+                #pair_2
+                let (w, wp) = (scratch[2][W], scratch[1][W]);
+                c = crate::#r::#rod(&p[2], &trig[2], w, &trig[1], wp, &loads[2], &c, &mut scratch[2]);
+            } else {
+                loads[1] = crate::loads::#le(&p[1], lp, &e[1], &bodies[1], &trig[1], #contact_first, power);
+            }
+            for (sum, lane) in power.iter_mut().zip(lanes) {
+                let [a, b] = lane.lanes();
+                *sum += a + b;
+            }
+        }
+    };
     let pass = format_ident!("pass_{n}");
     let (free, stuck) = (format_ident!("rhs_free_{n}"), format_ident!("rhs_stuck_{n}"));
     let terms = term_list(sig);
@@ -119,12 +170,7 @@ fn signature_rhs(sig: &LoadSignature) -> TokenStream {
             loads[n - 1] = crate::loads::#ls(&p[n - 1], lp, &bodies[n - 1], power);
             let (w, wp) = (scratch[n - 1][W], scratch[n - 2][W]);
             let mut c = crate::#r::#ship(&p[n - 1], &trig[n - 1], w, &trig[n - 2], wp, #f_ship, &mut scratch[n - 1]);
-            for k in (2..n - 1).rev() {
-                loads[k] = crate::loads::#le(&p[k], lp, &e[k], &bodies[k], &trig[k], #contact, power);
-                let (w, wp) = (scratch[k][W], scratch[k - 1][W]);
-                c = crate::#r::#rod(&p[k], &trig[k], w, &trig[k - 1], wp, #f_rod, &c, &mut scratch[k]);
-            }
-            loads[1] = crate::loads::#le(&p[1], lp, &e[1], &bodies[1], &trig[1], #contact_first, power);
+            #elements
             let c = crate::#r::#first(&p[1], &trig[1], scratch[1][W], #f_first, &c, &mut scratch[1]);
             loads[0] = crate::loads::#la(&p[0], lp, &bodies[0], power);
             *powers = sums;

@@ -1,7 +1,9 @@
 //! Two f64 lanes, for the kernels' code that does the same arithmetic for two angles or two
-//! elements at once ([`crate::trig::sin_cos_pair`], the seabed's depth series of two
-//! elements in the runtime's fused load path). Each operation is one IEEE operation per lane,
-//! so a lane's result equals, bit for bit, the scalar code's doing the same operations.
+//! elements at once ([`crate::trig::sin_cos_pair`], the line elements' loads in the fused
+//! right-hand sides, the seabed's depth series of two elements in the runtime's fused load
+//! path). Each operation is one IEEE operation per lane, so a lane's result equals, bit for
+//! bit, the scalar code's doing the same operations; a scalar branch becomes a comparison's
+//! mask and a [`F2::select`] of both sides, the lane's side taken.
 //!
 //! On x86-64 with SSE2 (part of every x86-64 processor, on for every x86-64 target but the
 //! soft-float ones) an [`F2`] is an SSE2 register (`sse2::F2`); elsewhere, two numbers
@@ -23,6 +25,17 @@ pub use sse2::F2;
 
 #[cfg(any(not(all(target_arch = "x86_64", target_feature = "sse2")), kanestop_portable_lanes))]
 pub use portable::F2;
+
+/// `a.lt(b)` … `a.ne(b)`: the lanewise comparisons, each a mask for [`F2::select`].
+macro_rules! comparisons {
+    ($($name:ident $op:expr),*) => {$(
+        #[doc = concat!("Per lane, all bits set where `self ", stringify!($name), " o` holds (as the scalar comparison), else clear.")]
+        #[inline(always)]
+        pub fn $name(self, o: F2) -> F2 {
+            self.compare(o, $op)
+        }
+    )*};
+}
 
 /// The operations built on an `F2`'s primitive ones (`new`, `lanes`, its bits and the
 /// `Bits` operations), the same for both kinds of lanes.
@@ -63,11 +76,62 @@ macro_rules! derived {
                 F2::from_bits(self.bits().xor(b))
             }
 
+            /// |x| of each lane (as `f64::abs`: the sign bit cleared).
+            #[inline(always)]
+            pub fn abs(self) -> F2 {
+                F2::from_bits(self.bits().andnot(Bits::splat(1 << 63)))
+            }
+
+            /// Per lane: `if_set` where `mask` (a comparison's result: all bits set or none)
+            /// is set, else `self`.
+            #[inline(always)]
+            pub fn select(self, mask: F2, if_set: F2) -> F2 {
+                let m = mask.bits();
+                F2::from_bits(self.bits().andnot(m).or(if_set.bits().and(m)))
+            }
+
+            /// Per lane: `self` where `mask` is set, else +0 (with a mask for `self`, the
+            /// lanes set in both).
+            #[inline(always)]
+            pub fn keep_mask(self, mask: F2) -> F2 {
+                F2::from_bits(self.bits().and(mask.bits()))
+            }
+
+            /// The mask with lane i set where `set[i]`, as a comparison gives.
+            #[inline(always)]
+            pub fn mask(set: [bool; 2]) -> F2 {
+                F2::splat(f64::from_bits(u64::MAX)).keep(set)
+            }
+
+            /// Each lane clamped to `[lo, hi]`, as `f64::clamp` (NaN stays NaN).
+            #[inline(always)]
+            pub fn clamp(self, lo: F2, hi: F2) -> F2 {
+                let x = self.select(self.lt(lo), lo);
+                x.select(x.gt(hi), hi)
+            }
+
+            /// `f` of each lane, one scalar call per lane (a function with no lane form,
+            /// such as `tanh` or `powf`).
+            #[inline(always)]
+            pub fn map(self, f: impl Fn(f64) -> f64) -> F2 {
+                let [a, b] = self.lanes();
+                F2::new(f(a), f(b))
+            }
+
             /// `[[a₀, b₀], [a₁, b₁]]`: lane i of `a` and of `b` side by side.
             #[inline(always)]
             pub fn zip(a: F2, b: F2) -> [[f64; 2]; 2] {
                 let (a, b) = (a.lanes(), b.lanes());
                 [[a[0], b[0]], [a[1], b[1]]]
+            }
+        }
+
+        impl core::ops::Neg for F2 {
+            type Output = F2;
+            /// −x of each lane (as the scalar `-x`: the sign bit flipped, so −0 of +0).
+            #[inline(always)]
+            fn neg(self) -> F2 {
+                F2::from_bits(self.bits().xor(Bits::splat(1 << 63)))
             }
         }
 
@@ -126,6 +190,28 @@ mod portable {
         pub fn sqrt(self) -> F2 {
             F2(self.0.map(f64::sqrt))
         }
+
+        /// Per lane, all bits set where `self op o` holds (false for NaN but in `ne`), else clear.
+        #[inline(always)]
+        fn compare(self, o: F2, op: impl Fn(f64, f64) -> bool) -> F2 {
+            let m = |i: usize| if op(self.0[i], o.0[i]) { f64::from_bits(u64::MAX) } else { 0.0 };
+            F2([m(0), m(1)])
+        }
+
+        comparisons!(
+            lt | a,
+            b | a < b,
+            le | a,
+            b | a <= b,
+            gt | a,
+            b | a > b,
+            ge | a,
+            b | a >= b,
+            eq | a,
+            b | a == b,
+            ne | a,
+            b | a != b
+        );
 
         #[inline(always)]
         fn bits(self) -> Bits {
@@ -236,6 +322,23 @@ mod sse2 {
             F2(unsafe { _mm_sqrt_pd(self.0) })
         }
 
+        /// Per lane, all bits set where `self op o` holds (false for NaN but in `ne`), else clear.
+        #[inline(always)]
+        fn compare(self, o: F2, op: u8) -> F2 {
+            F2(unsafe {
+                match op {
+                    0 => _mm_cmplt_pd(self.0, o.0),
+                    1 => _mm_cmple_pd(self.0, o.0),
+                    2 => _mm_cmpgt_pd(self.0, o.0),
+                    3 => _mm_cmpge_pd(self.0, o.0),
+                    4 => _mm_cmpeq_pd(self.0, o.0),
+                    _ => _mm_cmpneq_pd(self.0, o.0),
+                }
+            })
+        }
+
+        comparisons!(lt 0, le 1, gt 2, ge 3, eq 4, ne 5);
+
         #[inline(always)]
         fn bits(self) -> Bits {
             Bits(unsafe { _mm_castpd_si128(self.0) })
@@ -344,8 +447,44 @@ mod tests {
                 same(p.sqrt().lanes(), s.sqrt().lanes(), "sqrt");
                 for keep in [[false, false], [true, false], [false, true], [true, true]] {
                     same(p.keep(keep).lanes(), s.keep(keep).lanes(), "keep");
+                    same(portable::F2::mask(keep).lanes(), sse2::F2::mask(keep).lanes(), "mask");
                 }
                 same(p.copysign(pq).lanes(), s.copysign(sq).lanes(), "copysign");
+                same(p.abs().lanes(), s.abs().lanes(), "abs");
+                same((-p).lanes(), (-s).lanes(), "−x");
+                let masks = [
+                    (p.lt(pq), s.lt(sq), "<"),
+                    (p.le(pq), s.le(sq), "≤"),
+                    (p.gt(pq), s.gt(sq), ">"),
+                    (p.ge(pq), s.ge(sq), "≥"),
+                    (p.eq(pq), s.eq(sq), "="),
+                    (p.ne(pq), s.ne(sq), "≠"),
+                ];
+                for (mp, ms, what) in masks {
+                    same(mp.lanes(), ms.lanes(), what);
+                    same(p.select(mp, pq).lanes(), s.select(ms, sq).lanes(), "select");
+                    same(p.keep_mask(mp).lanes(), s.keep_mask(ms).lanes(), "keep_mask");
+                }
+                let (lo, hi) = (portable::F2::splat(-1.0), portable::F2::splat(2.0));
+                same(p.clamp(lo, hi).lanes(), s.clamp(sse2::F2::splat(-1.0), sse2::F2::splat(2.0)).lanes(), "clamp");
+                same(p.map(f64::tanh).lanes(), s.map(f64::tanh).lanes(), "map");
+                // …and the lanes do what the scalar operations do, lane by lane.
+                let scalar = |f: &dyn Fn(f64, f64) -> f64| [f(a, b), f(b, a)];
+                same(s.abs().lanes(), scalar(&|x, _| x.abs()), "abs against f64::abs");
+                same((-s).lanes(), scalar(&|x, _| -x), "−x against the scalar −x");
+                same(
+                    s.clamp(sse2::F2::splat(-1.0), sse2::F2::splat(2.0)).lanes(),
+                    scalar(&|x, _| x.clamp(-1.0, 2.0)),
+                    "clamp against f64::clamp",
+                );
+                let set = |c: bool| if c { f64::from_bits(u64::MAX) } else { 0.0 };
+                same(s.lt(sq).lanes(), scalar(&|x, y| set(x < y)), "< against the scalar <");
+                same(s.le(sq).lanes(), scalar(&|x, y| set(x <= y)), "≤ against the scalar ≤");
+                same(s.gt(sq).lanes(), scalar(&|x, y| set(x > y)), "> against the scalar >");
+                same(s.ge(sq).lanes(), scalar(&|x, y| set(x >= y)), "≥ against the scalar ≥");
+                same(s.eq(sq).lanes(), scalar(&|x, y| set(x == y)), "= against the scalar =");
+                same(s.ne(sq).lanes(), scalar(&|x, y| set(x != y)), "≠ against the scalar ≠");
+                same(s.select(s.lt(sq), sq).lanes(), scalar(&|x, y| if x < y { y } else { x }), "select against if");
                 same(p.select_odd(pq, p * pq).lanes(), s.select_odd(sq, s * sq).lanes(), "select_odd");
                 for (add, bit) in [(0, 0), (0, 1), (1, 1), (3, 2)] {
                     same(p.negate_if(pq, add, bit).lanes(), s.negate_if(sq, add, bit).lanes(), "negate_if");

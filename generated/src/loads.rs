@@ -116,6 +116,41 @@ pub(crate) fn load_element_dry_seabed(
     }
     [fx, fz, my]
 }
+/// The loads of two elements, as [`load_element_dry_seabed`] gives each, on the lanes of an `F2`.
+#[inline(always)]
+pub(crate) fn load_element_pair_dry_seabed(
+    p: [&crate::BodyParams; 2],
+    lp: &crate::LoadParams,
+    e: [&crate::Element; 2],
+    s: [&[f64; 6]; 2],
+    t: [&[f64; 2]; 2],
+    contact: [[f64; 3]; 2],
+    power: &mut [crate::lanes::F2; crate::POWER_TERMS],
+) -> [[f64; 3]; 2] {
+    use crate::lanes::F2;
+    let weight = F2::new(-p[0].mass * lp.g, -p[1].mass * lp.g);
+    let zero = F2::splat(0.0);
+    let (mut fx, mut fz, mut my) = (zero, weight, zero);
+    let line = F2::mask([e[0].line, e[1].line]);
+    let cos = F2::new(t[0][0], t[1][0]);
+    let sin = F2::new(t[0][1], t[1][1]);
+    let z = F2::new(s[0][1], s[1][1]);
+    let half = F2::splat(0.5) * F2::new(e[0].length, e[1].length);
+    let (za, zb) = (z + half * sin, z - half * sin);
+    let vz = F2::new(s[0][4], s[1][4]);
+    let w = F2::new(s[0][5], s[1][5]);
+    let v = F2::new(contact[0][0], contact[1][0]);
+    let s_bar = F2::new(contact[0][1], contact[1][1]);
+    let touching = v.gt(zero).keep_mask(line);
+    let xi = s_bar - half;
+    let reaction = F2::splat(lp.seabed_stiffness) * v;
+    let m = -(xi * cos * reaction);
+    fz = fz.select(touching, fz + reaction);
+    my = my.select(touching, my + m);
+    power[1] = power[1] + (reaction * vz + m * w).keep_mask(touching);
+    let [fx, fz, my] = [fx.lanes(), fz.lanes(), my.lanes()];
+    [[fx[0], fz[0], my[0]], [fx[1], fz[1], my[1]]]
+}
 /// B_N's load at its state `s`.
 #[inline(always)]
 pub(crate) fn load_ship_dry_seabed(
@@ -206,6 +241,49 @@ pub(crate) fn load_element_dry_seabed_friction(
         power[3] += friction * s[3] + m * s[5];
     }
     [fx, fz, my]
+}
+/// The loads of two elements, as [`load_element_dry_seabed_friction`] gives each, on the lanes of an `F2`.
+#[inline(always)]
+pub(crate) fn load_element_pair_dry_seabed_friction(
+    p: [&crate::BodyParams; 2],
+    lp: &crate::LoadParams,
+    e: [&crate::Element; 2],
+    s: [&[f64; 6]; 2],
+    t: [&[f64; 2]; 2],
+    contact: [[f64; 3]; 2],
+    power: &mut [crate::lanes::F2; crate::POWER_TERMS],
+) -> [[f64; 3]; 2] {
+    use crate::lanes::F2;
+    let weight = F2::new(-p[0].mass * lp.g, -p[1].mass * lp.g);
+    let zero = F2::splat(0.0);
+    let (mut fx, mut fz, mut my) = (zero, weight, zero);
+    let line = F2::mask([e[0].line, e[1].line]);
+    let cos = F2::new(t[0][0], t[1][0]);
+    let sin = F2::new(t[0][1], t[1][1]);
+    let z = F2::new(s[0][1], s[1][1]);
+    let half = F2::splat(0.5) * F2::new(e[0].length, e[1].length);
+    let (za, zb) = (z + half * sin, z - half * sin);
+    let vx = F2::new(s[0][3], s[1][3]);
+    let vz = F2::new(s[0][4], s[1][4]);
+    let w = F2::new(s[0][5], s[1][5]);
+    let v = F2::new(contact[0][0], contact[1][0]);
+    let s_bar = F2::new(contact[0][1], contact[1][1]);
+    let touching = v.gt(zero).keep_mask(line);
+    let xi = s_bar - half;
+    let reaction = F2::splat(lp.seabed_stiffness) * v;
+    let m = -(xi * cos * reaction);
+    fz = fz.select(touching, fz + reaction);
+    my = my.select(touching, my + m);
+    power[1] = power[1] + (reaction * vz + m * w).keep_mask(touching);
+    let slip = vx - xi * w * sin;
+    let friction = F2::splat(-lp.line_friction) * reaction
+        * (slip / F2::splat(lp.slip_speed)).map(f64::tanh);
+    let m = -(xi * sin) * friction;
+    fx = fx.select(touching, fx + friction);
+    my = my.select(touching, my + m);
+    power[3] = power[3] + (friction * vx + m * w).keep_mask(touching);
+    let [fx, fz, my] = [fx.lanes(), fz.lanes(), my.lanes()];
+    [[fx[0], fz[0], my[0]], [fx[1], fz[1], my[1]]]
 }
 /// B_N's load at its state `s`.
 #[inline(always)]
@@ -314,6 +392,86 @@ pub(crate) fn load_element_wet(
     let (bt, bn) = (s[3] * cos - s[4] * sin, s[3] * sin + s[4] * cos);
     power[8] += p.added_mass * w * bt * bn;
     [fx, fz, my]
+}
+/// The loads of two elements, as [`load_element_wet`] gives each, on the lanes of an `F2`.
+#[inline(always)]
+pub(crate) fn load_element_pair_wet(
+    p: [&crate::BodyParams; 2],
+    lp: &crate::LoadParams,
+    e: [&crate::Element; 2],
+    s: [&[f64; 6]; 2],
+    t: [&[f64; 2]; 2],
+    contact: [[f64; 3]; 2],
+    power: &mut [crate::lanes::F2; crate::POWER_TERMS],
+) -> [[f64; 3]; 2] {
+    use crate::lanes::F2;
+    let weight = F2::new(-p[0].mass * lp.g, -p[1].mass * lp.g);
+    let zero = F2::splat(0.0);
+    let (mut fx, mut fz, mut my) = (zero, weight, zero);
+    let line = F2::mask([e[0].line, e[1].line]);
+    let cos = F2::new(t[0][0], t[1][0]);
+    let sin = F2::new(t[0][1], t[1][1]);
+    let z = F2::new(s[0][1], s[1][1]);
+    let half = F2::splat(0.5) * F2::new(e[0].length, e[1].length);
+    let (za, zb) = (z + half * sin, z - half * sin);
+    let vx = F2::new(s[0][3], s[1][3]);
+    let vz = F2::new(s[0][4], s[1][4]);
+    let w = F2::new(s[0][5], s[1][5]);
+    let volume = F2::new(e[0].volume, e[1].volume);
+    let lower = za.lt(zb);
+    let (lo, hi) = (zb.select(lower, za), za.select(lower, zb));
+    let fraction = (-lo / (hi - lo))
+        .select(lo.ge(zero), zero)
+        .select(hi.le(zero), F2::splat(1.0));
+    let wet = fraction.ne(zero).keep_mask(line);
+    let low_end = half.select(lower, -half);
+    let wet_centre = (low_end - F2::splat(1.0).copysign(low_end) * fraction * half)
+        .select(fraction.eq(F2::splat(1.0)), zero);
+    let volume = volume * fraction;
+    let above = volume - zero;
+    let buoyancy = F2::splat(lp.rho * lp.g) * zero.select(above.gt(zero), above);
+    let m = -(wet_centre * cos * buoyancy);
+    let (mut fx_wet, mut fz_wet, mut my_wet) = (fx, fz + buoyancy, my + m);
+    power[0] = power[0] + (buoyancy * vz + m * w).keep_mask(wet);
+    let len = F2::new(e[0].length, e[1].length);
+    let cubed = F2::new(e[0].length_cubed, e[1].length_cubed);
+    let k = F2::new(e[0].normal_drag, e[1].normal_drag);
+    let tangential = F2::new(e[0].tangential_drag, e[1].tangential_drag);
+    let added_mass = F2::new(p[0].added_mass, p[1].added_mass);
+    let (rel_x, rel_z) = (zero - vx, -vz);
+    let v_t = rel_x * cos - rel_z * sin;
+    let u_n = rel_x * sin + rel_z * cos;
+    let clear = u_n.abs().ge(w.abs() * half);
+    let sign = F2::splat(1.0).copysign(u_n);
+    let f_clear = k * sign * (u_n * u_n * len + w * w * cubed / F2::splat(12.0));
+    let m_clear = -k * sign * u_n * w * cubed / F2::splat(6.0);
+    let (wa, wb) = (u_n - w * half, u_n + w * half);
+    let (f2a, f2b) = (
+        wa * wa * wa.abs() / F2::splat(3.0),
+        wb * wb * wb.abs() / F2::splat(3.0),
+    );
+    let (f3a, f3b) = (
+        wa * wa * wa * wa.abs() / F2::splat(4.0),
+        wb * wb * wb * wb.abs() / F2::splat(4.0),
+    );
+    let force = (f2b - f2a) / w;
+    let first_moment = (f3b - f3a - u_n * (f2b - f2a)) / (w * w);
+    let f_n = (k * force).select(clear, f_clear);
+    let m_n = (-k * first_moment).select(clear, m_clear);
+    let f_t = tangential * v_t * v_t.abs();
+    let (f_n, m_n, f_t) = (f_n * fraction, m_n * fraction, f_t * fraction);
+    let (dx, dz) = (f_n * sin + f_t * cos, f_n * cos - f_t * sin);
+    fx_wet = fx_wet + dx;
+    fz_wet = fz_wet + dz;
+    my_wet = my_wet + m_n;
+    power[5] = power[5] + (dx * vx + dz * vz + m_n * w).keep_mask(wet);
+    let (bt, bn) = (vx * cos - vz * sin, vx * sin + vz * cos);
+    power[8] = power[8] + (added_mass * w * bt * bn).keep_mask(wet);
+    fx = fx.select(wet, fx_wet);
+    fz = fz.select(wet, fz_wet);
+    my = my.select(wet, my_wet);
+    let [fx, fz, my] = [fx.lanes(), fz.lanes(), my.lanes()];
+    [[fx[0], fz[0], my[0]], [fx[1], fz[1], my[1]]]
 }
 /// B_N's load at its state `s`.
 #[inline(always)]
@@ -441,6 +599,90 @@ pub(crate) fn load_element_wet_current(
     let (bt, bn) = (s[3] * cos - s[4] * sin, s[3] * sin + s[4] * cos);
     power[8] += p.added_mass * w * bt * bn;
     [fx, fz, my]
+}
+/// The loads of two elements, as [`load_element_wet_current`] gives each, on the lanes of an `F2`.
+#[inline(always)]
+pub(crate) fn load_element_pair_wet_current(
+    p: [&crate::BodyParams; 2],
+    lp: &crate::LoadParams,
+    e: [&crate::Element; 2],
+    s: [&[f64; 6]; 2],
+    t: [&[f64; 2]; 2],
+    contact: [[f64; 3]; 2],
+    power: &mut [crate::lanes::F2; crate::POWER_TERMS],
+) -> [[f64; 3]; 2] {
+    use crate::lanes::F2;
+    let weight = F2::new(-p[0].mass * lp.g, -p[1].mass * lp.g);
+    let zero = F2::splat(0.0);
+    let (mut fx, mut fz, mut my) = (zero, weight, zero);
+    let line = F2::mask([e[0].line, e[1].line]);
+    let cos = F2::new(t[0][0], t[1][0]);
+    let sin = F2::new(t[0][1], t[1][1]);
+    let z = F2::new(s[0][1], s[1][1]);
+    let half = F2::splat(0.5) * F2::new(e[0].length, e[1].length);
+    let (za, zb) = (z + half * sin, z - half * sin);
+    let vx = F2::new(s[0][3], s[1][3]);
+    let vz = F2::new(s[0][4], s[1][4]);
+    let w = F2::new(s[0][5], s[1][5]);
+    let volume = F2::new(e[0].volume, e[1].volume);
+    let lower = za.lt(zb);
+    let (lo, hi) = (zb.select(lower, za), za.select(lower, zb));
+    let fraction = (-lo / (hi - lo))
+        .select(lo.ge(zero), zero)
+        .select(hi.le(zero), F2::splat(1.0));
+    let wet = fraction.ne(zero).keep_mask(line);
+    let low_end = half.select(lower, -half);
+    let wet_centre = (low_end - F2::splat(1.0).copysign(low_end) * fraction * half)
+        .select(fraction.eq(F2::splat(1.0)), zero);
+    let volume = volume * fraction;
+    let above = volume - zero;
+    let buoyancy = F2::splat(lp.rho * lp.g) * zero.select(above.gt(zero), above);
+    let m = -(wet_centre * cos * buoyancy);
+    let (mut fx_wet, mut fz_wet, mut my_wet) = (fx, fz + buoyancy, my + m);
+    power[0] = power[0] + (buoyancy * vz + m * w).keep_mask(wet);
+    let depth = F2::splat(lp.water_depth);
+    let current = F2::splat(lp.current_speed)
+        * ((z - F2::splat(lp.seabed_z)).clamp(zero, depth) / depth)
+            .map(|h| h.powf(lp.current_exponent));
+    let len = F2::new(e[0].length, e[1].length);
+    let cubed = F2::new(e[0].length_cubed, e[1].length_cubed);
+    let k = F2::new(e[0].normal_drag, e[1].normal_drag);
+    let tangential = F2::new(e[0].tangential_drag, e[1].tangential_drag);
+    let added_mass = F2::new(p[0].added_mass, p[1].added_mass);
+    let (rel_x, rel_z) = (current - vx, -vz);
+    let v_t = rel_x * cos - rel_z * sin;
+    let u_n = rel_x * sin + rel_z * cos;
+    let clear = u_n.abs().ge(w.abs() * half);
+    let sign = F2::splat(1.0).copysign(u_n);
+    let f_clear = k * sign * (u_n * u_n * len + w * w * cubed / F2::splat(12.0));
+    let m_clear = -k * sign * u_n * w * cubed / F2::splat(6.0);
+    let (wa, wb) = (u_n - w * half, u_n + w * half);
+    let (f2a, f2b) = (
+        wa * wa * wa.abs() / F2::splat(3.0),
+        wb * wb * wb.abs() / F2::splat(3.0),
+    );
+    let (f3a, f3b) = (
+        wa * wa * wa * wa.abs() / F2::splat(4.0),
+        wb * wb * wb * wb.abs() / F2::splat(4.0),
+    );
+    let force = (f2b - f2a) / w;
+    let first_moment = (f3b - f3a - u_n * (f2b - f2a)) / (w * w);
+    let f_n = (k * force).select(clear, f_clear);
+    let m_n = (-k * first_moment).select(clear, m_clear);
+    let f_t = tangential * v_t * v_t.abs();
+    let (f_n, m_n, f_t) = (f_n * fraction, m_n * fraction, f_t * fraction);
+    let (dx, dz) = (f_n * sin + f_t * cos, f_n * cos - f_t * sin);
+    fx_wet = fx_wet + dx;
+    fz_wet = fz_wet + dz;
+    my_wet = my_wet + m_n;
+    power[5] = power[5] + (dx * vx + dz * vz + m_n * w).keep_mask(wet);
+    let (bt, bn) = (vx * cos - vz * sin, vx * sin + vz * cos);
+    power[8] = power[8] + (added_mass * w * bt * bn).keep_mask(wet);
+    fx = fx.select(wet, fx_wet);
+    fz = fz.select(wet, fz_wet);
+    my = my.select(wet, my_wet);
+    let [fx, fz, my] = [fx.lanes(), fz.lanes(), my.lanes()];
+    [[fx[0], fz[0], my[0]], [fx[1], fz[1], my[1]]]
 }
 /// B_N's load at its state `s`.
 #[inline(always)]
@@ -602,6 +844,96 @@ pub(crate) fn load_element_wet_seabed(
     let (bt, bn) = (s[3] * cos - s[4] * sin, s[3] * sin + s[4] * cos);
     power[8] += p.added_mass * w * bt * bn;
     [fx, fz, my]
+}
+/// The loads of two elements, as [`load_element_wet_seabed`] gives each, on the lanes of an `F2`.
+#[inline(always)]
+pub(crate) fn load_element_pair_wet_seabed(
+    p: [&crate::BodyParams; 2],
+    lp: &crate::LoadParams,
+    e: [&crate::Element; 2],
+    s: [&[f64; 6]; 2],
+    t: [&[f64; 2]; 2],
+    contact: [[f64; 3]; 2],
+    power: &mut [crate::lanes::F2; crate::POWER_TERMS],
+) -> [[f64; 3]; 2] {
+    use crate::lanes::F2;
+    let weight = F2::new(-p[0].mass * lp.g, -p[1].mass * lp.g);
+    let zero = F2::splat(0.0);
+    let (mut fx, mut fz, mut my) = (zero, weight, zero);
+    let line = F2::mask([e[0].line, e[1].line]);
+    let cos = F2::new(t[0][0], t[1][0]);
+    let sin = F2::new(t[0][1], t[1][1]);
+    let z = F2::new(s[0][1], s[1][1]);
+    let half = F2::splat(0.5) * F2::new(e[0].length, e[1].length);
+    let (za, zb) = (z + half * sin, z - half * sin);
+    let vx = F2::new(s[0][3], s[1][3]);
+    let vz = F2::new(s[0][4], s[1][4]);
+    let w = F2::new(s[0][5], s[1][5]);
+    let v = F2::new(contact[0][0], contact[1][0]);
+    let s_bar = F2::new(contact[0][1], contact[1][1]);
+    let touching = v.gt(zero).keep_mask(line);
+    let xi = s_bar - half;
+    let reaction = F2::splat(lp.seabed_stiffness) * v;
+    let m = -(xi * cos * reaction);
+    fz = fz.select(touching, fz + reaction);
+    my = my.select(touching, my + m);
+    power[1] = power[1] + (reaction * vz + m * w).keep_mask(touching);
+    let embedded = zero.select(touching, v);
+    let volume = F2::new(e[0].volume, e[1].volume);
+    let lower = za.lt(zb);
+    let (lo, hi) = (zb.select(lower, za), za.select(lower, zb));
+    let fraction = (-lo / (hi - lo))
+        .select(lo.ge(zero), zero)
+        .select(hi.le(zero), F2::splat(1.0));
+    let wet = fraction.ne(zero).keep_mask(line);
+    let low_end = half.select(lower, -half);
+    let wet_centre = (low_end - F2::splat(1.0).copysign(low_end) * fraction * half)
+        .select(fraction.eq(F2::splat(1.0)), zero);
+    let volume = volume * fraction;
+    let above = volume - embedded;
+    let buoyancy = F2::splat(lp.rho * lp.g) * zero.select(above.gt(zero), above);
+    let m = -(wet_centre * cos * buoyancy);
+    let (mut fx_wet, mut fz_wet, mut my_wet) = (fx, fz + buoyancy, my + m);
+    power[0] = power[0] + (buoyancy * vz + m * w).keep_mask(wet);
+    let len = F2::new(e[0].length, e[1].length);
+    let cubed = F2::new(e[0].length_cubed, e[1].length_cubed);
+    let k = F2::new(e[0].normal_drag, e[1].normal_drag);
+    let tangential = F2::new(e[0].tangential_drag, e[1].tangential_drag);
+    let added_mass = F2::new(p[0].added_mass, p[1].added_mass);
+    let (rel_x, rel_z) = (zero - vx, -vz);
+    let v_t = rel_x * cos - rel_z * sin;
+    let u_n = rel_x * sin + rel_z * cos;
+    let clear = u_n.abs().ge(w.abs() * half);
+    let sign = F2::splat(1.0).copysign(u_n);
+    let f_clear = k * sign * (u_n * u_n * len + w * w * cubed / F2::splat(12.0));
+    let m_clear = -k * sign * u_n * w * cubed / F2::splat(6.0);
+    let (wa, wb) = (u_n - w * half, u_n + w * half);
+    let (f2a, f2b) = (
+        wa * wa * wa.abs() / F2::splat(3.0),
+        wb * wb * wb.abs() / F2::splat(3.0),
+    );
+    let (f3a, f3b) = (
+        wa * wa * wa * wa.abs() / F2::splat(4.0),
+        wb * wb * wb * wb.abs() / F2::splat(4.0),
+    );
+    let force = (f2b - f2a) / w;
+    let first_moment = (f3b - f3a - u_n * (f2b - f2a)) / (w * w);
+    let f_n = (k * force).select(clear, f_clear);
+    let m_n = (-k * first_moment).select(clear, m_clear);
+    let f_t = tangential * v_t * v_t.abs();
+    let (f_n, m_n, f_t) = (f_n * fraction, m_n * fraction, f_t * fraction);
+    let (dx, dz) = (f_n * sin + f_t * cos, f_n * cos - f_t * sin);
+    fx_wet = fx_wet + dx;
+    fz_wet = fz_wet + dz;
+    my_wet = my_wet + m_n;
+    power[5] = power[5] + (dx * vx + dz * vz + m_n * w).keep_mask(wet);
+    let (bt, bn) = (vx * cos - vz * sin, vx * sin + vz * cos);
+    power[8] = power[8] + (added_mass * w * bt * bn).keep_mask(wet);
+    fx = fx.select(wet, fx_wet);
+    fz = fz.select(wet, fz_wet);
+    my = my.select(wet, my_wet);
+    let [fx, fz, my] = [fx.lanes(), fz.lanes(), my.lanes()];
+    [[fx[0], fz[0], my[0]], [fx[1], fz[1], my[1]]]
 }
 /// B_N's load at its state `s`.
 #[inline(always)]
@@ -767,6 +1099,103 @@ pub(crate) fn load_element_wet_seabed_friction(
     power[8] += p.added_mass * w * bt * bn;
     [fx, fz, my]
 }
+/// The loads of two elements, as [`load_element_wet_seabed_friction`] gives each, on the lanes of an `F2`.
+#[inline(always)]
+pub(crate) fn load_element_pair_wet_seabed_friction(
+    p: [&crate::BodyParams; 2],
+    lp: &crate::LoadParams,
+    e: [&crate::Element; 2],
+    s: [&[f64; 6]; 2],
+    t: [&[f64; 2]; 2],
+    contact: [[f64; 3]; 2],
+    power: &mut [crate::lanes::F2; crate::POWER_TERMS],
+) -> [[f64; 3]; 2] {
+    use crate::lanes::F2;
+    let weight = F2::new(-p[0].mass * lp.g, -p[1].mass * lp.g);
+    let zero = F2::splat(0.0);
+    let (mut fx, mut fz, mut my) = (zero, weight, zero);
+    let line = F2::mask([e[0].line, e[1].line]);
+    let cos = F2::new(t[0][0], t[1][0]);
+    let sin = F2::new(t[0][1], t[1][1]);
+    let z = F2::new(s[0][1], s[1][1]);
+    let half = F2::splat(0.5) * F2::new(e[0].length, e[1].length);
+    let (za, zb) = (z + half * sin, z - half * sin);
+    let vx = F2::new(s[0][3], s[1][3]);
+    let vz = F2::new(s[0][4], s[1][4]);
+    let w = F2::new(s[0][5], s[1][5]);
+    let v = F2::new(contact[0][0], contact[1][0]);
+    let s_bar = F2::new(contact[0][1], contact[1][1]);
+    let touching = v.gt(zero).keep_mask(line);
+    let xi = s_bar - half;
+    let reaction = F2::splat(lp.seabed_stiffness) * v;
+    let m = -(xi * cos * reaction);
+    fz = fz.select(touching, fz + reaction);
+    my = my.select(touching, my + m);
+    power[1] = power[1] + (reaction * vz + m * w).keep_mask(touching);
+    let slip = vx - xi * w * sin;
+    let friction = F2::splat(-lp.line_friction) * reaction
+        * (slip / F2::splat(lp.slip_speed)).map(f64::tanh);
+    let m = -(xi * sin) * friction;
+    fx = fx.select(touching, fx + friction);
+    my = my.select(touching, my + m);
+    power[3] = power[3] + (friction * vx + m * w).keep_mask(touching);
+    let embedded = zero.select(touching, v);
+    let volume = F2::new(e[0].volume, e[1].volume);
+    let lower = za.lt(zb);
+    let (lo, hi) = (zb.select(lower, za), za.select(lower, zb));
+    let fraction = (-lo / (hi - lo))
+        .select(lo.ge(zero), zero)
+        .select(hi.le(zero), F2::splat(1.0));
+    let wet = fraction.ne(zero).keep_mask(line);
+    let low_end = half.select(lower, -half);
+    let wet_centre = (low_end - F2::splat(1.0).copysign(low_end) * fraction * half)
+        .select(fraction.eq(F2::splat(1.0)), zero);
+    let volume = volume * fraction;
+    let above = volume - embedded;
+    let buoyancy = F2::splat(lp.rho * lp.g) * zero.select(above.gt(zero), above);
+    let m = -(wet_centre * cos * buoyancy);
+    let (mut fx_wet, mut fz_wet, mut my_wet) = (fx, fz + buoyancy, my + m);
+    power[0] = power[0] + (buoyancy * vz + m * w).keep_mask(wet);
+    let len = F2::new(e[0].length, e[1].length);
+    let cubed = F2::new(e[0].length_cubed, e[1].length_cubed);
+    let k = F2::new(e[0].normal_drag, e[1].normal_drag);
+    let tangential = F2::new(e[0].tangential_drag, e[1].tangential_drag);
+    let added_mass = F2::new(p[0].added_mass, p[1].added_mass);
+    let (rel_x, rel_z) = (zero - vx, -vz);
+    let v_t = rel_x * cos - rel_z * sin;
+    let u_n = rel_x * sin + rel_z * cos;
+    let clear = u_n.abs().ge(w.abs() * half);
+    let sign = F2::splat(1.0).copysign(u_n);
+    let f_clear = k * sign * (u_n * u_n * len + w * w * cubed / F2::splat(12.0));
+    let m_clear = -k * sign * u_n * w * cubed / F2::splat(6.0);
+    let (wa, wb) = (u_n - w * half, u_n + w * half);
+    let (f2a, f2b) = (
+        wa * wa * wa.abs() / F2::splat(3.0),
+        wb * wb * wb.abs() / F2::splat(3.0),
+    );
+    let (f3a, f3b) = (
+        wa * wa * wa * wa.abs() / F2::splat(4.0),
+        wb * wb * wb * wb.abs() / F2::splat(4.0),
+    );
+    let force = (f2b - f2a) / w;
+    let first_moment = (f3b - f3a - u_n * (f2b - f2a)) / (w * w);
+    let f_n = (k * force).select(clear, f_clear);
+    let m_n = (-k * first_moment).select(clear, m_clear);
+    let f_t = tangential * v_t * v_t.abs();
+    let (f_n, m_n, f_t) = (f_n * fraction, m_n * fraction, f_t * fraction);
+    let (dx, dz) = (f_n * sin + f_t * cos, f_n * cos - f_t * sin);
+    fx_wet = fx_wet + dx;
+    fz_wet = fz_wet + dz;
+    my_wet = my_wet + m_n;
+    power[5] = power[5] + (dx * vx + dz * vz + m_n * w).keep_mask(wet);
+    let (bt, bn) = (vx * cos - vz * sin, vx * sin + vz * cos);
+    power[8] = power[8] + (added_mass * w * bt * bn).keep_mask(wet);
+    fx = fx.select(wet, fx_wet);
+    fz = fz.select(wet, fz_wet);
+    my = my.select(wet, my_wet);
+    let [fx, fz, my] = [fx.lanes(), fz.lanes(), my.lanes()];
+    [[fx[0], fz[0], my[0]], [fx[1], fz[1], my[1]]]
+}
 /// B_N's load at its state `s`.
 #[inline(always)]
 pub(crate) fn load_ship_wet_seabed_friction(
@@ -930,6 +1359,100 @@ pub(crate) fn load_element_wet_seabed_current(
     let (bt, bn) = (s[3] * cos - s[4] * sin, s[3] * sin + s[4] * cos);
     power[8] += p.added_mass * w * bt * bn;
     [fx, fz, my]
+}
+/// The loads of two elements, as [`load_element_wet_seabed_current`] gives each, on the lanes of an `F2`.
+#[inline(always)]
+pub(crate) fn load_element_pair_wet_seabed_current(
+    p: [&crate::BodyParams; 2],
+    lp: &crate::LoadParams,
+    e: [&crate::Element; 2],
+    s: [&[f64; 6]; 2],
+    t: [&[f64; 2]; 2],
+    contact: [[f64; 3]; 2],
+    power: &mut [crate::lanes::F2; crate::POWER_TERMS],
+) -> [[f64; 3]; 2] {
+    use crate::lanes::F2;
+    let weight = F2::new(-p[0].mass * lp.g, -p[1].mass * lp.g);
+    let zero = F2::splat(0.0);
+    let (mut fx, mut fz, mut my) = (zero, weight, zero);
+    let line = F2::mask([e[0].line, e[1].line]);
+    let cos = F2::new(t[0][0], t[1][0]);
+    let sin = F2::new(t[0][1], t[1][1]);
+    let z = F2::new(s[0][1], s[1][1]);
+    let half = F2::splat(0.5) * F2::new(e[0].length, e[1].length);
+    let (za, zb) = (z + half * sin, z - half * sin);
+    let vx = F2::new(s[0][3], s[1][3]);
+    let vz = F2::new(s[0][4], s[1][4]);
+    let w = F2::new(s[0][5], s[1][5]);
+    let v = F2::new(contact[0][0], contact[1][0]);
+    let s_bar = F2::new(contact[0][1], contact[1][1]);
+    let touching = v.gt(zero).keep_mask(line);
+    let xi = s_bar - half;
+    let reaction = F2::splat(lp.seabed_stiffness) * v;
+    let m = -(xi * cos * reaction);
+    fz = fz.select(touching, fz + reaction);
+    my = my.select(touching, my + m);
+    power[1] = power[1] + (reaction * vz + m * w).keep_mask(touching);
+    let embedded = zero.select(touching, v);
+    let volume = F2::new(e[0].volume, e[1].volume);
+    let lower = za.lt(zb);
+    let (lo, hi) = (zb.select(lower, za), za.select(lower, zb));
+    let fraction = (-lo / (hi - lo))
+        .select(lo.ge(zero), zero)
+        .select(hi.le(zero), F2::splat(1.0));
+    let wet = fraction.ne(zero).keep_mask(line);
+    let low_end = half.select(lower, -half);
+    let wet_centre = (low_end - F2::splat(1.0).copysign(low_end) * fraction * half)
+        .select(fraction.eq(F2::splat(1.0)), zero);
+    let volume = volume * fraction;
+    let above = volume - embedded;
+    let buoyancy = F2::splat(lp.rho * lp.g) * zero.select(above.gt(zero), above);
+    let m = -(wet_centre * cos * buoyancy);
+    let (mut fx_wet, mut fz_wet, mut my_wet) = (fx, fz + buoyancy, my + m);
+    power[0] = power[0] + (buoyancy * vz + m * w).keep_mask(wet);
+    let depth = F2::splat(lp.water_depth);
+    let current = F2::splat(lp.current_speed)
+        * ((z - F2::splat(lp.seabed_z)).clamp(zero, depth) / depth)
+            .map(|h| h.powf(lp.current_exponent));
+    let len = F2::new(e[0].length, e[1].length);
+    let cubed = F2::new(e[0].length_cubed, e[1].length_cubed);
+    let k = F2::new(e[0].normal_drag, e[1].normal_drag);
+    let tangential = F2::new(e[0].tangential_drag, e[1].tangential_drag);
+    let added_mass = F2::new(p[0].added_mass, p[1].added_mass);
+    let (rel_x, rel_z) = (current - vx, -vz);
+    let v_t = rel_x * cos - rel_z * sin;
+    let u_n = rel_x * sin + rel_z * cos;
+    let clear = u_n.abs().ge(w.abs() * half);
+    let sign = F2::splat(1.0).copysign(u_n);
+    let f_clear = k * sign * (u_n * u_n * len + w * w * cubed / F2::splat(12.0));
+    let m_clear = -k * sign * u_n * w * cubed / F2::splat(6.0);
+    let (wa, wb) = (u_n - w * half, u_n + w * half);
+    let (f2a, f2b) = (
+        wa * wa * wa.abs() / F2::splat(3.0),
+        wb * wb * wb.abs() / F2::splat(3.0),
+    );
+    let (f3a, f3b) = (
+        wa * wa * wa * wa.abs() / F2::splat(4.0),
+        wb * wb * wb * wb.abs() / F2::splat(4.0),
+    );
+    let force = (f2b - f2a) / w;
+    let first_moment = (f3b - f3a - u_n * (f2b - f2a)) / (w * w);
+    let f_n = (k * force).select(clear, f_clear);
+    let m_n = (-k * first_moment).select(clear, m_clear);
+    let f_t = tangential * v_t * v_t.abs();
+    let (f_n, m_n, f_t) = (f_n * fraction, m_n * fraction, f_t * fraction);
+    let (dx, dz) = (f_n * sin + f_t * cos, f_n * cos - f_t * sin);
+    fx_wet = fx_wet + dx;
+    fz_wet = fz_wet + dz;
+    my_wet = my_wet + m_n;
+    power[5] = power[5] + (dx * vx + dz * vz + m_n * w).keep_mask(wet);
+    let (bt, bn) = (vx * cos - vz * sin, vx * sin + vz * cos);
+    power[8] = power[8] + (added_mass * w * bt * bn).keep_mask(wet);
+    fx = fx.select(wet, fx_wet);
+    fz = fz.select(wet, fz_wet);
+    my = my.select(wet, my_wet);
+    let [fx, fz, my] = [fx.lanes(), fz.lanes(), my.lanes()];
+    [[fx[0], fz[0], my[0]], [fx[1], fz[1], my[1]]]
 }
 /// B_N's load at its state `s`.
 #[inline(always)]
@@ -1103,6 +1626,107 @@ pub(crate) fn load_element_wet_seabed_friction_current(
     let (bt, bn) = (s[3] * cos - s[4] * sin, s[3] * sin + s[4] * cos);
     power[8] += p.added_mass * w * bt * bn;
     [fx, fz, my]
+}
+/// The loads of two elements, as [`load_element_wet_seabed_friction_current`] gives each, on the lanes of an `F2`.
+#[inline(always)]
+pub(crate) fn load_element_pair_wet_seabed_friction_current(
+    p: [&crate::BodyParams; 2],
+    lp: &crate::LoadParams,
+    e: [&crate::Element; 2],
+    s: [&[f64; 6]; 2],
+    t: [&[f64; 2]; 2],
+    contact: [[f64; 3]; 2],
+    power: &mut [crate::lanes::F2; crate::POWER_TERMS],
+) -> [[f64; 3]; 2] {
+    use crate::lanes::F2;
+    let weight = F2::new(-p[0].mass * lp.g, -p[1].mass * lp.g);
+    let zero = F2::splat(0.0);
+    let (mut fx, mut fz, mut my) = (zero, weight, zero);
+    let line = F2::mask([e[0].line, e[1].line]);
+    let cos = F2::new(t[0][0], t[1][0]);
+    let sin = F2::new(t[0][1], t[1][1]);
+    let z = F2::new(s[0][1], s[1][1]);
+    let half = F2::splat(0.5) * F2::new(e[0].length, e[1].length);
+    let (za, zb) = (z + half * sin, z - half * sin);
+    let vx = F2::new(s[0][3], s[1][3]);
+    let vz = F2::new(s[0][4], s[1][4]);
+    let w = F2::new(s[0][5], s[1][5]);
+    let v = F2::new(contact[0][0], contact[1][0]);
+    let s_bar = F2::new(contact[0][1], contact[1][1]);
+    let touching = v.gt(zero).keep_mask(line);
+    let xi = s_bar - half;
+    let reaction = F2::splat(lp.seabed_stiffness) * v;
+    let m = -(xi * cos * reaction);
+    fz = fz.select(touching, fz + reaction);
+    my = my.select(touching, my + m);
+    power[1] = power[1] + (reaction * vz + m * w).keep_mask(touching);
+    let slip = vx - xi * w * sin;
+    let friction = F2::splat(-lp.line_friction) * reaction
+        * (slip / F2::splat(lp.slip_speed)).map(f64::tanh);
+    let m = -(xi * sin) * friction;
+    fx = fx.select(touching, fx + friction);
+    my = my.select(touching, my + m);
+    power[3] = power[3] + (friction * vx + m * w).keep_mask(touching);
+    let embedded = zero.select(touching, v);
+    let volume = F2::new(e[0].volume, e[1].volume);
+    let lower = za.lt(zb);
+    let (lo, hi) = (zb.select(lower, za), za.select(lower, zb));
+    let fraction = (-lo / (hi - lo))
+        .select(lo.ge(zero), zero)
+        .select(hi.le(zero), F2::splat(1.0));
+    let wet = fraction.ne(zero).keep_mask(line);
+    let low_end = half.select(lower, -half);
+    let wet_centre = (low_end - F2::splat(1.0).copysign(low_end) * fraction * half)
+        .select(fraction.eq(F2::splat(1.0)), zero);
+    let volume = volume * fraction;
+    let above = volume - embedded;
+    let buoyancy = F2::splat(lp.rho * lp.g) * zero.select(above.gt(zero), above);
+    let m = -(wet_centre * cos * buoyancy);
+    let (mut fx_wet, mut fz_wet, mut my_wet) = (fx, fz + buoyancy, my + m);
+    power[0] = power[0] + (buoyancy * vz + m * w).keep_mask(wet);
+    let depth = F2::splat(lp.water_depth);
+    let current = F2::splat(lp.current_speed)
+        * ((z - F2::splat(lp.seabed_z)).clamp(zero, depth) / depth)
+            .map(|h| h.powf(lp.current_exponent));
+    let len = F2::new(e[0].length, e[1].length);
+    let cubed = F2::new(e[0].length_cubed, e[1].length_cubed);
+    let k = F2::new(e[0].normal_drag, e[1].normal_drag);
+    let tangential = F2::new(e[0].tangential_drag, e[1].tangential_drag);
+    let added_mass = F2::new(p[0].added_mass, p[1].added_mass);
+    let (rel_x, rel_z) = (current - vx, -vz);
+    let v_t = rel_x * cos - rel_z * sin;
+    let u_n = rel_x * sin + rel_z * cos;
+    let clear = u_n.abs().ge(w.abs() * half);
+    let sign = F2::splat(1.0).copysign(u_n);
+    let f_clear = k * sign * (u_n * u_n * len + w * w * cubed / F2::splat(12.0));
+    let m_clear = -k * sign * u_n * w * cubed / F2::splat(6.0);
+    let (wa, wb) = (u_n - w * half, u_n + w * half);
+    let (f2a, f2b) = (
+        wa * wa * wa.abs() / F2::splat(3.0),
+        wb * wb * wb.abs() / F2::splat(3.0),
+    );
+    let (f3a, f3b) = (
+        wa * wa * wa * wa.abs() / F2::splat(4.0),
+        wb * wb * wb * wb.abs() / F2::splat(4.0),
+    );
+    let force = (f2b - f2a) / w;
+    let first_moment = (f3b - f3a - u_n * (f2b - f2a)) / (w * w);
+    let f_n = (k * force).select(clear, f_clear);
+    let m_n = (-k * first_moment).select(clear, m_clear);
+    let f_t = tangential * v_t * v_t.abs();
+    let (f_n, m_n, f_t) = (f_n * fraction, m_n * fraction, f_t * fraction);
+    let (dx, dz) = (f_n * sin + f_t * cos, f_n * cos - f_t * sin);
+    fx_wet = fx_wet + dx;
+    fz_wet = fz_wet + dz;
+    my_wet = my_wet + m_n;
+    power[5] = power[5] + (dx * vx + dz * vz + m_n * w).keep_mask(wet);
+    let (bt, bn) = (vx * cos - vz * sin, vx * sin + vz * cos);
+    power[8] = power[8] + (added_mass * w * bt * bn).keep_mask(wet);
+    fx = fx.select(wet, fx_wet);
+    fz = fz.select(wet, fz_wet);
+    my = my.select(wet, my_wet);
+    let [fx, fz, my] = [fx.lanes(), fz.lanes(), my.lanes()];
+    [[fx[0], fz[0], my[0]], [fx[1], fz[1], my[1]]]
 }
 /// B_N's load at its state `s`.
 #[inline(always)]

@@ -228,15 +228,17 @@ fn pass_dry_seabed(
         &loads[n - 1],
         &mut scratch[n - 1],
     );
-    for k in (2..n - 1).rev() {
-        loads[k] = crate::loads::load_element_dry_seabed(
-            &p[k],
+    let mut lanes = [crate::lanes::F2::splat(0.0); crate::POWER_TERMS];
+    let mut k = n - 2;
+    while k >= 3 {
+        [loads[k], loads[k - 1]] = crate::loads::load_element_pair_dry_seabed(
+            [&p[k], &p[k - 1]],
             lp,
-            &e[k],
-            &bodies[k],
-            &trig[k],
-            loads[k],
-            power,
+            [&e[k], &e[k - 1]],
+            [&bodies[k], &bodies[k - 1]],
+            [&trig[k], &trig[k - 1]],
+            [loads[k], loads[k - 1]],
+            &mut lanes,
         );
         let (w, wp) = (scratch[k][W], scratch[k - 1][W]);
         c = crate::rolled_dry::inward_rod(
@@ -249,16 +251,55 @@ fn pass_dry_seabed(
             &c,
             &mut scratch[k],
         );
+        let (w, wp) = (scratch[k - 1][W], scratch[k - 2][W]);
+        c = crate::rolled_dry::inward_rod(
+            &p[k - 1],
+            &trig[k - 1],
+            w,
+            &trig[k - 2],
+            wp,
+            &loads[k - 1],
+            &c,
+            &mut scratch[k - 1],
+        );
+        k -= 2;
     }
-    loads[1] = crate::loads::load_element_dry_seabed(
-        &p[1],
-        lp,
-        &e[1],
-        &bodies[1],
-        &trig[1],
-        loads[1],
-        power,
-    );
+    if k == 2 {
+        [loads[2], loads[1]] = crate::loads::load_element_pair_dry_seabed(
+            [&p[2], &p[1]],
+            lp,
+            [&e[2], &e[1]],
+            [&bodies[2], &bodies[1]],
+            [&trig[2], &trig[1]],
+            [loads[2], loads[1]],
+            &mut lanes,
+        );
+        let (w, wp) = (scratch[2][W], scratch[1][W]);
+        c = crate::rolled_dry::inward_rod(
+            &p[2],
+            &trig[2],
+            w,
+            &trig[1],
+            wp,
+            &loads[2],
+            &c,
+            &mut scratch[2],
+        );
+    } else {
+        loads[1] = crate::loads::load_element_dry_seabed(
+            &p[1],
+            lp,
+            &e[1],
+            &bodies[1],
+            &trig[1],
+            loads[1],
+            power,
+        );
+    }
+    for (sum, lane) in power.iter_mut().zip(lanes) {
+        let [a, b] = lane.lanes();
+        *sum += a + b;
+    }
     let c = crate::rolled_dry::inward_first(
         &p[1],
         &trig[1],
@@ -350,15 +391,17 @@ fn pass_dry_seabed_friction(
         &loads[n - 1],
         &mut scratch[n - 1],
     );
-    for k in (2..n - 1).rev() {
-        loads[k] = crate::loads::load_element_dry_seabed_friction(
-            &p[k],
+    let mut lanes = [crate::lanes::F2::splat(0.0); crate::POWER_TERMS];
+    let mut k = n - 2;
+    while k >= 3 {
+        [loads[k], loads[k - 1]] = crate::loads::load_element_pair_dry_seabed_friction(
+            [&p[k], &p[k - 1]],
             lp,
-            &e[k],
-            &bodies[k],
-            &trig[k],
-            loads[k],
-            power,
+            [&e[k], &e[k - 1]],
+            [&bodies[k], &bodies[k - 1]],
+            [&trig[k], &trig[k - 1]],
+            [loads[k], loads[k - 1]],
+            &mut lanes,
         );
         let (w, wp) = (scratch[k][W], scratch[k - 1][W]);
         c = crate::rolled_dry::inward_rod(
@@ -371,16 +414,55 @@ fn pass_dry_seabed_friction(
             &c,
             &mut scratch[k],
         );
+        let (w, wp) = (scratch[k - 1][W], scratch[k - 2][W]);
+        c = crate::rolled_dry::inward_rod(
+            &p[k - 1],
+            &trig[k - 1],
+            w,
+            &trig[k - 2],
+            wp,
+            &loads[k - 1],
+            &c,
+            &mut scratch[k - 1],
+        );
+        k -= 2;
     }
-    loads[1] = crate::loads::load_element_dry_seabed_friction(
-        &p[1],
-        lp,
-        &e[1],
-        &bodies[1],
-        &trig[1],
-        loads[1],
-        power,
-    );
+    if k == 2 {
+        [loads[2], loads[1]] = crate::loads::load_element_pair_dry_seabed_friction(
+            [&p[2], &p[1]],
+            lp,
+            [&e[2], &e[1]],
+            [&bodies[2], &bodies[1]],
+            [&trig[2], &trig[1]],
+            [loads[2], loads[1]],
+            &mut lanes,
+        );
+        let (w, wp) = (scratch[2][W], scratch[1][W]);
+        c = crate::rolled_dry::inward_rod(
+            &p[2],
+            &trig[2],
+            w,
+            &trig[1],
+            wp,
+            &loads[2],
+            &c,
+            &mut scratch[2],
+        );
+    } else {
+        loads[1] = crate::loads::load_element_dry_seabed_friction(
+            &p[1],
+            lp,
+            &e[1],
+            &bodies[1],
+            &trig[1],
+            loads[1],
+            power,
+        );
+    }
+    for (sum, lane) in power.iter_mut().zip(lanes) {
+        let [a, b] = lane.lanes();
+        *sum += a + b;
+    }
     let c = crate::rolled_dry::inward_first(
         &p[1],
         &trig[1],
@@ -471,15 +553,17 @@ fn pass_wet(
         &loads[n - 1],
         &mut scratch[n - 1],
     );
-    for k in (2..n - 1).rev() {
-        loads[k] = crate::loads::load_element_wet(
-            &p[k],
+    let mut lanes = [crate::lanes::F2::splat(0.0); crate::POWER_TERMS];
+    let mut k = n - 2;
+    while k >= 3 {
+        [loads[k], loads[k - 1]] = crate::loads::load_element_pair_wet(
+            [&p[k], &p[k - 1]],
             lp,
-            &e[k],
-            &bodies[k],
-            &trig[k],
-            [0.0; 3],
-            power,
+            [&e[k], &e[k - 1]],
+            [&bodies[k], &bodies[k - 1]],
+            [&trig[k], &trig[k - 1]],
+            [[0.0; 3]; 2],
+            &mut lanes,
         );
         let (w, wp) = (scratch[k][W], scratch[k - 1][W]);
         c = crate::rolled_wet::inward_rod(
@@ -492,16 +576,55 @@ fn pass_wet(
             &c,
             &mut scratch[k],
         );
+        let (w, wp) = (scratch[k - 1][W], scratch[k - 2][W]);
+        c = crate::rolled_wet::inward_rod(
+            &p[k - 1],
+            &trig[k - 1],
+            w,
+            &trig[k - 2],
+            wp,
+            &loads[k - 1],
+            &c,
+            &mut scratch[k - 1],
+        );
+        k -= 2;
     }
-    loads[1] = crate::loads::load_element_wet(
-        &p[1],
-        lp,
-        &e[1],
-        &bodies[1],
-        &trig[1],
-        [0.0; 3],
-        power,
-    );
+    if k == 2 {
+        [loads[2], loads[1]] = crate::loads::load_element_pair_wet(
+            [&p[2], &p[1]],
+            lp,
+            [&e[2], &e[1]],
+            [&bodies[2], &bodies[1]],
+            [&trig[2], &trig[1]],
+            [[0.0; 3]; 2],
+            &mut lanes,
+        );
+        let (w, wp) = (scratch[2][W], scratch[1][W]);
+        c = crate::rolled_wet::inward_rod(
+            &p[2],
+            &trig[2],
+            w,
+            &trig[1],
+            wp,
+            &loads[2],
+            &c,
+            &mut scratch[2],
+        );
+    } else {
+        loads[1] = crate::loads::load_element_wet(
+            &p[1],
+            lp,
+            &e[1],
+            &bodies[1],
+            &trig[1],
+            [0.0; 3],
+            power,
+        );
+    }
+    for (sum, lane) in power.iter_mut().zip(lanes) {
+        let [a, b] = lane.lanes();
+        *sum += a + b;
+    }
     let c = crate::rolled_wet::inward_first(
         &p[1],
         &trig[1],
@@ -592,15 +715,17 @@ fn pass_wet_current(
         &loads[n - 1],
         &mut scratch[n - 1],
     );
-    for k in (2..n - 1).rev() {
-        loads[k] = crate::loads::load_element_wet_current(
-            &p[k],
+    let mut lanes = [crate::lanes::F2::splat(0.0); crate::POWER_TERMS];
+    let mut k = n - 2;
+    while k >= 3 {
+        [loads[k], loads[k - 1]] = crate::loads::load_element_pair_wet_current(
+            [&p[k], &p[k - 1]],
             lp,
-            &e[k],
-            &bodies[k],
-            &trig[k],
-            [0.0; 3],
-            power,
+            [&e[k], &e[k - 1]],
+            [&bodies[k], &bodies[k - 1]],
+            [&trig[k], &trig[k - 1]],
+            [[0.0; 3]; 2],
+            &mut lanes,
         );
         let (w, wp) = (scratch[k][W], scratch[k - 1][W]);
         c = crate::rolled_wet::inward_rod(
@@ -613,16 +738,55 @@ fn pass_wet_current(
             &c,
             &mut scratch[k],
         );
+        let (w, wp) = (scratch[k - 1][W], scratch[k - 2][W]);
+        c = crate::rolled_wet::inward_rod(
+            &p[k - 1],
+            &trig[k - 1],
+            w,
+            &trig[k - 2],
+            wp,
+            &loads[k - 1],
+            &c,
+            &mut scratch[k - 1],
+        );
+        k -= 2;
     }
-    loads[1] = crate::loads::load_element_wet_current(
-        &p[1],
-        lp,
-        &e[1],
-        &bodies[1],
-        &trig[1],
-        [0.0; 3],
-        power,
-    );
+    if k == 2 {
+        [loads[2], loads[1]] = crate::loads::load_element_pair_wet_current(
+            [&p[2], &p[1]],
+            lp,
+            [&e[2], &e[1]],
+            [&bodies[2], &bodies[1]],
+            [&trig[2], &trig[1]],
+            [[0.0; 3]; 2],
+            &mut lanes,
+        );
+        let (w, wp) = (scratch[2][W], scratch[1][W]);
+        c = crate::rolled_wet::inward_rod(
+            &p[2],
+            &trig[2],
+            w,
+            &trig[1],
+            wp,
+            &loads[2],
+            &c,
+            &mut scratch[2],
+        );
+    } else {
+        loads[1] = crate::loads::load_element_wet_current(
+            &p[1],
+            lp,
+            &e[1],
+            &bodies[1],
+            &trig[1],
+            [0.0; 3],
+            power,
+        );
+    }
+    for (sum, lane) in power.iter_mut().zip(lanes) {
+        let [a, b] = lane.lanes();
+        *sum += a + b;
+    }
     let c = crate::rolled_wet::inward_first(
         &p[1],
         &trig[1],
@@ -714,15 +878,17 @@ fn pass_wet_seabed(
         &loads[n - 1],
         &mut scratch[n - 1],
     );
-    for k in (2..n - 1).rev() {
-        loads[k] = crate::loads::load_element_wet_seabed(
-            &p[k],
+    let mut lanes = [crate::lanes::F2::splat(0.0); crate::POWER_TERMS];
+    let mut k = n - 2;
+    while k >= 3 {
+        [loads[k], loads[k - 1]] = crate::loads::load_element_pair_wet_seabed(
+            [&p[k], &p[k - 1]],
             lp,
-            &e[k],
-            &bodies[k],
-            &trig[k],
-            loads[k],
-            power,
+            [&e[k], &e[k - 1]],
+            [&bodies[k], &bodies[k - 1]],
+            [&trig[k], &trig[k - 1]],
+            [loads[k], loads[k - 1]],
+            &mut lanes,
         );
         let (w, wp) = (scratch[k][W], scratch[k - 1][W]);
         c = crate::rolled_wet::inward_rod(
@@ -735,16 +901,55 @@ fn pass_wet_seabed(
             &c,
             &mut scratch[k],
         );
+        let (w, wp) = (scratch[k - 1][W], scratch[k - 2][W]);
+        c = crate::rolled_wet::inward_rod(
+            &p[k - 1],
+            &trig[k - 1],
+            w,
+            &trig[k - 2],
+            wp,
+            &loads[k - 1],
+            &c,
+            &mut scratch[k - 1],
+        );
+        k -= 2;
     }
-    loads[1] = crate::loads::load_element_wet_seabed(
-        &p[1],
-        lp,
-        &e[1],
-        &bodies[1],
-        &trig[1],
-        loads[1],
-        power,
-    );
+    if k == 2 {
+        [loads[2], loads[1]] = crate::loads::load_element_pair_wet_seabed(
+            [&p[2], &p[1]],
+            lp,
+            [&e[2], &e[1]],
+            [&bodies[2], &bodies[1]],
+            [&trig[2], &trig[1]],
+            [loads[2], loads[1]],
+            &mut lanes,
+        );
+        let (w, wp) = (scratch[2][W], scratch[1][W]);
+        c = crate::rolled_wet::inward_rod(
+            &p[2],
+            &trig[2],
+            w,
+            &trig[1],
+            wp,
+            &loads[2],
+            &c,
+            &mut scratch[2],
+        );
+    } else {
+        loads[1] = crate::loads::load_element_wet_seabed(
+            &p[1],
+            lp,
+            &e[1],
+            &bodies[1],
+            &trig[1],
+            loads[1],
+            power,
+        );
+    }
+    for (sum, lane) in power.iter_mut().zip(lanes) {
+        let [a, b] = lane.lanes();
+        *sum += a + b;
+    }
     let c = crate::rolled_wet::inward_first(
         &p[1],
         &trig[1],
@@ -836,15 +1041,17 @@ fn pass_wet_seabed_friction(
         &loads[n - 1],
         &mut scratch[n - 1],
     );
-    for k in (2..n - 1).rev() {
-        loads[k] = crate::loads::load_element_wet_seabed_friction(
-            &p[k],
+    let mut lanes = [crate::lanes::F2::splat(0.0); crate::POWER_TERMS];
+    let mut k = n - 2;
+    while k >= 3 {
+        [loads[k], loads[k - 1]] = crate::loads::load_element_pair_wet_seabed_friction(
+            [&p[k], &p[k - 1]],
             lp,
-            &e[k],
-            &bodies[k],
-            &trig[k],
-            loads[k],
-            power,
+            [&e[k], &e[k - 1]],
+            [&bodies[k], &bodies[k - 1]],
+            [&trig[k], &trig[k - 1]],
+            [loads[k], loads[k - 1]],
+            &mut lanes,
         );
         let (w, wp) = (scratch[k][W], scratch[k - 1][W]);
         c = crate::rolled_wet::inward_rod(
@@ -857,16 +1064,55 @@ fn pass_wet_seabed_friction(
             &c,
             &mut scratch[k],
         );
+        let (w, wp) = (scratch[k - 1][W], scratch[k - 2][W]);
+        c = crate::rolled_wet::inward_rod(
+            &p[k - 1],
+            &trig[k - 1],
+            w,
+            &trig[k - 2],
+            wp,
+            &loads[k - 1],
+            &c,
+            &mut scratch[k - 1],
+        );
+        k -= 2;
     }
-    loads[1] = crate::loads::load_element_wet_seabed_friction(
-        &p[1],
-        lp,
-        &e[1],
-        &bodies[1],
-        &trig[1],
-        loads[1],
-        power,
-    );
+    if k == 2 {
+        [loads[2], loads[1]] = crate::loads::load_element_pair_wet_seabed_friction(
+            [&p[2], &p[1]],
+            lp,
+            [&e[2], &e[1]],
+            [&bodies[2], &bodies[1]],
+            [&trig[2], &trig[1]],
+            [loads[2], loads[1]],
+            &mut lanes,
+        );
+        let (w, wp) = (scratch[2][W], scratch[1][W]);
+        c = crate::rolled_wet::inward_rod(
+            &p[2],
+            &trig[2],
+            w,
+            &trig[1],
+            wp,
+            &loads[2],
+            &c,
+            &mut scratch[2],
+        );
+    } else {
+        loads[1] = crate::loads::load_element_wet_seabed_friction(
+            &p[1],
+            lp,
+            &e[1],
+            &bodies[1],
+            &trig[1],
+            loads[1],
+            power,
+        );
+    }
+    for (sum, lane) in power.iter_mut().zip(lanes) {
+        let [a, b] = lane.lanes();
+        *sum += a + b;
+    }
     let c = crate::rolled_wet::inward_first(
         &p[1],
         &trig[1],
@@ -963,15 +1209,17 @@ fn pass_wet_seabed_current(
         &loads[n - 1],
         &mut scratch[n - 1],
     );
-    for k in (2..n - 1).rev() {
-        loads[k] = crate::loads::load_element_wet_seabed_current(
-            &p[k],
+    let mut lanes = [crate::lanes::F2::splat(0.0); crate::POWER_TERMS];
+    let mut k = n - 2;
+    while k >= 3 {
+        [loads[k], loads[k - 1]] = crate::loads::load_element_pair_wet_seabed_current(
+            [&p[k], &p[k - 1]],
             lp,
-            &e[k],
-            &bodies[k],
-            &trig[k],
-            loads[k],
-            power,
+            [&e[k], &e[k - 1]],
+            [&bodies[k], &bodies[k - 1]],
+            [&trig[k], &trig[k - 1]],
+            [loads[k], loads[k - 1]],
+            &mut lanes,
         );
         let (w, wp) = (scratch[k][W], scratch[k - 1][W]);
         c = crate::rolled_wet::inward_rod(
@@ -984,16 +1232,55 @@ fn pass_wet_seabed_current(
             &c,
             &mut scratch[k],
         );
+        let (w, wp) = (scratch[k - 1][W], scratch[k - 2][W]);
+        c = crate::rolled_wet::inward_rod(
+            &p[k - 1],
+            &trig[k - 1],
+            w,
+            &trig[k - 2],
+            wp,
+            &loads[k - 1],
+            &c,
+            &mut scratch[k - 1],
+        );
+        k -= 2;
     }
-    loads[1] = crate::loads::load_element_wet_seabed_current(
-        &p[1],
-        lp,
-        &e[1],
-        &bodies[1],
-        &trig[1],
-        loads[1],
-        power,
-    );
+    if k == 2 {
+        [loads[2], loads[1]] = crate::loads::load_element_pair_wet_seabed_current(
+            [&p[2], &p[1]],
+            lp,
+            [&e[2], &e[1]],
+            [&bodies[2], &bodies[1]],
+            [&trig[2], &trig[1]],
+            [loads[2], loads[1]],
+            &mut lanes,
+        );
+        let (w, wp) = (scratch[2][W], scratch[1][W]);
+        c = crate::rolled_wet::inward_rod(
+            &p[2],
+            &trig[2],
+            w,
+            &trig[1],
+            wp,
+            &loads[2],
+            &c,
+            &mut scratch[2],
+        );
+    } else {
+        loads[1] = crate::loads::load_element_wet_seabed_current(
+            &p[1],
+            lp,
+            &e[1],
+            &bodies[1],
+            &trig[1],
+            loads[1],
+            power,
+        );
+    }
+    for (sum, lane) in power.iter_mut().zip(lanes) {
+        let [a, b] = lane.lanes();
+        *sum += a + b;
+    }
     let c = crate::rolled_wet::inward_first(
         &p[1],
         &trig[1],
@@ -1090,15 +1377,17 @@ fn pass_wet_seabed_friction_current(
         &loads[n - 1],
         &mut scratch[n - 1],
     );
-    for k in (2..n - 1).rev() {
-        loads[k] = crate::loads::load_element_wet_seabed_friction_current(
-            &p[k],
+    let mut lanes = [crate::lanes::F2::splat(0.0); crate::POWER_TERMS];
+    let mut k = n - 2;
+    while k >= 3 {
+        [loads[k], loads[k - 1]] = crate::loads::load_element_pair_wet_seabed_friction_current(
+            [&p[k], &p[k - 1]],
             lp,
-            &e[k],
-            &bodies[k],
-            &trig[k],
-            loads[k],
-            power,
+            [&e[k], &e[k - 1]],
+            [&bodies[k], &bodies[k - 1]],
+            [&trig[k], &trig[k - 1]],
+            [loads[k], loads[k - 1]],
+            &mut lanes,
         );
         let (w, wp) = (scratch[k][W], scratch[k - 1][W]);
         c = crate::rolled_wet::inward_rod(
@@ -1111,16 +1400,55 @@ fn pass_wet_seabed_friction_current(
             &c,
             &mut scratch[k],
         );
+        let (w, wp) = (scratch[k - 1][W], scratch[k - 2][W]);
+        c = crate::rolled_wet::inward_rod(
+            &p[k - 1],
+            &trig[k - 1],
+            w,
+            &trig[k - 2],
+            wp,
+            &loads[k - 1],
+            &c,
+            &mut scratch[k - 1],
+        );
+        k -= 2;
     }
-    loads[1] = crate::loads::load_element_wet_seabed_friction_current(
-        &p[1],
-        lp,
-        &e[1],
-        &bodies[1],
-        &trig[1],
-        loads[1],
-        power,
-    );
+    if k == 2 {
+        [loads[2], loads[1]] = crate::loads::load_element_pair_wet_seabed_friction_current(
+            [&p[2], &p[1]],
+            lp,
+            [&e[2], &e[1]],
+            [&bodies[2], &bodies[1]],
+            [&trig[2], &trig[1]],
+            [loads[2], loads[1]],
+            &mut lanes,
+        );
+        let (w, wp) = (scratch[2][W], scratch[1][W]);
+        c = crate::rolled_wet::inward_rod(
+            &p[2],
+            &trig[2],
+            w,
+            &trig[1],
+            wp,
+            &loads[2],
+            &c,
+            &mut scratch[2],
+        );
+    } else {
+        loads[1] = crate::loads::load_element_wet_seabed_friction_current(
+            &p[1],
+            lp,
+            &e[1],
+            &bodies[1],
+            &trig[1],
+            loads[1],
+            power,
+        );
+    }
+    for (sum, lane) in power.iter_mut().zip(lanes) {
+        let [a, b] = lane.lanes();
+        *sum += a + b;
+    }
     let c = crate::rolled_wet::inward_first(
         &p[1],
         &trig[1],
