@@ -286,13 +286,16 @@ fn fused_loads_are_the_force_modules_loads_in_every_stress_scene() {
     as_documented("stress scenes", check_all(&scenes("scenes/stress"), 2000), true);
 }
 
-/// Case 1 under every load signature: water, seabed, current and line friction switched.
+/// Case 1 under every load signature: water, seabed, current and line friction switched;
+/// each as the paper has it (44 line elements and the rod: even) and with one chain link more
+/// (odd: the fused pass pairs the elements, and B_1 runs alone).
 fn case1_signatures() -> Vec<(String, Model)> {
     let base = Scene::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/paper/case01.toml")).unwrap();
-    LoadSignature::all()
-        .into_iter()
-        .map(|sig| {
+    let mut models = Vec::new();
+    for sig in LoadSignature::all() {
+        for more in [0, 1] {
             let mut scene = base.clone();
+            scene.chain.elements += more;
             let e = &mut scene.environment;
             e.water = sig.water;
             e.seabed = sig.seabed;
@@ -300,15 +303,18 @@ fn case1_signatures() -> Vec<(String, Model)> {
             e.line_friction = if sig.line_friction { 0.5 } else { 0.0 };
             let model = Model::new(&scene).unwrap_or_else(|e| panic!("{}: {e}", sig.name()));
             assert_eq!(Forces::new(&model).signature(), sig);
-            (sig.name(), model)
-        })
-        .collect()
+            models.push((format!("{} (N = {})", sig.name(), model.body_count()), model));
+        }
+    }
+    models
 }
 
 #[test]
 fn every_load_signature_fuses_and_matches_the_force_modules() {
     let models = case1_signatures();
-    assert_eq!(models.len(), 9);
+    assert_eq!(models.len(), 18);
+    let odd = models.iter().filter(|(_, m)| m.body_count() % 2 == 1).count();
+    assert_eq!(odd, 9, "one scene of each parity per signature");
     let worst = check_all(&models, 3000);
     assert!(worst.sliding > 0, "the line's friction never worked: {worst:?}");
     as_documented("case 1 under the nine signatures", worst, true);

@@ -479,14 +479,15 @@ fn element_pair(sig: &LoadSignature) -> TokenStream {
         let line = F2::mask([e[0].line, e[1].line]);
     });
     body.extend(gather("cos", &|i| quote!(t[#i][0])));
-    body.extend(gather("sin", &|i| quote!(t[#i][1])));
-    body.extend(gather("z", &|i| quote!(s[#i][1])));
-    body.extend(quote! {
-        let half = F2::splat(0.5) * F2::new(e[0].length, e[1].length);
-        let (za, zb) = (z + half * sin, z - half * sin);
-    });
     if sig.water || sig.line_friction {
+        body.extend(gather("sin", &|i| quote!(t[#i][1])));
         body.extend(gather("vx", &|i| quote!(s[#i][3])));
+    }
+    body.extend(quote!(let half = F2::splat(0.5) * F2::new(e[0].length, e[1].length);));
+    if sig.water {
+        // The ends' heights (`end_heights`), for the wetted fraction.
+        body.extend(gather("z", &|i| quote!(s[#i][1])));
+        body.extend(quote!(let (za, zb) = (z + half * sin, z - half * sin);));
     }
     body.extend(gather("vz", &|i| quote!(s[#i][4])));
     body.extend(gather("w", &|i| quote!(s[#i][5])));

@@ -64,7 +64,7 @@ fn signature_rhs(sig: &LoadSignature) -> TokenStream {
     let (anchor_free, anchor_stuck) = (id("anchor_free"), id("anchor_stuck"));
     // What a step reads for its body's load: the load just computed, or g.
     let arg = |k: TokenStream| if gravity { quote!(lp.g) } else { quote!(&loads[#k]) };
-    let (f_ship, f_rod, f_first) = (arg(quote!(n - 1)), arg(quote!(k)), arg(quote!(1)));
+    let (f_ship, f_first) = (arg(quote!(n - 1)), arg(quote!(1)));
     let f_anchor = if gravity { quote!(lp.g) } else { quote!(&ws.loads[0]) };
     let (contacts, contact) = if sig.seabed {
         let lc = format_ident!("contacts_{n}");
@@ -78,50 +78,59 @@ fn signature_rhs(sig: &LoadSignature) -> TokenStream {
         (TokenStream::new(), quote!([0.0; 3]))
     };
     let contact_first = if sig.seabed { quote!(loads[1]) } else { quote!([0.0; 3]) };
+    // The inward step at element `k` (its inboard neighbour `j` = k − 1).
+    let step = |k: TokenStream, j: TokenStream| {
+        let f = arg(k.clone());
+        quote! {
+            let (w, wp) = (scratch[#k][W], scratch[#j][W]);
+            c = crate::#r::#rod(&p[#k], &trig[#k], w, &trig[#j], wp, #f, &c, &mut scratch[#k]);
+        }
+    };
+    let one = |k: TokenStream, contact: TokenStream| quote!(loads[#k] = crate::loads::#le(&p[#k], lp, &e[#k], &bodies[#k], &trig[#k], #contact, power););
     let elements = if gravity {
         // Weight alone: the steps compute −m g; the loads are kept for the observation.
+        let (load_k, step_k, load_1) =
+            (one(quote!(k), contact), step(quote!(k), quote!(k - 1)), one(quote!(1), contact_first));
         quote! {
             for k in (2..n - 1).rev() {
-                loads[k] = crate::loads::#le(&p[k], lp, &e[k], &bodies[k], &trig[k], #contact, power);
-                let (w, wp) = (scratch[k][W], scratch[k - 1][W]);
-                c = crate::#r::#rod(&p[k], &trig[k], w, &trig[k - 1], wp, #f_rod, &c, &mut scratch[k]);
+                #load_k
+                #step_k
             }
-            loads[1] = crate::loads::#le(&p[1], lp, &e[1], &bodies[1], &trig[1], #contact_first, power);
+            #load_1
         }
     } else {
-        // The elements' loads two at a time (B_k and B_{k−1} on the lanes), then the two
-        // steps; an odd element out, B_1, alone.
+        // The elements' loads two at a time (B_k on lane 0, B_{k−1} on lane 1, their powers
+        // summed per lane in `pair_power`), then the two steps; an odd element out, B_1, alone.
         let pair = format_ident!("load_element_pair_{n}");
         let load_pair = |k: TokenStream, j: TokenStream| {
             let contact = if sig.seabed { quote!([loads[#k], loads[#j]]) } else { quote!([[0.0; 3]; 2]) };
             quote! {
                 [loads[#k], loads[#j]] = crate::loads::#pair(
                     [&p[#k], &p[#j]], lp, [&e[#k], &e[#j]], [&bodies[#k], &bodies[#j]],
-                    [&trig[#k], &trig[#j]], #contact, &mut lanes,
+                    [&trig[#k], &trig[#j]], #contact, &mut pair_power,
                 );
             }
         };
         let (pair_k, pair_2) = (load_pair(quote!(k), quote!(k - 1)), load_pair(quote!(2), quote!(1)));
-        let f_rod_prev = quote!(&loads[k - 1]);
+        let (step_k, step_j, step_2) =
+            (step(quote!(k), quote!(k - 1)), step(quote!(k - 1), quote!(k - 2)), step(quote!(2), quote!(1)));
+        let load_1 = one(quote!(1), contact_first);
         quote! {
-            let mut lanes = [crate::lanes::F2::splat(0.0); crate::POWER_TERMS];
+            let mut pair_power = [crate::lanes::F2::splat(0.0); crate::POWER_TERMS];
             let mut k = n - 2;
             while k >= 3 {
                 #pair_k
-                let (w, wp) = (scratch[k][W], scratch[k - 1][W]);
-                c = crate::#r::#rod(&p[k], &trig[k], w, &trig[k - 1], wp, #f_rod, &c, &mut scratch[k]);
-                let (w, wp) = (scratch[k - 1][W], scratch[k - 2][W]);
-                c = crate::#r::#rod(&p[k - 1], &trig[k - 1], w, &trig[k - 2], wp, #f_rod_prev, &c, &mut scratch[k - 1]);
+                #step_k
+                #step_j
                 k -= 2;
             }
             if k == 2 {
                 #pair_2
-                let (w, wp) = (scratch[2][W], scratch[1][W]);
-                c = crate::#r::#rod(&p[2], &trig[2], w, &trig[1], wp, &loads[2], &c, &mut scratch[2]);
+                #step_2
             } else {
-                loads[1] = crate::loads::#le(&p[1], lp, &e[1], &bodies[1], &trig[1], #contact_first, power);
+                #load_1
             }
-            for (sum, lane) in power.iter_mut().zip(lanes) {
+            for (sum, lane) in power.iter_mut().zip(pair_power) {
                 let [a, b] = lane.lanes();
                 *sum += a + b;
             }
@@ -132,7 +141,8 @@ fn signature_rhs(sig: &LoadSignature) -> TokenStream {
     let terms = term_list(sig);
     let pass_doc = format!(
         " Kinematics, then the loads of signature `{n}` ({terms}) with the inward pass of the O(N) solve, \
-         each body's loads where the pass reaches it; returns what reaches the anchor."
+         the loads where the pass reaches each body (the line elements' two at a time, except under weight \
+         alone); returns what reaches the anchor."
     );
     let free_doc = format!(
         " The right-hand side of signature `{n}` with the anchor free: ẍ of Eq. 27 at (q, u), sliding friction \

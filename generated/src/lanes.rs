@@ -2,20 +2,23 @@
 //! elements at once ([`crate::trig::sin_cos_pair`], the line elements' loads in the fused
 //! right-hand sides, the seabed's depth series of two elements in the runtime's fused load
 //! path). Each operation is one IEEE operation per lane, so a lane's result equals, bit for
-//! bit, the scalar code's doing the same operations; a scalar branch becomes a comparison's
-//! mask and a [`F2::select`] of both sides, the lane's side taken.
+//! bit, the scalar code's doing the same operations (a NaN's sign and payload aside, which
+//! Rust leaves unspecified); a scalar branch becomes a comparison's mask and a
+//! [`F2::select`] of both sides, the lane's side taken.
 //!
 //! On x86-64 with SSE2 (part of every x86-64 processor, on for every x86-64 target but the
 //! soft-float ones) an [`F2`] is an SSE2 register (`sse2::F2`); elsewhere, two numbers
 //! (`portable::F2`). Both are compiled on x86-64, and a test there holds the portable lanes
-//! to the SSE2 ones bit for bit, operation by operation, on special and random values: the
-//! trigonometric and seabed tests check the SSE2 lanes against the scalar code, so the
-//! portable ones are checked through them. Built with `RUSTFLAGS="--cfg
+//! to the SSE2 ones bit for bit, operation by operation, on special and random values, and
+//! every operation to the scalar one it stands for: the trigonometric, seabed and load
+//! tests check the SSE2 lanes against the scalar code, so the portable ones are checked
+//! through them. Built with `RUSTFLAGS="--cfg
 //! kanestop_portable_lanes"`, an x86-64 build puts the portable lanes in for the SSE2 ones, as
 //! a target without SSE2 does: `.ci/run` runs the generated and runtime crates' own tests so,
 //! which compiles and runs the other targets' wiring here. The operations built
-//! on the lanes' bits (`keep`, `copysign`, the quadrant's selects) are written once for both
-//! (`derived!`). The SSE2 intrinsics are `unsafe` before Rust 1.87 and safe since wherever
+//! on the lanes' bits (`keep`, `mask`, `keep_mask`, `select`, `copysign`, `abs`, `−x`,
+//! `clamp`, the quadrant's selects) are written once for both (`derived!`), so the test
+//! against the scalar operations is what checks them. The SSE2 intrinsics are `unsafe` before Rust 1.87 and safe since wherever
 //! SSE2 is on, as on every x86-64 target: hence the `unsafe` blocks, with `unused_unsafe`
 //! allowed. None of them reads or writes memory.
 #![allow(unused_unsafe)]
@@ -25,17 +28,6 @@ pub use sse2::F2;
 
 #[cfg(any(not(all(target_arch = "x86_64", target_feature = "sse2")), kanestop_portable_lanes))]
 pub use portable::F2;
-
-/// `a.lt(b)` … `a.ne(b)`: the lanewise comparisons, each a mask for [`F2::select`].
-macro_rules! comparisons {
-    ($($name:ident $op:expr),*) => {$(
-        #[doc = concat!("Per lane, all bits set where `self ", stringify!($name), " o` holds (as the scalar comparison), else clear.")]
-        #[inline(always)]
-        pub fn $name(self, o: F2) -> F2 {
-            self.compare(o, $op)
-        }
-    )*};
-}
 
 /// The operations built on an `F2`'s primitive ones (`new`, `lanes`, its bits and the
 /// `Bits` operations), the same for both kinds of lanes.
@@ -103,7 +95,8 @@ macro_rules! derived {
                 F2::splat(f64::from_bits(u64::MAX)).keep(set)
             }
 
-            /// Each lane clamped to `[lo, hi]`, as `f64::clamp` (NaN stays NaN).
+            /// Each lane clamped to `[lo, hi]`, as `f64::clamp` (NaN stays NaN; unlike it, no
+            /// panic for `lo > hi` or a NaN bound: the caller's bounds are ordered numbers).
             #[inline(always)]
             pub fn clamp(self, lo: F2, hi: F2) -> F2 {
                 let x = self.select(self.lt(lo), lo);
@@ -191,28 +184,30 @@ mod portable {
             F2(self.0.map(f64::sqrt))
         }
 
-        /// Per lane, all bits set where `self op o` holds (false for NaN but in `ne`), else clear.
+        /// Per lane, all bits set where `op` holds, else clear.
         #[inline(always)]
         fn compare(self, o: F2, op: impl Fn(f64, f64) -> bool) -> F2 {
             let m = |i: usize| if op(self.0[i], o.0[i]) { f64::from_bits(u64::MAX) } else { 0.0 };
             F2([m(0), m(1)])
         }
+    }
 
-        comparisons!(
-            lt | a,
-            b | a < b,
-            le | a,
-            b | a <= b,
-            gt | a,
-            b | a > b,
-            ge | a,
-            b | a >= b,
-            eq | a,
-            b | a == b,
-            ne | a,
-            b | a != b
-        );
+    /// `a.lt(b)` … `a.ne(b)`: each lane all bits set where the scalar comparison holds (false
+    /// with a NaN, but for `ne`), else clear: a mask for `select`.
+    macro_rules! comparisons {
+        ($($name:ident $op:tt),*) => {
+            impl F2 {$(
+                #[doc = concat!("Per lane, all bits set where `self ", stringify!($op), " o`, else clear.")]
+                #[inline(always)]
+                pub fn $name(self, o: F2) -> F2 {
+                    self.compare(o, |a, b| a $op b)
+                }
+            )*}
+        };
+    }
+    comparisons!(lt <, le <=, gt >, ge >=, eq ==, ne !=);
 
+    impl F2 {
         #[inline(always)]
         fn bits(self) -> Bits {
             Bits(self.0.map(f64::to_bits))
@@ -321,24 +316,31 @@ mod sse2 {
         pub fn sqrt(self) -> F2 {
             F2(unsafe { _mm_sqrt_pd(self.0) })
         }
+    }
 
-        /// Per lane, all bits set where `self op o` holds (false for NaN but in `ne`), else clear.
-        #[inline(always)]
-        fn compare(self, o: F2, op: u8) -> F2 {
-            F2(unsafe {
-                match op {
-                    0 => _mm_cmplt_pd(self.0, o.0),
-                    1 => _mm_cmple_pd(self.0, o.0),
-                    2 => _mm_cmpgt_pd(self.0, o.0),
-                    3 => _mm_cmpge_pd(self.0, o.0),
-                    4 => _mm_cmpeq_pd(self.0, o.0),
-                    _ => _mm_cmpneq_pd(self.0, o.0),
+    /// `a.lt(b)` … `a.ne(b)`: each lane all bits set where the scalar comparison holds (false
+    /// with a NaN, but for `ne`), else clear: a mask for `select`.
+    macro_rules! comparisons {
+        ($($name:ident $op:tt $intrinsic:ident),*) => {
+            impl F2 {$(
+                #[doc = concat!("Per lane, all bits set where `self ", stringify!($op), " o`, else clear.")]
+                #[inline(always)]
+                pub fn $name(self, o: F2) -> F2 {
+                    F2(unsafe { $intrinsic(self.0, o.0) })
                 }
-            })
-        }
+            )*}
+        };
+    }
+    comparisons!(
+        lt < _mm_cmplt_pd,
+        le <= _mm_cmple_pd,
+        gt > _mm_cmpgt_pd,
+        ge >= _mm_cmpge_pd,
+        eq == _mm_cmpeq_pd,
+        ne != _mm_cmpneq_pd
+    );
 
-        comparisons!(lt 0, le 1, gt 2, ge 3, eq 4, ne 5);
-
+    impl F2 {
         #[inline(always)]
         fn bits(self) -> Bits {
             Bits(unsafe { _mm_castpd_si128(self.0) })
@@ -448,6 +450,8 @@ mod tests {
                 for keep in [[false, false], [true, false], [false, true], [true, true]] {
                     same(p.keep(keep).lanes(), s.keep(keep).lanes(), "keep");
                     same(portable::F2::mask(keep).lanes(), sse2::F2::mask(keep).lanes(), "mask");
+                    let set = keep.map(|k| if k { f64::from_bits(u64::MAX) } else { 0.0 });
+                    same(sse2::F2::mask(keep).lanes(), set, "mask against its lanes");
                 }
                 same(p.copysign(pq).lanes(), s.copysign(sq).lanes(), "copysign");
                 same(p.abs().lanes(), s.abs().lanes(), "abs");
@@ -485,6 +489,19 @@ mod tests {
                 same(s.eq(sq).lanes(), scalar(&|x, y| set(x == y)), "= against the scalar =");
                 same(s.ne(sq).lanes(), scalar(&|x, y| set(x != y)), "≠ against the scalar ≠");
                 same(s.select(s.lt(sq), sq).lanes(), scalar(&|x, y| if x < y { y } else { x }), "select against if");
+                same(
+                    s.keep_mask(s.lt(sq)).lanes(),
+                    scalar(&|x, y| if x < y { x } else { 0.0 }),
+                    "keep_mask against if",
+                );
+                same(s.copysign(sq).lanes(), scalar(&f64::copysign), "copysign against f64::copysign");
+                let zero = sse2::F2::splat(0.0);
+                // From +0, as the current's profile clamps: −0 stays −0.
+                same(
+                    s.clamp(zero, sse2::F2::splat(2.0)).lanes(),
+                    scalar(&|x, _| x.clamp(0.0, 2.0)),
+                    "clamp from +0 against f64::clamp",
+                );
                 same(p.select_odd(pq, p * pq).lanes(), s.select_odd(sq, s * sq).lanes(), "select_odd");
                 for (add, bit) in [(0, 0), (0, 1), (1, 1), (3, 2)] {
                     same(p.negate_if(pq, add, bit).lanes(), s.negate_if(sq, add, bit).lanes(), "negate_if");

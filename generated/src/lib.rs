@@ -42,6 +42,9 @@ mod rhs;
 pub mod lanes;
 pub mod trig;
 
+#[cfg(test)]
+mod load_pairs;
+
 mod extra {
     include!(concat!(env!("OUT_DIR"), "/extra.rs"));
 }

@@ -76,7 +76,7 @@ pub const RHS: [(&str, crate::RhsTable); 9] = [
         },
     ),
 ];
-/// Kinematics, then the loads of signature `dry` (weight) with the inward pass of the O(N) solve, each body's loads where the pass reaches it; returns what reaches the anchor.
+/// Kinematics, then the loads of signature `dry` (weight) with the inward pass of the O(N) solve, the loads where the pass reaches each body (the line elements' two at a time, except under weight alone); returns what reaches the anchor.
 #[inline(always)]
 fn pass_dry(
     p: &[crate::BodyParams],
@@ -192,7 +192,7 @@ pub fn rhs_stuck_dry(
     crate::rolled_dry::outward_pass(s_dd, &mut ws.scratch[..n], qdd);
     [holding, normal]
 }
-/// Kinematics, then the loads of signature `dry_seabed` (weight, seabed) with the inward pass of the O(N) solve, each body's loads where the pass reaches it; returns what reaches the anchor.
+/// Kinematics, then the loads of signature `dry_seabed` (weight, seabed) with the inward pass of the O(N) solve, the loads where the pass reaches each body (the line elements' two at a time, except under weight alone); returns what reaches the anchor.
 #[inline(always)]
 fn pass_dry_seabed(
     p: &[crate::BodyParams],
@@ -228,7 +228,7 @@ fn pass_dry_seabed(
         &loads[n - 1],
         &mut scratch[n - 1],
     );
-    let mut lanes = [crate::lanes::F2::splat(0.0); crate::POWER_TERMS];
+    let mut pair_power = [crate::lanes::F2::splat(0.0); crate::POWER_TERMS];
     let mut k = n - 2;
     while k >= 3 {
         [loads[k], loads[k - 1]] = crate::loads::load_element_pair_dry_seabed(
@@ -238,7 +238,7 @@ fn pass_dry_seabed(
             [&bodies[k], &bodies[k - 1]],
             [&trig[k], &trig[k - 1]],
             [loads[k], loads[k - 1]],
-            &mut lanes,
+            &mut pair_power,
         );
         let (w, wp) = (scratch[k][W], scratch[k - 1][W]);
         c = crate::rolled_dry::inward_rod(
@@ -272,7 +272,7 @@ fn pass_dry_seabed(
             [&bodies[2], &bodies[1]],
             [&trig[2], &trig[1]],
             [loads[2], loads[1]],
-            &mut lanes,
+            &mut pair_power,
         );
         let (w, wp) = (scratch[2][W], scratch[1][W]);
         c = crate::rolled_dry::inward_rod(
@@ -296,7 +296,7 @@ fn pass_dry_seabed(
             power,
         );
     }
-    for (sum, lane) in power.iter_mut().zip(lanes) {
+    for (sum, lane) in power.iter_mut().zip(pair_power) {
         let [a, b] = lane.lanes();
         *sum += a + b;
     }
@@ -355,7 +355,7 @@ pub fn rhs_stuck_dry_seabed(
     crate::rolled_dry::outward_pass(s_dd, &mut ws.scratch[..n], qdd);
     [holding, normal]
 }
-/// Kinematics, then the loads of signature `dry_seabed_friction` (weight, seabed, line_friction) with the inward pass of the O(N) solve, each body's loads where the pass reaches it; returns what reaches the anchor.
+/// Kinematics, then the loads of signature `dry_seabed_friction` (weight, seabed, line_friction) with the inward pass of the O(N) solve, the loads where the pass reaches each body (the line elements' two at a time, except under weight alone); returns what reaches the anchor.
 #[inline(always)]
 fn pass_dry_seabed_friction(
     p: &[crate::BodyParams],
@@ -391,7 +391,7 @@ fn pass_dry_seabed_friction(
         &loads[n - 1],
         &mut scratch[n - 1],
     );
-    let mut lanes = [crate::lanes::F2::splat(0.0); crate::POWER_TERMS];
+    let mut pair_power = [crate::lanes::F2::splat(0.0); crate::POWER_TERMS];
     let mut k = n - 2;
     while k >= 3 {
         [loads[k], loads[k - 1]] = crate::loads::load_element_pair_dry_seabed_friction(
@@ -401,7 +401,7 @@ fn pass_dry_seabed_friction(
             [&bodies[k], &bodies[k - 1]],
             [&trig[k], &trig[k - 1]],
             [loads[k], loads[k - 1]],
-            &mut lanes,
+            &mut pair_power,
         );
         let (w, wp) = (scratch[k][W], scratch[k - 1][W]);
         c = crate::rolled_dry::inward_rod(
@@ -435,7 +435,7 @@ fn pass_dry_seabed_friction(
             [&bodies[2], &bodies[1]],
             [&trig[2], &trig[1]],
             [loads[2], loads[1]],
-            &mut lanes,
+            &mut pair_power,
         );
         let (w, wp) = (scratch[2][W], scratch[1][W]);
         c = crate::rolled_dry::inward_rod(
@@ -459,7 +459,7 @@ fn pass_dry_seabed_friction(
             power,
         );
     }
-    for (sum, lane) in power.iter_mut().zip(lanes) {
+    for (sum, lane) in power.iter_mut().zip(pair_power) {
         let [a, b] = lane.lanes();
         *sum += a + b;
     }
@@ -523,7 +523,7 @@ pub fn rhs_stuck_dry_seabed_friction(
     crate::rolled_dry::outward_pass(s_dd, &mut ws.scratch[..n], qdd);
     [holding, normal]
 }
-/// Kinematics, then the loads of signature `wet` (weight, buoyancy, line_drag, anchor_drag, hydrostatics, hull_resistance) with the inward pass of the O(N) solve, each body's loads where the pass reaches it; returns what reaches the anchor.
+/// Kinematics, then the loads of signature `wet` (weight, buoyancy, line_drag, anchor_drag, hydrostatics, hull_resistance) with the inward pass of the O(N) solve, the loads where the pass reaches each body (the line elements' two at a time, except under weight alone); returns what reaches the anchor.
 #[inline(always)]
 fn pass_wet(
     p: &[crate::BodyParams],
@@ -553,7 +553,7 @@ fn pass_wet(
         &loads[n - 1],
         &mut scratch[n - 1],
     );
-    let mut lanes = [crate::lanes::F2::splat(0.0); crate::POWER_TERMS];
+    let mut pair_power = [crate::lanes::F2::splat(0.0); crate::POWER_TERMS];
     let mut k = n - 2;
     while k >= 3 {
         [loads[k], loads[k - 1]] = crate::loads::load_element_pair_wet(
@@ -563,7 +563,7 @@ fn pass_wet(
             [&bodies[k], &bodies[k - 1]],
             [&trig[k], &trig[k - 1]],
             [[0.0; 3]; 2],
-            &mut lanes,
+            &mut pair_power,
         );
         let (w, wp) = (scratch[k][W], scratch[k - 1][W]);
         c = crate::rolled_wet::inward_rod(
@@ -597,7 +597,7 @@ fn pass_wet(
             [&bodies[2], &bodies[1]],
             [&trig[2], &trig[1]],
             [[0.0; 3]; 2],
-            &mut lanes,
+            &mut pair_power,
         );
         let (w, wp) = (scratch[2][W], scratch[1][W]);
         c = crate::rolled_wet::inward_rod(
@@ -621,7 +621,7 @@ fn pass_wet(
             power,
         );
     }
-    for (sum, lane) in power.iter_mut().zip(lanes) {
+    for (sum, lane) in power.iter_mut().zip(pair_power) {
         let [a, b] = lane.lanes();
         *sum += a + b;
     }
@@ -680,7 +680,7 @@ pub fn rhs_stuck_wet(
     crate::rolled_wet::outward_pass(s_dd, &mut ws.scratch[..n], qdd);
     [holding, normal]
 }
-/// Kinematics, then the loads of signature `wet_current` (weight, buoyancy, current, line_drag, anchor_drag, hydrostatics, hull_resistance) with the inward pass of the O(N) solve, each body's loads where the pass reaches it; returns what reaches the anchor.
+/// Kinematics, then the loads of signature `wet_current` (weight, buoyancy, current, line_drag, anchor_drag, hydrostatics, hull_resistance) with the inward pass of the O(N) solve, the loads where the pass reaches each body (the line elements' two at a time, except under weight alone); returns what reaches the anchor.
 #[inline(always)]
 fn pass_wet_current(
     p: &[crate::BodyParams],
@@ -715,7 +715,7 @@ fn pass_wet_current(
         &loads[n - 1],
         &mut scratch[n - 1],
     );
-    let mut lanes = [crate::lanes::F2::splat(0.0); crate::POWER_TERMS];
+    let mut pair_power = [crate::lanes::F2::splat(0.0); crate::POWER_TERMS];
     let mut k = n - 2;
     while k >= 3 {
         [loads[k], loads[k - 1]] = crate::loads::load_element_pair_wet_current(
@@ -725,7 +725,7 @@ fn pass_wet_current(
             [&bodies[k], &bodies[k - 1]],
             [&trig[k], &trig[k - 1]],
             [[0.0; 3]; 2],
-            &mut lanes,
+            &mut pair_power,
         );
         let (w, wp) = (scratch[k][W], scratch[k - 1][W]);
         c = crate::rolled_wet::inward_rod(
@@ -759,7 +759,7 @@ fn pass_wet_current(
             [&bodies[2], &bodies[1]],
             [&trig[2], &trig[1]],
             [[0.0; 3]; 2],
-            &mut lanes,
+            &mut pair_power,
         );
         let (w, wp) = (scratch[2][W], scratch[1][W]);
         c = crate::rolled_wet::inward_rod(
@@ -783,7 +783,7 @@ fn pass_wet_current(
             power,
         );
     }
-    for (sum, lane) in power.iter_mut().zip(lanes) {
+    for (sum, lane) in power.iter_mut().zip(pair_power) {
         let [a, b] = lane.lanes();
         *sum += a + b;
     }
@@ -842,7 +842,7 @@ pub fn rhs_stuck_wet_current(
     crate::rolled_wet::outward_pass(s_dd, &mut ws.scratch[..n], qdd);
     [holding, normal]
 }
-/// Kinematics, then the loads of signature `wet_seabed` (weight, seabed, buoyancy, line_drag, anchor_drag, hydrostatics, hull_resistance) with the inward pass of the O(N) solve, each body's loads where the pass reaches it; returns what reaches the anchor.
+/// Kinematics, then the loads of signature `wet_seabed` (weight, seabed, buoyancy, line_drag, anchor_drag, hydrostatics, hull_resistance) with the inward pass of the O(N) solve, the loads where the pass reaches each body (the line elements' two at a time, except under weight alone); returns what reaches the anchor.
 #[inline(always)]
 fn pass_wet_seabed(
     p: &[crate::BodyParams],
@@ -878,7 +878,7 @@ fn pass_wet_seabed(
         &loads[n - 1],
         &mut scratch[n - 1],
     );
-    let mut lanes = [crate::lanes::F2::splat(0.0); crate::POWER_TERMS];
+    let mut pair_power = [crate::lanes::F2::splat(0.0); crate::POWER_TERMS];
     let mut k = n - 2;
     while k >= 3 {
         [loads[k], loads[k - 1]] = crate::loads::load_element_pair_wet_seabed(
@@ -888,7 +888,7 @@ fn pass_wet_seabed(
             [&bodies[k], &bodies[k - 1]],
             [&trig[k], &trig[k - 1]],
             [loads[k], loads[k - 1]],
-            &mut lanes,
+            &mut pair_power,
         );
         let (w, wp) = (scratch[k][W], scratch[k - 1][W]);
         c = crate::rolled_wet::inward_rod(
@@ -922,7 +922,7 @@ fn pass_wet_seabed(
             [&bodies[2], &bodies[1]],
             [&trig[2], &trig[1]],
             [loads[2], loads[1]],
-            &mut lanes,
+            &mut pair_power,
         );
         let (w, wp) = (scratch[2][W], scratch[1][W]);
         c = crate::rolled_wet::inward_rod(
@@ -946,7 +946,7 @@ fn pass_wet_seabed(
             power,
         );
     }
-    for (sum, lane) in power.iter_mut().zip(lanes) {
+    for (sum, lane) in power.iter_mut().zip(pair_power) {
         let [a, b] = lane.lanes();
         *sum += a + b;
     }
@@ -1005,7 +1005,7 @@ pub fn rhs_stuck_wet_seabed(
     crate::rolled_wet::outward_pass(s_dd, &mut ws.scratch[..n], qdd);
     [holding, normal]
 }
-/// Kinematics, then the loads of signature `wet_seabed_friction` (weight, seabed, line_friction, buoyancy, line_drag, anchor_drag, hydrostatics, hull_resistance) with the inward pass of the O(N) solve, each body's loads where the pass reaches it; returns what reaches the anchor.
+/// Kinematics, then the loads of signature `wet_seabed_friction` (weight, seabed, line_friction, buoyancy, line_drag, anchor_drag, hydrostatics, hull_resistance) with the inward pass of the O(N) solve, the loads where the pass reaches each body (the line elements' two at a time, except under weight alone); returns what reaches the anchor.
 #[inline(always)]
 fn pass_wet_seabed_friction(
     p: &[crate::BodyParams],
@@ -1041,7 +1041,7 @@ fn pass_wet_seabed_friction(
         &loads[n - 1],
         &mut scratch[n - 1],
     );
-    let mut lanes = [crate::lanes::F2::splat(0.0); crate::POWER_TERMS];
+    let mut pair_power = [crate::lanes::F2::splat(0.0); crate::POWER_TERMS];
     let mut k = n - 2;
     while k >= 3 {
         [loads[k], loads[k - 1]] = crate::loads::load_element_pair_wet_seabed_friction(
@@ -1051,7 +1051,7 @@ fn pass_wet_seabed_friction(
             [&bodies[k], &bodies[k - 1]],
             [&trig[k], &trig[k - 1]],
             [loads[k], loads[k - 1]],
-            &mut lanes,
+            &mut pair_power,
         );
         let (w, wp) = (scratch[k][W], scratch[k - 1][W]);
         c = crate::rolled_wet::inward_rod(
@@ -1085,7 +1085,7 @@ fn pass_wet_seabed_friction(
             [&bodies[2], &bodies[1]],
             [&trig[2], &trig[1]],
             [loads[2], loads[1]],
-            &mut lanes,
+            &mut pair_power,
         );
         let (w, wp) = (scratch[2][W], scratch[1][W]);
         c = crate::rolled_wet::inward_rod(
@@ -1109,7 +1109,7 @@ fn pass_wet_seabed_friction(
             power,
         );
     }
-    for (sum, lane) in power.iter_mut().zip(lanes) {
+    for (sum, lane) in power.iter_mut().zip(pair_power) {
         let [a, b] = lane.lanes();
         *sum += a + b;
     }
@@ -1173,7 +1173,7 @@ pub fn rhs_stuck_wet_seabed_friction(
     crate::rolled_wet::outward_pass(s_dd, &mut ws.scratch[..n], qdd);
     [holding, normal]
 }
-/// Kinematics, then the loads of signature `wet_seabed_current` (weight, seabed, buoyancy, current, line_drag, anchor_drag, hydrostatics, hull_resistance) with the inward pass of the O(N) solve, each body's loads where the pass reaches it; returns what reaches the anchor.
+/// Kinematics, then the loads of signature `wet_seabed_current` (weight, seabed, buoyancy, current, line_drag, anchor_drag, hydrostatics, hull_resistance) with the inward pass of the O(N) solve, the loads where the pass reaches each body (the line elements' two at a time, except under weight alone); returns what reaches the anchor.
 #[inline(always)]
 fn pass_wet_seabed_current(
     p: &[crate::BodyParams],
@@ -1209,7 +1209,7 @@ fn pass_wet_seabed_current(
         &loads[n - 1],
         &mut scratch[n - 1],
     );
-    let mut lanes = [crate::lanes::F2::splat(0.0); crate::POWER_TERMS];
+    let mut pair_power = [crate::lanes::F2::splat(0.0); crate::POWER_TERMS];
     let mut k = n - 2;
     while k >= 3 {
         [loads[k], loads[k - 1]] = crate::loads::load_element_pair_wet_seabed_current(
@@ -1219,7 +1219,7 @@ fn pass_wet_seabed_current(
             [&bodies[k], &bodies[k - 1]],
             [&trig[k], &trig[k - 1]],
             [loads[k], loads[k - 1]],
-            &mut lanes,
+            &mut pair_power,
         );
         let (w, wp) = (scratch[k][W], scratch[k - 1][W]);
         c = crate::rolled_wet::inward_rod(
@@ -1253,7 +1253,7 @@ fn pass_wet_seabed_current(
             [&bodies[2], &bodies[1]],
             [&trig[2], &trig[1]],
             [loads[2], loads[1]],
-            &mut lanes,
+            &mut pair_power,
         );
         let (w, wp) = (scratch[2][W], scratch[1][W]);
         c = crate::rolled_wet::inward_rod(
@@ -1277,7 +1277,7 @@ fn pass_wet_seabed_current(
             power,
         );
     }
-    for (sum, lane) in power.iter_mut().zip(lanes) {
+    for (sum, lane) in power.iter_mut().zip(pair_power) {
         let [a, b] = lane.lanes();
         *sum += a + b;
     }
@@ -1341,7 +1341,7 @@ pub fn rhs_stuck_wet_seabed_current(
     crate::rolled_wet::outward_pass(s_dd, &mut ws.scratch[..n], qdd);
     [holding, normal]
 }
-/// Kinematics, then the loads of signature `wet_seabed_friction_current` (weight, seabed, line_friction, buoyancy, current, line_drag, anchor_drag, hydrostatics, hull_resistance) with the inward pass of the O(N) solve, each body's loads where the pass reaches it; returns what reaches the anchor.
+/// Kinematics, then the loads of signature `wet_seabed_friction_current` (weight, seabed, line_friction, buoyancy, current, line_drag, anchor_drag, hydrostatics, hull_resistance) with the inward pass of the O(N) solve, the loads where the pass reaches each body (the line elements' two at a time, except under weight alone); returns what reaches the anchor.
 #[inline(always)]
 fn pass_wet_seabed_friction_current(
     p: &[crate::BodyParams],
@@ -1377,7 +1377,7 @@ fn pass_wet_seabed_friction_current(
         &loads[n - 1],
         &mut scratch[n - 1],
     );
-    let mut lanes = [crate::lanes::F2::splat(0.0); crate::POWER_TERMS];
+    let mut pair_power = [crate::lanes::F2::splat(0.0); crate::POWER_TERMS];
     let mut k = n - 2;
     while k >= 3 {
         [loads[k], loads[k - 1]] = crate::loads::load_element_pair_wet_seabed_friction_current(
@@ -1387,7 +1387,7 @@ fn pass_wet_seabed_friction_current(
             [&bodies[k], &bodies[k - 1]],
             [&trig[k], &trig[k - 1]],
             [loads[k], loads[k - 1]],
-            &mut lanes,
+            &mut pair_power,
         );
         let (w, wp) = (scratch[k][W], scratch[k - 1][W]);
         c = crate::rolled_wet::inward_rod(
@@ -1421,7 +1421,7 @@ fn pass_wet_seabed_friction_current(
             [&bodies[2], &bodies[1]],
             [&trig[2], &trig[1]],
             [loads[2], loads[1]],
-            &mut lanes,
+            &mut pair_power,
         );
         let (w, wp) = (scratch[2][W], scratch[1][W]);
         c = crate::rolled_wet::inward_rod(
@@ -1445,7 +1445,7 @@ fn pass_wet_seabed_friction_current(
             power,
         );
     }
-    for (sum, lane) in power.iter_mut().zip(lanes) {
+    for (sum, lane) in power.iter_mut().zip(pair_power) {
         let [a, b] = lane.lanes();
         *sum += a + b;
     }
