@@ -342,7 +342,7 @@ fn load_report(model: &Model, forces: &kanestop_runtime::forces::Forces, fused: 
         println!("loads      weight alone, in the generated solve's own steps (no load array read)");
     } else {
         println!(
-            "loads      generated, each body's where the solve's inward pass reaches it, the line elements' two at a time (no force model per call)"
+            "loads      generated in the solve's inward pass, line elements two at a time (no force model per call)"
         );
     }
     let count = |f: fn(&kanestop_chain::BodyKind) -> bool| model.chain.bodies.iter().filter(|b| f(&b.kind)).count();
