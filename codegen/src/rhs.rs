@@ -66,17 +66,13 @@ fn signature_rhs(sig: &LoadSignature) -> TokenStream {
     let arg = |k: TokenStream| if gravity { quote!(lp.g) } else { quote!(&loads[#k]) };
     let (f_ship, f_first) = (arg(quote!(n - 1)), arg(quote!(1)));
     let f_anchor = if gravity { quote!(lp.g) } else { quote!(&ws.loads[0]) };
-    let (contacts, contact) = if sig.seabed {
+    let contacts = if sig.seabed {
         let lc = format_ident!("contacts_{n}");
-        (
-            quote! {
-                crate::loads::#lc(lp, e, bodies, trig, loads);
-            },
-            quote!(loads[k]),
-        )
+        quote!(crate::loads::#lc(lp, e, bodies, trig, loads);)
     } else {
-        (TokenStream::new(), quote!([0.0; 3]))
+        TokenStream::new()
     };
+    // B_1's contact, where it runs alone.
     let contact_first = if sig.seabed { quote!(loads[1]) } else { quote!([0.0; 3]) };
     // The inward step at element `k` (its inboard neighbour `j` = k − 1).
     let step = |k: TokenStream, j: TokenStream| {
@@ -88,9 +84,11 @@ fn signature_rhs(sig: &LoadSignature) -> TokenStream {
     };
     let one = |k: TokenStream, contact: TokenStream| quote!(loads[#k] = crate::loads::#le(&p[#k], lp, &e[#k], &bodies[#k], &trig[#k], #contact, power););
     let elements = if gravity {
-        // Weight alone: the steps compute −m g; the loads are kept for the observation.
+        // Weight alone (no seabed, so no contact): the steps compute −m g; the loads are kept
+        // for the observation.
+        let no_contact = quote!([0.0; 3]);
         let (load_k, step_k, load_1) =
-            (one(quote!(k), contact), step(quote!(k), quote!(k - 1)), one(quote!(1), contact_first));
+            (one(quote!(k), no_contact.clone()), step(quote!(k), quote!(k - 1)), one(quote!(1), no_contact));
         quote! {
             for k in (2..n - 1).rev() {
                 #load_k

@@ -18,9 +18,9 @@
 //! which compiles and runs the other targets' wiring here. The operations built
 //! on the lanes' bits (`keep`, `mask`, `keep_mask`, `select`, `copysign`, `abs`, `−x`,
 //! `clamp`, the quadrant's selects) are written once for both (`derived!`), so the test
-//! against the scalar operations is what checks them. The SSE2 intrinsics are `unsafe` before Rust 1.87 and safe since wherever
-//! SSE2 is on, as on every x86-64 target: hence the `unsafe` blocks, with `unused_unsafe`
-//! allowed. None of them reads or writes memory.
+//! against the scalar operations is what checks them. The SSE2 intrinsics are `unsafe`
+//! before Rust 1.87 and safe since wherever SSE2 is on, as on every x86-64 target: hence the
+//! `unsafe` blocks, with `unused_unsafe` allowed. None of them reads or writes memory.
 #![allow(unused_unsafe)]
 
 #[cfg(all(target_arch = "x86_64", target_feature = "sse2", not(kanestop_portable_lanes)))]
