@@ -241,7 +241,8 @@ pub fn accuracy(scene: &Scene, out: &Path, repeats: usize, atol_ratio: f64, kern
     Ok(())
 }
 
-/// Checks, before any run, that files can be written into the folder `dir`.
-fn check_dir(dir: &Path) -> Result<()> {
+/// Checks, before any run, that files can be written into the folder `dir` (created later
+/// where it does not exist yet).
+pub(crate) fn check_dir(dir: &Path) -> Result<()> {
     output::check_dir_target(dir).with_context(|| format!("cannot write into {}", dir.display()))
 }

@@ -6,10 +6,11 @@ use std::time::Duration;
 
 use anyhow::{Context, Result};
 
+use crate::commands::check_dir;
 use crate::Exit;
 use kanestop_runtime::scene::Scene;
 use kanestop_workflow::kernels::{self, KernelChoice};
-use kanestop_workflow::output::{self, write_atomically};
+use kanestop_workflow::output::write_atomically;
 use kanestop_workflow::sweep::heatmap;
 use kanestop_workflow::sweep::shard::{self, Shard};
 use kanestop_workflow::sweep::shard_file::{self, ShardFile, ShardRun, SweepId};
@@ -50,7 +51,8 @@ pub struct SweepArgs {
     /// every shard in OUT (one shard when there is none), then merge them.
     #[arg(long)]
     resume: bool,
-    /// A running shard saves its file (the rows done so far, for --resume) every SECONDS.
+    /// A running shard saves its file (the rows done so far, for --resume) every SECONDS
+    /// (0 to 1e6).
     #[arg(long, value_name = "SECONDS", default_value_t = 10.0)]
     checkpoint: f64,
     /// Print a Slurm job script (bash) that submits the sweep as a job array of --shards
@@ -119,6 +121,9 @@ fn choice(name: &str) -> KernelChoice {
     }
 }
 
+/// The longest `--checkpoint`, s (11.6 days: longer than a scheduler's time limits).
+const MAX_CHECKPOINT: f64 = 1e6;
+
 /// Reads one output of a summary.
 type Output<'a> = &'a dyn Fn(&kanestop_workflow::record::RunSummary) -> Option<f64>;
 
@@ -137,10 +142,11 @@ pub fn sweep(args: &SweepArgs) -> Result<Exit> {
         }
     }
     let plan = spec.plan();
+    kanestop_workflow::parallel::check_jobs(args.jobs)?;
     anyhow::ensure!(
-        args.checkpoint.is_finite() && args.checkpoint >= 0.0,
-        "--checkpoint = {}: a number of seconds ≥ 0",
-        args.checkpoint
+        (0.0..=MAX_CHECKPOINT).contains(&args.checkpoint),
+        "--checkpoint = {}: a number of seconds from 0 to {MAX_CHECKPOINT:e}",
+        kanestop_runtime::scene::fmt_value(args.checkpoint)
     );
     if args.slurm {
         return slurm(args, &spec, &plan);
@@ -162,7 +168,7 @@ pub fn sweep(args: &SweepArgs) -> Result<Exit> {
         Some((s, from)) => run_shard(args, &id, &plan, s, from),
         None if args.resume => resume_all(args, &id, &plan),
         None => {
-            sweep::check_writable(&args.out)?;
+            check_dir(&args.out)?;
             let kernel = kernels::factory(choice(&args.kernel));
             let bar = Progress::new(plan.len(), "runs");
             let rows = sweep::run(&plan, &kernel, args.jobs, &|r| bar.inc(format!("{} {}", r.name, r.status)))?;
@@ -230,7 +236,7 @@ fn execute_shard(
     shard: Shard,
     resume: bool,
 ) -> Result<(ShardFile, usize, PathBuf)> {
-    sweep::check_writable(&args.out.join("shards"))?;
+    check_dir(&args.out.join("shards"))?;
     let every = Duration::from_secs_f64(args.checkpoint);
     let (run, todo) = ShardRun::start(id, plan, shard, &args.out, resume, every)?;
     let kernel = kernels::factory(choice(&args.kernel));
@@ -261,7 +267,7 @@ fn run_shard(args: &SweepArgs, id: &SweepId, plan: &[PlannedRow], shard: Shard, 
 /// `sweep SPEC --resume` without a shard: completes every shard of the folder (by the shard
 /// count of its files; one shard when it has none), then merges them.
 fn resume_all(args: &SweepArgs, id: &SweepId, plan: &[PlannedRow]) -> Result<Exit> {
-    sweep::check_writable(&args.out)?;
+    check_dir(&args.out)?;
     let folder = args.out.join("shards");
     let files = if folder.is_dir() { shard_file::files_in(&args.out)? } else { Vec::new() };
     let mut counts = std::collections::BTreeSet::new();
@@ -298,7 +304,7 @@ fn merge(m: &MergeArgs) -> Result<Exit> {
             _ => parent,
         }
     });
-    output::check_dir_target(&out).with_context(|| format!("cannot write into {}", out.display()))?;
+    check_dir(&out)?;
     let heat_maps = heatmap::parse_outputs(&m.heatmap)?;
     let spec = m.spec.as_ref().map(|f| sweep::Spec::load(f)).transpose()?;
     let merged = merge::merge(&m.dirs)?;
@@ -365,7 +371,8 @@ pub fn sensitivity(args: &SensitivityArgs) -> Result<Exit> {
         }
         None => Vec::new(),
     };
-    std::fs::create_dir_all(&args.out).with_context(|| format!("cannot create {}", args.out.display()))?;
+    kanestop_workflow::parallel::check_jobs(args.jobs)?;
+    check_dir(&args.out)?;
     let runs = 1 + 2 * sensitivity::parameters(&scene).len();
     let kernel = kernels::factory(KernelChoice::Generated);
     let bar = Progress::new(runs, "runs");
@@ -383,6 +390,7 @@ pub fn sensitivity(args: &SensitivityArgs) -> Result<Exit> {
             println!("  note: {m} is not a continuous parameter of the scene; ignored");
         }
     }
+    std::fs::create_dir_all(&args.out).with_context(|| format!("cannot create {}", args.out.display()))?;
     let (c, j) = (args.out.join("sensitivity.csv"), args.out.join("sensitivity.json"));
     write_atomically(&c, sensitivity::csv(&study).as_bytes())
         .with_context(|| format!("cannot write {}", c.display()))?;

@@ -91,12 +91,57 @@ fn exit_2_bad_arguments_scene_and_paths() {
         assert_eq!(out.status.code(), Some(2), "{flag}: {stdout}{stderr}");
         assert!(stdout.is_empty() && stderr.contains("cannot write"), "{flag}: {stdout}{stderr}");
     }
-    for sub in [vec!["plot", short.to_str().unwrap()], vec!["report", "accuracy", short.to_str().unwrap()]] {
+    let short_path = short.to_str().unwrap();
+    for sub in
+        [vec!["plot", short_path], vec!["report", "accuracy", short_path], vec!["report", "sensitivity", short_path]]
+    {
         let out = kanestop().args(&sub).arg("--out").arg(file.join("x")).output().unwrap();
         let (stdout, stderr) = text(&out);
         assert_eq!(out.status.code(), Some(2), "{sub:?}: {stdout}{stderr}");
         assert!(stderr.contains("cannot write into"), "{sub:?}: {stderr}");
     }
+}
+
+#[test]
+fn exit_2_sweep_arguments_refused_before_anything_is_written() {
+    let dir = temp_dir("sweep-args");
+    let short = scene(&dir, "short", |t| t);
+    let spec = |name: &str, axes: &str| {
+        let path = dir.join(format!("{name}.toml"));
+        std::fs::write(&path, format!("base = {:?}\n{axes}", short.file_name().unwrap())).unwrap();
+        path
+    };
+    let small = spec("small", "[[axis]]\npath = \"anchor.mass\"\nvalues = [40000.0]\n");
+    let axis = |p: &str| format!("[[axis]]\npath = \"{p}\"\nrange = {{ from = 1.0, to = 2.0, steps = 100000 }}\n");
+    let huge = spec("huge", &(axis("anchor.mass") + &axis("ship.mass")));
+    let huge4 =
+        spec("huge4", &[axis("anchor.mass"), axis("ship.mass"), axis("rod.length"), axis("ship.length")].concat());
+    let out = dir.join("out");
+    let cases: [(Vec<&str>, &str); 5] = [
+        (vec!["sweep", small.to_str().unwrap(), "--jobs", "0"], "--jobs = 0: at least 1"),
+        (vec!["sweep", small.to_str().unwrap(), "--shard", "0/1", "--jobs", "0"], "--jobs = 0: at least 1"),
+        (
+            vec!["sweep", small.to_str().unwrap(), "--shard", "0/1", "--checkpoint", "1e300"],
+            "--checkpoint = 1e300: a number of seconds from 0 to 1e6",
+        ),
+        (vec!["sweep", huge.to_str().unwrap()], "axis = 100000 × 100000 rows: at most 1000000 rows in all"),
+        (vec!["sweep", huge4.to_str().unwrap()], "axis = 100000 × 100000 × 100000 × 100000 rows"),
+    ];
+    for (args, message) in cases {
+        let o = kanestop().args(&args).arg("--out").arg(&out).output().unwrap();
+        let (stdout, stderr) = text(&o);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {stdout}{stderr}");
+        assert!(stderr.contains(message) && !stderr.contains("panicked"), "{args:?}: {stderr}");
+        assert!(!out.exists(), "{args:?} wrote {}", out.display());
+    }
+    let o = kanestop()
+        .args(["report", "sensitivity", short.to_str().unwrap(), "--jobs", "0"])
+        .arg("--out")
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(o.status.code() == Some(2) && text(&o).1.contains("--jobs = 0: at least 1"), "{:?}", text(&o));
+    assert!(!out.exists(), "report sensitivity --jobs 0 wrote {}", out.display());
 }
 
 #[test]

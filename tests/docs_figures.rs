@@ -8,7 +8,7 @@ use std::path::Path;
 
 use kanestop_runtime::forces::ship::ShipHydro;
 use kanestop_runtime::generated::GeneratedKernel;
-use kanestop_runtime::model::{resting_height, Model};
+use kanestop_runtime::model::Model;
 use kanestop_runtime::paper::CASES;
 use kanestop_runtime::scene::{bytes_for_bodies, MAX_BODIES, MAX_STEPS, SECONDS_PER_BODY_EVALUATION};
 
@@ -70,7 +70,7 @@ fn model_choices_figures_are_what_the_code_computes() {
         kanestop_runtime::catenary::laid_range(&scene.cable_element_lengths(), scene.initial.vertical_projection)
             .expect("case 1 has a feasible range");
     let env = &scene.environment;
-    let embedment = |radius: f64, mpl: f64| 1e3 * (radius - resting_height(radius, mpl, env));
+    let embedment = |radius: f64, mpl: f64| 1e3 * (radius - env.resting_height(radius, mpl));
     let ship = ShipHydro::new(
         scene.ship.mass,
         scene.ship.length,

@@ -45,6 +45,37 @@ fn anchor_taller_than_the_water() {
 }
 
 #[test]
+fn the_depth_check_counts_the_cable_s_resting_height() {
+    // A soft seabed buries a thick, heavy cable by most of its radius: the water over the
+    // laid line is then shallower than h_L + rod.length − hinge_z (0.05 m here) by 0.15 m,
+    // so the exact depth is negative and the anchor (0.01 m tall) stands out of the water.
+    let mut s = case1();
+    s.environment.current_surface_speed = 1.0;
+    s.environment.seabed_stiffness = 11000.0;
+    s.anchor.height = 0.01;
+    s.chain.elements = 0;
+    s.cable.radius = 0.2;
+    s.cable.mass_per_length = 140.0;
+    s.ship.mass = 1.0e4;
+    s.ship.hinge_z = 1.45;
+    s.initial.vertical_projection = 0.5;
+    s.initial.horizontal_projection = 151.95;
+    let approximate = s.initial.vertical_projection + s.rod.length - s.ship.hinge_z;
+    assert!(s.anchor.height < approximate && s.water_depth() < 0.0, "{approximate}, {}", s.water_depth());
+    assert_refused(&s, "anchor.height", "below the water depth d = h_L + the cable's resting height");
+}
+
+#[test]
+fn the_scene_s_water_depth_is_the_model_s() {
+    for case in kanestop_runtime::paper::CASES {
+        let scene = case.scene();
+        let model = kanestop_runtime::model::Model::new(&scene).unwrap();
+        let (d, m) = (scene.water_depth(), model.water_depth());
+        assert!((d - m).abs() <= 1e-12 * m, "case {}: scene {d} m, model {m} m", case.number);
+    }
+}
+
+#[test]
 fn ship_aground() {
     let mut s = case1();
     s.initial.vertical_projection = 2.5;

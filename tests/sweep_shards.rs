@@ -267,6 +267,48 @@ fn a_merge_refuses_another_sweep_a_missing_shard_and_a_row_twice() {
 }
 
 #[test]
+fn a_merge_refuses_edited_shard_files_without_a_panic() {
+    let dir = temp_dir("edited");
+    let out = dir.join("out");
+    run_shards(&spec(&dir, 3.0), &out, 1, |k| (vec!["--shard".into(), format!("{k}/1")], vec![]));
+    let good: Value = serde_json::from_slice(&std::fs::read(out.join("shards/shard-0-of-1.json")).unwrap()).unwrap();
+    let edited = |name: &str, edit: &dyn Fn(&mut Value)| -> PathBuf {
+        let mut v = good.clone();
+        edit(&mut v);
+        let path = dir.join(name);
+        std::fs::write(&path, serde_json::to_vec(&v).unwrap()).unwrap();
+        path
+    };
+    let refused = |files: &[&Path], part: &str| {
+        let mut args = vec!["sweep", "merge"];
+        args.extend(files.iter().map(|f| s(f)));
+        let o = run(&args, &[]);
+        assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+        assert!(stderr(&o).contains(part), "{part:?} in {}", stderr(&o));
+    };
+    refused(&[&edited("count0.json", &|v| v["shard"]["count"] = 0.into())], "N in [1, 1000000]");
+    refused(&[&edited("index9.json", &|v| v["shard"]["index"] = 9.into())], "K in [0, 0]");
+    refused(
+        &[&edited("huge.json", &|v| v["rows_total"] = 1_000_000_000_000u64.into())],
+        "rows_total = 1000000000000: at most 1000000",
+    );
+    // Two files of one plan hash that disagree on the sweep's size.
+    let a = edited("a.json", &|v| {
+        v["shard"] = serde_json::json!({"index": 0, "count": 2});
+        v["rows_total"] = 4.into();
+        v["row_indices"] = serde_json::json!([0, 2]);
+        v["rows"] = serde_json::json!([]);
+    });
+    let b = edited("b.json", &|v| {
+        v["shard"] = serde_json::json!({"index": 1, "count": 2});
+        v["rows_total"] = 2.into();
+        v["row_indices"] = serde_json::json!([1]);
+        v["rows"] = serde_json::json!([]);
+    });
+    refused(&[&a, &b], "rows_total = 2, but");
+}
+
+#[test]
 fn a_shard_killed_halfway_resumes_to_the_same_result() {
     // Rows of about 0.3 s each, one at a time, saved after every row.
     let dir = temp_dir("kill");

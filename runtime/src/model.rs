@@ -10,9 +10,7 @@ use kanestop_chain::{BodyKind, Topology, TopologyError};
 
 use crate::catenary::{lay_elements, Catenary, CatenaryError};
 use crate::chain::{added_mass, box_inertia, Body, Chain, Shape};
-use crate::geometry::segment_area;
 use crate::kernel::AnchorDof;
-use crate::scene::Environment;
 use crate::scene::Scene;
 
 /// Everything a run starts from.
@@ -201,7 +199,7 @@ impl LaidLine {
         // forward face at its height; the first cable element, thin and light, bridges the
         // few centimetres from the chain's height down to its own (its raised end just rests).
         let env = &scene.environment;
-        let rest = |radius: f64, mpl: f64| resting_height(radius, mpl, env);
+        let rest = |radius: f64, mpl: f64| env.resting_height(radius, mpl);
         let cable_height = rest(scene.cable.radius, scene.cable.mass_per_length);
         let chain_height =
             if scene.chain.elements > 0 { rest(scene.chain.radius, scene.chain.mass_per_length) } else { cable_height };
@@ -329,30 +327,4 @@ pub struct LoadLimits {
     pub proof: Option<f64>,
     /// Break load, N.
     pub breaking: Option<f64>,
-}
-
-/// Height of a level rod's centreline above the seabed at rest, m: the depth δ at which the
-/// foundation carries the submerged weight, (k_z − ρ g) A(δ) = (m' − ρ π R²) g (Eqs. 41, 42).
-/// Without a seabed (or lighter than water) the rod is placed touching the seabed plane.
-pub fn resting_height(radius: f64, mass_per_length: f64, env: &Environment) -> f64 {
-    let rho = if env.water { env.water_density } else { 0.0 };
-    let area = std::f64::consts::PI * radius * radius;
-    let load = (mass_per_length - rho * area) * env.gravity;
-    if !env.seabed || load <= 0.0 {
-        return radius;
-    }
-    let target = load / (env.seabed_stiffness - rho * env.gravity);
-    if target >= area {
-        return -radius; // the foundation is too soft to carry it: fully buried
-    }
-    let (mut lo, mut hi) = (0.0, 2.0 * radius);
-    for _ in 0..200 {
-        let mid = 0.5 * (lo + hi);
-        if segment_area(radius, mid) < target {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    radius - 0.5 * (lo + hi)
 }

@@ -11,6 +11,7 @@ use std::path::Path;
 use serde::{Deserialize, Serialize};
 
 use crate::catenary;
+use crate::geometry::segment_area;
 use crate::overrides::{self, OverrideError};
 
 /// The most bodies N a scene may have: the start-up stability analysis and the reference
@@ -107,6 +108,36 @@ pub struct Environment {
     pub current_surface_speed: f64,
     /// Exponent of the current profile U = U_ST (h/d)^exponent, dimensionless (Eq. 38: 1/7).
     pub current_exponent: f64,
+}
+
+impl Environment {
+    /// Height of a level rod's centreline above the seabed at rest, m: the depth δ at which
+    /// the foundation carries the submerged weight, (k_z − ρ g) A(δ) = (m' − ρ π R²) g
+    /// (Eqs. 41, 42), for a rod of `radius` (m) and `mass_per_length` (kg/m). Without a
+    /// seabed (or lighter than water) the rod is placed touching the seabed plane (+R); on a
+    /// foundation too soft to carry it, fully buried (−R).
+    pub fn resting_height(&self, radius: f64, mass_per_length: f64) -> f64 {
+        let rho = if self.water { self.water_density } else { 0.0 };
+        let area = std::f64::consts::PI * radius * radius;
+        let load = (mass_per_length - rho * area) * self.gravity;
+        if !self.seabed || load <= 0.0 {
+            return radius;
+        }
+        let target = load / (self.seabed_stiffness - rho * self.gravity);
+        if target >= area {
+            return -radius; // the foundation is too soft to carry it: fully buried
+        }
+        let (mut lo, mut hi) = (0.0, 2.0 * radius);
+        for _ in 0..200 {
+            let mid = 0.5 * (lo + hi);
+            if segment_area(radius, mid) < target {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        radius - 0.5 * (lo + hi)
+    }
 }
 
 /// Hydrodynamic coefficients (Eqs. 39, 44–47).
@@ -493,6 +524,16 @@ impl Scene {
         self.cable.stages.iter().map(|s| s.elements as f64 * s.element_length).sum()
     }
 
+    /// The water depth d = h_L + δ_c + `rod.length` − `ship.hinge_z`, m: the seabed lies d
+    /// below the water plane, the cable's top h_L above the laid line, which rests at the
+    /// cable's resting height δ_c ([`Environment::resting_height`]); the rod stands on the
+    /// cable top up to the ship's hinge, `hinge_z` above the water plane (the model's layout).
+    pub fn water_depth(&self) -> f64 {
+        let cable = &self.cable;
+        let rest = self.environment.resting_height(cable.radius, cable.mass_per_length);
+        rest + self.initial.vertical_projection + self.rod.length - self.ship.hinge_z
+    }
+
     /// The ship's draught T = m_N / (ρ L_N w_N), m: the box floats level in still water.
     pub fn ship_draught(&self) -> f64 {
         self.ship.mass / (self.environment.water_density * self.ship.length * self.ship.beam)
@@ -557,8 +598,8 @@ impl Scene {
         }
     }
 
-    /// The water depth d ≈ h_L + rod.length − ship.hinge_z (the model's layout, to the cable's
-    /// resting height) holds the anchor and the floating ship; the rod is above the water.
+    /// The water depth d ([`Scene::water_depth`]) holds the anchor and the floating ship; the
+    /// rod is above the water.
     fn check_depth(&self, c: &mut Checker) {
         let (rod, ship) = (&self.rod, &self.ship);
         if rod.length > ship.hinge_z + 1e-9 {
@@ -568,8 +609,7 @@ impl Scene {
             );
             c.push("rod.length", &fmt_value(rod.length), &why);
         }
-        // Without the cable's resting height (a few mm, within ± its radius).
-        let depth = self.initial.vertical_projection + rod.length - ship.hinge_z;
+        let depth = self.water_depth();
         let needs = [
             ("anchor.height", self.anchor.height, "the anchor's top"),
             ("ship.mass", self.ship_draught(), "the ship's keel (draught)"),
@@ -578,7 +618,7 @@ impl Scene {
             if self.environment.water && height >= depth {
                 let value = if field == "ship.mass" { fmt_value(ship.mass) } else { fmt_value(height) };
                 let why = format!(
-                    "such that {what} ({} m) is below the water depth d ≈ h_L + rod.length − ship.hinge_z = {} m (raise initial.vertical_projection)",
+                    "such that {what} ({} m) is below the water depth d = h_L + the cable's resting height + rod.length − ship.hinge_z = {} m (raise initial.vertical_projection)",
                     fmt_rounded(height, 3),
                     fmt_rounded(depth, 3)
                 );
@@ -862,7 +902,7 @@ impl Scene {
 
 /// Formats a value the way a user would write it in the TOML file: as written for ordinary
 /// magnitudes, with an exponent (`1e300`, `2.5e-12`) beyond them rather than hundreds of digits.
-fn fmt_value(v: f64) -> String {
+pub fn fmt_value(v: f64) -> String {
     if v.is_nan() {
         "nan".into()
     } else if extreme(v) {

@@ -174,11 +174,11 @@ pub fn study(
         return Err(Error::Argument {
             name: "atol ratio",
             value: atol_ratio.to_string(),
-            expected: "must be finite and > 0 (atol = ratio × rtol)",
+            expected: "must be finite and > 0 (atol = ratio × rtol)".into(),
         });
     }
     if repeats == 0 {
-        return Err(Error::Argument { name: "repeats", value: "0".into(), expected: "must be at least 1" });
+        return Err(Error::Argument { name: "repeats", value: "0".into(), expected: "must be at least 1".into() });
     }
     let reference_run = |rtol: f64| {
         let label = format!("reference dp5 {rtol:e}");

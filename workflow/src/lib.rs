@@ -85,7 +85,7 @@ pub enum Error {
         /// Its value as given.
         value: String,
         /// The valid range.
-        expected: &'static str,
+        expected: String,
     },
     /// A sweep spec's field is missing, of the wrong type or out of range.
     #[error("sweep spec {}: {field} = {value}: {expected}", file.display())]

@@ -5,6 +5,7 @@ use kanestop_runtime::model::Model;
 use kanestop_runtime::simulate::{self, RunResult};
 
 use crate::kernels::KernelFactory;
+use crate::{Error, Result};
 
 /// `f` applied to every item, in parallel where the feature allows, results in input order.
 #[cfg(feature = "parallel")]
@@ -19,19 +20,33 @@ pub fn map<T: Sync, R: Send>(items: &[T], f: impl Fn(&T) -> R + Sync + Send) -> 
     items.iter().map(f).collect()
 }
 
-/// [`map`] on a pool of `jobs` threads (rayon's default pool when none); without the
-/// `parallel` feature, one after another whatever `jobs` says.
+/// `jobs` as the CLI's `--jobs` takes it: none (one run per core) or at least 1.
+pub fn check_jobs(jobs: Option<usize>) -> Result<()> {
+    match jobs {
+        Some(0) => {
+            Err(Error::Argument { name: "--jobs", value: "0".into(), expected: "at least 1 (runs at once)".into() })
+        }
+        _ => Ok(()),
+    }
+}
+
+/// [`map`] on a pool of `jobs` threads (rayon's default pool when none), after
+/// [`check_jobs`]; without the `parallel` feature, one after another whatever `jobs` says.
 #[cfg(feature = "parallel")]
 pub fn map_jobs<T: Sync, R: Send>(
     jobs: Option<usize>,
     items: &[T],
     f: impl Fn(&T) -> R + Sync + Send,
-) -> Result<Vec<R>, String> {
+) -> Result<Vec<R>> {
+    check_jobs(jobs)?;
     match jobs {
         None => Ok(map(items, f)),
-        Some(0) => Err("must be at least 1".into()),
         Some(n) => {
-            let pool = rayon::ThreadPoolBuilder::new().num_threads(n).build().map_err(|e| e.to_string())?;
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(n).build().map_err(|e| Error::Argument {
+                name: "--jobs",
+                value: n.to_string(),
+                expected: format!("as many threads as the system starts ({e})"),
+            })?;
             Ok(pool.install(|| map(items, f)))
         }
     }
@@ -43,10 +58,8 @@ pub fn map_jobs<T: Sync, R: Send>(
     jobs: Option<usize>,
     items: &[T],
     f: impl Fn(&T) -> R + Sync + Send,
-) -> Result<Vec<R>, String> {
-    if jobs == Some(0) {
-        return Err("must be at least 1".into());
-    }
+) -> Result<Vec<R>> {
+    check_jobs(jobs)?;
     Ok(map(items, f))
 }
 

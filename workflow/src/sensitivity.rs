@@ -96,7 +96,7 @@ pub fn study(
         return Err(crate::Error::Argument {
             name: "--step",
             value: step.to_string(),
-            expected: "in (0, 0.5), e.g. 0.05",
+            expected: "in (0, 0.5), e.g. 0.05".into(),
         });
     }
     let params = parameters(scene);
@@ -116,11 +116,6 @@ pub fn study(
         });
         done();
         r
-    })
-    .map_err(|e| crate::Error::Argument {
-        name: "--jobs",
-        value: format!("{jobs:?}"),
-        expected: Box::leak(e.into_boxed_str()),
     })?;
     let base = runs[0].clone().map_err(crate::Error::NoReference)?;
     let denom = ((1.0 + step) / (1.0 - step)).ln();

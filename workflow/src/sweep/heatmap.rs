@@ -68,7 +68,8 @@ impl Output {
             name: "--heatmap",
             value: name.to_string(),
             expected: "one of stopping_distance, stopping_time, peak_utilisation, peak_tension, \
-                       anchor_drag_distance, ship_displacement (comma-separated), or none",
+                       anchor_drag_distance, ship_displacement (comma-separated), or none"
+                .into(),
         })
     }
 

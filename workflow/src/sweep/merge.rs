@@ -60,6 +60,17 @@ pub fn merge(paths: &[PathBuf]) -> Result<Merged> {
             second_hash: other.plan_hash.clone(),
         }));
     }
+    if let Some((path, other)) = read.iter().find(|(_, f)| f.rows_total != first.rows_total) {
+        return Err(Error::Shard(ShardError::File {
+            file: path.clone(),
+            problem: format!(
+                "rows_total = {}, but {} says {} for the same plan hash",
+                other.rows_total,
+                first_path.display(),
+                first.rows_total
+            ),
+        }));
+    }
     let mut slots: Vec<Option<(&ShardRow, &Path)>> = vec![None; first.rows_total];
     for (path, file) in &read {
         for r in &file.rows {

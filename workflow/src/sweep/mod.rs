@@ -151,11 +151,6 @@ pub fn run(
         done(&r);
         r
     })
-    .map_err(|e| Error::Argument { name: "--jobs", value: format!("{jobs:?}"), expected: leak(e) })
-}
-
-fn leak(s: String) -> &'static str {
-    Box::leak(s.into_boxed_str())
 }
 
 /// A message on one line.
@@ -429,15 +424,6 @@ impl Progress {
     pub fn finish(&self) {
         self.bar.finish_and_clear();
     }
-}
-
-/// Creates `dir` and checks it is writable (before the runs start).
-pub fn check_writable(dir: &Path) -> Result<()> {
-    std::fs::create_dir_all(dir).map_err(Error::io("create", dir))?;
-    let probe = dir.join(format!(".kanestop-write-test{}", std::process::id()));
-    std::fs::write(&probe, b"").map_err(Error::io("write", &probe))?;
-    let _ = std::fs::remove_file(&probe);
-    Ok(())
 }
 
 /// The file `scenes/NAME.toml` of a planned row: its scene, to rerun it alone (none when

@@ -14,6 +14,7 @@ use serde::{Deserialize, Serialize};
 use sha2::{Digest, Sha256};
 
 use super::shard::{Shard, ShardError};
+use super::spec::MAX_ROWS;
 use super::{scene_file, PlannedRow, Spec, SweepRow};
 use crate::output::write_atomically;
 use crate::{Error, Result};
@@ -130,6 +131,10 @@ impl ShardFile {
             return Err(problem(format!("format {format:?}, expected \"{FORMAT}\"")));
         }
         let file: ShardFile = serde_json::from_str(&text).map_err(|e| problem(e.to_string()))?;
+        Shard::new(file.shard.index, file.shard.count, "shard").map_err(|e| problem(e.to_string()))?;
+        if file.rows_total > MAX_ROWS {
+            return Err(problem(format!("rows_total = {}: at most {MAX_ROWS}", file.rows_total)));
+        }
         if file.row_indices != file.shard.rows(file.rows_total) {
             return Err(problem(format!("its row_indices are not those of shard {}", file.shard)));
         }

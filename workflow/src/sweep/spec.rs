@@ -76,6 +76,10 @@ struct UncertainFile {
     sigma: Option<f64>,
 }
 
+/// The most rows a spec may plan (every row's scene is held in memory): a million runs,
+/// about a CPU-day of paper cases; a larger study is several specs.
+pub const MAX_ROWS: usize = 1_000_000;
+
 /// One grid axis: a dotted path and its values, in order.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Axis {
@@ -203,7 +207,7 @@ impl Spec {
         let base = Scene::from_value(value, &format!("{} (base with [solver] and [set])", file.display()))?;
         let base_value = base.to_value();
         let axes =
-            raw.axis.into_iter().enumerate().map(|(i, a)| axis(file, &base_value, i, a)).collect::<Result<_>>()?;
+            raw.axis.into_iter().enumerate().map(|(i, a)| axis(file, &base_value, i, a)).collect::<Result<Vec<_>>>()?;
         let uncertain = raw
             .uncertain
             .into_iter()
@@ -211,12 +215,23 @@ impl Spec {
             .map(|(i, u)| uncertain(file, &base_value, i, u))
             .collect::<Result<Vec<_>>>()?;
         let sampling = match (raw.sampling, uncertain.is_empty()) {
-            (Some(s), false) if (1..=1_000_000).contains(&s.samples) => Some((s.method, s.samples, s.seed)),
-            (Some(s), false) => return Err(bad(file, "sampling.samples", s.samples, "in [1, 1000000]")),
+            (Some(s), false) if (1..=MAX_ROWS).contains(&s.samples) => Some((s.method, s.samples, s.seed)),
+            (Some(s), false) => return Err(bad(file, "sampling.samples", s.samples, format!("in [1, {MAX_ROWS}]"))),
             (Some(_), true) => return Err(bad(file, "sampling", "set", "needs at least one [[uncertain]] input")),
             (None, false) => return Err(bad(file, "uncertain", "set", "needs [sampling] (method, samples, seed)")),
             (None, true) => None,
         };
+        let sizes: Vec<usize> = axes.iter().map(|a| a.values.len()).chain(sampling.map(|s| s.1)).collect();
+        if sizes.iter().try_fold(1usize, |all, &n| all.checked_mul(n).filter(|&t| t <= MAX_ROWS)).is_none() {
+            let product = sizes.iter().map(usize::to_string).collect::<Vec<_>>().join(" × ");
+            let what = if sampling.is_some() { "the axes' values times the samples" } else { "the axes' values" };
+            return Err(bad(
+                file,
+                "axis",
+                format!("{product} rows"),
+                format!("at most {MAX_ROWS} rows in all ({what}); split the study into several specs"),
+            ));
+        }
         if let Some(c) = &raw.checks {
             if let Some((field, v, expected)) = c.problems("checks").into_iter().next() {
                 return Err(bad(file, field, v, expected));
