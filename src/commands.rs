@@ -197,25 +197,41 @@ pub enum BatchOutcome {
     CheckFailed,
 }
 
-/// `plot SCENE…`: runs the scenes and writes overlaid plots into `out`.
-pub fn plot(scenes: &[PathBuf], out: &Path, kernel: KernelFactory) -> Result<Vec<PathBuf>> {
+/// `plot SCENE…`: runs the scenes and writes overlaid plots into `out`. A run that failed is
+/// named on standard error with its diagnostic, as `run` names it, and drawn up to its
+/// failure; one that never started (refused before its first step) is left out of the
+/// charts. The outcome is the worst of the runs': refused before any numerical failure.
+pub fn plot(scenes: &[PathBuf], out: &Path, kernel: KernelFactory) -> Result<RunOutcome> {
     check_dir(out)?;
     let models: Vec<Model> =
         scenes.iter().map(|p| -> Result<Model> { Ok(Model::new(&Scene::load(p)?)?) }).collect::<Result<_>>()?;
     let bar = progress::bar(models.len(), "scenes");
     let results = parallel::run_models(&models, kernel, &|_| bar.inc(1));
     bar.finish_and_clear();
-    write_plots(&models, &results, out)
-}
-
-/// Writes the plots of finished runs.
-pub fn write_plots(models: &[Model], results: &[RunResult], out: &Path) -> Result<Vec<PathBuf>> {
-    let runs: Vec<(&Model, &RunResult)> = models.iter().zip(results).collect();
-    let files = plot::write_plots(&runs, out)?;
-    for f in &files {
-        println!("written   {}", f.display());
+    let mut outcome = RunOutcome::Done;
+    let mut drawn: Vec<(&Model, &RunResult)> = Vec::new();
+    for ((path, model), result) in scenes.iter().zip(&models).zip(&results) {
+        if let Stop::Failed(f) = &result.stop {
+            let refused = matches!(f.kind, FailureKind::StepAboveLimit { .. });
+            let word = if refused { "error" } else { "failed" };
+            eprintln!("{word}: {}: {}", path.display(), diagnostic::describe(model, f));
+            outcome = match (outcome, refused) {
+                (_, true) | (RunOutcome::Refused, _) => RunOutcome::Refused,
+                _ => RunOutcome::NumericalFailure,
+            };
+        }
+        if result.samples.is_empty() {
+            eprintln!("{:<10}{} (the run never started: not drawn)", "skipped", path.display());
+        } else {
+            drawn.push((model, result));
+        }
     }
-    Ok(files)
+    if !drawn.is_empty() {
+        for f in plot::write_plots(&drawn, out)? {
+            println!("written   {}", f.display());
+        }
+    }
+    Ok(outcome)
 }
 
 /// `report accuracy`: the work–precision study, printed and written into `out`.

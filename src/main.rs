@@ -640,10 +640,11 @@ fn try_main() -> Result<Exit> {
         }
         Command::Sweep(args) => sweep::sweep(&args),
         Command::Report { kind: ReportKind::Sensitivity(args) } => sweep::sensitivity(&args),
-        Command::Plot { scenes, out, kernel: choice } => {
-            commands::plot(&scenes, &out, &choice.factory())?;
-            Ok(Exit::Done)
-        }
+        Command::Plot { scenes, out, kernel: choice } => Ok(match commands::plot(&scenes, &out, &choice.factory())? {
+            RunOutcome::Refused => Exit::BadInput,
+            RunOutcome::NumericalFailure => Exit::NumericalFailure,
+            RunOutcome::Done | RunOutcome::CheckFailed => Exit::Done,
+        }),
         Command::Batch { dir, out, tolerance, kernel: choice, solver, methods, error_estimate } => {
             if let Some(t) = tolerance {
                 anyhow::ensure!(t.is_finite() && t > 0.0, "--tolerance {t}: must be a number > 0 (e.g. 0.05 for 5 %)");

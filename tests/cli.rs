@@ -292,7 +292,7 @@ fn plot_writes_the_four_svg_charts() {
 }
 
 #[test]
-fn plot_of_a_run_refused_before_its_first_step_does_not_panic() {
+fn plot_of_a_run_refused_before_its_first_step_names_it_and_leaves_it_out() {
     // Regression: a run refused at t = 0 has no samples; plotting it beside a good run
     // indexed its first sample (exit 101, a partial set of SVGs).
     let dir = temp_dir("plot-refused");
@@ -309,10 +309,20 @@ fn plot_of_a_run_refused_before_its_first_step_does_not_panic() {
     .unwrap();
     let out_dir = dir.join("plots");
     let out = kanestop().arg("plot").arg(&refused).arg(&scene).arg("--out").arg(&out_dir).output().unwrap();
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    // Refused, as `run` refuses it (exit 2, the diagnostic on standard error), and left out
+    // of the charts; the good run is drawn.
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("error: ") && stderr.contains("refused.toml") && stderr.contains("stability limit"), "{stderr}");
+    assert!(stderr.contains("the run never started: not drawn"), "{stderr}");
     let svg = std::fs::read_to_string(out_dir.join("displacement.svg")).unwrap();
     assert!(svg.contains("case01 ship"), "the good run is drawn");
     assert!(!svg.contains("refused ship") && svg.trim_end().ends_with("</svg>"));
+    // Alone, nothing is drawn.
+    let alone = dir.join("alone");
+    let out = kanestop().arg("plot").arg(&refused).arg("--out").arg(&alone).output().unwrap();
+    assert_eq!(out.status.code(), Some(2), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(!alone.exists(), "no charts of a run that never started");
 }
 
 #[test]
