@@ -313,7 +313,10 @@ fn plot_of_a_run_refused_before_its_first_step_names_it_and_leaves_it_out() {
     // of the charts; the good run is drawn.
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(2), "{stderr}");
-    assert!(stderr.contains("error: ") && stderr.contains("refused.toml") && stderr.contains("stability limit"), "{stderr}");
+    assert!(
+        stderr.contains("error: ") && stderr.contains("refused.toml") && stderr.contains("stability limit"),
+        "{stderr}"
+    );
     assert!(stderr.contains("the run never started: not drawn"), "{stderr}");
     let svg = std::fs::read_to_string(out_dir.join("displacement.svg")).unwrap();
     assert!(svg.contains("case01 ship"), "the good run is drawn");

@@ -44,7 +44,12 @@ fn a_variant_of_a_few_lines_is_the_full_file() {
 
     let variant = Scene::load(&dir.join("heavy.toml")).unwrap();
     let whole = Scene::load(&dir.join("full.toml")).unwrap();
-    assert_eq!(variant, whole);
+    assert!(variant.same_case(&whole));
+    // Its own name and description, and no paper time: a heavier, faster ship is no paper case.
+    assert_eq!(variant.meta.name, "heavy");
+    assert_eq!(variant.meta.description, "base/case01.toml with the changes of heavy.toml");
+    assert_eq!(variant.meta.paper_stopping_time, None);
+    assert_eq!(Scene { meta: whole.meta.clone(), ..variant.clone() }, whole);
     assert_eq!(variant.ship.mass, 750000.0);
     assert_eq!(run_key(&variant), run_key(&whole), "the same run, bit for bit");
 
@@ -53,6 +58,32 @@ fn a_variant_of_a_few_lines_is_the_full_file() {
     let overridden =
         base.with_overrides(&[("ship.mass", 750000.0.into()), ("initial.ship_speed", 4.0.into())]).unwrap();
     assert_eq!(overridden, whole);
+}
+
+#[test]
+fn a_variant_keeps_what_it_sets_of_meta_and_the_paper_time_only_for_the_paper_case() {
+    let dir = temp_dir("meta");
+    std::fs::write(dir.join("case01.toml"), base_text()).unwrap();
+    // Only a design check added: still the paper's case 1, under the file's own name.
+    std::fs::write(dir.join("checked.toml"), "extends = \"case01.toml\"\n[checks]\nmax_anchor_drag = 30.0\n").unwrap();
+    let checked = Scene::load(&dir.join("checked.toml")).unwrap();
+    assert_eq!((checked.meta.name.as_str(), checked.meta.paper_stopping_time), ("checked", Some(20.01)));
+    // What a variant sets of [meta] is its own, and a chain of variants works alike.
+    std::fs::write(
+        dir.join("named.toml"),
+        "extends = \"checked.toml\"\n[meta]\nname = \"light ship\"\n[ship]\nmass = 400000.0\n",
+    )
+    .unwrap();
+    let named = Scene::load(&dir.join("named.toml")).unwrap();
+    assert_eq!(named.meta.name, "light ship");
+    assert_eq!(named.meta.description, "checked.toml with the changes of named.toml");
+    assert_eq!(named.meta.paper_stopping_time, None);
+    std::fs::write(
+        dir.join("claims.toml"),
+        "extends = \"case01.toml\"\n[meta]\npaper_stopping_time = 25.0\n[ship]\nmass = 400000.0\n",
+    )
+    .unwrap();
+    assert_eq!(Scene::load(&dir.join("claims.toml")).unwrap().meta.paper_stopping_time, Some(25.0));
 }
 
 #[test]

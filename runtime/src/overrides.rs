@@ -162,7 +162,7 @@ pub fn resolve<E>(
     wrap: &dyn Fn(&Path, OverrideError) -> E,
 ) -> Result<Value, E> {
     let mut chain: Vec<(PathBuf, Value)> = Vec::new();
-    let mut next = Some(path.to_path_buf());
+    let mut next = Some(lexically_normal(path));
     while let Some(file) = next.take() {
         if chain.iter().any(|(p, _)| p == &file) {
             return Err(wrap(path, OverrideError::ExtendsCycle(file)));
@@ -172,7 +172,7 @@ pub fn resolve<E>(
             if let Some(base) = table.remove("extends") {
                 let base = base.as_str().ok_or_else(|| wrap(&file, OverrideError::ExtendsType))?;
                 let dir = file.parent().unwrap_or(Path::new(""));
-                next = Some(dir.join(base));
+                next = Some(lexically_normal(&dir.join(base)));
             }
         }
         chain.push((file, value));
@@ -182,6 +182,25 @@ pub fn resolve<E>(
         merge(&mut merged, over);
     }
     Ok(merged)
+}
+
+/// `path` with its `.` components dropped and each `..` taking the folder before it away
+/// (a leading `..` kept): the same file written one way, so that an `extends` chain that comes
+/// back to a file by way of `../` is seen to loop (symbolic links are not followed).
+fn lexically_normal(path: &Path) -> PathBuf {
+    use std::path::Component;
+    let mut out = PathBuf::new();
+    for c in path.components() {
+        match c {
+            Component::CurDir => {}
+            Component::ParentDir if matches!(out.components().next_back(), Some(Component::Normal(_))) => {
+                out.pop();
+            }
+            Component::ParentDir if out.has_root() => {} // `/..` is `/`
+            other => out.push(other),
+        }
+    }
+    out
 }
 
 #[cfg(test)]
@@ -233,6 +252,7 @@ mod tests {
             ("dir/sub/a.toml", "[ship]\nmass = 1.0\nlength = 2.0\nwidth = 4.0\n"),
             ("dir/loop1.toml", "extends = \"loop2.toml\"\n"),
             ("dir/loop2.toml", "extends = \"loop1.toml\"\n"),
+            ("dir/loop3.toml", "extends = \"../dir/./loop3.toml\"\n"),
         ];
         let mut read = |p: &Path| -> Result<String, String> {
             let key = p.to_string_lossy().replace('\\', "/");
@@ -244,6 +264,11 @@ mod tests {
         assert_eq!(v, value("[ship]\nmass = 3.0\nlength = 9.0\nwidth = 4.0\n"));
         let e = resolve(Path::new("dir/loop1.toml"), &mut read, &mut parse, &wrap).unwrap_err();
         assert!(e.contains("loops back to dir/loop1.toml"), "{e}");
+        let e = resolve(Path::new("dir/loop3.toml"), &mut read, &mut parse, &wrap).unwrap_err();
+        assert!(e.contains("loops back to dir/loop3.toml"), "{e}");
+        for (path, normal) in [("a/../b/./c", "b/c"), ("../a/../../b", "../../b"), ("/../a", "/a"), ("a/b/..", "a")] {
+            assert_eq!(lexically_normal(Path::new(path)), Path::new(normal), "{path}");
+        }
         let e = resolve(Path::new("dir/missing.toml"), &mut read, &mut parse, &wrap).unwrap_err();
         assert_eq!(e, "no dir/missing.toml");
     }

@@ -66,7 +66,7 @@ pub struct Scene {
 }
 
 /// What the scene is.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Meta {
     /// Short name used in reports and file names.
@@ -164,7 +164,8 @@ pub struct Anchor {
     pub length: f64,
     /// w_1, across the line, m.
     pub width: f64,
-    /// h_1, m. Must be below the water depth d ≈ h_L + `rod.length` − `ship.hinge_z`.
+    /// h_1, m. Must be below the water depth d = h_L + δ_c + `rod.length` − `ship.hinge_z`
+    /// (δ_c the cable's resting height, see `vertical_projection`).
     pub height: f64,
 }
 
@@ -235,7 +236,7 @@ pub struct Rod {
 #[serde(deny_unknown_fields)]
 pub struct Ship {
     /// m_N, kg. Must float: the draught T = m_N/(ρ L_N w_N) below `depth` and, with water
-    /// on, below the water depth d ≈ h_L + `rod.length` − `hinge_z`.
+    /// on, below the water depth d (see `anchor.height`).
     pub mass: f64,
     /// L_N, m.
     pub length: f64,
@@ -267,7 +268,9 @@ pub struct Initial {
     pub horizontal_projection: f64,
     /// h_L, vertical projection of the cable (seabed line to cable top), m. Must be below the
     /// cable's length L_c; with x_L, see `horizontal_projection`. Sets the water depth
-    /// d = h_L + the cable's resting height.
+    /// d = h_L + δ_c + `rod.length` − `ship.hinge_z`, where δ_c is the laid cable's resting
+    /// height above the seabed (its centreline where the foundation carries its submerged
+    /// weight, Eqs. 41, 42: a few mm, from +R on a hard seabed to −R, buried, on a soft one).
     pub vertical_projection: f64,
     /// The ship's initial surge speed, m/s.
     pub ship_speed: f64,
@@ -455,7 +458,41 @@ impl Scene {
         };
         let wrap = |p: &Path, error| SceneError::Override { file: p.display().to_string(), error };
         let value = overrides::resolve(path, &mut read, &mut parse, &wrap)?;
-        Scene::from_value(value, &file)
+        let mut scene = Scene::from_value(value, &file)?;
+        scene.own_meta(path, &text)?;
+        Ok(scene)
+    }
+
+    /// The `[meta]` of a scene that extends another: what the file does not set itself is not
+    /// the base's. Its name is the file's stem, its description says what it extends, and
+    /// Table 3's stopping time is kept only when the file changes nothing of the base's
+    /// physics or solver ([`Scene::same_case`]): a heavier ship is no paper case.
+    fn own_meta(&mut self, path: &Path, text: &str) -> Result<(), SceneError> {
+        let top: toml::Table = text.parse().unwrap_or_default();
+        let sets = |key: &str| top.get("meta").and_then(toml::Value::as_table).is_some_and(|m| m.contains_key(key));
+        let base_name = top.get("extends").and_then(toml::Value::as_str).unwrap_or_default().to_string();
+        if !sets("name") {
+            self.meta.name =
+                path.file_stem().map_or_else(|| self.meta.name.clone(), |s| s.to_string_lossy().into_owned());
+        }
+        if !sets("description") {
+            let file = path.file_name().map_or_else(String::new, |f| f.to_string_lossy().into_owned());
+            self.meta.description = format!("{base_name} with the changes of {file}");
+        }
+        if !sets("paper_stopping_time") && self.meta.paper_stopping_time.is_some() {
+            let base = Scene::load(&path.parent().unwrap_or(Path::new("")).join(&base_name))?;
+            if !self.same_case(&base) {
+                self.meta.paper_stopping_time = None;
+            }
+        }
+        Ok(())
+    }
+
+    /// Whether two scenes are the same case: equal but for `[meta]` and `[checks]` (the
+    /// physics, the initial state and the solver).
+    pub fn same_case(&self, other: &Scene) -> bool {
+        let strip = |s: &Scene| Scene { meta: Meta::default(), checks: None, ..s.clone() };
+        strip(self) == strip(other)
     }
 
     /// Checks a scene given as a TOML value (a file's tables after `extends`, or a table

@@ -306,11 +306,7 @@ impl Spec {
     pub fn scene(&self, name: &str, inputs: &[(String, Value)]) -> std::result::Result<Scene, String> {
         let values: Vec<(&str, Value)> = inputs.iter().map(|(p, v)| (p.as_str(), v.clone())).collect();
         let mut scene = self.base.with_overrides(&values).map_err(|e| e.to_string())?;
-        let same = |a: &Scene, b: &Scene| {
-            let strip = |s: &Scene| Scene { meta: self.original.meta.clone(), checks: None, ..s.clone() };
-            strip(a) == strip(b)
-        };
-        if !same(&scene, &self.original) {
+        if !scene.same_case(&self.original) {
             scene.meta.paper_stopping_time = None;
         }
         scene.meta.name = name.to_string();
