@@ -202,6 +202,18 @@ fn exit_4_a_design_check_failed() {
     // The JSON summary exits alike.
     let out = kanestop().arg("run").arg(&path).arg("--json").output().unwrap();
     assert_eq!(out.status.code(), Some(4));
+    // A batch names it in the row's message and marks the row's checks failed, `[checks]`
+    // or not, with the same words as `run`.
+    let scenes = dir.join("scenes");
+    std::fs::create_dir_all(&scenes).unwrap();
+    std::fs::copy(&path, scenes.join("weak-cable.toml")).unwrap();
+    let out = kanestop().arg("batch").arg(&scenes).arg("--out").arg(dir.join("out")).output().unwrap();
+    let (batch_out, stderr) = text(&out);
+    assert_eq!(out.status.code(), Some(4), "{batch_out}{stderr}");
+    let failure = stdout.lines().find_map(|l| l.split("FAIL: ").nth(1)).expect("run's checks line").to_string();
+    assert!(batch_out.contains(&format!("check failed: {failure}")), "{failure:?} in {batch_out}");
+    let row = batch_out.lines().nth(1).unwrap();
+    assert!(row.contains(" end time    fail "), "{row}");
 }
 
 /// A batch whose scenes all run but one fails its `[checks]`: the table, the CSV and the

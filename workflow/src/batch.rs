@@ -144,10 +144,13 @@ pub fn row(file: &Path, model: &Model, result: &RunResult) -> BatchRow {
             None => format!("{} (no value: the run did not reach it) > {}", o.name, o.limit),
         })
         .collect();
+    // The break-load check applies to every scene, `[checks]` or not (as in `run`).
+    let over = break_exceedances(model, result);
+    let failures: Vec<String> = checks::break_failure(&over).into_iter().chain(failed_checks).collect();
     let message = match &result.stop {
         Stop::Failed(f) => one_line(&diagnostic::describe(model, f)),
-        Stop::ShipStopped | Stop::EndTime if !failed_checks.is_empty() => {
-            format!("check failed: {}", failed_checks.join("; "))
+        Stop::ShipStopped | Stop::EndTime if !failures.is_empty() => {
+            format!("check failed: {}", failures.join("; "))
         }
         Stop::ShipStopped | Stop::EndTime => String::new(),
     };
@@ -163,7 +166,7 @@ pub fn row(file: &Path, model: &Model, result: &RunResult) -> BatchRow {
         peak_tension: peak.map(|p| p.1.tension),
         peak_joint: peak.map(|p| p.0),
         peak_time: peak.map(|p| p.1.t),
-        break_exceedances: break_exceedances(model, result).len(),
+        break_exceedances: over.len(),
         anchor_start: result.anchor_start(),
         energy_drift: ran.then_some(result.max_energy_drift),
         wall_time: result.wall_time.as_secs_f64(),
@@ -311,7 +314,7 @@ pub fn table(rows: &[BatchRow]) -> String {
             r.bodies.map(|n| n.to_string()).unwrap_or_default(),
             r.method.map(Method::name).unwrap_or_default(),
             r.status.name(),
-            r.checks_pass.map_or("—", |p| checks_word(Some(p))),
+            if r.break_exceedances > 0 { "fail" } else { r.checks_pass.map_or("—", |p| checks_word(Some(p))) },
             opt(r.stopping_time, 1.0, 3),
             opt(r.paper_stopping_time, 1.0, 3),
             opt(r.relative_difference, 100.0, 2),

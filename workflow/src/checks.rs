@@ -32,6 +32,19 @@ pub fn break_exceedances(model: &Model, result: &RunResult) -> Vec<Exceedance> {
         .collect()
 }
 
+/// The break-load check in words, when it failed: "break load exceeded at K joint(s); worst:
+/// joint J, P kN > B kN" (the worst by utilisation), as `run` and `batch` print it.
+pub fn break_failure(over: &[Exceedance]) -> Option<String> {
+    let w = over.iter().max_by(|a, b| (a.peak / a.limit).total_cmp(&(b.peak / b.limit)))?;
+    Some(format!(
+        "break load exceeded at {} joint(s); worst: joint {}, {:.0} kN > {:.0} kN",
+        over.len(),
+        w.joint,
+        w.peak / 1e3,
+        w.limit / 1e3
+    ))
+}
+
 /// One design check of a run: its value, its limit and whether it passed.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct CheckOutcome {

@@ -6,7 +6,7 @@ use kanestop_runtime::kernel::AnchorDof;
 use kanestop_runtime::model::Model;
 use kanestop_runtime::simulate::{RunResult, Stop};
 
-use crate::checks::break_exceedances;
+use crate::checks::{break_exceedances, break_failure};
 
 /// The one-screen summary of a run: the outcome, the anchor, the peak tension, the checks,
 /// where the ship's energy went and the cost.
@@ -248,17 +248,8 @@ fn tension_lines(out: &mut Lines, model: &Model, result: &RunResult) {
     };
     let worst =
         (2..=model.body_count()).filter_map(|j| utilisation(j).map(|u| (j, u))).max_by(|a, b| a.1.total_cmp(&b.1));
-    match (over.iter().max_by(|a, b| (a.peak / a.limit).total_cmp(&(b.peak / b.limit))), worst) {
-        (Some(w), _) => out.line(
-            "checks",
-            format!(
-                "FAIL: break load exceeded at {} joint(s); worst: joint {}, {:.0} kN > {:.0} kN",
-                over.len(),
-                w.joint,
-                w.peak / 1e3,
-                w.limit / 1e3
-            ),
-        ),
+    match (break_failure(&over), worst) {
+        (Some(failure), _) => out.line("checks", format!("FAIL: {failure}")),
         (None, Some((j, u))) => out.line(
             "checks",
             format!("PASS: no break load exceeded (highest utilisation {:.0} % at joint {j})", 100.0 * u),
