@@ -648,6 +648,13 @@ fn try_main() -> Result<Exit> {
         Command::Batch { dir, out, tolerance, kernel: choice, solver, methods, error_estimate } => {
             if let Some(t) = tolerance {
                 anyhow::ensure!(t.is_finite() && t > 0.0, "--tolerance {t}: must be a number > 0 (e.g. 0.05 for 5 %)");
+                if t >= 1.0 {
+                    eprintln!(
+                        "warning: --tolerance {t} is a fraction: {} % (for {t} %, give {})",
+                        100.0 * t,
+                        t / 100.0
+                    );
+                }
             }
             anyhow::ensure!(
                 methods.is_empty() || (solver.integrator.is_none() && solver.dt.is_none()),

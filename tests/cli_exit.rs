@@ -216,6 +216,26 @@ fn exit_4_a_design_check_failed() {
     assert!(row.contains(" end time    fail "), "{row}");
 }
 
+#[test]
+fn a_batch_tolerance_of_1_or_more_is_taken_as_a_fraction_with_a_warning() {
+    let dir = temp_dir("tolerance");
+    let scenes = dir.join("scenes");
+    std::fs::create_dir_all(&scenes).unwrap();
+    scene(&scenes, "a", |t| t);
+    let out =
+        kanestop().arg("batch").arg(&scenes).args(["--tolerance", "5", "--out"]).arg(dir.join("out")).output().unwrap();
+    let (stdout, stderr) = text(&out);
+    assert!(stderr.contains("warning: --tolerance 5 is a fraction: 500 % (for 5 %, give 0.05)"), "{stdout}{stderr}");
+    let out = kanestop()
+        .arg("batch")
+        .arg(&scenes)
+        .args(["--tolerance", "0.05", "--out"])
+        .arg(dir.join("out"))
+        .output()
+        .unwrap();
+    assert!(!text(&out).1.contains("warning"), "{:?}", text(&out));
+}
+
 /// A batch whose scenes all run but one fails its `[checks]`: the table, the CSV and the
 /// JSON say pass or fail per row, the failed check is named, and the exit is 4 as `run`'s;
 /// an invalid scene beside it takes precedence (exit 1).

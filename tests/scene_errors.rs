@@ -67,6 +67,13 @@ fn extreme_values_are_written_with_an_exponent() {
 }
 
 #[test]
+fn a_count_that_is_not_whole_is_refused_in_words() {
+    let e = error(&edited("[chain]\nelements = 15", "[chain]\nelements = 15.5"));
+    assert_mentions(&e, &["bad.toml", "15.5", "expected a whole number ≥ 0"]);
+    assert!(!e.contains("usize"), "{e}");
+}
+
+#[test]
 fn unknown_key() {
     let e = error(&edited("[anchor]\n", "[anchor]\ncolour = \"red\"\n"));
     assert_mentions(&e, &["bad.toml", "unknown field `colour`", "mass"]);

@@ -132,7 +132,11 @@ fn steps_beyond_the_limit_are_refused_with_the_estimate() {
     // An end time no step up to 1 s can reach in 1e7 steps: the message offers the end time's bound.
     let mut s = case1();
     s.solver.end_time = 1e300;
-    assert_refused(&s, "solver.dt", "or solver.end_time ≤ 20000.0 s");
+    assert_refused(&s, "solver.dt", "or solver.end_time ≤ 20000 s");
+    // A bound below 0.1 s keeps its digits (it once read "≤ 0.0 s").
+    s.solver.dt = 1e-9;
+    s.solver.output_interval = 1e-9;
+    assert_refused(&s, "solver.dt", "or solver.end_time ≤ 0.01 s");
     let mut s = case1();
     s.solver.dt = 1e-5; // 6e6 steps: allowed
     assert!(Scene::from_toml(&s.to_toml(), "fine.toml").is_ok());

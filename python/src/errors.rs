@@ -72,8 +72,8 @@ pub fn workflow_error(py: Python<'_>, e: kanestop_workflow::Error) -> PyErr {
         Error::Spec { file, field, value, expected } => {
             (file.display().to_string(), field.clone(), value.clone(), expected.clone())
         }
-        Error::Io { path, source, .. } => {
-            (path.display().to_string(), "(file)".to_string(), path.display().to_string(), source.to_string())
+        Error::Io { path, cause, .. } => {
+            (path.display().to_string(), "(file)".to_string(), path.display().to_string(), cause.to_string())
         }
         _ => {
             return match e {

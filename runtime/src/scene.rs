@@ -406,7 +406,9 @@ impl fmt::Display for SceneError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             SceneError::Io { file, source } => write!(f, "cannot read scene {file}: {source}"),
-            SceneError::Parse { file, message } => write!(f, "scene {file} is not valid: {}", message.trim_end()),
+            SceneError::Parse { file, message } => {
+                write!(f, "scene {file} is not valid: {}", plain_types(message.trim_end()))
+            }
             SceneError::Invalid { file, problems } => {
                 write!(f, "scene {file} has {} invalid value(s):", problems.len())?;
                 for p in problems {
@@ -896,7 +898,7 @@ impl Scene {
                  (about {seconds:.1e} s of RK4 wall time at N = {}); or solver.end_time ≤ {} s",
                 so.end_time / MAX_STEPS,
                 self.body_count(),
-                fmt_rounded(so.dt * MAX_STEPS, 1)
+                fmt_significant(so.dt * MAX_STEPS, 3)
             );
             c.push("solver.dt", &fmt_value(so.dt), &why);
         }
@@ -937,6 +939,23 @@ impl Scene {
     }
 }
 
+/// A TOML reader's message with Rust's type names in words: `expected usize` → `expected a
+/// whole number ≥ 0`, `expected f64` → `expected a number`.
+pub fn plain_types(message: &str) -> String {
+    let mut out = message.to_string();
+    for (rust, words) in [
+        ("usize", "a whole number ≥ 0"),
+        ("u64", "a whole number ≥ 0"),
+        ("u32", "a whole number ≥ 0"),
+        ("i64", "a whole number"),
+        ("i32", "a whole number"),
+        ("f64", "a number"),
+    ] {
+        out = out.replace(&format!("expected {rust}"), &format!("expected {words}"));
+    }
+    out
+}
+
 /// Formats a value the way a user would write it in the TOML file: as written for ordinary
 /// magnitudes, with an exponent (`1e300`, `2.5e-12`) beyond them rather than hundreds of digits.
 pub fn fmt_value(v: f64) -> String {
@@ -958,6 +977,13 @@ fn fmt_rounded(v: f64, decimals: usize) -> String {
     } else {
         format!("{v:.decimals$}")
     }
+}
+
+/// A value the message computed, to `digits` significant digits and no more digits than
+/// they need (`0.01`, `20000`, `1.23e-12`).
+fn fmt_significant(v: f64, digits: usize) -> String {
+    let rounded: f64 = format!("{v:.*e}", digits.saturating_sub(1)).parse().unwrap_or(v);
+    fmt_value(rounded)
 }
 
 /// Whether a finite, non-zero `v` is too large or too small to read in positional notation.

@@ -52,14 +52,15 @@ pub enum Error {
     #[error(transparent)]
     Model(#[from] kanestop_runtime::model::ModelError),
     /// A file or folder could not be read or written.
-    #[error("cannot {action} {}: {source}", path.display())]
+    #[error("cannot {action} {}: {cause}", path.display())]
     Io {
         /// What was attempted: "read", "write", "create".
         action: &'static str,
         /// The file or folder.
         path: PathBuf,
-        /// What the system said.
-        source: std::io::Error,
+        /// What the system said (in the message, so not also a `source()` that a report of
+        /// the error's chain would print twice).
+        cause: std::io::Error,
     },
     /// An output file could not be encoded (e.g. sweep.parquet).
     #[error("cannot encode {file}: {message}")]
@@ -88,7 +89,7 @@ pub enum Error {
         expected: String,
     },
     /// A sweep spec's field is missing, of the wrong type or out of range.
-    #[error("sweep spec {}: {field} = {value}: {expected}", file.display())]
+    #[error("sweep spec {}: {}", file.display(), spec_problem(field, value, expected))]
     Spec {
         /// The spec file.
         file: PathBuf,
@@ -107,6 +108,17 @@ pub enum Error {
     NoReference(String),
 }
 
+/// A spec's problem in words: `field = value: expected`; without a value (the spec did not
+/// parse, a path was refused), the field and what went wrong, the field named once.
+fn spec_problem(field: &str, value: &str, expected: &str) -> String {
+    match (value.is_empty(), field) {
+        (false, _) => format!("{field} = {value}: {expected}"),
+        (true, "(file)" | "(spec)") => expected.to_string(),
+        (true, _) if expected.starts_with(field) => expected.to_string(),
+        (true, _) => format!("{field}: {expected}"),
+    }
+}
+
 /// The workflow layer's result.
 pub type Result<T, E = Error> = std::result::Result<T, E>;
 
@@ -114,6 +126,6 @@ impl Error {
     /// An I/O error on `path`.
     pub fn io(action: &'static str, path: impl Into<PathBuf>) -> impl FnOnce(std::io::Error) -> Error {
         let path = path.into();
-        move |source| Error::Io { action, path, source }
+        move |cause| Error::Io { action, path, cause }
     }
 }

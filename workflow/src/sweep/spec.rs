@@ -148,7 +148,8 @@ impl Spec {
     /// `name`; `sweep` for a label such as `<string>`), `base` is relative to `dir`, and
     /// `scene`, when given, is the base scene instead (the spec then has no `base`).
     pub fn from_toml(text: &str, file: &Path, dir: &Path, scene: Option<Scene>) -> Result<Spec> {
-        let raw: SpecFile = toml::from_str(text).map_err(|e| bad(file, "(file)", "", e.to_string()))?;
+        let raw: SpecFile = toml::from_str(text)
+            .map_err(|e| bad(file, "(file)", "", kanestop_runtime::scene::plain_types(&e.to_string())))?;
         Spec::from_raw(raw, file, dir, scene)
     }
 
@@ -156,7 +157,7 @@ impl Spec {
     pub fn from_table(table: toml::Table, file: &Path, dir: &Path, scene: Option<Scene>) -> Result<Spec> {
         let raw = SpecFile::deserialize(Value::Table(table)).map_err(|e| {
             // The message ends "in `sampling.samples`" when the error is at a key: its field.
-            let text = e.to_string();
+            let text = kanestop_runtime::scene::plain_types(&e.to_string());
             match text.trim_end().rsplit_once("\nin `") {
                 Some((message, key)) => bad(file, key.trim_end_matches('`'), "", message.trim()),
                 None => bad(file, "(spec)", "", text.trim()),
@@ -458,6 +459,21 @@ mod tests {
             toml::from_str("[sampling]\nmethod = \"random\"\nsamples = \"many\"\nseed = 1\n").unwrap();
         let e = Spec::from_table(bad, Path::new("<dict>"), Path::new(""), Some(case01())).unwrap_err();
         assert_eq!(field(e), "sampling.samples");
+    }
+
+    #[test]
+    fn messages_name_a_field_once_and_no_rust_type() {
+        let message = |text: &str| {
+            Spec::from_toml(text, Path::new("s.toml"), Path::new(""), Some(case01())).unwrap_err().to_string()
+        };
+        let e = message("[[axis]\n");
+        assert!(e.starts_with("sweep spec s.toml: TOML parse error at line 1"), "{e}");
+        let e = message("[set]\n\"ship.mas\" = 1.0\n");
+        assert!(e.starts_with("sweep spec s.toml: ship.mas: no field `mas` here (valid: beam, "), "{e}");
+        let e = message("[[uncertain]]\npath = \"ship.mass\"\ndistribution = \"normal\"\nmean = 5e5\nsd = 1e4\n[sampling]\nmethod = \"random\"\nsamples = 2.5\nseed = 1\n");
+        assert!(e.contains("expected a whole number ≥ 0") && !e.contains("usize"), "{e}");
+        let e = message("[[axis]]\npath = \"ship.mass\"\nvalues = [4e5]\n[[axis]]\npath = \"anchor.mass\"\nrange = { from = 1.0, to = 2.0, steps = 0 }\n");
+        assert!(e.starts_with("sweep spec s.toml: axis[1].range.steps = 0: in [1, 100000]"), "{e}");
     }
 
     #[test]
