@@ -105,6 +105,11 @@ fn a_3x3_grid_runs_in_spec_order_with_inputs_as_columns_and_checks() {
         assert!((f("friction") - f("anchor_friction") - f("line_friction")).abs() < 1e-12);
         assert!((f("drag") - f("anchor_drag") - f("line_drag") - f("hull_resistance")).abs() < 1e-12);
         assert!(f("anchor_friction") > 0.0 && f("hull_resistance") > 0.0 && f("line_friction") == 0.0, "{split}");
+        // Shares of the initial kinetic energy, as run's energy line: most of it goes to friction.
+        let k0 = r["summary"]["initial_kinetic_energy"].as_f64().unwrap();
+        let work = r["summary"]["work"]["anchor_friction"].as_f64().unwrap();
+        assert_eq!(f("anchor_friction"), -work / k0);
+        assert!(f("friction") > 0.3 && f("friction") < 1.0, "{split}");
     }
     // Two numeric grid axes: the default heat maps beside the CSV.
     for name in ["stopping_distance", "stopping_time", "peak_utilisation"] {

@@ -54,6 +54,11 @@ pub struct RunSummary {
     pub rod_peak: Option<Peak>,
     /// Energy balance at t = 0 (Eq. 63), J.
     pub initial_energy: f64,
+    /// Kinetic energy at t = 0, the entrained water's included, J: the energy the system
+    /// must absorb to stop the ship, the base of the energy split (0 for a run that never
+    /// started).
+    #[serde(default)]
+    pub initial_kinetic_energy: f64,
     /// Work done on the system by each term of the energy balance by the end of the run
     /// (negative: dissipated), J, by name: buoyancy, seabed, friction, drag, hydrostatic,
     /// added_mass, and the parts of friction and drag: anchor_friction, line_friction
@@ -175,6 +180,7 @@ impl RunSummary {
             cable_peak: peak_in(Segment::Cable),
             rod_peak: peak_in(Segment::Rod),
             initial_energy: result.energy0,
+            initial_kinetic_energy: result.samples.first().map_or(0.0, |s| s.energy.kinetic + s.energy.added_kinetic),
             work: last
                 .map(|s| s.energy.reported_work().iter().map(|(name, work)| (name.to_string(), *work)).collect())
                 .unwrap_or_default(),

@@ -45,8 +45,11 @@ pub fn paper_stopping_time(scene: &kanestop_runtime::scene::Scene) -> Option<f64
     })
 }
 
-/// Where the ship's kinetic energy went: each dissipating work term as a share of the
-/// initial kinetic energy, largest first, and what is left.
+/// Where the ship's kinetic energy went: each work term as a share of the initial kinetic
+/// energy (negative where the term gave energy back), the kinetic energy left and the
+/// potential energy's change, largest first: they add up to 100 % but for the balance's drift
+/// (shares below 0.05 % are not named). The drift is relative to E_0, the whole initial
+/// energy (its potential energy from the seabed's height), as `solver.max_energy_drift`.
 fn energy_share_line(out: &mut Lines, result: &RunResult) {
     let (Some(first), Some(last)) = (result.samples.first(), result.samples.last()) else { return };
     let k0 = first.energy.kinetic + first.energy.added_kinetic;
@@ -65,7 +68,7 @@ fn energy_share_line(out: &mut Lines, result: &RunResult) {
         other => other,
     };
     let mut shares: Vec<(f64, String)> =
-        last.energy.work_terms().filter(|(_, w)| *w < 0.0).map(|(name, w)| (-w / k0, word(name).to_string())).collect();
+        last.energy.work_terms().map(|(name, w)| (-w / k0, word(name).to_string())).collect();
     shares.push(((last.energy.kinetic + last.energy.added_kinetic) / k0, "still kinetic".into()));
     shares.push(((last.energy.potential - first.energy.potential) / k0, "potential energy change".into()));
     shares.retain(|(f, _)| f.abs() >= 0.0005);
@@ -74,10 +77,11 @@ fn energy_share_line(out: &mut Lines, result: &RunResult) {
     out.line(
         "energy",
         format!(
-            "of {:.3} MJ kinetic at t = 0: {}; energy balance drift {:.1e}",
+            "of {:.3} MJ kinetic at t = 0: {}; energy balance drift {:.1e} of E_0 = {:.3} MJ",
             k0 / 1e6,
             parts.join(", "),
-            result.max_energy_drift
+            result.max_energy_drift,
+            result.energy0 / 1e6
         ),
     );
 }

@@ -130,8 +130,10 @@ pub fn run_row(row: &PlannedRow, kernel: KernelFactory) -> SweepRow {
     let summary = RunSummary::of(&model, &result);
     out.status = summary.status;
     out.checks_pass = summary.checks_pass;
-    if summary.initial_energy != 0.0 {
-        out.energy_split = summary.work.iter().map(|(k, w)| (k.clone(), -w / summary.initial_energy)).collect();
+    // Shares of the initial kinetic energy, as `run`'s energy line gives them.
+    let k0 = summary.initial_kinetic_energy;
+    if k0 > 0.0 {
+        out.energy_split = summary.work.iter().map(|(k, w)| (k.clone(), -w / k0)).collect();
     }
     out.message = summary.failure.as_ref().map(|f| one_line(&f.message)).unwrap_or_default();
     out.summary = Some(summary);
@@ -251,6 +253,7 @@ pub fn cells(rows: &[SweepRow]) -> (Vec<String>, Vec<Vec<Cell>>) {
         }
     }
     head.push("initial_energy".into());
+    head.push("initial_kinetic_energy".into());
     head.extend(works.iter().map(|w| format!("work_{w}")));
     head.extend(works.iter().map(|w| format!("dissipated_{w}")));
     for c in &checks {
@@ -287,6 +290,7 @@ pub fn cells(rows: &[SweepRow]) -> (Vec<String>, Vec<Vec<Cell>>) {
                     cells.push(number(p.and_then(|p| p.break_utilisation)));
                 }
                 cells.push(f(&|s| Some(s.initial_energy)));
+                cells.push(f(&|s| Some(s.initial_kinetic_energy)));
                 cells.extend(works.iter().map(|w| number(s.and_then(|s| s.work.get(w).copied()))));
                 cells.extend(works.iter().map(|w| number(r.energy_split.get(w).copied())));
                 for c in &checks {
