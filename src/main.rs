@@ -315,7 +315,8 @@ fn codegen(scene: Option<&PathBuf>, write: bool, fold: Option<&Path>, root: &Pat
             let path = dir.join(&name);
             let old = std::fs::read_to_string(&path).unwrap_or_default();
             if old != text {
-                std::fs::write(&path, text).with_context(|| format!("cannot write {}", path.display()))?;
+                kanestop_workflow::output::write_atomically(&path, text.as_bytes())
+                    .with_context(|| format!("cannot write {}", path.display()))?;
                 println!("written   {}", path.display());
             }
         }

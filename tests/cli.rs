@@ -70,6 +70,16 @@ fn eval_accepts_a_state_file_and_rejects_a_bad_one() {
     assert_eq!(parsed.q, q);
     assert_eq!(parsed.active, 46);
 
+    // A state no kernel can evaluate is refused alike by both, not reported as nulls.
+    q[10] = 1e300;
+    std::fs::write(&state, serde_json::json!({"q": q, "u": first.u, "anchor": "free"}).to_string()).unwrap();
+    for kernel in ["generated", "reference"] {
+        let out = kanestop().args(["eval", "--kernel", kernel, "--state"]).arg(&state).output().unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{kernel}: {err}");
+        assert!(out.stdout.is_empty() && err.contains("non-finite acceleration"), "{kernel}: {err}");
+    }
+
     std::fs::write(&state, r#"{"q": [0.0, 1.0], "u": [0.0, 0.0]}"#).unwrap();
     let out = kanestop().args(["eval", "--state"]).arg(&state).output().unwrap();
     assert_eq!(out.status.code(), Some(2));

@@ -296,6 +296,11 @@ impl Dynamics {
             let mut model = Recording { forces: &mut self.forces, loads: &mut self.loads };
             reaction = self.kernel.solve(q, u, self.anchor, 0.0, &mut model, &mut self.assembly, qdd)?;
         }
+        // Whatever the kernel: a state beyond what the model can represent (q = 1e300) gives
+        // no accelerations, not NaNs passed on.
+        if !reaction.holding.is_finite() || !reaction.normal.is_finite() || qdd.iter().any(|x| !x.is_finite()) {
+            return Err(RhsError::NonFiniteAcceleration);
+        }
         self.friction = AnchorForces::sliding_friction(k, reaction.normal);
         self.loads[0].fx += self.friction;
         self.reaction = reaction;

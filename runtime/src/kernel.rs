@@ -31,8 +31,8 @@ pub enum RhsError {
     /// The Cholesky factorisation of a_lp (Eq. 26) failed.
     #[error("the mass matrix a_lp is not positive definite (non-finite state or degenerate chain)")]
     MassNotPositiveDefinite,
-    /// The generated recursive O(N) solve returned a non-finite ẍ or reaction.
-    #[error("the generated recursive solve produced a non-finite acceleration (non-finite state or degenerate chain)")]
+    /// The solve (any kernel's) returned a non-finite ẍ or anchor reaction.
+    #[error("the solve produced a non-finite acceleration (a state beyond the model's range, such as an angle of 1e300 rad, or a degenerate chain)")]
     NonFiniteAcceleration,
     /// 1 + μ ∂N/∂F ≤ 0: sliding friction is ill-posed (Painlevé's paradox, Eq. 37).
     #[error(
