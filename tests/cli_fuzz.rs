@@ -16,7 +16,18 @@ fn random_command_lines_end_cleanly() {
         .unwrap();
     let garbage = dir.join("garbage.toml");
     std::fs::write(&garbage, "[solver]\ndt = \"fast\"\n").unwrap();
+    // A sweep of two short rows, and a shard file edited to nonsense (for `sweep merge`).
+    let spec = dir.join("spec.toml");
+    std::fs::write(&spec, "base = \"short.toml\"\n[[axis]]\npath = \"anchor.mass\"\nvalues = [40000.0, 42000.0]\n")
+        .unwrap();
+    let shard = dir.join("shard.json");
+    std::fs::write(
+        &shard,
+        r#"{"format": "kanestop-sweep-shard/1", "shard": {"index": 5, "count": 0}, "rows_total": 1e30}"#,
+    )
+    .unwrap();
     let (short, garbage) = (short.display().to_string(), garbage.display().to_string());
+    let (spec, shard) = (spec.display().to_string(), shard.display().to_string());
     let out_dir = dir.join("out").display().to_string();
     let values: Vec<String> = [
         "0",
@@ -43,7 +54,8 @@ fn random_command_lines_end_cleanly() {
     ]
     .iter()
     .map(|s| s.to_string())
-    .chain([short.clone(), garbage.clone(), out_dir.clone()])
+    .chain(["0/1", "1/0", "3/2", "1e300", "stopping_time,bogus", "none"].map(String::from))
+    .chain([short.clone(), garbage.clone(), out_dir.clone(), spec.clone(), shard.clone()])
     .collect();
     let flags = [
         "--out",
@@ -66,17 +78,35 @@ fn random_command_lines_end_cleanly() {
         "--atol-ratio",
         "--write",
         "--root",
+        "--jobs",
+        "--shard",
+        "--shards",
+        "--resume",
+        "--checkpoint",
+        "--slurm",
+        "--heatmap",
+        "--step",
+        "--uncertain",
+        "--spec",
         "--bogus",
     ];
     let mut rng = StdRng::seed_from_u64(16);
-    for _ in 0..60 {
-        let sub = *["run", "eval", "plot", "codegen", "report", "batch", "help", "nope"].choose(&mut rng).unwrap();
+    let subcommands =
+        ["run", "eval", "plot", "codegen", "report", "sensitivity", "batch", "sweep", "merge", "help", "nope"];
+    for _ in 0..100 {
+        let sub = *subcommands.choose(&mut rng).unwrap();
         let mut args: Vec<String> = vec![sub.to_string()];
         match sub {
             // Only cheap work: a short scene, or input that is refused before any run.
             "run" | "plot" => args.push([short.clone(), garbage.clone()].choose(&mut rng).unwrap().clone()),
             "report" => args.extend(["accuracy".to_string(), garbage.clone()]),
+            "sensitivity" => args = vec!["report".into(), "sensitivity".into(), garbage.clone()],
             "batch" => args.push("/nonexistent".to_string()),
+            "sweep" => args.push([spec.clone(), garbage.clone()].choose(&mut rng).unwrap().clone()),
+            "merge" => {
+                let target = [shard.clone(), out_dir.clone()].choose(&mut rng).unwrap().clone();
+                args = vec!["sweep".into(), "merge".into(), target];
+            }
             _ => {}
         }
         for _ in 0..rng.gen_range(0..4) {
