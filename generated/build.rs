@@ -11,7 +11,7 @@
 //! skipped with a cargo warning and runs on the rolled kernel (any N, checked in); in
 //! `KANESTOP_EXTRA_BODY_COUNTS` it stops the build with this reason.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use kanestop_codegen::emit::{folded_registry, generate, out_dir_registry, refold};
 use kanestop_codegen::variants_for;
@@ -28,11 +28,11 @@ fn main() {
     println!("cargo:rerun-if-env-changed=KANESTOP_EXTRA_BODY_COUNTS");
     if scenes.is_dir() {
         println!("cargo:rerun-if-changed={}", scenes.display());
-        for file in kanestop_codegen::scenes::scene_files(&scenes) {
+        for file in scene_files(&scenes) {
             println!("cargo:rerun-if-changed={}", file.display());
         }
     }
-    let mut counts = kanestop_codegen::scenes::body_counts(&scenes);
+    let mut counts = body_counts(&scenes);
     for n in counts.iter().filter(|&&n| n > MAX_GENERATED_BODIES) {
         println!(
             "cargo:warning=a scene under scenes/ has N = {n} bodies, above the {MAX_GENERATED_BODIES} the build script \
@@ -118,4 +118,36 @@ fn write_if_changed(path: &Path, text: &str) {
     if std::fs::read_to_string(path).ok().as_deref() != Some(text) {
         std::fs::write(path, text).unwrap_or_else(|e| panic!("cannot write {}: {e}", path.display()));
     }
+}
+
+/// Every `*.toml` below `dir`, sorted.
+fn scene_files(dir: &Path) -> Vec<PathBuf> {
+    let mut out = Vec::new();
+    let mut stack = vec![dir.to_path_buf()];
+    while let Some(d) = stack.pop() {
+        let Ok(entries) = std::fs::read_dir(&d) else { continue };
+        for e in entries.flatten() {
+            let path = e.path();
+            if path.is_dir() {
+                stack.push(path);
+            } else if path.extension().is_some_and(|x| x == "toml") {
+                out.push(path);
+            }
+        }
+    }
+    out.sort();
+    out
+}
+
+/// The sorted, distinct body counts of the scenes below `dir`; files that are not scenes
+/// are skipped.
+fn body_counts(dir: &Path) -> Vec<usize> {
+    let mut counts: Vec<usize> = scene_files(dir)
+        .iter()
+        .filter_map(|p| std::fs::read_to_string(p).ok())
+        .filter_map(|t| kanestop_codegen::scenes::body_count(&t).ok())
+        .collect();
+    counts.sort_unstable();
+    counts.dedup();
+    counts
 }

@@ -309,7 +309,7 @@ fn codegen(scene: Option<&PathBuf>, write: bool, fold: Option<&Path>, root: &Pat
     if write {
         let dir = root.join("generated/src");
         anyhow::ensure!(dir.is_dir(), "{} is not a directory: pass --root <repository>", dir.display());
-        let mut files = kanestop_codegen::checked_in_files(&root.join("scenes/paper"));
+        let mut files = kanestop_codegen::checked_in_files(&kanestop_runtime::paper::body_counts());
         files.push(checked_in_folded(&root.join("scenes/paper/case01.toml"))?);
         for (name, text) in files {
             let path = dir.join(&name);

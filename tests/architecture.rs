@@ -363,6 +363,22 @@ fn the_oracles_never_name_generated_code() {
     }
 }
 
+/// The generator is a pure function from its input model to code: no file, environment or
+/// I/O of its own (its callers, the build script and the CLI, read the scenes).
+#[test]
+fn the_generator_does_no_io() {
+    let mut offenders = Vec::new();
+    for file in sources(&root().join("codegen/src")) {
+        let text = std::fs::read_to_string(&file).expect("readable");
+        for needle in ["std::fs", "std::env", "std::io", "std::process", "File::"] {
+            if text.contains(needle) {
+                offenders.push(format!("{} names {needle}", file.display()));
+            }
+        }
+    }
+    assert!(offenders.is_empty(), "{offenders:?}");
+}
+
 // ---------------------------------------------------------------------------------------
 // Function length.
 

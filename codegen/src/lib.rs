@@ -51,11 +51,10 @@ pub fn variants_for(counts: &[usize]) -> Vec<Variant> {
     out
 }
 
-/// The variants checked in under `generated/src/`: [`TEST_BODY_COUNTS`] and every count the
-/// scenes below `scenes_dir` need, each dry and wet.
-pub fn checked_in_variants(scenes_dir: &std::path::Path) -> Vec<Variant> {
-    let mut counts = scenes::body_counts(scenes_dir);
-    counts.extend(TEST_BODY_COUNTS);
+/// The variants checked in under `generated/src/`: [`TEST_BODY_COUNTS`] and every count in
+/// `scene_counts` (the paper's scenes'), each dry and wet.
+pub fn checked_in_variants(scene_counts: &[usize]) -> Vec<Variant> {
+    let counts: Vec<usize> = scene_counts.iter().copied().chain(TEST_BODY_COUNTS).collect();
     variants_for(&counts)
 }
 
@@ -68,9 +67,11 @@ pub const CHECKED_IN_FOLDED: &str = "folded_case01";
 
 /// Every checked-in file as (name under `generated/src/`, text): the unrolled kernels, the
 /// registry `kernels.rs`, which lists them, the two rolled kernels (any N), the load
-/// code of every signature (`loads.rs`) and the fused right-hand sides (`rhs.rs`).
-pub fn checked_in_files(scenes_dir: &std::path::Path) -> Vec<(String, String)> {
-    let variants = checked_in_variants(scenes_dir);
+/// code of every signature (`loads.rs`) and the fused right-hand sides (`rhs.rs`), for the
+/// body counts `scene_counts` of the paper's scenes (the caller reads them: the generator
+/// does no I/O).
+pub fn checked_in_files(scene_counts: &[usize]) -> Vec<(String, String)> {
+    let variants = checked_in_variants(scene_counts);
     let mut out: Vec<(String, String)> = variants
         .iter()
         .map(|&v| {

@@ -2,9 +2,8 @@
 //! elements + 2 (anchor, links, cable elements, rod, ship).
 //!
 //! Deliberately minimal: it reads only the counts, so the build script does not depend on
-//! the runtime's scene model (which itself depends on the generated kernels).
-
-use std::path::{Path, PathBuf};
+//! the runtime's scene model (which itself depends on the generated kernels). A function of
+//! a file's text: the callers read the files (the generator does no I/O).
 
 /// N of one scene file's text, or why it has none.
 pub fn body_count(text: &str) -> Result<usize, String> {
@@ -24,38 +23,6 @@ pub fn body_count(text: &str) -> Result<usize, String> {
         cable += count(s.get("elements"), "cable.stages.elements")?;
     }
     Ok(1 + links + cable + 2)
-}
-
-/// Every `*.toml` below `dir`, sorted.
-pub fn scene_files(dir: &Path) -> Vec<PathBuf> {
-    let mut out = Vec::new();
-    let mut stack = vec![dir.to_path_buf()];
-    while let Some(d) = stack.pop() {
-        let Ok(entries) = std::fs::read_dir(&d) else { continue };
-        for e in entries.flatten() {
-            let path = e.path();
-            if path.is_dir() {
-                stack.push(path);
-            } else if path.extension().is_some_and(|x| x == "toml") {
-                out.push(path);
-            }
-        }
-    }
-    out.sort();
-    out
-}
-
-/// The sorted, distinct body counts of the scenes below `dir`; files that are not scenes
-/// are skipped.
-pub fn body_counts(dir: &Path) -> Vec<usize> {
-    let mut counts: Vec<usize> = scene_files(dir)
-        .iter()
-        .filter_map(|p| std::fs::read_to_string(p).ok())
-        .filter_map(|t| body_count(&t).ok())
-        .collect();
-    counts.sort_unstable();
-    counts.dedup();
-    counts
 }
 
 #[cfg(test)]

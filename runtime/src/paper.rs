@@ -143,6 +143,15 @@ pub const CASES: [Case; 19] = [
     case(19, 0.3, 40.0, 0, 152.0, 148.0,  6.0, 3.0,  500.0, 2.0, 24.126, "current 2 m/s"),
 ];
 
+/// The distinct body counts N of the 19 cases, sorted: the unrolled kernels checked in
+/// under `generated/src/` (`kanestop codegen --write`, `tests/generated_fresh.rs`).
+pub fn body_counts() -> Vec<usize> {
+    let mut counts: Vec<usize> = CASES.iter().map(|c| c.scene().body_count()).collect();
+    counts.sort_unstable();
+    counts.dedup();
+    counts
+}
+
 /// Anchor length for the paper's anchor masses: 40 t → 2.0 m, 50 t → 2.5 m, 60 t → 3.0 m.
 fn anchor_length(tonnes: f64) -> f64 {
     tonnes / 20.0
