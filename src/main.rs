@@ -174,7 +174,7 @@ enum ReportKind {
 
 /// `--kernel`: which Kane kernel evaluates the equations of motion.
 #[derive(Clone, Copy)]
-struct KernelArg(KernelChoice);
+pub(crate) struct KernelArg(pub(crate) KernelChoice);
 
 impl ValueEnum for KernelArg {
     fn value_variants<'a>() -> &'a [Self] {
@@ -194,7 +194,7 @@ impl ValueEnum for KernelArg {
 }
 
 impl KernelArg {
-    fn factory(self) -> impl Fn(&Model) -> Box<dyn kanestop_runtime::kernel::Kernel> + Sync {
+    pub(crate) fn factory(self) -> impl Fn(&Model) -> Box<dyn kanestop_runtime::kernel::Kernel> + Sync {
         kernels::factory(self.0)
     }
 }

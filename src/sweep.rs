@@ -7,15 +7,15 @@ use std::time::Duration;
 use anyhow::{Context, Result};
 
 use crate::commands::check_dir;
-use crate::Exit;
+use crate::{Exit, KernelArg};
 use kanestop_runtime::scene::Scene;
 use kanestop_workflow::kernels::{self, KernelChoice};
 use kanestop_workflow::output::write_atomically;
 use kanestop_workflow::sweep::heatmap;
 use kanestop_workflow::sweep::shard::{self, Shard};
 use kanestop_workflow::sweep::shard_file::{self, ShardFile, ShardRun, SweepId};
-use kanestop_workflow::sweep::{merge, slurm, PlannedRow, Progress, SweepRow};
-use kanestop_workflow::{sensitivity, sweep};
+use kanestop_workflow::sweep::{merge, slurm, PlannedRow, SweepRow};
+use kanestop_workflow::{progress, sensitivity, sweep};
 
 /// `sweep SPEC` and `sweep merge DIR…`.
 #[derive(clap::Args)]
@@ -33,9 +33,9 @@ pub struct SweepArgs {
     /// Runs at once (default: one per core).
     #[arg(long)]
     jobs: Option<usize>,
-    /// Which Kane kernel evaluates the equations of motion (generated or reference).
-    #[arg(long, default_value = "generated", value_parser = ["generated", "reference"])]
-    kernel: String,
+    /// Which Kane kernel evaluates the equations of motion.
+    #[arg(long, value_enum, default_value = "generated")]
+    kernel: KernelArg,
     /// Run only shard K of N (numbered from 0: the rows i with i mod N = K) and write
     /// OUT/shards/shard-K-of-N.json; merge the shards with `sweep merge OUT`. Without it, a
     /// task of a job array takes its shard from the scheduler: SLURM_ARRAY_TASK_ID and
@@ -113,14 +113,6 @@ pub struct SensitivityArgs {
     jobs: Option<usize>,
 }
 
-fn choice(name: &str) -> KernelChoice {
-    if name == "reference" {
-        KernelChoice::Reference
-    } else {
-        KernelChoice::Generated
-    }
-}
-
 /// The longest `--checkpoint`, s (11.6 days: longer than a scheduler's time limits).
 const MAX_CHECKPOINT: f64 = 1e6;
 
@@ -163,16 +155,19 @@ pub fn sweep(args: &SweepArgs) -> Result<Exit> {
             );
         }
     }
-    let id = SweepId::of(&spec, &plan, &args.kernel);
+    let id = SweepId::of(&spec, &plan, args.kernel.0.name());
     match shard {
         Some((s, from)) => run_shard(args, &id, &plan, s, from),
         None if args.resume => resume_all(args, &id, &plan),
         None => {
             check_dir(&args.out)?;
-            let kernel = kernels::factory(choice(&args.kernel));
-            let bar = Progress::new(plan.len(), "runs");
-            let rows = sweep::run(&plan, &kernel, args.jobs, &|r| bar.inc(format!("{} {}", r.name, r.status)))?;
-            bar.finish();
+            let kernel = args.kernel.factory();
+            let bar = progress::bar(plan.len(), "runs");
+            let rows = sweep::run(&plan, &kernel, args.jobs, &|r| {
+                bar.set_message(format!("{} {}", r.name, r.status));
+                bar.inc(1);
+            })?;
+            bar.finish_and_clear();
             let code = report(&rows, id.sampling, &sweep::scene_files(&plan), &args.out)?;
             for f in heatmap::write(&spec, &rows, &heat_maps, &args.out)? {
                 println!("written   {}", f.display());
@@ -239,13 +234,14 @@ fn execute_shard(
     check_dir(&args.out.join("shards"))?;
     let every = Duration::from_secs_f64(args.checkpoint);
     let (run, todo) = ShardRun::start(id, plan, shard, &args.out, resume, every)?;
-    let kernel = kernels::factory(choice(&args.kernel));
-    let bar = Progress::new(todo.rows.len(), "runs");
+    let kernel = args.kernel.factory();
+    let bar = progress::bar(todo.rows.len(), "runs");
     sweep::run(&todo.rows, &kernel, args.jobs, &|r| {
         run.add(r);
-        bar.inc(format!("{} {}", r.name, r.status));
+        bar.set_message(format!("{} {}", r.name, r.status));
+        bar.inc(1);
     })?;
-    bar.finish();
+    bar.finish_and_clear();
     let path = run.path().to_path_buf();
     Ok((run.finish()?, todo.kept, path))
 }
@@ -352,7 +348,7 @@ fn slurm(args: &SweepArgs, spec: &sweep::Spec, plan: &[PlannedRow]) -> Result<Ex
         rows,
         shards,
         cpus,
-        kernel: &args.kernel,
+        kernel: args.kernel.0.name(),
         checkpoint: args.checkpoint,
     };
     print!("{}", script.text());
@@ -375,9 +371,9 @@ pub fn sensitivity(args: &SensitivityArgs) -> Result<Exit> {
     check_dir(&args.out)?;
     let runs = 1 + 2 * sensitivity::parameters(&scene).len();
     let kernel = kernels::factory(KernelChoice::Generated);
-    let bar = Progress::new(runs, "runs");
-    let study = sensitivity::study(&scene, args.step, &kernel, args.jobs, &|| bar.inc(String::new()))?;
-    bar.finish();
+    let bar = progress::bar(runs, "runs");
+    let study = sensitivity::study(&scene, args.step, &kernel, args.jobs, &|| bar.inc(1))?;
+    bar.finish_and_clear();
     print!("{}", sensitivity::table(&study));
     if !sigmas.is_empty() {
         let (band, missing) = sensitivity::band(&study, &sigmas);

@@ -172,11 +172,7 @@ fn apply(scene: &Scene, values: &[(String, Value)]) -> Result<Scene, RustSceneEr
 }
 
 fn kernel_choice(name: &str) -> PyResult<KernelChoice> {
-    match name {
-        "generated" => Ok(KernelChoice::Generated),
-        "reference" => Ok(KernelChoice::Reference),
-        other => Err(PyValueError::new_err(format!("kernel = {other:?}: must be \"generated\" or \"reference\""))),
-    }
+    name.parse().map_err(PyValueError::new_err)
 }
 
 fn model_error(e: impl std::fmt::Display) -> PyErr {

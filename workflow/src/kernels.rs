@@ -17,6 +17,18 @@ pub enum KernelChoice {
     Generated,
 }
 
+impl std::str::FromStr for KernelChoice {
+    type Err = String;
+
+    /// The choice of its [`KernelChoice::name`], or what the valid names are.
+    fn from_str(name: &str) -> Result<KernelChoice, String> {
+        [KernelChoice::Generated, KernelChoice::Reference]
+            .into_iter()
+            .find(|k| k.name() == name)
+            .ok_or_else(|| format!("kernel = {name:?}: must be \"generated\" or \"reference\""))
+    }
+}
+
 impl KernelChoice {
     /// `reference` or `generated`.
     pub fn name(self) -> &'static str {

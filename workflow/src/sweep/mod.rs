@@ -16,10 +16,7 @@ pub mod slurm;
 pub mod spec;
 
 use std::collections::BTreeMap;
-use std::io::IsTerminal as _;
 use std::path::{Path, PathBuf};
-use std::sync::Mutex;
-use std::time::{Duration, Instant};
 
 use kanestop_runtime::model::Model;
 use kanestop_runtime::simulate;
@@ -382,52 +379,6 @@ pub fn statistics(rows: &[SweepRow], output: impl Fn(&RunSummary) -> Option<f64>
     let sd = (v.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1.0)).sqrt();
     let q = |p: f64| v[((p * (n - 1.0)).round() as usize).min(v.len() - 1)];
     Some([mean, sd, q(0.05), q(0.95)])
-}
-
-/// Progress: a bar with ETA on a terminal, a plain line every 10 % or 10 s otherwise.
-pub struct Progress {
-    bar: indicatif::ProgressBar,
-    plain: Option<Mutex<(usize, Instant)>>,
-    len: usize,
-    start: Instant,
-}
-
-impl Progress {
-    /// Progress over `len` runs named `unit`.
-    pub fn new(len: usize, unit: &str) -> Progress {
-        let terminal = std::io::stderr().is_terminal();
-        let bar = if terminal { crate::progress::bar(len, unit) } else { indicatif::ProgressBar::hidden() };
-        if terminal {
-            let template = format!("{{bar:40}} {{pos}}/{{len}} {unit}  {{elapsed_precise}}  ETA {{eta}}  {{msg}}");
-            if let Ok(style) = indicatif::ProgressStyle::with_template(&template) {
-                bar.set_style(style);
-            }
-        }
-        let plain = (!terminal).then(|| Mutex::new((0, Instant::now())));
-        Progress { bar, plain, len, start: Instant::now() }
-    }
-
-    /// One more done; `message` shows on the bar.
-    pub fn inc(&self, message: String) {
-        self.bar.set_message(message);
-        self.bar.inc(1);
-        if let Some(state) = &self.plain {
-            let mut s = state.lock().expect("progress lock");
-            s.0 += 1;
-            let step = (self.len / 10).max(1);
-            if s.0 == self.len || s.0 % step == 0 || s.1.elapsed() > Duration::from_secs(10) {
-                let elapsed = self.start.elapsed().as_secs_f64();
-                let eta = elapsed / s.0 as f64 * (self.len - s.0) as f64;
-                eprintln!("progress  {}/{} runs, {elapsed:.1} s elapsed, ETA {eta:.0} s", s.0, self.len);
-                s.1 = Instant::now();
-            }
-        }
-    }
-
-    /// Clears the bar.
-    pub fn finish(&self) {
-        self.bar.finish_and_clear();
-    }
 }
 
 /// The file `scenes/NAME.toml` of a planned row: its scene, to rerun it alone (none when
