@@ -245,14 +245,29 @@ pub fn csv_of(result: &RunResult, channels: &[Channel]) -> String {
             let v = c.value(s, first);
             let sep = if i == 0 { "" } else { "," };
             let _ = match c.source {
-                Source::T => write!(out, "{sep}{v}"),
-                Source::Sliding => write!(out, "{sep}{v}"),
-                _ => write!(out, "{sep}{v:e}"),
+                Source::T | Source::Sliding => write!(out, "{sep}{v}"),
+                _ => write!(out, "{sep}{}", Number(v)),
             };
         }
         out.push('\n');
     }
     out
+}
+
+/// A number as the CSV writes it: its shortest form that reads back to the same f64,
+/// positional for ordinary magnitudes (`3`, `1669.9795856262342`), with an exponent for the
+/// very small and very large (`-7.531752999057062e-12`), as spreadsheets and pandas read both.
+struct Number(f64);
+
+impl std::fmt::Display for Number {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let v = self.0;
+        if v == 0.0 || !v.is_finite() || (1e-5..1e16).contains(&v.abs()) {
+            write!(f, "{v}")
+        } else {
+            write!(f, "{v:e}")
+        }
+    }
 }
 
 /// The value of each of `channels` at every sample of `result`: one column per channel, in
@@ -323,6 +338,23 @@ pub fn write_channels(result: &RunResult, channels: &[Channel], path: &Path) -> 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn numbers_read_back_exactly_and_plainly() {
+        for (v, text) in [
+            (3.0, "3"),
+            (0.0, "0"),
+            (-0.0, "-0"),
+            (1669.9795856262342, "1669.9795856262342"),
+            (-7.531752999057062e-12, "-7.531752999057062e-12"),
+            (2.5e20, "2.5e20"),
+            (1e-5, "0.00001"),
+        ] {
+            let written = Number(v).to_string();
+            assert_eq!(written, text);
+            assert_eq!(written.parse::<f64>().unwrap().to_bits(), v.to_bits(), "{text}");
+        }
+    }
 
     #[test]
     fn names_are_unique_and_groups_select() {

@@ -358,13 +358,29 @@ pub fn table(rows: &[SweepRow]) -> String {
             d(s.map(|s| s.anchor_drag_distance), 1.0, 2),
             d(s.and_then(|s| s.peak_tension).map(|p| p.tension), 1e-3, 1),
             d(s.and_then(|s| s.peak_tension).and_then(|p| p.break_utilisation), 1.0, 2),
-            r.label
+            short_label(&r.label)
         ));
         if !r.message.is_empty() {
             out.push_str(&format!("             {}\n", r.message));
         }
     }
     out
+}
+
+/// A row's inputs for the terminal: each number to six significant digits (a sampled
+/// `ship.mass=516549.9044855506` reads `ship.mass=516550`); the files keep them whole.
+fn short_label(label: &str) -> String {
+    let short = |word: &str| -> String {
+        let Some((key, value)) = word.split_once('=') else { return word.to_string() };
+        match value.parse::<f64>() {
+            Ok(v) if v.is_finite() && value.contains(['.', 'e', 'E']) => {
+                let rounded: f64 = format!("{v:.5e}").parse().unwrap_or(v);
+                format!("{key}={rounded}")
+            }
+            _ => word.to_string(),
+        }
+    };
+    label.split(' ').map(short).collect::<Vec<_>>().join(" ")
 }
 
 /// Mean, standard deviation, 5 % and 95 % quantiles of an output over the rows that have it.
@@ -416,4 +432,19 @@ pub fn write(rows: &[SweepRow], scenes: &[(String, String)], dir: &Path) -> Resu
     let json = serde_json::to_string_pretty(rows).expect("rows serialise: plain numbers and strings");
     write_atomically(&j, json.as_bytes()).map_err(Error::io("write", &j))?;
     Ok((c, j))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_terminal_shows_six_significant_digits_of_an_input() {
+        assert_eq!(
+            short_label(
+                "ship.mass=516549.9044855506 initial.ship_speed=3 anchor.mass=2.5e6 case=x=1.5 rod.length=1.25"
+            ),
+            "ship.mass=516550 initial.ship_speed=3 anchor.mass=2500000 case=x=1.5 rod.length=1.25"
+        );
+    }
 }
