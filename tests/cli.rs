@@ -299,6 +299,10 @@ fn plot_writes_the_four_svg_charts() {
         assert!(svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>"), "{name} is not a whole SVG");
         assert!(svg.contains("<polyline") || svg.contains("<path"), "{name} has no curve");
     }
+    // The limits, above the axis, are named with their values (Table 1's loads of case 1:
+    // the chain's break load 3866 kN, the cable's 2520 kN, the chain's proof load 2709 kN).
+    let svg = std::fs::read_to_string(out_dir.join("peak-tension.svg")).unwrap();
+    assert!(svg.contains("proof load 2709 kN") && svg.contains("break load 2520–3866 kN"), "limits named");
 }
 
 #[test]

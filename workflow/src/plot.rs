@@ -378,11 +378,18 @@ fn tension_curves(runs: &[(&Model, &RunResult)]) -> Vec<Curve> {
         .collect();
     if let Some((m, _)) = runs.first() {
         let n = m.body_count();
-        let limit = |label: &str, look: usize, pick: fn(LoadLimits) -> Option<f64>| Curve {
-            label: label.into(),
-            points: step(n, |k| pick(m.joint_limits(k)).map(|v| v / 1e3)),
-            look,
-            reference: true,
+        // The legend says what the limit is (it is often above the axis): its value, or the
+        // range of its values along the line (chain and cable differ).
+        let limit = |label: &str, look: usize, pick: fn(LoadLimits) -> Option<f64>| {
+            let points = step(n, |k| pick(m.joint_limits(k)).map(|v| v / 1e3));
+            let values = points.iter().map(|p| p.1).filter(|v| v.is_finite());
+            let (lo, hi) = values.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)));
+            let label = match (lo.is_finite(), lo == hi) {
+                (false, _) => label.to_string(),
+                (true, true) => format!("{label} {lo:.0} kN"),
+                (true, false) => format!("{label} {lo:.0}–{hi:.0} kN"),
+            };
+            Curve { label, points, look, reference: true }
         };
         curves.push(limit("proof load", 4, |l| l.proof));
         curves.push(limit("break load", 1, |l| l.breaking));
