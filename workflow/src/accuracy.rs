@@ -415,6 +415,7 @@ pub fn work_precision(s: &AccuracyStudy) -> Result<String> {
         if cpu { "CPU time (s)" } else { "wall time (s)" },
         "error: stopping time (s), trajectory (m, thin)",
         &curves,
+        Some(("stopping-time error (s)", "trajectory error (m)")),
     )
 }
 
@@ -463,5 +464,8 @@ mod tests {
         assert_eq!(runs.len(), 1, "{runs:?}");
         assert_eq!((runs[0].run.method, runs[0].run.setting), (Method::Dp5, 1e-6));
         assert!((runs[0].speedup - 1.5).abs() < 1e-12);
+        // The chart's legend says what a thick and a thin line are.
+        let svg = work_precision(&s).unwrap();
+        assert!(svg.contains("stopping-time error (s)") && svg.contains("trajectory error (m)"));
     }
 }

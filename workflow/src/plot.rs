@@ -108,8 +108,9 @@ fn bounds(curves: &[Curve], from_zero: bool) -> ((f64, f64), (f64, f64)) {
     ((x.0, x.1.max(x.0 + 1e-9)), (if from_zero && y.0 >= 0.0 { 0.0 } else { y.0 - pad }, y.1 + pad))
 }
 
-/// The corner of the plot with the fewest data points, for the legend.
-fn emptiest_corner(curves: &[Curve], (x0, x1): (f64, f64), (y0, y1): (f64, f64)) -> SeriesLabelPosition {
+/// The corner of the plot with the fewest of `points`, for the legend (on a log axis, give
+/// the logarithms of the points and of the bounds).
+fn emptiest_corner(points: &[(f64, f64)], (x0, x1): (f64, f64), (y0, y1): (f64, f64)) -> SeriesLabelPosition {
     let corners = [
         (SeriesLabelPosition::UpperRight, true, true),
         (SeriesLabelPosition::UpperLeft, false, true),
@@ -117,9 +118,8 @@ fn emptiest_corner(curves: &[Curve], (x0, x1): (f64, f64), (y0, y1): (f64, f64))
         (SeriesLabelPosition::LowerLeft, false, false),
     ];
     let count = |right: bool, upper: bool| {
-        curves
+        points
             .iter()
-            .flat_map(|c| &c.points)
             .filter(|(a, b)| {
                 let (u, v) = ((a - x0) / (x1 - x0), (b - y0) / (y1 - y0));
                 (if right { u > 0.6 } else { u < 0.4 }) && (if upper { v > 0.55 } else { v < 0.45 })
@@ -244,7 +244,11 @@ fn panel<DB: DrawingBackend>(
     }
     if labelled {
         c.configure_series_labels()
-            .position(emptiest_corner(curves, (x0, x1), (y0, y1)))
+            .position(emptiest_corner(
+                &curves.iter().flat_map(|c| c.points.clone()).collect::<Vec<_>>(),
+                (x0, x1),
+                (y0, y1),
+            ))
             .background_style(WHITE.mix(0.85))
             .border_style(RGBColor(180, 180, 180))
             .draw()
@@ -465,12 +469,27 @@ pub struct LogCurve {
     pub points: Vec<(f64, f64)>,
 }
 
-/// A log–log chart of `curves` (lines with a marker at each point) as SVG text.
-pub fn log_log(title: &str, x_desc: &str, y_desc: &str, curves: &[LogCurve]) -> Result<String> {
-    log_log_svg(title, x_desc, y_desc, curves).map_err(|message| Error::Plot { chart: title.to_string(), message })
+/// A log–log chart of `curves` (lines with a marker at each point) as SVG text, the legend in
+/// the corner with the fewest points; `widths` names what a thick and a thin line stand for, as two more
+/// legend entries in grey.
+pub fn log_log(
+    title: &str,
+    x_desc: &str,
+    y_desc: &str,
+    curves: &[LogCurve],
+    widths: Option<(&str, &str)>,
+) -> Result<String> {
+    log_log_svg(title, x_desc, y_desc, curves, widths)
+        .map_err(|message| Error::Plot { chart: title.to_string(), message })
 }
 
-fn log_log_svg(title: &str, x_desc: &str, y_desc: &str, curves: &[LogCurve]) -> Result<String, String> {
+fn log_log_svg(
+    title: &str,
+    x_desc: &str,
+    y_desc: &str,
+    curves: &[LogCurve],
+    widths: Option<(&str, &str)>,
+) -> Result<String, String> {
     let mut svg = String::new();
     {
         let root = SVGBackend::with_string(&mut svg, (900, 540)).into_drawing_area();
@@ -482,6 +501,9 @@ fn log_log_svg(title: &str, x_desc: &str, y_desc: &str, curves: &[LogCurve]) -> 
         if curves.iter().all(|c| c.points.is_empty()) {
             (x0, x1, y0, y1) = (1e-3, 1.0, 1e-9, 1.0);
         }
+        let logs: Vec<(f64, f64)> =
+            curves.iter().flat_map(|c| &c.points).map(|&(x, y)| (x.log10(), y.log10())).collect();
+        let (lx0, lx1, ly0, ly1) = ((x0 * 0.8).log10(), (x1 * 1.25).log10(), (y0 * 0.5).log10(), (y1 * 2.0).log10());
         let mut c = ChartBuilder::on(&root)
             .caption(title, ("sans-serif", 22))
             .margin(12)
@@ -535,7 +557,17 @@ fn log_log_svg(title: &str, x_desc: &str, y_desc: &str, curves: &[LogCurve]) -> 
             c.draw_series(curve.points.iter().map(|&p| Circle::new(p, 3, color.filled())))
                 .map_err(|e| e.to_string())?;
         }
+        if let Some((thick, thin)) = widths {
+            for (label, width) in [(thick, 2), (thin, 1)] {
+                let grey = RGBColor(110, 110, 110);
+                c.draw_series(LineSeries::new(std::iter::empty::<(f64, f64)>(), grey.stroke_width(width)))
+                    .map_err(|e| e.to_string())?
+                    .label(label)
+                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], grey.stroke_width(width)));
+            }
+        }
         c.configure_series_labels()
+            .position(emptiest_corner(&logs, (lx0, lx1), (ly0, ly1)))
             .background_style(WHITE.mix(0.85))
             .border_style(BLACK)
             .draw()
@@ -631,7 +663,7 @@ mod tests {
         assert_eq!(log_ticks(0.08, 3.0, &[1.0, 2.0, 5.0]).len(), 5, "0.1 0.2 0.5 1 2");
         let curve =
             LogCurve { label: Some("rk4".into()), color: 0, thin: false, points: vec![(0.1, 1e-2), (0.9, 1e-8)] };
-        let svg = log_log("t", "wall time (s)", "error", &[curve]).unwrap();
+        let svg = log_log("t", "wall time (s)", "error", &[curve], None).unwrap();
         for label in ["0.1", "0.2", "0.5", "1e-4"] {
             assert_eq!(svg.matches(&format!(">\n{label}\n</text>")).count(), 1, "{label} printed once");
         }
