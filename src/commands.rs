@@ -10,9 +10,7 @@ use kanestop_runtime::scene::Scene;
 use kanestop_runtime::simulate::{self, FailureKind, RunResult, Stop};
 use kanestop_workflow::kernels::KernelFactory;
 use kanestop_workflow::record::RunSummary;
-use kanestop_workflow::{
-    accuracy, batch, checks, diagnostic, history, output, parallel, plot, progress, summary, validation,
-};
+use kanestop_workflow::{accuracy, batch, diagnostic, history, output, parallel, plot, progress, summary, validation};
 
 /// How a run ended, for the exit code.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -77,10 +75,7 @@ pub fn run(model: &Model, kernel: KernelFactory, files: &RunFiles, json: bool, v
                 RunOutcome::NumericalFailure
             }
         }
-        Stop::ShipStopped | Stop::EndTime
-            if !checks::break_exceedances(model, &result).is_empty()
-                || RunSummary::of(model, &result).checks_pass == Some(false) =>
-        {
+        Stop::ShipStopped | Stop::EndTime if RunSummary::of(model, &result).checks_pass == Some(false) => {
             RunOutcome::CheckFailed
         }
         Stop::ShipStopped | Stop::EndTime => RunOutcome::Done,
@@ -175,7 +170,7 @@ pub fn batch(
         ok &= v.problems.is_empty() && v.discordant.is_empty();
         println!("validate  {} (tolerance {:.1} %)", if ok { "PASS" } else { "FAIL" }, 100.0 * tol);
     }
-    let check_failed = rows.iter().any(|r| r.checks_pass == Some(false) || r.break_exceedances > 0);
+    let check_failed = rows.iter().any(|r| r.checks_pass == Some(false));
     Ok(if !ok {
         BatchOutcome::Missed
     } else if check_failed {

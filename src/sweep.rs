@@ -133,8 +133,8 @@ pub fn sweep(args: &SweepArgs) -> Result<Exit> {
             anyhow::bail!("--heatmap {}: {why}", args.heatmap.join(","));
         }
     }
-    let plan = spec.plan();
     kanestop_workflow::parallel::check_jobs(args.jobs)?;
+    let plan = spec.plan();
     anyhow::ensure!(
         (0.0..=MAX_CHECKPOINT).contains(&args.checkpoint),
         "--checkpoint = {}: a number of seconds from 0 to {MAX_CHECKPOINT:e}",

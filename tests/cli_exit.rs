@@ -214,6 +214,18 @@ fn exit_4_a_design_check_failed() {
     assert!(batch_out.contains(&format!("check failed: {failure}")), "{failure:?} in {batch_out}");
     let row = batch_out.lines().nth(1).unwrap();
     assert!(row.contains(" end time    fail "), "{row}");
+    // So do its files, and run --json.
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("out/batch.json")).unwrap()).unwrap();
+    assert_eq!(json[0]["checks_pass"], serde_json::json!(false), "{json}");
+    let csv = std::fs::read_to_string(dir.join("out/batch.csv")).unwrap();
+    // (From the end: the message before it is quoted and holds commas.)
+    let head: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+    let from_end = head.len() - 1 - head.iter().position(|h| *h == "checks").unwrap();
+    assert_eq!(csv.lines().nth(1).unwrap().rsplit(',').nth(from_end), Some("fail"), "{csv}");
+    let out = kanestop().arg("run").arg(&path).arg("--json").output().unwrap();
+    let summary: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(summary["checks_pass"], serde_json::json!(false));
 }
 
 #[test]

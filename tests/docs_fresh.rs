@@ -47,13 +47,14 @@ fn render(source: &str) -> String {
          `scenes/paper/`, generated from `runtime/src/paper.rs`.\n\n\
          A scene can be a few lines over another: `extends = \"base.toml\"` (a path relative to the\n\
          file; chains allowed) takes every table of the base and lays the file's own over it, key\n\
-         by key; an array such as `[[cable.stages]]` replaces the base's whole. Its `[meta]` is its\n\
-         own, not the base's, where it does not set it: `name` is the file's stem, `description`\n\
-         says which file it extends, and `paper_stopping_time` (Table 3's time) is kept only when the\n\
-         file changes nothing but `[meta]` and `[checks]` (a heavier ship is no paper case, and is\n\
-         not compared with Table 3). An `extends` chain that comes back to a file is refused. Sweeps\n\
-         and the Python package set single fields by dotted path: `ship.mass`,\n\
-         `cable.stages[1].elements`.\n",
+         by key; an array such as `[[cable.stages]]` replaces the base's whole. Where it does not\n\
+         set them, its `name` is the file's stem and its `description` says which file it extends.\n\
+         An `extends` chain that comes back to a file is refused. Sweeps and the Python package set\n\
+         single fields by dotted path: `ship.mass`, `cable.stages[1].elements`.\n\n\
+         Reports compare a run with the paper's Table 3 when its scene is one of the paper's 19\n\
+         cases: the same environment, bodies, line and initial state (its name, `[solver]` and\n\
+         `[checks]` may differ), whatever file it came from; any other scene (a heavier ship, a\n\
+         copy edited) is not compared, whatever its `meta.paper_stopping_time` says.\n",
     );
     for (table, name) in TABLES {
         out.push_str(&format!("\n## `[{table}]`\n\n| field | meaning and unit |\n| --- | --- |\n"));

@@ -48,7 +48,7 @@ fn a_variant_of_a_few_lines_is_the_full_file() {
     // Its own name and description, and no paper time: a heavier, faster ship is no paper case.
     assert_eq!(variant.meta.name, "heavy");
     assert_eq!(variant.meta.description, "base/case01.toml with the changes of heavy.toml");
-    assert_eq!(variant.meta.paper_stopping_time, None);
+    assert_eq!(kanestop_runtime::paper::stopping_time(&variant), None);
     assert_eq!(Scene { meta: whole.meta.clone(), ..variant.clone() }, whole);
     assert_eq!(variant.ship.mass, 750000.0);
     assert_eq!(run_key(&variant), run_key(&whole), "the same run, bit for bit");
@@ -61,29 +61,35 @@ fn a_variant_of_a_few_lines_is_the_full_file() {
 }
 
 #[test]
-fn a_variant_keeps_what_it_sets_of_meta_and_the_paper_time_only_for_the_paper_case() {
+fn a_variant_has_its_own_name_and_table_3_only_when_it_is_the_paper_case() {
+    use kanestop_runtime::paper::stopping_time;
     let dir = temp_dir("meta");
     std::fs::write(dir.join("case01.toml"), base_text()).unwrap();
-    // Only a design check added: still the paper's case 1, under the file's own name.
-    std::fs::write(dir.join("checked.toml"), "extends = \"case01.toml\"\n[checks]\nmax_anchor_drag = 30.0\n").unwrap();
-    let checked = Scene::load(&dir.join("checked.toml")).unwrap();
-    assert_eq!((checked.meta.name.as_str(), checked.meta.paper_stopping_time), ("checked", Some(20.01)));
-    // What a variant sets of [meta] is its own, and a chain of variants works alike.
-    std::fs::write(
-        dir.join("named.toml"),
-        "extends = \"checked.toml\"\n[meta]\nname = \"light ship\"\n[ship]\nmass = 400000.0\n",
-    )
-    .unwrap();
-    let named = Scene::load(&dir.join("named.toml")).unwrap();
-    assert_eq!(named.meta.name, "light ship");
-    assert_eq!(named.meta.description, "checked.toml with the changes of named.toml");
-    assert_eq!(named.meta.paper_stopping_time, None);
-    std::fs::write(
-        dir.join("claims.toml"),
-        "extends = \"case01.toml\"\n[meta]\npaper_stopping_time = 25.0\n[ship]\nmass = 400000.0\n",
-    )
-    .unwrap();
-    assert_eq!(Scene::load(&dir.join("claims.toml")).unwrap().meta.paper_stopping_time, Some(25.0));
+    let write = |name: &str, text: &str| std::fs::write(dir.join(name), text).unwrap();
+    let load = |name: &str| Scene::load(&dir.join(name)).unwrap();
+    // A design check and another integrator: still the paper's case 1, under the file's name.
+    write(
+        "checked.toml",
+        "extends = \"case01.toml\"\n[checks]\nmax_anchor_drag = 30.0\n[solver]\nintegrator = \"dp5\"\n",
+    );
+    let checked = load("checked.toml");
+    assert_eq!((checked.meta.name.as_str(), stopping_time(&checked)), ("checked", Some(20.01)));
+    assert_eq!(checked.meta.description, "case01.toml with the changes of checked.toml");
+    // A chain whose middle file changes the physics is no paper case, whatever comes after it
+    // or what the files' [meta] claims.
+    write("light.toml", "extends = \"case01.toml\"\n[ship]\nmass = 400000.0\n");
+    write(
+        "light-checked.toml",
+        "extends = \"light.toml\"\n[meta]\nname = \"light ship\"\n[checks]\nmax_anchor_drag = 30.0\n",
+    );
+    let light = load("light-checked.toml");
+    assert_eq!((light.meta.name.as_str(), stopping_time(&light)), ("light ship", None));
+    write("claims.toml", "extends = \"case01.toml\"\n[meta]\npaper_stopping_time = 25.0\n[ship]\nmass = 400000.0\n");
+    assert_eq!(stopping_time(&load("claims.toml")), None);
+    // A chain that comes back to its start by way of ../ is a loop.
+    write("loop.toml", &format!("extends = \"../{}/loop.toml\"\n", dir.file_name().unwrap().to_string_lossy()));
+    let e = Scene::load(&dir.join("loop.toml")).unwrap_err();
+    assert!(e.to_string().contains("extends chain loops back to"), "{e}");
 }
 
 #[test]

@@ -162,17 +162,23 @@ pub fn resolve<E>(
     wrap: &dyn Fn(&Path, OverrideError) -> E,
 ) -> Result<Value, E> {
     let mut chain: Vec<(PathBuf, Value)> = Vec::new();
-    let mut next = Some(lexically_normal(path));
+    let mut seen: Vec<PathBuf> = Vec::new();
+    let mut next = Some(path.to_path_buf());
     while let Some(file) = next.take() {
-        if chain.iter().any(|(p, _)| p == &file) {
+        // Files are read by the path as joined (`../` after a symbolic link goes where the
+        // system takes it); a loop is found by the file itself, the same whichever way its
+        // path is written.
+        let key = std::fs::canonicalize(&file).unwrap_or_else(|_| lexically_normal(&file));
+        if seen.contains(&key) {
             return Err(wrap(path, OverrideError::ExtendsCycle(file)));
         }
+        seen.push(key);
         let mut value = parse(&file, &read(&file)?)?;
         if let Some(table) = value.as_table_mut() {
             if let Some(base) = table.remove("extends") {
                 let base = base.as_str().ok_or_else(|| wrap(&file, OverrideError::ExtendsType))?;
                 let dir = file.parent().unwrap_or(Path::new(""));
-                next = Some(lexically_normal(&dir.join(base)));
+                next = Some(dir.join(base));
             }
         }
         chain.push((file, value));
@@ -185,8 +191,8 @@ pub fn resolve<E>(
 }
 
 /// `path` with its `.` components dropped and each `..` taking the folder before it away
-/// (a leading `..` kept): the same file written one way, so that an `extends` chain that comes
-/// back to a file by way of `../` is seen to loop (symbolic links are not followed).
+/// (a leading `..` kept): a file's key for loop detection where the file system cannot say
+/// (a file that does not exist, or a test's files in memory).
 fn lexically_normal(path: &Path) -> PathBuf {
     use std::path::Component;
     let mut out = PathBuf::new();
@@ -265,7 +271,7 @@ mod tests {
         let e = resolve(Path::new("dir/loop1.toml"), &mut read, &mut parse, &wrap).unwrap_err();
         assert!(e.contains("loops back to dir/loop1.toml"), "{e}");
         let e = resolve(Path::new("dir/loop3.toml"), &mut read, &mut parse, &wrap).unwrap_err();
-        assert!(e.contains("loops back to dir/loop3.toml"), "{e}");
+        assert!(e.contains("loops back to dir/../dir/./loop3.toml"), "{e}");
         for (path, normal) in [("a/../b/./c", "b/c"), ("../a/../../b", "../../b"), ("/../a", "/a"), ("a/b/..", "a")] {
             assert_eq!(lexically_normal(Path::new(path)), Path::new(normal), "{path}");
         }

@@ -143,6 +143,14 @@ pub const CASES: [Case; 19] = [
     case(19, 0.3, 40.0, 0, 152.0, 148.0,  6.0, 3.0,  500.0, 2.0, 24.126, "current 2 m/s"),
 ];
 
+/// Table 3's stopping time of `scene` when it is one of the 19 cases (the same physical case:
+/// [`Scene::same_case`], whatever its name, solver or design checks), s; none for any other
+/// scene, whatever its `meta.paper_stopping_time` says (a variant of a paper case, a scene
+/// copied and edited). The one rule every report follows.
+pub fn stopping_time(scene: &Scene) -> Option<f64> {
+    CASES.iter().find(|case| case.scene().same_case(scene)).map(|case| case.stopping_time)
+}
+
 /// The distinct body counts N of the 19 cases, sorted: the unrolled kernels checked in
 /// under `generated/src/` (`kanestop codegen --write`, `tests/generated_fresh.rs`).
 pub fn body_counts() -> Vec<usize> {

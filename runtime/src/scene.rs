@@ -73,8 +73,9 @@ pub struct Meta {
     pub name: String,
     /// One line for humans.
     pub description: String,
-    /// The stopping time the paper reports for this scene (Table 3), s. Absent for scenes
-    /// that are not paper cases.
+    /// The stopping time the paper reports for this scene (Table 3), s, as the paper's scene
+    /// files state it; absent for other scenes. Reports take Table 3's time from the paper's
+    /// cases themselves, for a scene that is one of them (see above).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub paper_stopping_time: Option<f64>,
 }
@@ -461,39 +462,35 @@ impl Scene {
         let wrap = |p: &Path, error| SceneError::Override { file: p.display().to_string(), error };
         let value = overrides::resolve(path, &mut read, &mut parse, &wrap)?;
         let mut scene = Scene::from_value(value, &file)?;
-        scene.own_meta(path, &text)?;
+        scene.own_meta(path, &text);
         Ok(scene)
     }
 
-    /// The `[meta]` of a scene that extends another: what the file does not set itself is not
-    /// the base's. Its name is the file's stem, its description says what it extends, and
-    /// Table 3's stopping time is kept only when the file changes nothing of the base's
-    /// physics or solver ([`Scene::same_case`]): a heavier ship is no paper case.
-    fn own_meta(&mut self, path: &Path, text: &str) -> Result<(), SceneError> {
+    /// The `[meta]` of a scene that extends another, where the file does not set it: its name
+    /// is the file's stem and its description says what it extends (the base's would describe
+    /// another scene). Table 3's time is not decided here: reports take it from the paper's
+    /// cases whenever a scene is one of them (`paper::stopping_time`).
+    fn own_meta(&mut self, path: &Path, text: &str) {
         let top: toml::Table = text.parse().unwrap_or_default();
         let sets = |key: &str| top.get("meta").and_then(toml::Value::as_table).is_some_and(|m| m.contains_key(key));
-        let base_name = top.get("extends").and_then(toml::Value::as_str).unwrap_or_default().to_string();
         if !sets("name") {
             self.meta.name =
                 path.file_stem().map_or_else(|| self.meta.name.clone(), |s| s.to_string_lossy().into_owned());
         }
         if !sets("description") {
+            let base = top.get("extends").and_then(toml::Value::as_str).unwrap_or_default();
             let file = path.file_name().map_or_else(String::new, |f| f.to_string_lossy().into_owned());
-            self.meta.description = format!("{base_name} with the changes of {file}");
+            self.meta.description = format!("{base} with the changes of {file}");
         }
-        if !sets("paper_stopping_time") && self.meta.paper_stopping_time.is_some() {
-            let base = Scene::load(&path.parent().unwrap_or(Path::new("")).join(&base_name))?;
-            if !self.same_case(&base) {
-                self.meta.paper_stopping_time = None;
-            }
-        }
-        Ok(())
     }
 
-    /// Whether two scenes are the same case: equal but for `[meta]` and `[checks]` (the
-    /// physics, the initial state and the solver).
+    /// Whether two scenes are the same physical case: equal but for `[meta]`, `[checks]` and
+    /// `[solver]` (the environment, the bodies, the line and the initial state). The paper's
+    /// Table 3 applies to a scene that is the same case as one of its 19
+    /// (`paper::stopping_time`).
     pub fn same_case(&self, other: &Scene) -> bool {
-        let strip = |s: &Scene| Scene { meta: Meta::default(), checks: None, ..s.clone() };
+        let strip =
+            |s: &Scene| Scene { meta: Meta::default(), checks: None, solver: other.solver.clone(), ..s.clone() };
         strip(self) == strip(other)
     }
 

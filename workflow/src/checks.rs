@@ -106,8 +106,12 @@ pub fn evaluate(checks: &DesignChecks, model: &Model, result: &RunResult) -> Vec
     out
 }
 
-/// True when every outcome passed (and there is at least one): `Some(pass)`, none when no
-/// check was made.
-pub fn all_pass(outcomes: &[CheckOutcome]) -> Option<bool> {
+/// The design checks' verdict: false when a break load was exceeded (`exceedances`, a check
+/// every scene has) or an outcome of `[checks]` failed, true when `[checks]` gave outcomes
+/// and all passed, none when the scene has no `[checks]` and no break load was exceeded.
+pub fn verdict(outcomes: &[CheckOutcome], exceedances: &[Exceedance]) -> Option<bool> {
+    if !exceedances.is_empty() {
+        return Some(false);
+    }
     (!outcomes.is_empty()).then(|| outcomes.iter().all(|o| o.pass))
 }

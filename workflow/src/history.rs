@@ -14,7 +14,7 @@ use kanestop_runtime::forces::REPORTED_WORK;
 use kanestop_runtime::kernel::{AnchorDof, BodyState};
 use kanestop_runtime::simulate::{RunResult, Sample};
 
-use crate::output::write_atomically;
+use crate::output::{write_atomically, CsvNumber};
 
 /// The groups of channels, in column order.
 pub const GROUPS: [&str; 6] = ["ship", "anchor", "tension", "energy", "bodies", "joints"];
@@ -246,28 +246,12 @@ pub fn csv_of(result: &RunResult, channels: &[Channel]) -> String {
             let sep = if i == 0 { "" } else { "," };
             let _ = match c.source {
                 Source::T | Source::Sliding => write!(out, "{sep}{v}"),
-                _ => write!(out, "{sep}{}", Number(v)),
+                _ => write!(out, "{sep}{}", CsvNumber(v)),
             };
         }
         out.push('\n');
     }
     out
-}
-
-/// A number as the CSV writes it: its shortest form that reads back to the same f64,
-/// positional for ordinary magnitudes (`3`, `1669.9795856262342`), with an exponent for the
-/// very small and very large (`-7.531752999057062e-12`), as spreadsheets and pandas read both.
-struct Number(f64);
-
-impl std::fmt::Display for Number {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let v = self.0;
-        if v == 0.0 || !v.is_finite() || (1e-5..1e16).contains(&v.abs()) {
-            write!(f, "{v}")
-        } else {
-            write!(f, "{v:e}")
-        }
-    }
 }
 
 /// The value of each of `channels` at every sample of `result`: one column per channel, in
@@ -350,7 +334,7 @@ mod tests {
             (2.5e20, "2.5e20"),
             (1e-5, "0.00001"),
         ] {
-            let written = Number(v).to_string();
+            let written = CsvNumber(v).to_string();
             assert_eq!(written, text);
             assert_eq!(written.parse::<f64>().unwrap().to_bits(), v.to_bits(), "{text}");
         }

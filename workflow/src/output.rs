@@ -61,6 +61,22 @@ fn check_writable_dir(dir: &Path) -> std::io::Result<()> {
     Ok(())
 }
 
+/// A number as every CSV file writes it (history, batch, sweep): its shortest form that reads back to the same f64,
+/// positional for ordinary magnitudes (`3`, `1669.9795856262342`), with an exponent for the
+/// very small and very large (`-7.531752999057062e-12`), as spreadsheets and pandas read both.
+pub struct CsvNumber(pub f64);
+
+impl std::fmt::Display for CsvNumber {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let v = self.0;
+        if v == 0.0 || !v.is_finite() || (1e-5..1e16).contains(&v.abs()) {
+            write!(f, "{v}")
+        } else {
+            write!(f, "{v:e}")
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -84,7 +84,9 @@ pub struct RunSummary {
     /// (absent when the scene has none).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub checks: Vec<CheckOutcome>,
-    /// Whether every design check passed (absent when the scene has none).
+    /// Whether every design check passed: false when a break load was exceeded or a limit of
+    /// `[checks]` failed (absent when the scene has no `[checks]` and no break load was
+    /// exceeded).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub checks_pass: Option<bool>,
 }
@@ -170,7 +172,7 @@ impl RunSummary {
             kernel_form: result.kernel_form.map(str::to_string),
             status: Status::of(&result.stop),
             stopping_time: result.stopping_time,
-            paper_stopping_time: model.scene.meta.paper_stopping_time,
+            paper_stopping_time: kanestop_runtime::paper::stopping_time(&model.scene),
             stopping_distance: (result.stop == Stop::ShipStopped).then(|| displacement(n - 1)),
             ship_displacement: displacement(n - 1),
             anchor_drag_distance: displacement(0),
@@ -196,7 +198,7 @@ impl RunSummary {
                 }
                 Stop::ShipStopped | Stop::EndTime => None,
             },
-            checks_pass: checks::all_pass(&outcomes),
+            checks_pass: checks::verdict(&outcomes, &checks::break_exceedances(model, result)),
             checks: outcomes,
         }
     }

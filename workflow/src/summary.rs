@@ -33,18 +33,6 @@ pub fn summary_with(model: &Model, result: &RunResult, verbose: bool) -> String 
     out.0
 }
 
-/// Table 3's stopping time when `scene` is a paper case: its physics equal to a case's (the
-/// solver and the name may differ). A variant (another mass, speed, line) is not.
-pub fn paper_stopping_time(scene: &kanestop_runtime::scene::Scene) -> Option<f64> {
-    scene.meta.paper_stopping_time?;
-    kanestop_runtime::paper::CASES.iter().find_map(|case| {
-        let mut paper = case.scene();
-        paper.solver = scene.solver.clone();
-        paper.meta = scene.meta.clone();
-        (paper == *scene).then_some(paper.meta.paper_stopping_time).flatten()
-    })
-}
-
 /// Where the ship's kinetic energy went: each work term as a share of the initial kinetic
 /// energy (negative where the term gave energy back), the kinetic energy left and the
 /// potential energy's change, largest first: they add up to 100 % but for the balance's drift
@@ -174,7 +162,7 @@ fn run_lines(out: &mut Lines, model: &Model, result: &RunResult, verbose: bool) 
 /// Why the run ended, with the stopping distance, against the paper when the scene is a
 /// paper case, and the anchor with its drag distance.
 fn outcome_lines(out: &mut Lines, model: &Model, result: &RunResult) {
-    let paper = |t: f64| match paper_stopping_time(&model.scene) {
+    let paper = |t: f64| match kanestop_runtime::paper::stopping_time(&model.scene) {
         Some(p) => format!("   paper (Table 3): {p:.3} s, difference {:+.2} %", 100.0 * (t - p) / p),
         None => String::new(),
     };

@@ -29,7 +29,7 @@ pub use spec::{PlannedRow, Spec};
 
 use crate::batch::Status;
 use crate::kernels::KernelFactory;
-use crate::output::write_atomically;
+use crate::output::{write_atomically, CsvNumber};
 use crate::record::{Peak, RunSummary};
 use crate::{parallel, Error, Result};
 
@@ -83,7 +83,8 @@ pub struct SweepRow {
     pub status: Status,
     /// Whether every design check passed; none when no check is set or the row has no run.
     pub checks_pass: Option<bool>,
-    /// Energy dissipated by each term over the initial energy (−work / E_0), by name.
+    /// Energy taken by each term over the initial kinetic energy (−work / K_0), by name
+    /// (negative where the term gave energy back).
     pub energy_split: BTreeMap<String, f64>,
     /// The run's summary, as `run --json` prints it for the row's scene (none when invalid).
     pub summary: Option<RunSummary>,
@@ -176,7 +177,7 @@ fn quote(s: &str) -> String {
 pub enum Cell {
     /// No value (an output the row does not have): an empty CSV field, None in Python.
     Empty,
-    /// A real number, written in full (shortest round-trip form).
+    /// A real number, written in full ([`CsvNumber`]: its shortest exact form).
     Number(f64),
     /// A count or an index.
     Count(u64),
@@ -190,7 +191,7 @@ impl Cell {
     fn csv(&self) -> String {
         match self {
             Cell::Empty => String::new(),
-            Cell::Number(v) => format!("{v}"),
+            Cell::Number(v) => CsvNumber(*v).to_string(),
             Cell::Count(n) => n.to_string(),
             Cell::Text(s) => quote(s),
             Cell::Input(v) => quote(&fmt_value(v)),
@@ -250,7 +251,6 @@ pub fn cells(rows: &[SweepRow]) -> (Vec<String>, Vec<Vec<Cell>>) {
         }
     }
     head.push("initial_energy".into());
-    head.push("initial_kinetic_energy".into());
     head.extend(works.iter().map(|w| format!("work_{w}")));
     head.extend(works.iter().map(|w| format!("dissipated_{w}")));
     for c in &checks {
@@ -258,7 +258,17 @@ pub fn cells(rows: &[SweepRow]) -> (Vec<String>, Vec<Vec<Cell>>) {
         head.push(format!("check_{c}_pass"));
     }
     head.extend(
-        ["energy_drift", "t_end", "steps", "rhs_evaluations", "wall_time", "message", "cpu_time"].map(String::from),
+        [
+            "energy_drift",
+            "t_end",
+            "steps",
+            "rhs_evaluations",
+            "wall_time",
+            "message",
+            "cpu_time",
+            "initial_kinetic_energy",
+        ]
+        .map(String::from),
     );
     let body =
         rows.iter()
@@ -287,7 +297,6 @@ pub fn cells(rows: &[SweepRow]) -> (Vec<String>, Vec<Vec<Cell>>) {
                     cells.push(number(p.and_then(|p| p.break_utilisation)));
                 }
                 cells.push(f(&|s| Some(s.initial_energy)));
-                cells.push(f(&|s| Some(s.initial_kinetic_energy)));
                 cells.extend(works.iter().map(|w| number(s.and_then(|s| s.work.get(w).copied()))));
                 cells.extend(works.iter().map(|w| number(r.energy_split.get(w).copied())));
                 for c in &checks {
@@ -302,6 +311,7 @@ pub fn cells(rows: &[SweepRow]) -> (Vec<String>, Vec<Vec<Cell>>) {
                 cells.push(f(&|s| Some(s.wall_time)));
                 cells.push(Cell::Text(r.message.clone()));
                 cells.push(f(&|s| s.cpu_time));
+                cells.push(f(&|s| Some(s.initial_kinetic_energy)));
                 cells
             })
             .collect();
@@ -325,7 +335,7 @@ pub fn columns(rows: &[SweepRow]) -> (Vec<String>, Vec<Vec<String>>) {
     let (head, body) = cells(rows);
     let text = |c: &Cell| match c {
         Cell::Empty => String::new(),
-        Cell::Number(v) => format!("{v}"),
+        Cell::Number(v) => CsvNumber(*v).to_string(),
         Cell::Count(n) => n.to_string(),
         Cell::Text(s) => s.clone(),
         Cell::Input(v) => fmt_value(v),

@@ -60,7 +60,10 @@ pub fn plan_hash(name: &str, plan: &[PlannedRow], kernel: &str) -> String {
         h.update(format!("{}:", text.len()).as_bytes());
         h.update(text.as_bytes());
     };
-    field("kanestop sweep plan 1");
+    // The version of what a row's results mean: 2 since `dissipated_<term>` became a share
+    // of the initial kinetic energy (shards of version 1 hold shares of E_0 and are not
+    // merged with these).
+    field("kanestop sweep plan 2");
     field(name);
     field(kernel);
     field(&plan.len().to_string());

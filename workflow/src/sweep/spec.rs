@@ -303,7 +303,8 @@ impl Spec {
     }
 
     /// The scene of one row: the base with `inputs` set, named `name`, with the spec's
-    /// checks; Table 3's time kept only when the physics and solver equal the paper case's.
+    /// checks; Table 3's time kept only when the row is the base's physical case
+    /// ([`Scene::same_case`]; reports compare only a paper case's, `paper::stopping_time`).
     pub fn scene(&self, name: &str, inputs: &[(String, Value)]) -> std::result::Result<Scene, String> {
         let values: Vec<(&str, Value)> = inputs.iter().map(|(p, v)| (p.as_str(), v.clone())).collect();
         let mut scene = self.base.with_overrides(&values).map_err(|e| e.to_string())?;
