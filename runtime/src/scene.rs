@@ -449,10 +449,11 @@ impl Scene {
             move |source| SceneError::Io { file, source }
         }
         let text = std::fs::read_to_string(path).map_err(io(path))?;
-        if !text.parse::<toml::Table>().is_ok_and(|t| t.contains_key("extends")) {
+        let top = match text.parse::<toml::Table>() {
+            Ok(top) if top.contains_key("extends") => top,
             // A whole file: parsed as text, so that errors point at its lines.
-            return Scene::from_toml(&text, &file);
-        }
+            _ => return Scene::from_toml(&text, &file),
+        };
         let mut read = |p: &Path| std::fs::read_to_string(p).map_err(io(p));
         let mut parse = |p: &Path, text: &str| {
             text.parse::<toml::Table>()
@@ -462,7 +463,7 @@ impl Scene {
         let wrap = |p: &Path, error| SceneError::Override { file: p.display().to_string(), error };
         let value = overrides::resolve(path, &mut read, &mut parse, &wrap)?;
         let mut scene = Scene::from_value(value, &file)?;
-        scene.own_meta(path, &text);
+        scene.own_meta(path, &top);
         Ok(scene)
     }
 
@@ -470,8 +471,7 @@ impl Scene {
     /// is the file's stem and its description says what it extends (the base's would describe
     /// another scene). Table 3's time is not decided here: reports take it from the paper's
     /// cases whenever a scene is one of them (`paper::stopping_time`).
-    fn own_meta(&mut self, path: &Path, text: &str) {
-        let top: toml::Table = text.parse().unwrap_or_default();
+    fn own_meta(&mut self, path: &Path, top: &toml::Table) {
         let sets = |key: &str| top.get("meta").and_then(toml::Value::as_table).is_some_and(|m| m.contains_key(key));
         if !sets("name") {
             self.meta.name =

@@ -107,8 +107,6 @@ pub struct Spec {
     pub name: String,
     /// The base scene, with `[solver]` and `[set]` applied.
     pub base: Scene,
-    /// The base scene as read, before `[solver]` and `[set]`.
-    pub original: Scene,
     /// Grid axes, combined as a Cartesian product (last fastest).
     pub axes: Vec<Axis>,
     /// Sampling of the uncertain inputs: method, samples, seed.
@@ -172,8 +170,7 @@ impl Spec {
         Spec {
             file: PathBuf::from(format!("<{name}>")),
             name: name.to_string(),
-            base: scene.clone(),
-            original: scene,
+            base: scene,
             axes: Vec::new(),
             sampling: None,
             uncertain: Vec::new(),
@@ -247,7 +244,6 @@ impl Spec {
             file: file.to_path_buf(),
             name: raw.name.unwrap_or(stem),
             base,
-            original,
             axes,
             sampling,
             uncertain,
@@ -303,14 +299,12 @@ impl Spec {
     }
 
     /// The scene of one row: the base with `inputs` set, named `name`, with the spec's
-    /// checks; Table 3's time kept only when the row is the base's physical case
-    /// ([`Scene::same_case`]; reports compare only a paper case's, `paper::stopping_time`).
+    /// checks; its Table 3 time that of the paper case it is, if any
+    /// (`paper::stopping_time`, the rule every report follows), so its scene file says so.
     pub fn scene(&self, name: &str, inputs: &[(String, Value)]) -> std::result::Result<Scene, String> {
         let values: Vec<(&str, Value)> = inputs.iter().map(|(p, v)| (p.as_str(), v.clone())).collect();
         let mut scene = self.base.with_overrides(&values).map_err(|e| e.to_string())?;
-        if !scene.same_case(&self.original) {
-            scene.meta.paper_stopping_time = None;
-        }
+        scene.meta.paper_stopping_time = kanestop_runtime::paper::stopping_time(&scene);
         scene.meta.name = name.to_string();
         if let Some(c) = &self.checks {
             scene.checks = Some(c.clone());
