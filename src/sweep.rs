@@ -369,10 +369,11 @@ pub fn sensitivity(args: &SensitivityArgs) -> Result<Exit> {
     };
     kanestop_workflow::parallel::check_jobs(args.jobs)?;
     check_dir(&args.out)?;
-    let runs = 1 + 2 * sensitivity::parameters(&scene).len();
+    sensitivity::check_step(args.step)?;
+    let probes = sensitivity::probes(&scene, args.step);
     let kernel = kernels::factory(KernelChoice::Generated);
-    let bar = progress::bar(runs, "runs");
-    let study = sensitivity::study(&scene, args.step, &kernel, args.jobs, &|| bar.inc(1))?;
+    let bar = progress::bar(sensitivity::run_count(&probes), "runs");
+    let study = sensitivity::study(&scene, args.step, &probes, &kernel, args.jobs, &|| bar.inc(1))?;
     bar.finish_and_clear();
     print!("{}", sensitivity::table(&study));
     if !sigmas.is_empty() {

@@ -85,3 +85,66 @@ fn scene_reference_is_fresh() {
         panic!("docs/scenes.md was stale and has been regenerated: review and commit it");
     }
 }
+
+/// (field, type, doc) of every `pub` field of `pub struct name` in `source`.
+fn typed_fields(source: &str, name: &str) -> Vec<(String, String, String)> {
+    let start = source.find(&format!("pub struct {name} {{")).unwrap_or_else(|| panic!("struct {name}"));
+    let body = &source[start..];
+    let body = &body[..body.find("\n}").unwrap()];
+    let mut out = Vec::new();
+    let mut doc = Vec::new();
+    for line in body.lines().skip(1) {
+        let line = line.trim();
+        if let Some(d) = line.strip_prefix("///") {
+            doc.push(d.trim().to_string());
+        } else if let Some(f) = line.strip_prefix("pub ") {
+            let (field, ty) = f.split_once(':').unwrap();
+            out.push((field.trim().to_string(), ty.trim().trim_end_matches(',').to_string(), doc.join(" ")));
+            doc.clear();
+        }
+    }
+    out
+}
+
+/// `scene::UNITS` (axis labels of charts, the sensitivity table) holds every numeric scene
+/// field, each with the unit its doc comment states: ", kg" in the comment for "kg", the word
+/// "dimensionless" (or a count, or the state's units) for "".
+#[test]
+fn every_numeric_field_has_the_unit_its_documentation_states() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let scene = std::fs::read_to_string(root.join("runtime/src/scene.rs")).unwrap();
+    let design = std::fs::read_to_string(root.join("runtime/src/design.rs")).unwrap();
+    let tables = TABLES
+        .iter()
+        .map(|&(table, name)| (table.trim_matches(|c| c == '[' || c == ']').to_string(), typed_fields(&scene, name)))
+        .chain([("checks".to_string(), typed_fields(&design, "DesignChecks"))]);
+    let mut numeric = Vec::new();
+    for (table, fields) in tables {
+        for (field, ty, doc) in fields {
+            if !["f64", "usize", "Option<f64>"].contains(&ty.as_str()) {
+                continue;
+            }
+            let path = format!("{table}.{field}");
+            let unit =
+                kanestop_runtime::scene::unit(&path).unwrap_or_else(|| panic!("{path}: no unit in scene::UNITS"));
+            if unit.is_empty() {
+                assert!(
+                    ["dimensionless", "Number of", "state's units"].iter().any(|w| doc.contains(w)),
+                    "{path}: unit \"\" but the doc states no dimensionless number: {doc}"
+                );
+            } else {
+                let stated = [".", " ", ","].iter().any(|end| doc.contains(&format!(", {unit}{end}")));
+                assert!(stated, "{path}: unit {unit} is not the doc's: {doc}");
+            }
+            numeric.push(path);
+        }
+    }
+    // No entry for a field that is not there.
+    for (path, _) in kanestop_runtime::scene::UNITS {
+        assert!(numeric.iter().any(|p| p == path), "scene::UNITS has {path}, which is no numeric field");
+    }
+    assert_eq!(kanestop_runtime::scene::unit("cable.stages[2].element_length"), Some("m"));
+    assert_eq!(kanestop_runtime::scene::labelled("ship.mass"), "ship.mass (kg)");
+    assert_eq!(kanestop_runtime::scene::labelled("environment.seabed_friction"), "environment.seabed_friction");
+    assert_eq!(kanestop_runtime::scene::unit("ship.name"), None);
+}

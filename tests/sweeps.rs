@@ -265,7 +265,35 @@ fn sensitivity_on_case_1_reproduces_the_measured_ranking() {
     // Ranked by |effect| on the stopping time.
     let ranked: Vec<f64> = rows.iter().filter_map(|r| r["stopping_time"].as_f64()).map(f64::abs).collect();
     assert!(ranked.windows(2).all(|w| w[0] >= w[1]));
-    refresh_sensitivity_doc(rows);
+    // Parameters at the edge of their valid range: a cut or one-sided step, an effect all the
+    // same, and the reason in the row. The line's slack leads: the laid line's horizontal
+    // projection shortens the stop (a tauter line drags the anchor sooner), a longer middle
+    // stage lengthens it.
+    let row = |p: &str| rows.iter().find(|r| r["parameter"] == p).unwrap_or_else(|| panic!("{p}"));
+    for (p, difference) in [
+        ("initial.horizontal_projection", "central"),
+        ("cable.stages[1].element_length", "central"),
+        ("ship.hinge_x", "backward"),
+        ("ship.length", "forward"),
+        ("rod.length", "backward"),
+        ("ship.hinge_z", "forward"),
+    ] {
+        let r = row(p);
+        assert_eq!((r["difference"].as_str(), r["step"].as_f64()), (Some(difference), Some(0.01)), "{p}");
+        assert!(r["stopping_time"].as_f64().is_some() && r["message"].as_str().unwrap().contains("refused"), "{p}");
+    }
+    assert!(effect("initial.horizontal_projection") < -20.0 && effect("cable.stages[1].element_length") > 20.0);
+    // The three stages' element lengths act through one quantity, the line's length L_c:
+    // d(t)/d(ln ℓ_k) = (dt/dL_c) n_k ℓ_k, so each effect over its stage's length (3 × 2 m,
+    // 12 × 10 m, 13 × 2 m) gives the same dt/dL_c, whether differenced at ±5 % or ±1 %.
+    let per_metre: Vec<f64> = [(0, 6.0), (1, 120.0), (2, 26.0)]
+        .map(|(k, length)| effect(&format!("cable.stages[{k}].element_length")) / length)
+        .to_vec();
+    let mean = per_metre.iter().sum::<f64>() / 3.0;
+    assert!(per_metre.iter().all(|x| (x / mean - 1.0).abs() < 0.03), "dt/dL_c by stage: {per_metre:?} s/m");
+    assert!(rows.iter().all(|r| r["stopping_time"].is_number()), "every parameter of case 1 has an effect");
+    assert_eq!(study["runs"].as_u64().unwrap(), 1 + 2 * rows.len() as u64 - 4, "four one-sided rows");
+    refresh_sensitivity_doc(&study);
 }
 
 const SENSITIVITY_BEGIN: &str = "<!-- sensitivity:begin";
@@ -275,7 +303,8 @@ const SENSITIVITY_SHOWN: f64 = 0.3;
 
 /// docs/sweeps.md's "Measured on case 1": the study's ranking, rendered from its
 /// `sensitivity.json` rows. A stale block fails and is rewritten.
-fn refresh_sensitivity_doc(rows: &[Value]) {
+fn refresh_sensitivity_doc(study: &Value) {
+    let rows = study["rows"].as_array().unwrap();
     let signed = |v: &Value, scale: f64, digits: usize| match v.as_f64() {
         Some(x) => format!("{:+.*}", digits, x * scale).replace('-', "−"),
         None => "—".to_string(),
@@ -284,16 +313,23 @@ fn refresh_sensitivity_doc(rows: &[Value]) {
         |p: &str| rows.iter().find(|r| r["parameter"] == p).map(|r| signed(&r["stopping_time"], 1.0, 3)).unwrap();
     let mut o = format!(
         "{SENSITIVITY_BEGIN}: rendered by tests/sweeps.rs::sensitivity_on_case_1_reproduces_the_measured_ranking -->\n\n\
-         {} runs (the base and two per parameter); d(output)/d(ln p), the top of the ranking:\n\n\
-         | rank | parameter | stop (s) | distance (m) | peak (kN) |\n| --- | --- | --- | --- | --- |\n",
-        1 + 2 * rows.len()
+         {} runs (the base and one or two per parameter); d(output)/d(ln p), the top of the ranking \
+         (step: ±h central, +h or −h one-sided):\n\n\
+         | rank | parameter | step | stop (s) | distance (m) | peak (kN) |\n| --- | --- | --- | --- | --- | --- |\n",
+        study["runs"]
     );
     for (i, r) in rows.iter().enumerate() {
         if r["stopping_time"].as_f64().is_some_and(|t| t.abs() >= SENSITIVITY_SHOWN) {
             o.push_str(&format!(
-                "| {} | {} | {} | {} | {} |\n",
+                "| {} | {} | {}{} | {} | {} | {} |\n",
                 i + 1,
                 r["parameter"].as_str().unwrap(),
+                match r["difference"].as_str() {
+                    Some("forward") => "+",
+                    Some("backward") => "−",
+                    _ => "±",
+                },
+                r["step"],
                 signed(&r["stopping_time"], 1.0, 2),
                 signed(&r["stopping_distance"], 1.0, 2),
                 signed(&r["peak_tension"], 1e-3, 1)

@@ -19,12 +19,12 @@ pub struct DesignChecks {
     /// Largest allowed anchor drag distance, m, ≥ 0.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub max_anchor_drag: Option<f64>,
-    /// Required safety factor on the break load, ≥ 1: at every joint with a break load,
+    /// Required safety factor on the break load, dimensionless, ≥ 1: at every joint with a break load,
     /// peak tension × safety_factor ≤ break load (break utilisation ≤ 1 / safety_factor).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub safety_factor: Option<f64>,
     /// Largest allowed proof-load utilisation (peak tension over proof load) at every joint
-    /// with a proof load, in (0, 10], e.g. 1.0: the peak stays below the proof load.
+    /// with a proof load, dimensionless, in (0, 10], e.g. 1.0: the peak stays below the proof load.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub max_proof_utilisation: Option<f64>,
 }

@@ -298,7 +298,8 @@ pub struct Solver {
     pub output_interval: f64,
     /// End the run when the ship's surge speed first reaches zero.
     pub stop_when_ship_stops: bool,
-    /// Relative energy-balance drift |E − E_0|/E_0 at which a run is stopped as unstable.
+    /// Relative energy-balance drift |E − E_0|/E_0 at which a run is stopped as unstable,
+    /// dimensionless.
     pub max_energy_drift: f64,
 }
 
@@ -933,6 +934,90 @@ impl Scene {
         for (field, v, expected) in self.checks.iter().flat_map(|k| k.problems("checks")) {
             c.push(&field, &fmt_value(v), expected);
         }
+    }
+}
+
+/// Every numeric field of a scene by dotted path (array indices left out) with its unit as the
+/// field's documentation states it: "" for a dimensionless number or a count. Held to the doc
+/// comments of this file and of `design.rs` by `tests/docs_fresh.rs`.
+pub const UNITS: [(&str, &str); 52] = [
+    ("meta.paper_stopping_time", "s"),
+    ("environment.gravity", "m/s²"),
+    ("environment.water_density", "kg/m³"),
+    ("environment.kinematic_viscosity", "m²/s"),
+    ("environment.seabed_stiffness", "N/m³"),
+    ("environment.seabed_friction", ""),
+    ("environment.line_friction", ""),
+    ("environment.current_surface_speed", "m/s"),
+    ("environment.current_exponent", ""),
+    ("hydrodynamics.added_mass_coefficient", ""),
+    ("hydrodynamics.normal_drag_coefficient", ""),
+    ("hydrodynamics.tangential_drag_coefficient", ""),
+    ("hydrodynamics.anchor_drag_coefficient", ""),
+    ("anchor.mass", "kg"),
+    ("anchor.length", "m"),
+    ("anchor.width", "m"),
+    ("anchor.height", "m"),
+    ("chain.elements", ""),
+    ("chain.element_length", "m"),
+    ("chain.radius", "m"),
+    ("chain.mass_per_length", "kg/m"),
+    ("chain.proof_load", "N"),
+    ("chain.break_load", "N"),
+    ("cable.radius", "m"),
+    ("cable.mass_per_length", "kg/m"),
+    ("cable.break_load", "N"),
+    ("cable.stages.elements", ""),
+    ("cable.stages.element_length", "m"),
+    ("rod.length", "m"),
+    ("rod.radius", "m"),
+    ("rod.mass_per_length", "kg/m"),
+    ("ship.mass", "kg"),
+    ("ship.length", "m"),
+    ("ship.beam", "m"),
+    ("ship.depth", "m"),
+    ("ship.hull_roughness", "m"),
+    ("ship.hinge_x", "m"),
+    ("ship.hinge_z", "m"),
+    ("initial.horizontal_projection", "m"),
+    ("initial.vertical_projection", "m"),
+    ("initial.ship_speed", "m/s"),
+    ("solver.dt", "s"),
+    ("solver.rtol", ""),
+    ("solver.atol", ""),
+    ("solver.end_time", "s"),
+    ("solver.output_interval", "s"),
+    ("solver.max_energy_drift", ""),
+    ("checks.max_stopping_distance", "m"),
+    ("checks.max_stopping_time", "s"),
+    ("checks.max_anchor_drag", "m"),
+    ("checks.safety_factor", ""),
+    ("checks.max_proof_utilisation", ""),
+];
+
+/// The unit of the scene field at a dotted path (`ship.mass` → `kg`,
+/// `cable.stages[1].element_length` → `m`): "" for a dimensionless number or a count, none
+/// for a path that names no number of a scene.
+pub fn unit(path: &str) -> Option<&'static str> {
+    let mut bare = String::with_capacity(path.len());
+    let mut depth = 0usize;
+    for c in path.chars() {
+        match c {
+            '[' => depth += 1,
+            ']' => depth = depth.saturating_sub(1),
+            c if depth == 0 => bare.push(c),
+            _ => {}
+        }
+    }
+    UNITS.iter().find(|(p, _)| *p == bare).map(|(_, u)| *u)
+}
+
+/// `path (unit)`, or the path alone for a dimensionless number, a count or an unknown path:
+/// an axis label.
+pub fn labelled(path: &str) -> String {
+    match unit(path) {
+        Some(u) if !u.is_empty() => format!("{path} ({u})"),
+        _ => path.to_string(),
     }
 }
 

@@ -3,22 +3,67 @@
 //! `[meta]`, `[solver]` and `[checks]`), by central differences p·(1 ± h), the runs in
 //! parallel; ranked by |effect on the stopping time|. With parameter uncertainties (σ of
 //! ln p) a first-order output band: σ_out² = Σ (effect · σ_ln p)².
+//!
+//! A parameter at or near the edge of its valid range (the rod's hinge at the ship's stern,
+//! the laid line's horizontal projection, a line length the catenary start cannot lay) has a
+//! side at p·(1 ± h) whose scene is refused. Its step is then cut to h / [`RETRY_DIVISOR`];
+//! where one side is still refused, the effect is a one-sided difference of the other side
+//! against the base ([`Difference`]). Which scenes run is decided before any run, from the
+//! scenes' checks alone ([`probes`]).
 
 use kanestop_runtime::model::Model;
-use kanestop_runtime::scene::Scene;
+use kanestop_runtime::scene::{Scene, SceneError};
 use kanestop_runtime::simulate;
 use serde::Serialize;
 use toml::Value;
 
 use crate::kernels::KernelFactory;
+use crate::output::CsvNumber;
 use crate::record::RunSummary;
 use crate::{parallel, Result};
 
 /// The default relative step h: p·(1 ± 0.05).
 pub const DEFAULT_STEP: f64 = 0.05;
 
+/// Where a side at p·(1 ± h) is refused, the step is cut to h / this.
+pub const RETRY_DIVISOR: f64 = 5.0;
+
 /// The outputs differentiated.
 pub const OUTPUTS: [&str; 3] = ["stopping_time", "stopping_distance", "peak_tension"];
+
+/// How an effect was differenced, at the relative step h of its row.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Difference {
+    /// (f(p(1 + h)) − f(p(1 − h))) / ln((1 + h)/(1 − h)): error O(h²).
+    Central,
+    /// (f(p(1 + h)) − f(p)) / ln(1 + h), where p·(1 − h) is refused: error O(h).
+    Forward,
+    /// (f(p) − f(p(1 − h))) / −ln(1 − h), where p·(1 + h) is refused: error O(h).
+    Backward,
+}
+
+impl Difference {
+    /// ln of the ratio of p's two values the difference takes, at the relative step h: the
+    /// effect is (f(above) − f(below)) / span.
+    fn span(self, h: f64) -> f64 {
+        match self {
+            Difference::Central => ((1.0 + h) / (1.0 - h)).ln(),
+            Difference::Forward => (1.0 + h).ln(),
+            Difference::Backward => -(1.0 - h).ln(),
+        }
+    }
+
+    /// The step as the table shows it: ±h, +h or −h.
+    fn signed_step(self, h: f64) -> String {
+        let sign = match self {
+            Difference::Central => "±",
+            Difference::Forward => "+",
+            Difference::Backward => "−",
+        };
+        format!("{sign}{h}")
+    }
+}
 
 /// One parameter's effects.
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -33,8 +78,13 @@ pub struct Sensitivity {
     pub stopping_distance: Option<f64>,
     /// d(peak tension)/d(ln p), N.
     pub peak_tension: Option<f64>,
-    /// Why a perturbed run gave nothing, if it did not.
+    /// Why a perturbed run gave nothing, or why the step was cut or one-sided.
     pub message: String,
+    /// How the effects were differenced; none when every perturbed scene was refused.
+    pub difference: Option<Difference>,
+    /// The relative step h the effects were differenced at (the study's, or cut by
+    /// [`RETRY_DIVISOR`]); none with `difference`.
+    pub step: Option<f64>,
 }
 
 /// A sensitivity study of one scene.
@@ -48,6 +98,8 @@ pub struct Study {
     pub base: [Option<f64>; 3],
     /// The parameters, ranked by |d(stopping time)/d(ln p)| (largest first).
     pub rows: Vec<Sensitivity>,
+    /// The runs made: the base and one or two per parameter.
+    pub runs: usize,
 }
 
 /// Every continuous physical parameter of `scene`: (dotted path, value), in file order.
@@ -80,66 +132,144 @@ pub fn parameters(scene: &Scene) -> Vec<(String, f64)> {
     out
 }
 
+/// A parameter's perturbed scenes, chosen from the scenes' checks before any run (built by
+/// [`probes`] alone, so that its scenes always match its difference).
+#[derive(Clone, Debug)]
+pub struct Probe {
+    /// The dotted path.
+    parameter: String,
+    /// Its value in the scene.
+    value: f64,
+    /// The difference and its relative step, or none: every perturbed scene refused.
+    difference: Option<(Difference, f64)>,
+    /// The scenes to run: p·(1 + h) and p·(1 − h) (central), the one side (one-sided), none.
+    scenes: Vec<Scene>,
+    /// Why the step was cut or one-sided, or why there is no difference; empty otherwise.
+    note: String,
+}
+
+/// The perturbed scenes of every parameter of `scene` at the relative step `step`: central
+/// at h where both sides are valid scenes; else at h / [`RETRY_DIVISOR`], central where both
+/// sides are valid there, one-sided where one is.
+pub fn probes(scene: &Scene, step: f64) -> Vec<Probe> {
+    // The scene at p·(1 + sign h), or why it is refused: its out-of-range values (the
+    // perturbed field's, or another field's range that depends on it).
+    let side = |path: &str, value: f64, h: f64, sign: f64| {
+        scene.with_overrides(&[(path, Value::Float(value * (1.0 + sign * h)))]).map_err(|e| {
+            let why = match e {
+                SceneError::Invalid { problems, .. } => {
+                    problems.iter().map(ToString::to_string).collect::<Vec<_>>().join("; ")
+                }
+                e => e.to_string().lines().map(str::trim).filter(|l| !l.is_empty()).collect::<Vec<_>>().join(" "),
+            };
+            format!("at {}{h} refused: {why}", if sign > 0.0 { "+" } else { "−" })
+        })
+    };
+    parameters(scene)
+        .into_iter()
+        .map(|(parameter, value)| {
+            let mut probe = Probe { parameter, value, difference: None, scenes: Vec::new(), note: String::new() };
+            let path = probe.parameter.as_str();
+            let refused_at_h = match (side(path, value, step, 1.0), side(path, value, step, -1.0)) {
+                (Ok(up), Ok(down)) => {
+                    probe.difference = Some((Difference::Central, step));
+                    probe.scenes = vec![up, down];
+                    return probe;
+                }
+                (Err(m), _) | (_, Err(m)) => m,
+            };
+            let h = step / RETRY_DIVISOR;
+            let (up, down) = (side(path, value, h, 1.0), side(path, value, h, -1.0));
+            let (difference, note) = match (&up, &down) {
+                (Ok(_), Ok(_)) => (Difference::Central, format!("central at ±{h}; {refused_at_h}")),
+                (Ok(_), Err(m)) => (Difference::Forward, format!("one-sided at +{h}; {m}")),
+                (Err(m), Ok(_)) => (Difference::Backward, format!("one-sided at −{h}; {m}")),
+                (Err(m), Err(_)) => {
+                    probe.note = format!("no effect: refused at ±{step} and ±{h}; {m}");
+                    return probe;
+                }
+            };
+            probe.difference = Some((difference, h));
+            probe.scenes = [up, down].into_iter().flatten().collect();
+            probe.note = note;
+            probe
+        })
+        .collect()
+}
+
+/// The runs a study of `probes` makes: the base and each probe's scenes.
+pub fn run_count(probes: &[Probe]) -> usize {
+    1 + probes.iter().map(|p| p.scenes.len()).sum::<usize>()
+}
+
 fn outputs(s: &RunSummary) -> [Option<f64>; 3] {
     [s.stopping_time, s.stopping_distance, s.peak_tension.map(|p| p.tension)]
 }
 
-/// Runs the base scene and each parameter at p·(1 ± step), `jobs` at a time.
+/// Checks the relative step: in (0, 0.5).
+pub fn check_step(step: f64) -> Result<()> {
+    if step > 0.0 && step < 0.5 {
+        return Ok(());
+    }
+    Err(crate::Error::Argument { name: "--step", value: step.to_string(), expected: "in (0, 0.5), e.g. 0.05".into() })
+}
+
+/// Runs the base scene and the probes' scenes (from [`probes`] at `step`), `jobs` at a time.
 pub fn study(
     scene: &Scene,
     step: f64,
+    probes: &[Probe],
     kernel: KernelFactory,
     jobs: Option<usize>,
     done: &(dyn Fn() + Sync),
 ) -> Result<Study> {
-    if !(step > 0.0 && step < 0.5) {
-        return Err(crate::Error::Argument {
-            name: "--step",
-            value: step.to_string(),
-            expected: "in (0, 0.5), e.g. 0.05".into(),
-        });
-    }
-    let params = parameters(scene);
-    let mut scenes: Vec<std::result::Result<Scene, String>> = vec![Ok(scene.clone())];
-    for (path, v) in &params {
-        for sign in [1.0, -1.0] {
-            scenes.push(
-                scene.with_overrides(&[(path, Value::Float(v * (1.0 + sign * step)))]).map_err(|e| e.to_string()),
-            );
-        }
-    }
+    check_step(step)?;
+    let scenes: Vec<&Scene> = std::iter::once(scene).chain(probes.iter().flat_map(|p| &p.scenes)).collect();
     let runs = parallel::map_jobs(jobs, &scenes, |s| {
-        let r = s.clone().and_then(|s| {
-            let model = Model::new(&s).map_err(|e| e.to_string())?;
+        let r = Model::new(s).map_err(|e| e.to_string()).map(|model| {
             let result = simulate::run(&model, kernel(&model));
-            Ok(outputs(&RunSummary::of(&model, &result)))
+            outputs(&RunSummary::of(&model, &result))
         });
         done();
         r
     })?;
     let base = runs[0].clone().map_err(crate::Error::NoReference)?;
-    let denom = ((1.0 + step) / (1.0 - step)).ln();
-    let mut rows: Vec<Sensitivity> = params
+    let mut next = 1;
+    let mut rows: Vec<Sensitivity> = probes
         .iter()
-        .enumerate()
-        .map(|(i, (path, value))| {
-            let (up, down) = (&runs[1 + 2 * i], &runs[2 + 2 * i]);
+        .map(|probe| {
+            let mine = &runs[next..next + probe.scenes.len()];
+            next += probe.scenes.len();
             let mut row = Sensitivity {
-                parameter: path.clone(),
-                value: *value,
+                parameter: probe.parameter.clone(),
+                value: probe.value,
                 stopping_time: None,
                 stopping_distance: None,
                 peak_tension: None,
-                message: String::new(),
+                message: probe.note.clone(),
+                difference: probe.difference.map(|(d, _)| d),
+                step: probe.difference.map(|(_, h)| h),
             };
-            match (up, down) {
-                (Ok(u), Ok(d)) => {
-                    let e = |k: usize| u[k].zip(d[k]).map(|(a, b)| (a - b) / denom);
+            let Some((difference, h)) = probe.difference else { return row };
+            // The run above p and the run below p (the base for a one-sided difference).
+            let base = Ok(base);
+            let (above, below) = match difference {
+                Difference::Central => (mine.first(), mine.last()),
+                Difference::Forward => (mine.first(), Some(&base)),
+                Difference::Backward => (Some(&base), mine.last()),
+            };
+            let span = difference.span(h);
+            match (above.unwrap_or(&base), below.unwrap_or(&base)) {
+                (Ok(a), Ok(b)) => {
+                    let e = |k: usize| a[k].zip(b[k]).map(|(a, b)| (a - b) / span);
                     row.stopping_time = e(0);
                     row.stopping_distance = e(1);
                     row.peak_tension = e(2);
                 }
-                (Err(m), _) | (_, Err(m)) => row.message = m.lines().map(str::trim).collect::<Vec<_>>().join(" | "),
+                (Err(m), _) | (_, Err(m)) => {
+                    let m = m.lines().map(str::trim).filter(|l| !l.is_empty()).collect::<Vec<_>>().join(" ");
+                    row.message = if row.message.is_empty() { m } else { format!("{}; {m}", row.message) };
+                }
             }
             row
         })
@@ -147,7 +277,7 @@ pub fn study(
     rows.sort_by(|a, b| {
         b.stopping_time.map(f64::abs).unwrap_or(-1.0).total_cmp(&a.stopping_time.map(f64::abs).unwrap_or(-1.0))
     });
-    Ok(Study { scene: scene.meta.name.clone(), step, base, rows })
+    Ok(Study { scene: scene.meta.name.clone(), step, base, rows, runs: scenes.len() })
 }
 
 /// The first-order standard deviation of each output, from each parameter's σ of ln p
@@ -168,21 +298,24 @@ pub fn band(study: &Study, sigmas: &[(String, f64)]) -> ([f64; 3], Vec<String>) 
     (var.map(f64::sqrt), missing)
 }
 
-/// The study as a terminal table.
+/// The study as a terminal table: a row a parameter, its step (±h central, +h or −h
+/// one-sided), and under a row why its step was cut or one-sided or why it has no effect.
 pub fn table(study: &Study) -> String {
     let d = |v: Option<f64>, scale: f64, digits: usize| {
         v.map(|v| format!("{:+.*}", digits, v * scale)).unwrap_or_else(|| "—".into())
     };
     let mut out = format!(
-        "sensitivity of {} (central differences at p·(1 ± {})): d(output)/d(ln p)\n{:<4} {:<42} {:>14} {:>12} {:>12} {:>12}\n",
-        study.scene, study.step, "rank", "parameter", "value", "stop (s)", "dist (m)", "peak (kN)"
+        "sensitivity of {} (central differences at p·(1 ± {})): d(output)/d(ln p)\n{:<4} {:<42} {:>16} {:>7} {:>12} {:>12} {:>12}\n",
+        study.scene, study.step, "rank", "parameter", "value", "step", "stop (s)", "dist (m)", "peak (kN)"
     );
     for (i, r) in study.rows.iter().enumerate() {
+        let step = r.difference.zip(r.step).map_or_else(|| "—".to_string(), |(d, h)| d.signed_step(h));
         out.push_str(&format!(
-            "{:<4} {:<42} {:>14} {:>12} {:>12} {:>12}\n",
+            "{:<4} {:<42} {:>16} {:>7} {:>12} {:>12} {:>12}\n",
             i + 1,
             r.parameter,
-            format!("{:.6}", r.value).trim_end_matches('0').trim_end_matches('.').to_string(),
+            value_with_unit(&r.parameter, r.value),
+            step,
             d(r.stopping_time, 1.0, 3),
             d(r.stopping_distance, 1.0, 3),
             d(r.peak_tension, 1e-3, 1)
@@ -194,21 +327,127 @@ pub fn table(study: &Study) -> String {
     out
 }
 
-/// The study as CSV, in rank order.
+/// A parameter's value to six significant digits, with an exponent below 1e-3 or from 1e7
+/// (`1.05e-6`, not `0.000001`), and its unit: `1.05e-6 m²/s`, `148 m`, `0.3`.
+fn value_with_unit(path: &str, v: f64) -> String {
+    let rounded: f64 = format!("{v:.5e}").parse().unwrap_or(v);
+    let number = if rounded != 0.0 && !(1e-3..1e7).contains(&rounded.abs()) {
+        format!("{rounded:e}")
+    } else {
+        format!("{rounded}")
+    };
+    match kanestop_runtime::scene::unit(path) {
+        Some(u) if !u.is_empty() => format!("{number} {u}"),
+        _ => number,
+    }
+}
+
+/// The study as CSV, in rank order (`difference` and `step` last: columns added after the
+/// first release).
 pub fn csv(study: &Study) -> String {
-    let o = |v: Option<f64>| v.map(|v| format!("{v}")).unwrap_or_default();
-    let mut out = String::from("rank,parameter,value,d_stopping_time,d_stopping_distance,d_peak_tension,message\n");
+    let o = |v: Option<f64>| v.map(|v| CsvNumber(v).to_string()).unwrap_or_default();
+    let mut out = String::from(
+        "rank,parameter,value,d_stopping_time,d_stopping_distance,d_peak_tension,message,difference,step\n",
+    );
     for (i, r) in study.rows.iter().enumerate() {
+        let difference = match r.difference {
+            Some(Difference::Central) => "central",
+            Some(Difference::Forward) => "forward",
+            Some(Difference::Backward) => "backward",
+            None => "",
+        };
         out.push_str(&format!(
-            "{},{},{},{},{},{},\"{}\"\n",
+            "{},{},{},{},{},{},\"{}\",{},{}\n",
             i + 1,
             r.parameter,
-            r.value,
+            CsvNumber(r.value),
             o(r.stopping_time),
             o(r.stopping_distance),
             o(r.peak_tension),
-            r.message.replace('"', "'")
+            r.message.replace('"', "'"),
+            difference,
+            o(r.step)
         ));
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn case1() -> Scene {
+        Scene::from_toml(kanestop_runtime::paper::DEFAULT_SCENE, "case01.toml").unwrap()
+    }
+
+    #[test]
+    fn values_read_with_their_units_and_significant_digits() {
+        assert_eq!(value_with_unit("environment.kinematic_viscosity", 1.05e-6), "1.05e-6 m²/s");
+        assert_eq!(value_with_unit("initial.horizontal_projection", 148.0), "148 m");
+        assert_eq!(value_with_unit("chain.mass_per_length", 143.57162241), "143.572 kg/m");
+        assert_eq!(value_with_unit("environment.seabed_friction", 0.3), "0.3");
+        assert_eq!(value_with_unit("environment.seabed_stiffness", 5e6), "5000000 N/m³");
+        assert_eq!(value_with_unit("chain.break_load", 3.866e7), "3.866e7 N");
+        assert_eq!(value_with_unit("ship.hinge_x", -25.0), "-25 m");
+    }
+
+    #[test]
+    fn each_difference_is_exact_for_an_output_linear_in_ln_p() {
+        // f = c ln p + f0: every difference gives c whatever h (the spans are ln ratios).
+        let (c, f0, p) = (-3.7, 12.0, 2.5);
+        let f = |p: f64| c * p.ln() + f0;
+        for h in [0.05, 0.01, 0.2] {
+            let (up, down) = (f(p * (1.0 + h)), f(p * (1.0 - h)));
+            for (d, above, below) in
+                [(Difference::Central, up, down), (Difference::Forward, up, f(p)), (Difference::Backward, f(p), down)]
+            {
+                let e = (above - below) / d.span(h);
+                assert!((e - c).abs() < 1e-12, "{d:?} at {h}: {e}");
+            }
+        }
+    }
+
+    #[test]
+    fn parameters_at_the_edge_of_their_range_get_a_smaller_or_one_sided_step() {
+        let probes = probes(&case1(), DEFAULT_STEP);
+        let h = DEFAULT_STEP / RETRY_DIVISOR;
+        let find = |p: &str| probes.iter().find(|x| x.parameter == p).unwrap_or_else(|| panic!("{p}"));
+        for (p, difference, step) in [
+            ("anchor.mass", Difference::Central, DEFAULT_STEP),
+            // x_L has a valid range of about ±1.3 % at case 1 (146, 151.84] m, and a line
+            // length moves that range.
+            ("initial.horizontal_projection", Difference::Central, h),
+            ("cable.stages[1].element_length", Difference::Central, h),
+            // The rod's hinge at the stern, the rod as long as the hinge is high.
+            ("ship.hinge_x", Difference::Backward, h),
+            ("ship.length", Difference::Forward, h),
+            ("rod.length", Difference::Backward, h),
+            ("ship.hinge_z", Difference::Forward, h),
+        ] {
+            let probe = find(p);
+            assert_eq!(probe.difference, Some((difference, step)), "{p}: {}", probe.note);
+            let sides = if difference == Difference::Central { 2 } else { 1 };
+            assert_eq!(probe.scenes.len(), sides, "{p}");
+            assert_eq!(probe.note.is_empty(), step == DEFAULT_STEP, "{p}: {}", probe.note);
+        }
+        // The refused side is named with the range it broke.
+        assert!(find("ship.hinge_x").note.contains("at +0.01 refused: ship.hinge_x = -25.25: must be in [-25, 25] m"));
+        // Every parameter of case 1 has an effect; the run count follows the probes.
+        assert!(probes.iter().all(|p| p.difference.is_some()), "a parameter without a step");
+        let sides: usize = probes.iter().map(|p| p.scenes.len()).sum();
+        assert_eq!(run_count(&probes), 1 + sides);
+    }
+
+    #[test]
+    fn a_parameter_refused_on_both_sides_at_every_step_has_no_difference() {
+        // x_L near the top of its valid range (146, 151.84] m at case 1's line: at ±40 % and
+        // at ±8 % both sides leave the range.
+        let mut scene = case1();
+        scene.initial.horizontal_projection = 151.8;
+        let probes = probes(&scene, 0.4);
+        let probe = probes.iter().find(|p| p.parameter == "initial.horizontal_projection").unwrap();
+        assert_eq!(probe.difference, None);
+        assert!(probe.scenes.is_empty());
+        assert!(probe.note.starts_with("no effect: refused at ±0.4 and ±0.08"), "{}", probe.note);
+    }
 }

@@ -322,8 +322,8 @@ fn draw_cells<DB: DrawingBackend>(
         .disable_mesh()
         .x_labels(nx.min(12))
         .y_labels(ny.min(12))
-        .x_desc(ax.path.as_str())
-        .y_desc(ay.path.as_str())
+        .x_desc(kanestop_runtime::scene::labelled(&ax.path))
+        .y_desc(kanestop_runtime::scene::labelled(&ay.path))
         .label_style(("sans-serif", 15))
         .axis_desc_style(("sans-serif", 17))
         .x_label_formatter(&|v| tick(ax, *v))
@@ -459,8 +459,18 @@ fn draw_legend<DB: DrawingBackend>(
     }
     let checks = spec.checks.as_ref().or(spec.base.checks.as_ref());
     let names = checks.map(describe_checks).unwrap_or_else(|| "no [checks] set".into());
-    area.draw(&Text::new(format!("hatched: fails a design check ({names})"), (x0 + 36, y0 + 2), font.clone()))
-        .map_err(err)?;
+    let cells = grid.iter().flatten();
+    let (fail, empty, total) = (
+        cells.clone().filter(|c| c.pass == Some(false)).count(),
+        cells.clone().filter(|c| c.value.is_none()).count(),
+        cells.count(),
+    );
+    area.draw(&Text::new(
+        format!("hatched: fails a design check ({names}); {fail} of {total} cells"),
+        (x0 + 36, y0 + 2),
+        font.clone(),
+    ))
+    .map_err(err)?;
     let y1 = y0 + 28;
     area.draw(&PathElement::new(vec![(x0, y1 + 9), (x0 + 26, y1 + 9)], red.stroke_width(5))).map_err(err)?;
     let limit_words = match limit {
@@ -476,11 +486,9 @@ fn draw_legend<DB: DrawingBackend>(
     .map_err(err)?;
     let y2 = y1 + 28;
     area.draw(&Rectangle::new([(x0, y2), (x0 + 26, y2 + 18)], RGBColor(200, 200, 200).filled())).map_err(err)?;
-    let (fail, total) =
-        (grid.iter().flatten().filter(|c| c.pass == Some(false)).count(), grid.iter().flatten().count());
     area.draw(&Text::new(
         format!(
-            "grey, —: no value (the ship did not stop, or the row failed or was invalid); {fail} of {total} cells fail"
+            "grey, —: no value (the ship did not stop, or the row failed or was invalid); {empty} of {total} cells"
         ),
         (x0 + 36, y2 + 2),
         font,
