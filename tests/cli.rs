@@ -448,7 +448,11 @@ fn run_json_is_the_documented_summary() {
     std::fs::write(&refused, text.replace("output_interval = 0.01", "output_interval = 0.05")).unwrap();
     let out = kanestop().arg("run").arg(&refused).arg("--json").output().unwrap();
     assert_eq!(out.status.code(), Some(2), "a step refused before the run is bad input");
-    assert!(String::from_utf8_lossy(&out.stderr).contains("stability limit"));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains("error: refused before the run: solver.dt = 0.05 s") && stderr.contains("stability limit"));
+    assert!(!stderr.contains("numerical failure"), "a refusal is not a failure of the integration: {stderr}");
+    let text = kanestop().arg("run").arg(&refused).output().unwrap();
+    assert!(String::from_utf8_lossy(&text.stdout).contains("REFUSED   refused before the run"), "the summary's label");
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(v["status"], "failed");
     assert!(v["failure"]["message"].as_str().unwrap().contains("stability limit"), "{}", v["failure"]);

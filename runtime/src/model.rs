@@ -152,16 +152,23 @@ impl Model {
         -self.seabed_z
     }
 
-    /// Load limits of the joint k (2 … N) between B_{k−1} and B_k: the weaker of the two
-    /// bodies' (chain: Table 1's proof and break loads; cable and rod: the cable's break load;
-    /// the anchor and the ship have none).
-    pub fn joint_limits(&self, k: usize) -> LoadLimits {
+    /// Load limits of a body of `kind` as a member of the line: a chain link's Table 1 proof
+    /// and break loads; the cable's break load for the cable and the rod; none for the
+    /// anchor and the ship.
+    pub fn member_limits(&self, kind: BodyKind) -> LoadLimits {
         let s = &self.scene;
-        let limits = |kind: BodyKind| match kind {
+        match kind {
             BodyKind::ChainLink => LoadLimits { proof: Some(s.chain.proof_load), breaking: Some(s.chain.break_load) },
             BodyKind::Cable { .. } | BodyKind::Rod => LoadLimits { proof: None, breaking: Some(s.cable.break_load) },
             BodyKind::Anchor | BodyKind::Ship => LoadLimits::default(),
-        };
+        }
+    }
+
+    /// Load limits of the joint k (2 … N) between B_{k−1} and B_k: the weaker of the two
+    /// bodies' [`Model::member_limits`] (at the chain–cable joint, the chain's proof load and
+    /// the cable's break load, which may be below it).
+    pub fn joint_limits(&self, k: usize) -> LoadLimits {
+        let limits = |kind: BodyKind| self.member_limits(kind);
         let (a, b) = (limits(self.chain.bodies[k - 2].kind), limits(self.chain.bodies[k - 1].kind));
         let min = |x: Option<f64>, y: Option<f64>| match (x, y) {
             (Some(x), Some(y)) => Some(x.min(y)),

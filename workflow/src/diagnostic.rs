@@ -9,8 +9,11 @@ use kanestop_runtime::scene::{Method, MAX_STEPS};
 use kanestop_runtime::simulate::{Failure, FailureKind, StaticResidual, SPIKE_FACTOR};
 use kanestop_runtime::stability::StabilityLimit;
 
-/// The diagnostic of `failure` in `model`'s run, on several lines.
+/// The diagnostic of `failure` in `model`'s run, on several lines: `numerical failure at t =
+/// …`, or `refused before the run: …` for a step above the stability limit (bad input, not a
+/// failure of the integration).
 pub fn describe(model: &Model, failure: &Failure) -> String {
+    let refused = matches!(failure.kind, FailureKind::StepAboveLimit { .. });
     let (what, cause, suggestion) = match &failure.kind {
         FailureKind::StepAboveLimit { dt, limit } => refusal(*dt, limit),
         kind => {
@@ -27,9 +30,13 @@ pub fn describe(model: &Model, failure: &Failure) -> String {
             (what(kind), cause, suggestion)
         }
     };
+    let head = if refused {
+        "refused before the run".to_string()
+    } else {
+        format!("numerical failure at t = {:.4} s", failure.t)
+    };
     format!(
-        "numerical failure at t = {:.4} s: {what}\n  body: {}\n  likely cause: {cause}\n  suggestion: {suggestion}",
-        failure.t,
+        "{head}: {what}\n  body: {}\n  likely cause: {cause}\n  suggestion: {suggestion}",
         body_name(model, failure.body)
     )
 }

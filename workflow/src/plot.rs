@@ -53,11 +53,14 @@ struct Curve {
     look: usize,
     /// A reference line (a load limit): thin and dashed.
     reference: bool,
+    /// A reference line the axis always takes in (the limits of a utilisation chart);
+    /// otherwise one far above the curves is left out of the axis and named in the legend.
+    in_view: bool,
 }
 
 impl Curve {
     fn new(label: impl Into<String>, look: usize, points: Vec<(f64, f64)>) -> Self {
-        Curve { label: label.into(), points, look, reference: false }
+        Curve { label: label.into(), points, look, reference: false, in_view: false }
     }
 
     /// The stretches of the curve with finite points inside `y` (a reference line is cut
@@ -101,7 +104,7 @@ fn bounds(curves: &[Curve], from_zero: bool) -> ((f64, f64), (f64, f64)) {
     }
     let reach = y.1 + 1.5 * (y.1 - y.0).max(y.1.abs());
     for c in curves.iter().filter(|c| c.reference) {
-        let top = finite(c).iter().map(|p| p.1).filter(|&v| v <= reach).fold(f64::NEG_INFINITY, f64::max);
+        let top = finite(c).iter().map(|p| p.1).filter(|&v| c.in_view || v <= reach).fold(f64::NEG_INFINITY, f64::max);
         y.1 = y.1.max(top);
     }
     let pad = 0.05 * (y.1 - y.0).max(1e-9 * y.1.abs().max(1.0));
@@ -393,7 +396,7 @@ fn tension_curves(runs: &[(&Model, &RunResult)]) -> Vec<Curve> {
                 (true, true) => format!("{label} {lo:.0} kN"),
                 (true, false) => format!("{label} {lo:.0}–{hi:.0} kN"),
             };
-            Curve { label, points, look, reference: true }
+            Curve { label, points, look, reference: true, in_view: false }
         };
         curves.push(limit("proof load", 4, |l| l.proof));
         curves.push(limit("break load", 1, |l| l.breaking));
@@ -402,7 +405,8 @@ fn tension_curves(runs: &[(&Model, &RunResult)]) -> Vec<Curve> {
 }
 
 /// The peak tension over each joint's break load along the line (%), and the first run's
-/// proof load over break load.
+/// proof load over break load, the axis taking both limits in (a utilisation is read against
+/// them).
 fn utilisation_curves(runs: &[(&Model, &RunResult)]) -> Vec<Curve> {
     let mut curves: Vec<Curve> = runs
         .iter()
@@ -423,16 +427,19 @@ fn utilisation_curves(runs: &[(&Model, &RunResult)]) -> Vec<Curve> {
         .collect();
     if let Some((m, _)) = runs.first() {
         let n = m.body_count();
+        // Not drawn where the proof load is above the joint's break load (the chain's at the
+        // chain–cable joint, where the cable is the weaker member): the break load governs.
         let proof = step(n, |k| {
             let l = m.joint_limits(k);
-            Some(100.0 * l.proof? / l.breaking?)
+            Some(100.0 * l.proof? / l.breaking?).filter(|&u| u <= 100.0)
         });
-        curves.push(Curve { label: "proof load".into(), points: proof, look: 4, reference: true });
+        curves.push(Curve { label: "proof load".into(), points: proof, look: 4, reference: true, in_view: true });
         curves.push(Curve {
             label: "break load (100 %)".into(),
             points: step(n, |_| Some(100.0)),
             look: 1,
             reference: true,
+            in_view: true,
         });
     }
     curves
@@ -619,7 +626,7 @@ mod tests {
     use super::*;
 
     fn reference(points: Vec<(f64, f64)>) -> Curve {
-        Curve { label: "limit".into(), points, look: 1, reference: true }
+        Curve { label: "limit".into(), points, look: 1, reference: true, in_view: false }
     }
 
     #[test]

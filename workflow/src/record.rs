@@ -5,7 +5,7 @@
 use std::collections::BTreeMap;
 
 use kanestop_chain::BodyKind;
-use kanestop_runtime::model::Model;
+use kanestop_runtime::model::{LoadLimits, Model};
 use kanestop_runtime::scene::Method;
 use kanestop_runtime::simulate::{RunResult, Stop};
 use serde::{Deserialize, Serialize};
@@ -46,11 +46,15 @@ pub struct RunSummary {
     pub anchor_start: Option<f64>,
     /// The largest joint tension of the run.
     pub peak_tension: Option<Peak>,
-    /// The largest tension at a joint of the chain (a chain link on either side).
+    /// The largest tension at a joint of the chain (a chain link on either side), its
+    /// utilisations against the chain's own proof and break loads (at the chain–cable joint
+    /// too, where `peak_tension` takes the weaker of the two members).
     pub chain_peak: Option<Peak>,
-    /// The largest tension at a joint of the cable (cable elements, the rod's foot included).
+    /// The largest tension at a joint of the cable (cable elements, the rod's foot included),
+    /// its utilisation against the cable's break load.
     pub cable_peak: Option<Peak>,
-    /// The tension at the rod–ship joint (the fairlead): its peak.
+    /// The tension at the rod–ship joint (the fairlead): its peak, against the cable's break
+    /// load (the rod's).
     pub rod_peak: Option<Peak>,
     /// Energy balance at t = 0 (Eq. 63), J.
     pub initial_energy: f64,
@@ -143,7 +147,9 @@ impl RunSummary {
             (Some(a), Some(b)) => b.bodies[body].x - a.bodies[body].x,
             _ => 0.0,
         };
-        let peak_over = |keep: &dyn Fn(usize) -> bool| -> Option<Peak> {
+        // The peak over the joints `keep` takes, its utilisations against `limits` (the
+        // joint's, or a segment's own member's).
+        let peak_over = |keep: &dyn Fn(usize) -> bool, limits: &dyn Fn(usize) -> LoadLimits| -> Option<Peak> {
             let (i, p) = result
                 .peak_tensions
                 .iter()
@@ -151,7 +157,7 @@ impl RunSummary {
                 .filter(|(i, _)| keep(i + 2))
                 .max_by(|a, b| a.1.tension.total_cmp(&b.1.tension))?;
             let k = i + 2;
-            let limits = model.joint_limits(k);
+            let limits = limits(k);
             Some(Peak {
                 tension: p.tension,
                 joint: k,
@@ -160,7 +166,17 @@ impl RunSummary {
                 break_utilisation: limits.breaking.map(|l| p.tension / l),
             })
         };
-        let peak_in = |s: Segment| if ran { peak_over(&|k| segment(model, k) == s) } else { None };
+        let peak_in = |s: Segment| {
+            let own = model.member_limits(match s {
+                Segment::Chain => BodyKind::ChainLink,
+                Segment::Cable | Segment::Rod => BodyKind::Rod,
+            });
+            if ran {
+                peak_over(&|k| segment(model, k) == s, &|_| own)
+            } else {
+                None
+            }
+        };
         let last = result.samples.last();
         let outcomes = model.scene.checks.as_ref().map(|c| checks::evaluate(c, model, result)).unwrap_or_default();
         RunSummary {
@@ -177,7 +193,7 @@ impl RunSummary {
             ship_displacement: displacement(n - 1),
             anchor_drag_distance: displacement(0),
             anchor_start: result.anchor_start(),
-            peak_tension: if ran { peak_over(&|_| true) } else { None },
+            peak_tension: if ran { peak_over(&|_| true, &|k| model.joint_limits(k)) } else { None },
             chain_peak: peak_in(Segment::Chain),
             cable_peak: peak_in(Segment::Cable),
             rod_peak: peak_in(Segment::Rod),

@@ -4,7 +4,7 @@ use std::fmt::Write as _;
 
 use kanestop_runtime::kernel::AnchorDof;
 use kanestop_runtime::model::Model;
-use kanestop_runtime::simulate::{RunResult, Stop};
+use kanestop_runtime::simulate::{FailureKind, RunResult, Stop};
 
 use crate::checks::{break_exceedances, break_failure};
 
@@ -180,7 +180,7 @@ fn outcome_lines(out: &mut Lines, model: &Model, result: &RunResult) {
             )
         }
         Stop::EndTime => out.line(
-            "stopped",
+            "ended",
             match result.stopping_time {
                 Some(t) => format!("end time reached; ship surge speed first zero at t = {t:.3} s{}", paper(t)),
                 None => format!(
@@ -193,7 +193,8 @@ fn outcome_lines(out: &mut Lines, model: &Model, result: &RunResult) {
         Stop::Failed(f) => {
             let text = crate::diagnostic::describe(model, f);
             let first = text.lines().next().unwrap_or_default();
-            out.line("FAILED", format!("{first} (diagnostic on standard error)"))
+            let label = if matches!(f.kind, FailureKind::StepAboveLimit { .. }) { "REFUSED" } else { "FAILED" };
+            out.line(label, format!("{first} (diagnostic on standard error)"))
         }
     }
     if result.samples.is_empty() {
