@@ -560,7 +560,7 @@ fn run_json_splits_the_work_by_force() {
     let text = kanestop().args(["run", "scenes/paper/case01.toml"]).output().unwrap();
     let text = String::from_utf8_lossy(&text.stdout);
     let energy = text.lines().find(|l| l.starts_with("energy")).expect("energy line");
-    for part in ["anchor friction", "anchor drag", "line drag", "hull resistance", "of E_0 = "] {
+    for part in ["anchor friction", "anchor water drag", "line drag", "hull resistance", "of E_0 = "] {
         assert!(energy.contains(part), "{energy}");
     }
     // Every share named, those that gave energy back with their sign: they add up to 100 %

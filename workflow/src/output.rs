@@ -63,13 +63,16 @@ fn check_writable_dir(dir: &Path) -> std::io::Result<()> {
 
 /// A number as every CSV file writes it (history, batch, sweep): its shortest form that reads back to the same f64,
 /// positional for ordinary magnitudes (`3`, `1669.9795856262342`), with an exponent for the
-/// very small and very large (`-7.531752999057062e-12`), as spreadsheets and pandas read both.
+/// very small and very large (`-7.531752999057062e-12`), as spreadsheets and pandas read both;
+/// zero is `0`, whatever its sign.
 pub struct CsvNumber(pub f64);
 
 impl std::fmt::Display for CsvNumber {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         let v = self.0;
-        if v == 0.0 || !v.is_finite() || (1e-5..1e16).contains(&v.abs()) {
+        if v == 0.0 {
+            write!(f, "0") // −0 too (a term that did no work, negated)
+        } else if !v.is_finite() || (1e-5..1e16).contains(&v.abs()) {
             write!(f, "{v}")
         } else {
             write!(f, "{v:e}")
@@ -80,6 +83,19 @@ impl std::fmt::Display for CsvNumber {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn csv_numbers_are_shortest_and_zero_has_no_sign() {
+        let s = |v: f64| CsvNumber(v).to_string();
+        assert_eq!(
+            (s(3.0), s(-0.0), s(0.0), s(1669.9795856262342)),
+            ("3".into(), "0".into(), "0".into(), "1669.9795856262342".into())
+        );
+        assert_eq!(
+            (s(-7.531752999057062e-12), s(2.5e20), s(f64::NAN)),
+            ("-7.531752999057062e-12".into(), "2.5e20".into(), "NaN".into())
+        );
+    }
 
     #[test]
     fn targets_are_checked_before_any_work() {

@@ -454,12 +454,12 @@ fn energy_curves(r: &RunResult) -> Vec<Curve> {
     };
     let mut curves = vec![
         Curve::new("kinetic", 0, series(&|s| s.energy.kinetic + s.energy.added_kinetic)),
-        Curve::new("potential − E_G(0)", 1, series(&|s| s.energy.potential - first.energy.potential)),
+        Curve::new("potential energy change", 1, series(&|s| s.energy.potential - first.energy.potential)),
     ];
     for (i, term) in WORK_TERMS.iter().enumerate() {
         curves.push(Curve::new(format!("work: {term}"), 2 + i, series(&|s| s.energy.work[i])));
     }
-    curves.push(Curve::new("balance − E_0", 2 + WORK_TERMS.len(), series(&|s| s.energy.balance() - r.energy0)));
+    curves.push(Curve::new("balance drift E − E_0", 2 + WORK_TERMS.len(), series(&|s| s.energy.balance() - r.energy0)));
     curves
 }
 

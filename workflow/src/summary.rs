@@ -47,7 +47,7 @@ fn energy_share_line(out: &mut Lines, result: &RunResult) {
     let word = |name: &'static str| match name {
         "anchor_friction" => "anchor friction",
         "line_friction" => "line friction on the seabed",
-        "anchor_drag" => "anchor drag",
+        "anchor_drag" => "anchor water drag",
         "line_drag" => "line drag",
         "hull_resistance" => "hull resistance",
         "seabed" => "seabed contact",

@@ -228,7 +228,7 @@ impl Forces {
             parts.extend([
                 "buoyancy",
                 "Morison drag and added mass",
-                "anchor drag",
+                "anchor water drag",
                 "ship hydrostatics and resistance",
             ]);
         }
