@@ -144,7 +144,7 @@ fn missing_file_names_the_path() {
 #[test]
 fn zero_or_negative_tolerance() {
     let e = error(&edited("rtol = 0.000001", "rtol = 0.0"));
-    assert_mentions(&e, &["solver.rtol = 0", "(0, 0.1]"]);
+    assert_mentions(&e, &["solver.rtol = 0", "[1e-14, 0.1]"]);
     let e = error(&edited("atol = 0.00000001", "atol = -1e-8"));
     assert_mentions(&e, &["solver.atol = -0.00000001", "(0, 1]"]);
 }
@@ -153,4 +153,14 @@ fn zero_or_negative_tolerance() {
 fn unknown_integrator() {
     let e = error(&edited("integrator = \"rk4\"", "integrator = \"euler\""));
     assert_mentions(&e, &["bad.toml", "euler", "rk4", "dp5", "sdirk4"]);
+}
+
+#[test]
+fn a_relative_tolerance_double_precision_cannot_meet_is_refused() {
+    // Regression: rtol in (0, 1e-14) passed the scene's check and then panicked in the
+    // integrator's own (exit 101), in `run`, `batch` and sweeps.
+    let e = error(&edited("rtol = 0.000001", "rtol = 5e-15"));
+    assert_mentions(&e, &["solver.rtol = 5e-15", "in [1e-14, 0.1]"]);
+    let scene = Scene::from_toml(&edited("rtol = 0.000001", "rtol = 1e-14"), "edge.toml").unwrap();
+    assert!(kanestop_runtime::integrate::Tolerances::new(scene.solver.rtol, scene.solver.atol).is_ok());
 }

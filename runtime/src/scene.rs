@@ -288,7 +288,8 @@ pub struct Solver {
     /// own error-controlled steps (never longer) in between. At least `end_time` / 1e7: more
     /// steps are refused with the time estimate (`MAX_STEPS`).
     pub dt: f64,
-    /// Relative tolerance of the adaptive methods (`dp5`, `sdirk4`), dimensionless.
+    /// Relative tolerance of the adaptive methods (`dp5`, `sdirk4`), dimensionless, in
+    /// [1e-14, 0.1].
     pub rtol: f64,
     /// Absolute tolerance of the adaptive methods, in the state's units (rad, m, rad/s, m/s, J).
     pub atol: f64,
@@ -901,7 +902,8 @@ impl Scene {
             c.push("solver.dt", &fmt_value(so.dt), &why);
         }
         c.range("solver.max_energy_drift", so.max_energy_drift, 0.0, 10.0, false, "(relative)");
-        c.range("solver.rtol", so.rtol, 0.0, 0.1, false, "(relative tolerance)");
+        // Below 1e-14 double precision cannot meet it (`integrate::Tolerances`).
+        c.range("solver.rtol", so.rtol, 1e-14, 0.1, true, "(relative tolerance; double precision cannot meet less)");
         c.range("solver.atol", so.atol, 0.0, 1.0, false, "(absolute tolerance)");
     }
 }

@@ -414,6 +414,20 @@ pub fn scene_file(row: &PlannedRow) -> Option<String> {
     Some(format!("# Row {} of a sweep: {}\n{}", row.index, label(&row.inputs), scene.to_toml()))
 }
 
+/// A row's name as a file name in one folder: a character that could lead elsewhere (`/`,
+/// `\`, a control character) or a leading `.` becomes `_`. A spec's name is checked
+/// ([`spec::check_name`]); this keeps a name from Python or an edited shard file from writing
+/// outside `scenes/` too.
+pub fn file_stem(name: &str) -> String {
+    let stem: String =
+        name.chars().map(|c| if c == '/' || c == '\\' || c.is_control() || c == ':' { '_' } else { c }).collect();
+    match stem.strip_prefix('.') {
+        Some(rest) => format!("_{rest}"),
+        None if stem.is_empty() => "_".into(),
+        None => stem,
+    }
+}
+
 /// Every row's scene file: (row name, text), for [`write()`].
 pub fn scene_files(plan: &[PlannedRow]) -> Vec<(String, String)> {
     plan.iter().filter_map(|row| Some((row.name.clone(), scene_file(row)?))).collect()
@@ -426,7 +440,7 @@ pub fn write(rows: &[SweepRow], scenes: &[(String, String)], dir: &Path) -> Resu
     let folder = dir.join("scenes");
     std::fs::create_dir_all(&folder).map_err(Error::io("create", &folder))?;
     for (name, text) in scenes {
-        let path = folder.join(format!("{name}.toml"));
+        let path = folder.join(format!("{}.toml", file_stem(name)));
         write_atomically(&path, text.as_bytes()).map_err(Error::io("write", &path))?;
     }
     let (c, j) = (dir.join("sweep.csv"), dir.join("sweep.json"));

@@ -39,7 +39,9 @@ pub fn shell_quote(text: &str) -> String {
 }
 
 impl JobScript<'_> {
-    /// The driver script.
+    /// The driver script. Every path is shell-quoted and the name appears only as the job
+    /// name (letters, digits, `-_.`, others as `_`), so no text of the spec or the command
+    /// line runs as a command.
     pub fn text(&self) -> String {
         let q = |p: &Path| shell_quote(&p.display().to_string());
         let (exe, spec, out) = (q(self.kanestop), q(self.spec), q(self.out));
@@ -51,7 +53,7 @@ impl JobScript<'_> {
         let (cpus, kernel, rows, checkpoint) = (self.cpus, self.kernel, self.rows, self.checkpoint);
         format!(
             r#"#!/usr/bin/env bash
-# The sweep {name} ({rows} rows) as a Slurm job array of {n} shards, then a merge job once
+# The sweep {job} ({rows} rows) as a Slurm job array of {n} shards, then a merge job once
 # every shard has ended. Written by `kanestop sweep SPEC --slurm`; submit it with
 #     bash THIS_FILE
 # Partition, time limit, account: add #SBATCH lines to the two jobs below, or export
@@ -81,11 +83,9 @@ JOB
 )
 merge=${{merge%%;*}}
 
-echo "submitted array job $array ({n} shards of {name}) and merge job $merge (after it)"
-echo "merged result: {out_text}/sweep.csv and sweep.json (log: {out_text}/logs/merge.log)"
+echo "submitted array job $array ({n} shards of {job}) and merge job $merge (after it)"
+echo 'merged result: '{out}'/sweep.csv and sweep.json (log: '{out}'/logs/merge.log)'
 "#,
-            name = self.name,
-            out_text = self.out.display(),
         )
     }
 }
@@ -117,5 +117,50 @@ mod tests {
         );
         assert_eq!(default_shards(3), 3);
         assert_eq!(default_shards(500), 10);
+    }
+
+    /// No text of the spec or the command line runs as a command: the script submitted
+    /// (`sbatch` a stub) with a name and an output folder full of shell syntax runs nothing
+    /// else and prints the folder as it is.
+    #[cfg(unix)]
+    #[test]
+    fn names_and_paths_never_run_as_commands() {
+        use std::os::unix::fs::PermissionsExt as _;
+        let dir = std::env::temp_dir().join(format!("kanestop-slurm-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        let bin = dir.join("bin");
+        std::fs::create_dir_all(&bin).unwrap();
+        let sbatch = bin.join("sbatch");
+        std::fs::write(&sbatch, "#!/bin/sh\ncat > /dev/null\necho 42\n").unwrap();
+        std::fs::set_permissions(&sbatch, std::fs::Permissions::from_mode(0o755)).unwrap();
+        let out = dir.join("o$(touch PWNED1)\"`touch PWNED2`'x");
+        let script = JobScript {
+            kanestop: Path::new("/opt/bin/kanestop"),
+            spec: Path::new("/home/spec.toml"),
+            out: &out,
+            name: "g\ntouch PWNED3 #$(touch PWNED4)",
+            rows: 2,
+            shards: 2,
+            cpus: 1,
+            kernel: "generated",
+            checkpoint: 10.0,
+        }
+        .text();
+        let file = dir.join("sweep.sh");
+        std::fs::write(&file, &script).unwrap();
+        let path = format!("{}:{}", bin.display(), std::env::var("PATH").unwrap_or_default());
+        let run = std::process::Command::new("bash").arg(&file).current_dir(&dir).env("PATH", path).output().unwrap();
+        let stdout = String::from_utf8_lossy(&run.stdout);
+        assert!(run.status.success(), "{script}\n{}", String::from_utf8_lossy(&run.stderr));
+        let pwned: Vec<_> = std::fs::read_dir(&dir)
+            .unwrap()
+            .flatten()
+            .filter(|e| e.file_name().to_string_lossy().starts_with("PWNED"))
+            .map(|e| e.file_name())
+            .collect();
+        assert!(pwned.is_empty(), "the script ran {pwned:?}:\n{script}");
+        assert!(stdout.contains(&format!("merged result: {}/sweep.csv", out.display())), "{stdout}");
+        assert!(stdout.contains("2 shards of g_touch_PWNED3____touch_PWNED4_)"), "{stdout}");
+        let _ = std::fs::remove_dir_all(&dir);
     }
 }

@@ -134,6 +134,18 @@ fn bad(file: &Path, field: impl Into<String>, value: impl std::fmt::Display, exp
     Error::Spec { file: file.to_path_buf(), field: field.into(), value: value.to_string(), expected: expected.into() }
 }
 
+/// Checks a sweep's name, which names its rows' files (`NAME-000.toml`) and its Slurm jobs:
+/// 1 to 100 letters, digits, spaces and `-_.+`, not starting with `.`; else the valid form.
+pub fn check_name(name: &str) -> std::result::Result<(), String> {
+    let fine = |c: char| c.is_alphanumeric() || " -_.+".contains(c);
+    if (1..=100).contains(&name.chars().count()) && name.chars().all(fine) && !name.starts_with('.') {
+        Ok(())
+    } else {
+        Err("1 to 100 letters, digits, spaces and - _ . + (not starting with .): it names the rows' files and the jobs"
+            .into())
+    }
+}
+
 impl Spec {
     /// Reads and checks a spec file; the base scene is relative to it.
     pub fn load(file: &Path) -> Result<Spec> {
@@ -240,15 +252,9 @@ impl Spec {
             .map(|s| s.to_string_lossy().into_owned())
             .filter(|s| !s.starts_with('<'))
             .unwrap_or_else(|| "sweep".into());
-        Ok(Spec {
-            file: file.to_path_buf(),
-            name: raw.name.unwrap_or(stem),
-            base,
-            axes,
-            sampling,
-            uncertain,
-            checks: raw.checks,
-        })
+        let name = raw.name.unwrap_or(stem);
+        check_name(&name).map_err(|expected| bad(file, "name", format!("{name:?}"), expected))?;
+        Ok(Spec { file: file.to_path_buf(), name, base, axes, sampling, uncertain, checks: raw.checks })
     }
 
     /// Number of rows: the grid's size times the samples.
@@ -454,6 +460,27 @@ mod tests {
             toml::from_str("[sampling]\nmethod = \"random\"\nsamples = \"many\"\nseed = 1\n").unwrap();
         let e = Spec::from_table(bad, Path::new("<dict>"), Path::new(""), Some(case01())).unwrap_err();
         assert_eq!(field(e), "sampling.samples");
+    }
+
+    #[test]
+    fn a_name_that_could_reach_outside_the_folder_or_into_a_script_is_refused() {
+        let spec = |name: &str| {
+            let text = format!("name = {name:?}\n[[axis]]\npath = \"ship.mass\"\nvalues = [4e5]\n");
+            Spec::from_toml(&text, Path::new("<string>"), Path::new(""), Some(case01()))
+        };
+        for fine in ["mass speed", "study-2.b_c+d", "Schiffsmasse"] {
+            assert_eq!(spec(fine).unwrap().name, fine);
+        }
+        for bad in ["a/b", "../../escaped", "/tmp/abs", "g\ntouch x", "$(touch x)", ".hidden", "", "a\\b"] {
+            let e = spec(bad).unwrap_err();
+            assert!(e.to_string().contains("it names the rows' files"), "{bad:?}: {e}");
+            assert_eq!(field(e), "name", "{bad:?}");
+        }
+        // A name from elsewhere (Python's scene name, an edited shard file) still writes in
+        // its folder.
+        assert_eq!(super::super::file_stem("../../x"), "_._.._x");
+        assert_eq!(super::super::file_stem("a/b\nc"), "a_b_c");
+        assert_eq!(super::super::file_stem(""), "_");
     }
 
     #[test]
