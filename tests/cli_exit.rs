@@ -277,6 +277,19 @@ fn exit_4_a_batch_row_fails_its_checks() {
     let cells: Vec<&str> = csv.lines().skip(1).map(|l| l.split(',').nth(col).unwrap()).collect();
     assert_eq!(cells, ["pass", "fail", ""]);
 
+    // `run` of the failing scene names each [checks] limit with its value in the summary,
+    // beside the break-load line, and exits 4.
+    let out = kanestop().arg("run").arg(scenes.join("b-fail.toml")).output().unwrap();
+    let (stdout, stderr) = text(&out);
+    assert_eq!(out.status.code(), Some(4), "{stdout}{stderr}");
+    assert!(
+        stdout.contains("checks    FAIL [checks]: max_stopping_time (no value: the run did not reach it) > 30"),
+        "{stdout}"
+    );
+    assert!(stdout.contains("; max_anchor_drag 0.0000 ≤ 100"), "{stdout}");
+    let out = kanestop().arg("run").arg(scenes.join("a-pass.toml")).output().unwrap();
+    assert!(text(&out).0.contains("checks    PASS [checks]: max_anchor_drag 0.0000 ≤ 100"), "{}", text(&out).0);
+
     std::fs::write(scenes.join("d-bad.toml"), "not a scene").unwrap();
     let out = kanestop().arg("batch").arg(&scenes).arg("--out").arg(&out_dir).output().unwrap();
     assert_eq!(out.status.code(), Some(1));

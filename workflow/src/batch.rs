@@ -136,14 +136,7 @@ pub fn row(file: &Path, model: &Model, result: &RunResult) -> BatchRow {
     let ran = result.steps > 0;
     let peak = result.peak_tension().filter(|_| ran);
     let outcomes = model.scene.checks.as_ref().map(|c| checks::evaluate(c, model, result)).unwrap_or_default();
-    let failed_checks: Vec<String> = outcomes
-        .iter()
-        .filter(|o| !o.pass)
-        .map(|o| match o.value {
-            Some(v) => format!("{} {v:.4} > {}", o.name, o.limit),
-            None => format!("{} (no value: the run did not reach it) > {}", o.name, o.limit),
-        })
-        .collect();
+    let failed_checks: Vec<String> = outcomes.iter().filter(|o| !o.pass).map(checks::outcome_words).collect();
     // The break-load check applies to every scene, `[checks]` or not (as in `run`).
     let over = break_exceedances(model, result);
     let failures: Vec<String> = checks::break_failure(&over).into_iter().chain(failed_checks).collect();

@@ -106,6 +106,16 @@ pub fn evaluate(checks: &DesignChecks, model: &Model, result: &RunResult) -> Vec
     out
 }
 
+/// A `[checks]` outcome in words: `max_stopping_distance 41.2 > 40` (failed),
+/// `max_stopping_distance 27 ≤ 40` (passed), or the check without a value (the run did not
+/// reach it, e.g. the ship did not stop).
+pub fn outcome_words(o: &CheckOutcome) -> String {
+    match o.value {
+        Some(v) => format!("{} {v:.4} {} {}", o.name, if o.pass { "≤" } else { ">" }, o.limit),
+        None => format!("{} (no value: the run did not reach it) > {}", o.name, o.limit),
+    }
+}
+
 /// The design checks' verdict: false when a break load was exceeded (`exceedances`, a check
 /// every scene has) or an outcome of `[checks]` failed, true when `[checks]` gave outcomes
 /// and all passed, none when the scene has no `[checks]` and no break load was exceeded.

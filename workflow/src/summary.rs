@@ -249,6 +249,15 @@ fn tension_lines(out: &mut Lines, model: &Model, result: &RunResult) {
         ),
         (None, None) => {}
     }
+    // The scene's own `[checks]`, each with its value (exit 4 when one fails).
+    if let Some(c) = &model.scene.checks {
+        let outcomes = crate::checks::evaluate(c, model, result);
+        if !outcomes.is_empty() {
+            let verdict = if outcomes.iter().all(|o| o.pass) { "PASS" } else { "FAIL" };
+            let words: Vec<String> = outcomes.iter().map(crate::checks::outcome_words).collect();
+            out.line("checks", format!("{verdict} [checks]: {}", words.join("; ")));
+        }
+    }
 }
 
 /// The final state and where the energy went.
