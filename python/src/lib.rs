@@ -341,5 +341,6 @@ fn _kanestop(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("ModelError", py.get_type::<ModelError>())?;
     m.add("EvalError", py.get_type::<EvalError>())?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    m.add("MAX_JOBS", kanestop_workflow::parallel::MAX_JOBS)?;
     Ok(())
 }

@@ -158,8 +158,9 @@ pub fn _sweep(
     records: bool,
 ) -> PyResult<PyObject> {
     let choice = kernel_choice(kernel)?;
-    if jobs == Some(0) {
-        return Err(PyValueError::new_err("jobs = 0: must be at least 1 (or None for every core)"));
+    if let Some(n) = jobs.filter(|n| !(1..=kanestop_workflow::parallel::MAX_JOBS).contains(n)) {
+        let max = kanestop_workflow::parallel::MAX_JOBS;
+        return Err(PyValueError::new_err(format!("jobs = {n}: must be in [1, {max}] (or None for every core)")));
     }
     if let Some(p) = &progress {
         if !p.bind(py).is_callable() {

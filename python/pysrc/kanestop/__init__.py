@@ -25,7 +25,7 @@ from typing import Any, Callable, Dict, Iterable, List, Mapping, Optional, Seque
 
 import numpy as np
 
-from ._kanestop import EvalError, ModelError, Scene, SceneError, Spec, SpecError, __version__
+from ._kanestop import MAX_JOBS, EvalError, ModelError, Scene, SceneError, Spec, SpecError, __version__
 from ._kanestop import _History, _run, _sweep
 from ._kanestop import eval as _eval
 
@@ -418,6 +418,10 @@ def sweep(
     dicts ``{index, name, label, inputs, status, checks_pass, energy_split, summary,
     message}`` whose ``summary`` is the row's ``run --json`` record.
     """
+    if jobs is not None and (isinstance(jobs, bool) or not isinstance(jobs, int)):
+        raise TypeError(f"jobs must be a whole number in [1, {MAX_JOBS}] or None, not {type(jobs).__name__}")
+    if jobs is not None and not 1 <= jobs <= MAX_JOBS:
+        raise ValueError(f"jobs = {jobs}: must be in [1, {MAX_JOBS}] (or None for every core)")
     the_spec, the_rows = _spec(spec, rows, base_dir)
     plan: Optional[List[Dict[str, Any]]] = None
     if the_rows is not None:

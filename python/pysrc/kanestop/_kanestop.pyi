@@ -7,6 +7,8 @@ import numpy as np
 import numpy.typing as npt
 
 __version__: str
+MAX_JOBS: int
+"""The most threads `sweep(jobs=…)` takes (the command line's `--jobs` limit)."""
 
 class SceneError(ValueError):
     """A scene that could not be read or is not valid."""

@@ -224,6 +224,24 @@ impl Spec {
             .enumerate()
             .map(|(i, u)| uncertain(file, &base_value, i, u))
             .collect::<Result<Vec<_>>>()?;
+        // Each input path once: a second axis (or uncertain input) on a path would override
+        // the first in the scene while the table recorded the first.
+        let paths = axes.iter().map(|a| a.path.as_str()).chain(uncertain.iter().map(|u| u.path.as_str()));
+        for (i, path) in paths.clone().enumerate() {
+            if paths.clone().take(i).any(|p| p == path) {
+                let field = if i < axes.len() {
+                    format!("axis[{i}].path")
+                } else {
+                    format!("uncertain[{}].path", i - axes.len())
+                };
+                return Err(bad(
+                    file,
+                    field,
+                    path,
+                    "a path not already an input (each path once, as an axis or an uncertain input)",
+                ));
+            }
+        }
         let sampling = match (raw.sampling, uncertain.is_empty()) {
             (Some(s), false) if (1..=MAX_ROWS).contains(&s.samples) => Some((s.method, s.samples, s.seed)),
             (Some(s), false) => return Err(bad(file, "sampling.samples", s.samples, format!("in [1, {MAX_ROWS}]"))),
@@ -481,6 +499,18 @@ mod tests {
         assert_eq!(super::super::file_stem("../../x"), "_._.._x");
         assert_eq!(super::super::file_stem("a/b\nc"), "a_b_c");
         assert_eq!(super::super::file_stem(""), "_");
+    }
+
+    #[test]
+    fn an_input_path_given_twice_is_refused() {
+        let spec = |text: &str| Spec::from_toml(text, Path::new("<string>"), Path::new(""), Some(case01()));
+        let axis = |values: &str| format!("[[axis]]\npath = \"ship.mass\"\nvalues = [{values}]\n");
+        let e = spec(&format!("{}{}", axis("5e5"), axis("6e5"))).unwrap_err();
+        assert_eq!(field(e), "axis[1].path");
+        let uncertain = "[[uncertain]]\npath = \"ship.mass\"\ndistribution = \"normal\"\nmean = 5e5\nsd = 1e4\n\
+                         [sampling]\nmethod = \"random\"\nsamples = 2\nseed = 1\n";
+        let e = spec(&format!("{}{uncertain}", axis("5e5"))).unwrap_err();
+        assert_eq!(field(e), "uncertain[0].path");
     }
 
     #[test]
