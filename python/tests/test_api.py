@@ -198,3 +198,14 @@ def test_runs_release_the_gil(case01: kanestop.Scene) -> None:
     margin = 0.1 * (end - start)
     inside = [x for x in ticks if start + margin < x < end - margin]
     assert len(inside) >= 3, f"{len(inside)} ticks in the middle of a run of {end - start:.3f} s"
+
+
+def test_a_whole_float_sets_an_integer_field_as_a_spec_axis_does(case01: kanestop.Scene) -> None:
+    whole = case01.with_overrides({"cable.stages[0].elements": 4})
+    assert case01.with_overrides({"cable.stages[0].elements": 4.0}) == whole
+    assert case01.with_overrides({"cable.stages[0].elements": np.float64(4)}) == whole
+    with pytest.raises(kanestop.SceneError, match="elements"):
+        case01.with_overrides({"cable.stages[0].elements": 2.5})
+    rows = [{"cable.stages[0].elements": e} for e in np.linspace(3, 4, 2)]
+    df = kanestop.sweep(case01, rows, end_time=0.05)
+    assert list(df["status"]) == ["end time"] * 2

@@ -118,7 +118,13 @@ pub fn set(root: &mut Value, path: &str, value: Value) -> Result<(), OverrideErr
             }
         };
     }
-    *node = value;
+    // A whole number given as a float (3.0, numpy's float64(3)) sets an integer field, as a
+    // sweep axis's values do; an integer sets a real field as that number.
+    *node = match (&*node, value) {
+        (Value::Integer(_), Value::Float(x)) if x.fract() == 0.0 && x.abs() < 9e15 => Value::Integer(x as i64),
+        (Value::Float(_), Value::Integer(n)) => Value::Float(n as f64),
+        (_, value) => value,
+    };
     Ok(())
 }
 
@@ -221,10 +227,14 @@ mod tests {
     fn dotted_paths_set_fields_and_array_entries() {
         let mut v = value("[ship]\nmass = 1.0\n[[cable.stages]]\nelements = 3\n[[cable.stages]]\nelements = 12\n");
         set(&mut v, "ship.mass", Value::Float(2.5)).unwrap();
-        set(&mut v, "cable.stages[1].elements", Value::Integer(20)).unwrap();
+        set(&mut v, "cable.stages[1].elements", Value::Float(20.0)).unwrap();
         assert_eq!(get(&v, "ship.mass"), Some(&Value::Float(2.5)));
         assert_eq!(get(&v, "cable.stages[1].elements"), Some(&Value::Integer(20)));
         assert_eq!(get(&v, "cable.stages[0].elements"), Some(&Value::Integer(3)));
+        set(&mut v, "ship.mass", Value::Integer(3)).unwrap();
+        assert_eq!(get(&v, "ship.mass"), Some(&Value::Float(3.0)));
+        set(&mut v, "cable.stages[0].elements", Value::Float(2.5)).unwrap();
+        assert_eq!(get(&v, "cable.stages[0].elements"), Some(&Value::Float(2.5)), "refused by the scene's check");
     }
 
     #[test]
