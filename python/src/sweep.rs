@@ -129,6 +129,8 @@ fn cell(py: Python<'_>, c: &Cell) -> PyResult<PyObject> {
         Cell::Empty => py.None(),
         Cell::Number(x) => x.into_pyobject(py)?.into_any().unbind(),
         Cell::Count(n) => n.into_pyobject(py)?.into_any().unbind(),
+        // An empty message is an empty CSV field: None, as the docs say.
+        Cell::Text(s) if s.is_empty() => py.None(),
         Cell::Text(s) => s.into_pyobject(py)?.into_any().unbind(),
         Cell::Input(v) => convert::to_py(py, v)?,
     })

@@ -452,5 +452,16 @@ def sweep(
     columns, table = out
     pd = _pandas()
     if pd is not None:
-        return pd.DataFrame.from_records(table, columns=columns)
+        frame = pd.DataFrame.from_records(table, columns=columns)
+        # Every column but the words is numeric: float64 with NaN for the empty cells, even
+        # where every row is empty (an output no row has).
+        words = {"name", "status", "checks", "message"}
+        for c in frame.columns:
+            if c in words or (c.startswith("check_") and c.endswith("_pass")):
+                continue
+            try:
+                frame[c] = pd.to_numeric(frame[c])
+            except (TypeError, ValueError):
+                pass  # an input of words (e.g. solver.integrator)
+        return frame
     return [dict(zip(columns, row)) for row in table]

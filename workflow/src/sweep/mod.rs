@@ -348,14 +348,16 @@ pub fn table(rows: &[SweepRow]) -> String {
     let d = |v: Option<f64>, scale: f64, digits: usize| {
         v.map(|v| format!("{:.*}", digits, v * scale)).unwrap_or_else(|| "—".into())
     };
+    // The row column as wide as the longest name, so the others stay under their headings.
+    let w = rows.iter().map(|r| r.name.chars().count()).max().unwrap_or(0).max(3);
     let mut out = format!(
-        "{:<12} {:<9} {:>6} {:>9} {:>9} {:>9} {:>10} {:>6}  {}\n",
+        "{:<w$} {:<9} {:>6} {:>9} {:>9} {:>9} {:>10} {:>6}  {}\n",
         "row", "status", "checks", "stop (s)", "dist (m)", "drag (m)", "peak (kN)", "util", "inputs"
     );
     for r in rows {
         let s = r.summary.as_ref();
         out.push_str(&format!(
-            "{:<12} {:<9} {:>6} {:>9} {:>9} {:>9} {:>10} {:>6}  {}\n",
+            "{:<w$} {:<9} {:>6} {:>9} {:>9} {:>9} {:>10} {:>6}  {}\n",
             r.name,
             r.status.name(),
             match r.checks_pass {
@@ -371,7 +373,7 @@ pub fn table(rows: &[SweepRow]) -> String {
             short_label(&r.label)
         ));
         if !r.message.is_empty() {
-            out.push_str(&format!("             {}\n", r.message));
+            out.push_str(&format!("{:w$}  {}\n", "", r.message));
         }
     }
     out
