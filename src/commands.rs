@@ -41,9 +41,15 @@ impl RunFiles<'_> {
     pub fn check(&self) -> Result<()> {
         if let Some(path) = self.out {
             output::check_file_target(path).with_context(|| format!("cannot write {}", path.display()))?;
+            let units = history::units_path(path);
+            output::check_file_target(&units).with_context(|| format!("cannot write {}", units.display()))?;
         }
         if let Some(dir) = self.plot {
-            output::check_dir_target(dir).with_context(|| format!("cannot write plots into {}", dir.display()))?;
+            if self.out.is_some_and(|out| std::path::absolute(out).ok() == std::path::absolute(dir).ok()) {
+                anyhow::bail!("--out and --plot are the same path {}: a file and a folder", dir.display());
+            }
+            output::check_dir_entries(dir, &plot::FILES)
+                .with_context(|| format!("cannot write plots into {}", dir.display()))?;
         }
         Ok(())
     }
@@ -139,7 +145,7 @@ pub fn batch(
 ) -> Result<BatchOutcome> {
     let files = batch::scene_files(dir).with_context(|| format!("cannot read scene folder {}", dir.display()))?;
     anyhow::ensure!(!files.is_empty(), "no *.toml scene in {}", dir.display());
-    check_dir(out)?;
+    check_dir(out, &batch::FILES)?;
     let bar = progress::bar(files.len() * configures.len(), "scenes");
     let mut rows = Vec::new();
     for configure in configures {
@@ -197,7 +203,7 @@ pub enum BatchOutcome {
 /// failure; one that never started (refused before its first step) is left out of the
 /// charts. The outcome is the worst of the runs': refused before any numerical failure.
 pub fn plot(scenes: &[PathBuf], out: &Path, kernel: KernelFactory) -> Result<RunOutcome> {
-    check_dir(out)?;
+    check_dir(out, &plot::FILES)?;
     let models: Vec<Model> =
         scenes.iter().map(|p| -> Result<Model> { Ok(Model::new(&Scene::load(p)?)?) }).collect::<Result<_>>()?;
     let bar = progress::bar(models.len(), "scenes");
@@ -236,7 +242,7 @@ pub fn accuracy(scene: &Scene, out: &Path, repeats: usize, atol_ratio: f64, kern
         atol_ratio.is_finite() && atol_ratio > 0.0,
         "--atol-ratio {atol_ratio}: must be finite and > 0 (atol = ratio × rtol)"
     );
-    check_dir(out)?;
+    check_dir(out, &accuracy::FILES)?;
     let plan = accuracy::default_plan();
     let bar = progress::bar(accuracy::run_count(&plan, repeats), "runs");
     let study = accuracy::study(scene, &plan, atol_ratio, kernel, repeats, &|what| {
@@ -254,6 +260,6 @@ pub fn accuracy(scene: &Scene, out: &Path, repeats: usize, atol_ratio: f64, kern
 
 /// Checks, before any run, that files can be written into the folder `dir` (created later
 /// where it does not exist yet).
-pub(crate) fn check_dir(dir: &Path) -> Result<()> {
-    output::check_dir_target(dir).with_context(|| format!("cannot write into {}", dir.display()))
+pub(crate) fn check_dir(dir: &Path, entries: &[&str]) -> Result<()> {
+    output::check_dir_entries(dir, entries).with_context(|| format!("cannot write into {}", dir.display()))
 }

@@ -160,7 +160,7 @@ pub fn sweep(args: &SweepArgs) -> Result<Exit> {
         Some((s, from)) => run_shard(args, &id, &plan, s, from),
         None if args.resume => resume_all(args, &id, &plan),
         None => {
-            check_dir(&args.out)?;
+            check_dir(&args.out, &sweep::FILES)?;
             let kernel = args.kernel.factory();
             let bar = progress::bar(plan.len(), "runs");
             let rows = sweep::run(&plan, &kernel, args.jobs, &|r| {
@@ -231,7 +231,7 @@ fn execute_shard(
     shard: Shard,
     resume: bool,
 ) -> Result<(ShardFile, usize, PathBuf)> {
-    check_dir(&args.out.join("shards"))?;
+    check_dir(&args.out.join("shards"), &[])?;
     let every = Duration::from_secs_f64(args.checkpoint);
     let (run, todo) = ShardRun::start(id, plan, shard, &args.out, resume, every)?;
     let kernel = args.kernel.factory();
@@ -263,7 +263,7 @@ fn run_shard(args: &SweepArgs, id: &SweepId, plan: &[PlannedRow], shard: Shard, 
 /// `sweep SPEC --resume` without a shard: completes every shard of the folder (by the shard
 /// count of its files; one shard when it has none), then merges them.
 fn resume_all(args: &SweepArgs, id: &SweepId, plan: &[PlannedRow]) -> Result<Exit> {
-    check_dir(&args.out)?;
+    check_dir(&args.out, &sweep::FILES)?;
     let folder = args.out.join("shards");
     let files = if folder.is_dir() { shard_file::files_in(&args.out)? } else { Vec::new() };
     let mut counts = std::collections::BTreeSet::new();
@@ -300,7 +300,7 @@ fn merge(m: &MergeArgs) -> Result<Exit> {
             _ => parent,
         }
     });
-    check_dir(&out)?;
+    check_dir(&out, &sweep::FILES)?;
     let heat_maps = heatmap::parse_outputs(&m.heatmap)?;
     let spec = m.spec.as_ref().map(|f| sweep::Spec::load(f)).transpose()?;
     let merged = merge::merge(&m.dirs)?;
@@ -368,7 +368,7 @@ pub fn sensitivity(args: &SensitivityArgs) -> Result<Exit> {
         None => Vec::new(),
     };
     kanestop_workflow::parallel::check_jobs(args.jobs)?;
-    check_dir(&args.out)?;
+    check_dir(&args.out, &sensitivity::FILES)?;
     sensitivity::check_step(args.step)?;
     let probes = sensitivity::probes(&scene, args.step);
     let kernel = kernels::factory(KernelChoice::Generated);
@@ -388,7 +388,7 @@ pub fn sensitivity(args: &SensitivityArgs) -> Result<Exit> {
         }
     }
     std::fs::create_dir_all(&args.out).with_context(|| format!("cannot create {}", args.out.display()))?;
-    let (c, j) = (args.out.join("sensitivity.csv"), args.out.join("sensitivity.json"));
+    let (c, j) = (args.out.join(sensitivity::FILES[0]), args.out.join(sensitivity::FILES[1]));
     write_atomically(&c, sensitivity::csv(&study).as_bytes())
         .with_context(|| format!("cannot write {}", c.display()))?;
     write_atomically(&j, serde_json::to_string_pretty(&study)?.as_bytes())

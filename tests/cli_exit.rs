@@ -295,3 +295,42 @@ fn exit_4_a_batch_row_fails_its_checks() {
     let out = kanestop().arg("batch").arg(&scenes).arg("--out").arg(&out_dir).output().unwrap();
     assert_eq!(out.status.code(), Some(1));
 }
+
+/// Every file a command writes is checked before the work: a folder where a file goes (or a
+/// file where a folder goes), a pipe, `--out` and `--plot` on one path. Nothing is run and
+/// nothing is written (exit 2).
+#[test]
+fn exit_2_an_output_that_cannot_be_written_is_found_before_the_work() {
+    let dir = temp_dir("targets");
+    let scene = scene(&dir, "s", |t| t);
+    std::fs::create_dir_all(dir.join("a/h.units.csv")).unwrap();
+    std::fs::create_dir_all(dir.join("b/batch.json")).unwrap();
+    std::fs::create_dir_all(dir.join("c")).unwrap();
+    std::fs::write(dir.join("c/scenes"), "a file where the sweep's folder goes").unwrap();
+    let scenes = dir.join("scenes");
+    std::fs::create_dir_all(&scenes).unwrap();
+    std::fs::copy(&scene, scenes.join("s.toml")).unwrap();
+    let spec = dir.join("spec.toml");
+    std::fs::write(&spec, format!("base = {:?}\n[[axis]]\npath = \"ship.mass\"\nvalues = [5e5]\n", scene)).unwrap();
+    let s = scene.to_str().unwrap();
+    let p = |rel: &str| dir.join(rel).to_str().unwrap().to_string();
+    let cases: [(Vec<String>, &str); 4] = [
+        (vec!["run".into(), s.into(), "--out".into(), p("a/h.csv")], "a/h.units.csv"),
+        (vec!["run".into(), s.into(), "--out".into(), p("c/h"), "--plot".into(), p("c/h")], "the same path"),
+        (
+            vec!["batch".into(), scenes.to_str().unwrap().into(), "--out".into(), p("b")],
+            "batch.json exists and is not a regular file",
+        ),
+        (
+            vec!["sweep".into(), spec.to_str().unwrap().into(), "--out".into(), p("c")],
+            "scenes exists and is not a folder",
+        ),
+    ];
+    for (args, message) in cases {
+        let out = kanestop().args(&args).output().unwrap();
+        let (stdout, stderr) = text(&out);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {stdout}{stderr}");
+        assert!(stderr.contains(message), "{args:?}: {stderr}");
+    }
+    assert!(!dir.join("a/h.csv").exists() && !dir.join("b/batch.csv").exists() && !dir.join("c/sweep.csv").exists());
+}

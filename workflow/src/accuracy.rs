@@ -357,6 +357,9 @@ pub fn table(s: &AccuracyStudy) -> String {
     out
 }
 
+/// The files the study writes into its folder.
+pub const FILES: [&str; 3] = ["accuracy.csv", "accuracy.json", "accuracy.svg"];
+
 /// Writes accuracy.csv, accuracy.json and accuracy.svg (stopping-time error against CPU
 /// time, log–log, one curve per method) into `dir`.
 pub fn write(s: &AccuracyStudy, dir: &Path) -> Result<Vec<PathBuf>> {
@@ -379,7 +382,7 @@ pub fn write(s: &AccuracyStudy, dir: &Path) -> Result<Vec<PathBuf>> {
             o(r.cpu_time)
         ));
     }
-    let files = [dir.join("accuracy.csv"), dir.join("accuracy.json"), dir.join("accuracy.svg")];
+    let files = FILES.map(|f| dir.join(f));
     let w = |p: &Path, b: &[u8]| write_atomically(p, b).map_err(Error::io("write", p));
     // Charts first: a chart that cannot be drawn leaves no file of the study behind.
     let chart = work_precision(s)?;

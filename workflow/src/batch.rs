@@ -365,10 +365,13 @@ pub fn csv(rows: &[BatchRow]) -> String {
     out
 }
 
+/// The files [`write()`] writes into its folder.
+pub const FILES: [&str; 2] = ["batch.csv", "batch.json"];
+
 /// Writes `batch.csv` and `batch.json` into `dir` (created if needed), each whole or not at all.
 pub fn write(rows: &[BatchRow], dir: &Path) -> Result<(PathBuf, PathBuf)> {
     std::fs::create_dir_all(dir).map_err(Error::io("create", dir))?;
-    let (c, j) = (dir.join("batch.csv"), dir.join("batch.json"));
+    let (c, j) = (dir.join(FILES[0]), dir.join(FILES[1]));
     write_atomically(&c, csv(rows).as_bytes()).map_err(Error::io("write", &c))?;
     let json = serde_json::to_string_pretty(rows).expect("rows serialise: plain numbers and strings");
     write_atomically(&j, json.as_bytes()).map_err(Error::io("write", &j))?;

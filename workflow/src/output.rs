@@ -22,10 +22,14 @@ pub fn write_atomically(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
 }
 
 /// Checks, before any work, that a file can be written at `path`: its folder exists and
-/// accepts a new file. Nothing is left behind.
+/// accepts a new file, and nothing but a regular file is there (a folder, a pipe or a device
+/// would be replaced or fail the write after the work). Nothing is left behind.
 pub fn check_file_target(path: &Path) -> std::io::Result<()> {
     if path.file_name().is_none() || path.is_dir() {
         return Err(std::io::Error::other("not a file name"));
+    }
+    if std::fs::symlink_metadata(path).is_ok_and(|m| !m.is_file()) {
+        return Err(std::io::Error::other("exists and is not a regular file"));
     }
     let dir = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
     check_writable_dir(dir)
@@ -49,6 +53,27 @@ pub fn check_dir_target(dir: &Path) -> std::io::Result<()> {
         parent = p.parent();
     }
     check_writable_dir(Path::new("."))
+}
+
+/// [`check_dir_target`], and that each of `entries` (file names the work writes into `dir`;
+/// a name ending in `/` a folder it creates) is absent there or of that kind, so that no
+/// write fails after the work.
+pub fn check_dir_entries(dir: &Path, entries: &[&str]) -> std::io::Result<()> {
+    check_dir_target(dir)?;
+    for entry in entries {
+        let (name, folder) = match entry.strip_suffix('/') {
+            Some(name) => (name, true),
+            None => (*entry, false),
+        };
+        let path = dir.join(name);
+        let Ok(meta) = std::fs::symlink_metadata(&path) else { continue };
+        let fine = if folder { path.is_dir() } else { meta.is_file() };
+        if !fine {
+            let kind = if folder { "a folder" } else { "a regular file" };
+            return Err(std::io::Error::other(format!("{} exists and is not {kind}", path.display())));
+        }
+    }
+    Ok(())
 }
 
 fn check_writable_dir(dir: &Path) -> std::io::Result<()> {
@@ -108,6 +133,12 @@ mod tests {
         std::fs::write(dir.join("file"), "x").unwrap();
         assert!(check_dir_target(&dir.join("file")).is_err());
         assert!(!dir.join("new").exists(), "a check creates nothing");
+        std::fs::create_dir_all(dir.join("out/sweep.json")).unwrap();
+        let e = check_dir_entries(&dir.join("out"), &["sweep.csv", "sweep.json", "scenes/"]).unwrap_err();
+        assert!(e.to_string().contains("sweep.json exists and is not a regular file"), "{e}");
+        assert!(check_dir_entries(&dir.join("out"), &["sweep.csv", "sweep.json/"]).is_ok());
+        assert!(check_file_target(&dir.join("out/sweep.json")).is_err());
+        std::fs::remove_dir_all(dir.join("out")).unwrap();
         assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 1, "no probe left behind");
     }
 }

@@ -260,6 +260,10 @@ fn panel<DB: DrawingBackend>(
     Ok(())
 }
 
+/// The files [`write_plots`] writes into its folder.
+pub const FILES: [&str; 5] =
+    ["ship-speed.svg", "displacement.svg", "peak-tension.svg", "utilisation.svg", "energy.svg"];
+
 /// Writes ship-speed.svg, displacement.svg (ship above, anchor below), peak-tension.svg,
 /// utilisation.svg (peak tension over break load along the line) and energy.svg (a panel per
 /// run) for the runs into `dir`, each whole or not at all; every chart is drawn before the
@@ -278,9 +282,9 @@ pub fn write_plots(runs: &[(&Model, &RunResult)], dir: &Path) -> Result<Vec<Path
     };
     let columns = if energy.len() > 1 { 2 } else { 1 };
     let charts = [
-        ("ship-speed.svg", chart("Ship surge speed", "t (s)", "surge speed (m/s)", &speed_curves(runs), false)),
+        (FILES[0], chart("Ship surge speed", "t (s)", "surge speed (m/s)", &speed_curves(runs), false)),
         (
-            "displacement.svg",
+            FILES[1],
             panels(
                 "Ship and anchor displacement",
                 "t (s)",
@@ -290,7 +294,7 @@ pub fn write_plots(runs: &[(&Model, &RunResult)], dir: &Path) -> Result<Vec<Path
             ),
         ),
         (
-            "peak-tension.svg",
+            FILES[2],
             chart(
                 "Peak joint tension along the line",
                 "joint k (B_k−1 – B_k)",
@@ -300,7 +304,7 @@ pub fn write_plots(runs: &[(&Model, &RunResult)], dir: &Path) -> Result<Vec<Path
             ),
         ),
         (
-            "utilisation.svg",
+            FILES[3],
             chart(
                 "Utilisation along the line: peak tension / break load",
                 "joint k (B_k−1 – B_k)",
@@ -309,7 +313,7 @@ pub fn write_plots(runs: &[(&Model, &RunResult)], dir: &Path) -> Result<Vec<Path
                 true,
             ),
         ),
-        ("energy.svg", panels(&energy_title, "t (s)", "energy (MJ)", &energy, columns)),
+        (FILES[4], panels(&energy_title, "t (s)", "energy (MJ)", &energy, columns)),
     ];
     let mut svgs = Vec::new();
     for (file, svg) in charts {

@@ -25,6 +25,9 @@ use crate::{parallel, Result};
 /// The default relative step h: p·(1 ± 0.05).
 pub const DEFAULT_STEP: f64 = 0.05;
 
+/// The files `report sensitivity` writes into its folder.
+pub const FILES: [&str; 2] = ["sensitivity.csv", "sensitivity.json"];
+
 /// Where a side at p·(1 ± h) is refused, the step is cut to h / this.
 pub const RETRY_DIVISOR: f64 = 5.0;
 

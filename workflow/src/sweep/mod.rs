@@ -430,6 +430,10 @@ pub fn file_stem(name: &str) -> String {
     }
 }
 
+/// The files and folders (ending in `/`) [`write()`] writes into its folder; the heat maps'
+/// `heatmap-NAME.svg` beside them.
+pub const FILES: [&str; 4] = ["sweep.csv", "sweep.json", "sweep.parquet", "scenes/"];
+
 /// Every row's scene file: (row name, text), for [`write()`].
 pub fn scene_files(plan: &[PlannedRow]) -> Vec<(String, String)> {
     plan.iter().filter_map(|row| Some((row.name.clone(), scene_file(row)?))).collect()
