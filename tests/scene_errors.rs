@@ -164,3 +164,23 @@ fn a_relative_tolerance_double_precision_cannot_meet_is_refused() {
     let scene = Scene::from_toml(&edited("rtol = 0.000001", "rtol = 1e-14"), "edge.toml").unwrap();
     assert!(kanestop_runtime::integrate::Tolerances::new(scene.solver.rtol, scene.solver.atol).is_ok());
 }
+
+#[test]
+fn a_paper_time_that_is_not_a_time_is_refused() {
+    let e = error(&edited("paper_stopping_time = 20.01", "paper_stopping_time = nan"));
+    assert_mentions(&e, &["meta.paper_stopping_time = nan", "(0, ∞) s"]);
+}
+
+#[cfg(unix)]
+#[test]
+fn a_scene_path_that_is_no_file_is_refused_without_reading_it() {
+    // Regression: `extends = "/dev/zero"` read without end.
+    let dir = std::env::temp_dir().join(format!("kanestop-devzero-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("z.toml");
+    std::fs::write(&file, "extends = \"/dev/zero\"\n").unwrap();
+    let e = Scene::load(&file).unwrap_err().to_string();
+    assert_mentions(&e, &["/dev/zero", "not a regular file"]);
+    let e = Scene::load(&dir).unwrap_err().to_string();
+    assert_mentions(&e, &["not a regular file"]);
+}

@@ -450,13 +450,13 @@ impl Scene {
             let file = p.display().to_string();
             move |source| SceneError::Io { file, source }
         }
-        let text = std::fs::read_to_string(path).map_err(io(path))?;
+        let text = read_scene_file(path).map_err(io(path))?;
         let top = match text.parse::<toml::Table>() {
             Ok(top) if top.contains_key("extends") => top,
             // A whole file: parsed as text, so that errors point at its lines.
             _ => return Scene::from_toml(&text, &file),
         };
-        let mut read = |p: &Path| std::fs::read_to_string(p).map_err(io(p));
+        let mut read = |p: &Path| read_scene_file(p).map_err(io(p));
         let mut parse = |p: &Path, text: &str| {
             text.parse::<toml::Table>()
                 .map(toml::Value::Table)
@@ -580,6 +580,9 @@ impl Scene {
     /// Every out-of-range value, in file order.
     pub fn problems(&self) -> Vec<Problem> {
         let mut c = Checker::default();
+        if let Some(t) = self.meta.paper_stopping_time {
+            c.range("meta.paper_stopping_time", t, 0.0, f64::MAX, false, "s");
+        }
         self.check_environment(&mut c);
         self.check_hydrodynamics(&mut c);
         self.check_anchor_and_chain(&mut c);
@@ -1021,6 +1024,22 @@ pub fn labelled(path: &str) -> String {
         Some(u) if !u.is_empty() => format!("{path} ({u})"),
         _ => path.to_string(),
     }
+}
+
+/// The largest scene file read, bytes: a scene is a few kB; a larger file (or `/dev/zero`)
+/// is no scene and would only fill the memory.
+pub const MAX_SCENE_BYTES: u64 = 16 << 20;
+
+/// A scene file's text: a regular file of at most [`MAX_SCENE_BYTES`].
+fn read_scene_file(path: &Path) -> std::io::Result<String> {
+    let meta = std::fs::metadata(path)?;
+    if !meta.is_file() {
+        return Err(std::io::Error::other("not a regular file"));
+    }
+    if meta.len() > MAX_SCENE_BYTES {
+        return Err(std::io::Error::other(format!("{} bytes, more than a scene's {MAX_SCENE_BYTES}", meta.len())));
+    }
+    std::fs::read_to_string(path)
 }
 
 /// A TOML reader's message with Rust's type names in words: `expected usize` → `expected a

@@ -188,7 +188,14 @@ pub fn study(
     let (check, ..) = reference_run(1e-9)?;
     let t_ref = match (&reference.stop, reference.stopping_time) {
         (Stop::ShipStopped, Some(t)) => t,
-        _ => return Err(Error::NoReference(format!("{:?}", reference.stop))),
+        (Stop::Failed(f), _) => return Err(Error::NoReference(format!("it failed at t = {:.3} s: {}", f.t, f.kind))),
+        _ => {
+            return Err(Error::NoReference(format!(
+                "it reached its end time {:.3} s with the ship still moving; the study measures the stopping time \
+                 (raise solver.end_time, or choose a scene whose ship stops)",
+                reference.t_end
+            )))
+        }
     };
     let mut rows = Vec::new();
     for &(method, dt, rtol) in plan {

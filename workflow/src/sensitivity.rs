@@ -211,10 +211,15 @@ fn outputs(s: &RunSummary) -> [Option<f64>; 3] {
 
 /// Checks the relative step: in (0, 0.5).
 pub fn check_step(step: f64) -> Result<()> {
-    if step > 0.0 && step < 0.5 {
+    // Below 1e-6 the perturbed runs differ by round-off, not by the parameter.
+    if (1e-6..0.5).contains(&step) {
         return Ok(());
     }
-    Err(crate::Error::Argument { name: "--step", value: step.to_string(), expected: "in (0, 0.5), e.g. 0.05".into() })
+    Err(crate::Error::Argument {
+        name: "--step",
+        value: step.to_string(),
+        expected: "in [1e-6, 0.5), e.g. 0.05".into(),
+    })
 }
 
 /// Runs the base scene and the probes' scenes (from [`probes`] at `step`), `jobs` at a time.
