@@ -106,7 +106,8 @@ enum Command {
         error_estimate: bool,
     },
     /// Run one or more scenes and plot them overlaid (SVG): ship surge speed, ship and
-    /// anchor displacement, peak joint tension along the line, energy terms.
+    /// anchor displacement, peak joint tension and its utilisation along the line, energy
+    /// terms.
     Plot {
         /// Scene TOML files.
         #[arg(required = true)]
@@ -158,7 +159,7 @@ enum ReportKind {
         /// Folder for accuracy.csv, accuracy.json and accuracy.svg.
         #[arg(long, default_value = "out/accuracy")]
         out: PathBuf,
-        /// Runs per setting; the median wall time is reported.
+        /// Runs per setting; the median CPU time (and the median wall time beside it) is reported.
         #[arg(long, default_value_t = 3)]
         repeats: usize,
         /// Absolute tolerance of the adaptive runs as a multiple of their rtol (> 0).

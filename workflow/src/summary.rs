@@ -25,7 +25,7 @@ pub fn summary_with(model: &Model, result: &RunResult, verbose: bool) -> String 
     }
     outcome_lines(&mut out, model, result);
     tension_lines(&mut out, model, result);
-    energy_share_line(&mut out, result);
+    energy_share_line(&mut out, model, result);
     run_lines(&mut out, model, result, verbose);
     if verbose {
         final_lines(&mut out, model, result);
@@ -38,7 +38,12 @@ pub fn summary_with(model: &Model, result: &RunResult, verbose: bool) -> String 
 /// potential energy's change, largest first: they add up to 100 % but for the balance's drift
 /// (shares below 0.05 % are not named). The drift is relative to E_0, the whole initial
 /// energy (its potential energy from the seabed's height), as `solver.max_energy_drift`.
-fn energy_share_line(out: &mut Lines, result: &RunResult) {
+///
+/// The ship's hydrostatic work holds its whole buoyancy times its heave, which its weight's
+/// potential energy all but cancels: the two are named together, as the energy stored in
+/// the ship's heave and pitch (a few tenths of a per cent at most), and the potential
+/// energy change is the rest of the system's (line and anchor).
+fn energy_share_line(out: &mut Lines, model: &Model, result: &RunResult) {
     let (Some(first), Some(last)) = (result.samples.first(), result.samples.last()) else { return };
     let k0 = first.energy.kinetic + first.energy.added_kinetic;
     if k0 <= 0.0 {
@@ -51,14 +56,23 @@ fn energy_share_line(out: &mut Lines, result: &RunResult) {
         "line_drag" => "line drag",
         "hull_resistance" => "hull resistance",
         "seabed" => "seabed contact",
-        "hydrostatic" => "ship hydrostatics",
         "added_mass" => "entrained water",
         other => other,
     };
-    let mut shares: Vec<(f64, String)> =
-        last.energy.work_terms().map(|(name, w)| (-w / k0, word(name).to_string())).collect();
+    let n = model.body_count();
+    let ship_weight = model.chain.bodies[n - 1].mass * model.scene.environment.gravity;
+    let ship_potential = ship_weight * (last.bodies[n - 1].z - first.bodies[n - 1].z);
+    let mut shares: Vec<(f64, String)> = last
+        .energy
+        .work_terms()
+        .map(|(name, w)| match name {
+            "hydrostatic" => ((ship_potential - w) / k0, "ship heave and pitch (hydrostatics with its weight)".into()),
+            _ => (-w / k0, word(name).to_string()),
+        })
+        .collect();
     shares.push(((last.energy.kinetic + last.energy.added_kinetic) / k0, "still kinetic".into()));
-    shares.push(((last.energy.potential - first.energy.potential) / k0, "potential energy change".into()));
+    let line_potential = last.energy.potential - first.energy.potential - ship_potential;
+    shares.push((line_potential / k0, "potential energy change of the line and anchor".into()));
     shares.retain(|(f, _)| f.abs() >= 0.0005);
     shares.sort_by(|a, b| b.0.total_cmp(&a.0));
     let parts: Vec<String> = shares.iter().map(|(f, what)| format!("{:.1} % {what}", 100.0 * f)).collect();
