@@ -20,22 +20,7 @@ const TABLES: [(&str, &str); 11] = [
 
 /// (field, doc) pairs of `pub struct name` in `source`.
 fn fields(source: &str, name: &str) -> Vec<(String, String)> {
-    let start = source.find(&format!("pub struct {name} {{")).unwrap_or_else(|| panic!("struct {name}"));
-    let body = &source[start..];
-    let body = &body[..body.find("\n}").unwrap()];
-    let mut out = Vec::new();
-    let mut doc = Vec::new();
-    for line in body.lines().skip(1) {
-        let line = line.trim();
-        if let Some(d) = line.strip_prefix("///") {
-            doc.push(d.trim().to_string());
-        } else if let Some(f) = line.strip_prefix("pub ") {
-            let field = f.split(':').next().unwrap().trim().to_string();
-            out.push((field, doc.join(" ")));
-            doc.clear();
-        }
-    }
-    out
+    typed_fields(source, name).into_iter().map(|(field, _, doc)| (field, doc)).collect()
 }
 
 fn render(source: &str) -> String {
