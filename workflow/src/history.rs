@@ -328,7 +328,7 @@ mod tests {
         for (v, text) in [
             (3.0, "3"),
             (0.0, "0"),
-            (-0.0, "-0"),
+            (-0.0, "0"),
             (1669.9795856262342, "1669.9795856262342"),
             (-7.531752999057062e-12, "-7.531752999057062e-12"),
             (2.5e20, "2.5e20"),
@@ -336,7 +336,8 @@ mod tests {
         ] {
             let written = CsvNumber(v).to_string();
             assert_eq!(written, text);
-            assert_eq!(written.parse::<f64>().unwrap().to_bits(), v.to_bits(), "{text}");
+            // Exact: the same value read back (a zero's sign is not kept, see CsvNumber).
+            assert_eq!(written.parse::<f64>().unwrap(), v, "{text}");
         }
     }
 
