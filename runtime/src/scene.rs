@@ -1094,6 +1094,12 @@ fn extreme(v: f64) -> bool {
     v.is_finite() && v != 0.0 && !(1e-9..1e15).contains(&v.abs())
 }
 
+/// The largest value a positive or non-negative field takes, in its SI unit: far beyond any
+/// ship, anchor or line (a 1e15 kg anchor, a 1e15 m element still run and are refused or
+/// reported by the physics' own checks), while 1e300 overflowed the products of the loads
+/// and the solve into a non-finite acceleration at t = 0 that looked like a step-size failure.
+pub const MAX_MAGNITUDE: f64 = 1e15;
+
 #[derive(Default)]
 struct Checker {
     problems: Vec<Problem>,
@@ -1107,12 +1113,27 @@ impl Checker {
     fn positive(&mut self, field: &str, v: f64, unit: &str) {
         if !(v.is_finite() && v > 0.0) {
             self.push(field, &fmt_value(v), &format!("finite and > 0 {unit}"));
+        } else {
+            self.magnitude(field, v, unit);
         }
     }
 
     fn non_negative(&mut self, field: &str, v: f64, unit: &str) {
         if !(v.is_finite() && v >= 0.0) {
             self.push(field, &fmt_value(v), &format!("finite and ≥ 0 {unit}"));
+        } else {
+            self.magnitude(field, v, unit);
+        }
+    }
+
+    /// At most [`MAX_MAGNITUDE`].
+    fn magnitude(&mut self, field: &str, v: f64, unit: &str) {
+        if v > MAX_MAGNITUDE {
+            self.push(
+                field,
+                &fmt_value(v),
+                &format!("at most 1e15 {unit} (beyond any mooring system; larger values overflow the equations' products)"),
+            );
         }
     }
 

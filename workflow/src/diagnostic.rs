@@ -127,9 +127,10 @@ fn advice(model: &Model, t: f64, k: usize) -> (String, String) {
     let solver = &model.scene.solver;
     let dt = solver.dt;
     let ratio = model.chain.bodies.iter().map(|b| b.mass).fold(0.0, f64::max) / body.mass;
+    let ratio = if ratio < 1e6 { format!("{ratio:.0}") } else { format!("{ratio:.2e}") };
     let mode = format!(
         "the stiffest mode: a light element swinging between heavy neighbours under high tension (mass ratio \
-         {ratio:.0}:1 with the heaviest body)"
+         {ratio}:1 with the heaviest body)"
     );
     let kept = format!("the first {:.3} s up to the failure are kept", (t - dt).max(0.0));
     match solver.integrator {
