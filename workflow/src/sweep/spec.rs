@@ -368,7 +368,11 @@ fn axis(file: &Path, base: &Value, i: usize, a: AxisFile) -> Result<Axis> {
                         Scale::Linear => r.from + s * (r.to - r.from),
                         Scale::Log => (r.from.ln() + s * (r.to.ln() - r.from.ln())).exp(),
                     };
-                    Value::Float(x)
+                    // For an integer field, a point whole up to the range's rounding is whole
+                    // (a log range from 1 to 100 in 3 steps computes 10.000000000000002).
+                    let whole = x.round();
+                    let snapped = integer && (x - whole).abs() <= 1e-9 * whole.abs().max(1.0);
+                    Value::Float(if snapped { whole } else { x })
                 })
                 .collect()
         }
@@ -526,6 +530,25 @@ mod tests {
         assert!(e.contains("expected a whole number ≥ 0") && !e.contains("usize"), "{e}");
         let e = message("[[axis]]\npath = \"ship.mass\"\nvalues = [4e5]\n[[axis]]\npath = \"anchor.mass\"\nrange = { from = 1.0, to = 2.0, steps = 0 }\n");
         assert!(e.starts_with("sweep spec s.toml: axis[1].range.steps = 0: in [1, 100000]"), "{e}");
+    }
+
+    #[test]
+    fn a_range_over_an_integer_field_gives_whole_numbers_up_to_its_rounding() {
+        let spec = |range: &str| {
+            let text = format!("[[axis]]\npath = \"chain.elements\"\nrange = {{ {range} }}\n");
+            Spec::from_toml(&text, Path::new("s.toml"), Path::new(""), Some(case01()))
+        };
+        let elements = |range: &str| -> Vec<String> {
+            spec(range).unwrap().plan().iter().map(|r| r.inputs[0].1.to_string()).collect()
+        };
+        // ln 1 … ln 100 in 3 steps computes 10.000000000000002 for the middle point.
+        assert_eq!(elements("from = 1.0, to = 100.0, steps = 3, scale = \"log\""), ["1", "10", "100"]);
+        let ten_to_twenty: Vec<String> = (10..=20).map(|n| n.to_string()).collect();
+        assert_eq!(elements("from = 10.0, to = 20.0, steps = 11"), ten_to_twenty);
+        // A point that is not whole is still refused, by its value.
+        let e = spec("from = 10.0, to = 20.0, steps = 3, scale = \"log\"").unwrap_err().to_string();
+        assert!(e.contains("axis[0].values = 14.142135623730"), "{e}");
+        assert!(e.contains("whole numbers: chain.elements is an integer field"), "{e}");
     }
 
     #[test]
