@@ -48,7 +48,8 @@ impl Distribution {
     /// The value at cumulative probability `u` in (0, 1).
     pub fn quantile(self, u: f64) -> f64 {
         match self {
-            Distribution::Uniform { low, high } => low + u * (high - low),
+            // Weighted, not low + u·(high − low): finite for bounds near ±f64::MAX too.
+            Distribution::Uniform { low, high } => (1.0 - u) * low + u * high,
             Distribution::Normal { mean, sd } => mean + sd * inverse_normal(u),
             Distribution::Lognormal { median, sigma } => median * (sigma * inverse_normal(u)).exp(),
         }
@@ -57,7 +58,8 @@ impl Distribution {
     /// The standard deviation of ln x, to first order (for the first-order output band).
     pub fn sigma_ln(self) -> f64 {
         match self {
-            Distribution::Uniform { low, high } => (high - low) / 12f64.sqrt() / (0.5 * (low + high)).abs(),
+            // (high − low)/√12 over the mean, in halves so that no sum overflows.
+            Distribution::Uniform { low, high } => (0.5 * high - 0.5 * low) / 3f64.sqrt() / (0.5 * low + 0.5 * high).abs(),
             Distribution::Normal { mean, sd } => sd / mean.abs(),
             Distribution::Lognormal { sigma, .. } => sigma,
         }
@@ -148,5 +150,9 @@ mod tests {
         let ln = Distribution::Lognormal { median: 0.3, sigma: 0.2 };
         assert!((ln.quantile(0.5) - 0.3).abs() < 1e-15);
         assert_eq!(Distribution::Uniform { low: 1.0, high: 3.0 }.quantile(0.25), 1.5);
+        let wide = Distribution::Uniform { low: -1e308, high: 1e308 };
+        assert_eq!((wide.quantile(0.5), wide.quantile(0.75)), (0.0, 5e307));
+        let sigma = Distribution::Uniform { low: 1e308, high: 1.7e308 }.sigma_ln();
+        assert!((sigma - 0.35e308 / 3f64.sqrt() / 1.35e308).abs() < 1e-15, "{sigma}");
     }
 }
