@@ -130,6 +130,9 @@ fn a_step_that_becomes_unstable_later_stops_with_the_diagnostic() {
     assert!(rk4_limit(&r) > 0.02);
     let Stop::Failed(f) = &r.stop else { panic!("expected a failure, got {:?}", r.stop) };
     assert!(f.t > 0.5 && matches!(f.kind, FailureKind::EnergyRunaway { .. }), "{f}");
+    // The summary's largest drift is the one that failed the run (it once kept the last passing one).
+    let FailureKind::EnergyRunaway { drift, .. } = f.kind else { unreachable!() };
+    assert_eq!(r.max_energy_drift, drift);
     let text = diagnostic(&scene, &r);
     assert!(text.contains("energy runaway") && text.contains("suggestion: reduce solver.dt"), "{text}");
     assert!(!r.samples.is_empty(), "the samples before the failure are kept");

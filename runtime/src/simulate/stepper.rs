@@ -412,8 +412,16 @@ impl<'a> Stepper<'a> {
     /// The health checks of a completed interval; keeps the largest drift.
     fn check(&mut self, obs: &Observation) -> Result<(), FailureKind> {
         let limit = self.model.scene.solver.max_energy_drift;
-        let drift = health::energy_drift(obs.energy.balance(), self.energy0, limit)?;
-        self.max_energy_drift = self.max_energy_drift.max(drift);
+        let checked = health::energy_drift(obs.energy.balance(), self.energy0, limit);
+        // The drift that failed the run is its largest too (NaN included), as the failure says.
+        let drift = match checked {
+            Ok(drift) | Err(FailureKind::EnergyRunaway { drift, .. }) => drift,
+            Err(_) => self.max_energy_drift,
+        };
+        if !(drift <= self.max_energy_drift) {
+            self.max_energy_drift = drift;
+        }
+        checked?;
         health::no_spike(&obs.tensions, self.spike_bound)
     }
 
