@@ -8,6 +8,9 @@
 
 use std::ffi::CString;
 use std::path::PathBuf;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::mpsc;
+use std::time::Duration;
 
 use kanestop_runtime::eval::{evaluate, StateFile};
 use kanestop_runtime::kernel::AnchorDof;
@@ -232,12 +235,12 @@ fn _run(
     let solver = SolverArgs { integrator, dt, rtol, atol, end_time, output_interval };
     let scene = apply(&scene.inner, &solver.overrides()).map_err(|e| scene_error(py, e))?;
     let model = Model::new(&scene).map_err(model_error)?;
-    let (result, summary, note) = py.allow_threads(|| {
+    let (result, summary, note) = interruptible(py, |cancel| {
         let (k, note) = choice.build(&model);
-        let result = simulate::run(&model, k);
+        let result = simulate::run_cancellable(&model, k, cancel).ok()?;
         let summary = RunSummary::of(&model, &result);
-        (result, summary, note)
-    });
+        Some((result, summary, note))
+    })?;
     if let Some(note) = note {
         warn(py, &note)?;
     }
@@ -272,6 +275,41 @@ fn _run(
     )?
     .into_any()
     .unbind())
+}
+
+/// Runs `work` on its own thread while this one waits with the GIL released, waking every
+/// 50 ms to check for Ctrl-C: a signal sets the flag `work` polls (a run stops at its next
+/// step), waits for it to return, and raises the signal's exception (KeyboardInterrupt).
+/// `work` returns None only when cancelled.
+fn interruptible<T: Send>(py: Python<'_>, work: impl FnOnce(&AtomicBool) -> Option<T> + Send) -> PyResult<T> {
+    let cancel = AtomicBool::new(false);
+    std::thread::scope(|s| {
+        let (tx, rx) = mpsc::channel();
+        // Receiver is Send but not Sync: the waiting loop borrows it through a mutex.
+        let rx = std::sync::Mutex::new(rx);
+        let cancel = &cancel;
+        let worker = s.spawn(move || {
+            let _ = tx.send(work(cancel));
+        });
+        loop {
+            let got = py.allow_threads(|| rx.lock().expect("only this thread locks it").recv_timeout(Duration::from_millis(50)));
+            match got {
+                Ok(Some(out)) => return Ok(out),
+                Ok(None) => return Err(PyValueError::new_err("the run was cancelled")),
+                Err(mpsc::RecvTimeoutError::Disconnected) => {
+                    let _ = py.allow_threads(|| worker.join());
+                    return Err(PyValueError::new_err("the run's thread panicked: please report it"));
+                }
+                Err(mpsc::RecvTimeoutError::Timeout) => {
+                    if let Err(e) = py.check_signals() {
+                        cancel.store(true, Ordering::Relaxed);
+                        let _ = py.allow_threads(|| worker.join());
+                        return Err(e);
+                    }
+                }
+            }
+        }
+    })
 }
 
 fn anchor_name(a: AnchorDof) -> &'static str {

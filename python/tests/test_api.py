@@ -167,6 +167,25 @@ def test_a_progress_callback_that_raises_cancels(case01: kanestop.Scene) -> None
         kanestop.sweep(case01, [{"ship.mass": 5e5}] * 8, jobs=1, end_time=0.2, progress=stop)
 
 
+def test_ctrl_c_stops_a_run(case01: kanestop.Scene) -> None:
+    """Ctrl-C (here its Python stand-in, ``_thread.interrupt_main``) stops a long
+    run at its next step and raises KeyboardInterrupt. Uninterrupted, the run
+    takes about two million steps (half a minute or more); interrupted after
+    0.3 s it returns within a fraction of a second, so the bound of 10 s only
+    separates the two."""
+    import _thread
+    import threading
+    import time
+
+    timer = threading.Timer(0.3, _thread.interrupt_main)
+    start = time.perf_counter()
+    timer.start()
+    with pytest.raises(KeyboardInterrupt):
+        kanestop.run(case01, dt=1e-5, output_interval=0.1)
+    timer.join()
+    assert time.perf_counter() - start < 10.0
+
+
 def test_runs_release_the_gil(case01: kanestop.Scene) -> None:
     """A thread that needs the GIL keeps running while a run integrates.
 

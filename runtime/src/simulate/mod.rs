@@ -23,6 +23,7 @@
 //! [`Stepper`] advances a run interval by interval and says why it stopped ([`Stopped`]);
 //! [`run`] drives it and collects the [`RunResult`].
 
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
 pub mod cpu;
@@ -81,6 +82,19 @@ pub fn run_checked(model: &Model, kernel: Box<dyn Kernel>, residual_kernel: Box<
 /// assert!(!result.samples.is_empty());
 /// ```
 pub fn run(model: &Model, kernel: Box<dyn Kernel>) -> RunResult {
+    run_cancellable(model, kernel, &AtomicBool::new(false)).expect("nothing cancels it")
+}
+
+/// A run cancelled from another thread (Python's Ctrl-C): its partial result is dropped.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Cancelled {
+    /// The simulated time reached, s.
+    pub t: f64,
+}
+
+/// [`run`], which stops with [`Cancelled`] at the first step after `cancel` is set (the
+/// start-up stability analysis, before the first step, is not interrupted).
+pub fn run_cancellable(model: &Model, kernel: Box<dyn Kernel>, cancel: &AtomicBool) -> Result<RunResult, Cancelled> {
     let mut stepper = Stepper::new(model, kernel);
     let mut result = RunResult::empty(&stepper, model.body_count());
     let (start, cpu_start) = (Instant::now(), cpu::thread_cpu_time());
@@ -88,11 +102,14 @@ pub fn run(model: &Model, kernel: Box<dyn Kernel>) -> RunResult {
     result.stability = stepper.stability();
     if let Err(f) = started {
         result.stop = Stop::Failed(f);
-        return result;
+        return Ok(result);
     }
     result.energy0 = stepper.energy0();
     result.samples.extend(stepper.sample());
     result.stop = loop {
+        if cancel.load(Ordering::Relaxed) {
+            return Err(Cancelled { t: stepper.t() });
+        }
         match stepper.step() {
             Ok(Stopped::AnchorSwitched(event)) => result.anchor_events.push(event),
             Ok(stopped @ (Stopped::Step | Stopped::ShipStopped { .. })) => {
@@ -115,7 +132,7 @@ pub fn run(model: &Model, kernel: Box<dyn Kernel>) -> RunResult {
     result.max_energy_drift = stepper.max_energy_drift();
     result.wall_time = start.elapsed();
     result.cpu_time = cpu::since(cpu_start);
-    result
+    Ok(result)
 }
 
 /// The method a scene names, sized for states of `dim` entries.
@@ -133,5 +150,31 @@ pub fn integrator(solver: &crate::scene::Solver, dim: usize) -> Box<dyn Integrat
             m.control.h_max = solver.dt;
             Box::new(Adaptive::new(m))
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::generated::GeneratedKernel;
+    use crate::paper::DEFAULT_SCENE;
+    use crate::scene::Scene;
+
+    #[test]
+    fn a_cancelled_run_stops_at_its_next_step() {
+        let mut scene = Scene::from_toml(DEFAULT_SCENE, "case01.toml").unwrap();
+        scene.solver.dt = 1e-4; // 200 000 steps to the stop: seconds, not the 20 ms waited
+        let model = Model::new(&scene).unwrap();
+        let kernel = || Box::new(GeneratedKernel::new(&model.chain).unwrap());
+        assert_eq!(run_cancellable(&model, kernel(), &AtomicBool::new(true)).unwrap_err(), Cancelled { t: 0.0 });
+        // Set from another thread while it runs: it stops before the ship does (20 s).
+        let cancel = AtomicBool::new(false);
+        std::thread::scope(|s| {
+            let run = s.spawn(|| run_cancellable(&model, kernel(), &cancel));
+            std::thread::sleep(std::time::Duration::from_millis(20));
+            cancel.store(true, Ordering::Relaxed);
+            let stopped = run.join().unwrap();
+            assert!(matches!(stopped, Err(Cancelled { t }) if t < 20.0), "{stopped:?}");
+        });
     }
 }
