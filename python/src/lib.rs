@@ -292,7 +292,9 @@ fn interruptible<T: Send>(py: Python<'_>, work: impl FnOnce(&AtomicBool) -> Opti
             let _ = tx.send(work(cancel));
         });
         loop {
-            let got = py.allow_threads(|| rx.lock().expect("only this thread locks it").recv_timeout(Duration::from_millis(50)));
+            let got = py.allow_threads(|| {
+                rx.lock().expect("only this thread locks it").recv_timeout(Duration::from_millis(50))
+            });
             match got {
                 Ok(Some(out)) => return Ok(out),
                 Ok(None) => return Err(PyValueError::new_err("the run was cancelled")),

@@ -4,7 +4,8 @@
 //! handed back as the cells of `sweep.csv` (`sweep::cells`) or the objects of `sweep.json`.
 //!
 //! The rows run on a rayon pool of their own while the calling thread waits with the GIL
-//! released, waking only to call the progress callback and to check for Ctrl-C.
+//! released, waking only to call the progress callback and to check for Ctrl-C (which stops
+//! the rows running at their next step).
 
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -217,7 +218,8 @@ fn row_list(py: Python<'_>, rows: &Bound<'_, PyAny>) -> PyResult<Vec<Vec<(String
 
 /// Runs every row with `sweep::run_row` on a pool of `jobs` threads, in plan order; the
 /// calling thread waits with the GIL released and calls `progress`. An exception in
-/// `progress` (or Ctrl-C) cancels the rows not started and is returned.
+/// `progress` (or Ctrl-C) cancels the rows not started, stops those running at their next
+/// step, and is returned.
 fn run_rows(
     py: Python<'_>,
     plan: &[PlannedRow],
@@ -239,9 +241,9 @@ fn run_rows(
         if cancel.load(Ordering::Relaxed) {
             return None;
         }
-        let out = sweep::run_row(row, &kernel);
+        let out = sweep::run_row_cancellable(row, &kernel, &cancel);
         let _ = tx.send(());
-        Some(out)
+        out
     };
     let (outcomes, error) = std::thread::scope(|s| {
         // The worker owns the sender: the channel disconnects when every row is done (or a

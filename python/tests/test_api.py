@@ -186,6 +186,21 @@ def test_ctrl_c_stops_a_run(case01: kanestop.Scene) -> None:
     assert time.perf_counter() - start < 10.0
 
 
+def test_ctrl_c_stops_a_sweep_s_running_rows(case01: kanestop.Scene) -> None:
+    """As a run: two rows of two million steps each, interrupted after 0.3 s."""
+    import _thread
+    import threading
+    import time
+
+    timer = threading.Timer(0.3, _thread.interrupt_main)
+    start = time.perf_counter()
+    timer.start()
+    with pytest.raises(KeyboardInterrupt):
+        kanestop.sweep(case01, [{"ship.mass": 5e5}] * 2, jobs=2, dt=1e-5, output_interval=0.1)
+    timer.join()
+    assert time.perf_counter() - start < 10.0
+
+
 def test_runs_release_the_gil(case01: kanestop.Scene) -> None:
     """A thread that needs the GIL keeps running while a run integrates.
 

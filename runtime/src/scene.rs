@@ -1132,7 +1132,9 @@ impl Checker {
             self.push(
                 field,
                 &fmt_value(v),
-                &format!("at most 1e15 {unit} (beyond any mooring system; larger values overflow the equations' products)"),
+                &format!(
+                    "at most 1e15 {unit} (beyond any mooring system; larger values overflow the equations' products)"
+                ),
             );
         }
     }

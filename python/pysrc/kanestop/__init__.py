@@ -397,7 +397,7 @@ def sweep(
     """Runs a sweep as ``kanestop sweep SPEC.toml`` does (docs/sweeps.md), on the Rust
     thread pool (``jobs`` threads, every core when None) with the GIL released;
     ``progress(done, total)`` is called on this thread as rows finish (raise in it, or
-    Ctrl-C, to cancel the rows not started).
+    Ctrl-C, to cancel the rows not started and stop those running).
 
     ``spec`` is a sweep spec: a ``kanestop.Spec``, a spec file's path, or a dict of the spec
     file's fields (``{"base": "case01.toml" or a Scene, "axis": [{"path": "ship.mass",

@@ -17,6 +17,7 @@ pub mod spec;
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
+use std::sync::atomic::AtomicBool;
 
 use kanestop_runtime::model::Model;
 use kanestop_runtime::simulate;
@@ -106,6 +107,11 @@ fn fmt_value(v: &Value) -> String {
 
 /// Runs one planned row.
 pub fn run_row(row: &PlannedRow, kernel: KernelFactory) -> SweepRow {
+    run_row_cancellable(row, kernel, &AtomicBool::new(false)).expect("nothing cancels it")
+}
+
+/// [`run_row`], stopped at the run's next step once `cancel` is set (Python's Ctrl-C): None.
+pub fn run_row_cancellable(row: &PlannedRow, kernel: KernelFactory, cancel: &AtomicBool) -> Option<SweepRow> {
     let mut out = SweepRow {
         index: row.index,
         name: row.name.clone(),
@@ -121,10 +127,10 @@ pub fn run_row(row: &PlannedRow, kernel: KernelFactory) -> SweepRow {
         Ok(m) => m,
         Err(e) => {
             out.message = one_line(&e);
-            return out;
+            return Some(out);
         }
     };
-    let result = simulate::run(&model, kernel(&model));
+    let result = simulate::run_cancellable(&model, kernel(&model), cancel).ok()?;
     let summary = RunSummary::of(&model, &result);
     out.status = summary.status;
     out.checks_pass = summary.checks_pass;
@@ -135,7 +141,7 @@ pub fn run_row(row: &PlannedRow, kernel: KernelFactory) -> SweepRow {
     }
     out.message = summary.failure.as_ref().map(|f| one_line(&f.message)).unwrap_or_default();
     out.summary = Some(summary);
-    out
+    Some(out)
 }
 
 /// Runs every row of `plan` (on `jobs` threads, or rayon's default), calling `done` as each

@@ -59,7 +59,9 @@ impl Distribution {
     pub fn sigma_ln(self) -> f64 {
         match self {
             // (high − low)/√12 over the mean, in halves so that no sum overflows.
-            Distribution::Uniform { low, high } => (0.5 * high - 0.5 * low) / 3f64.sqrt() / (0.5 * low + 0.5 * high).abs(),
+            Distribution::Uniform { low, high } => {
+                (0.5 * high - 0.5 * low) / 3f64.sqrt() / (0.5 * low + 0.5 * high).abs()
+            }
             Distribution::Normal { mean, sd } => sd / mean.abs(),
             Distribution::Lognormal { sigma, .. } => sigma,
         }
