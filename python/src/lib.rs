@@ -106,8 +106,21 @@ impl PyScene {
         other.downcast::<PyScene>().is_ok_and(|o| o.get().inner == self.inner)
     }
 
+    /// The name and the values a study most often changes, so that two scenes of one name
+    /// (a scene and its overrides) read apart: `Scene("case01": 46 bodies, ship 500 t at
+    /// 3 m/s, anchor 40 t, chain 15 × 1 m)`.
     fn __repr__(&self) -> String {
-        format!("Scene({:?})", self.inner.meta.name)
+        let s = &self.inner;
+        format!(
+            "Scene({:?}: {} bodies, ship {} t at {} m/s, anchor {} t, chain {} × {} m)",
+            s.meta.name,
+            s.body_count(),
+            s.ship.mass / 1e3,
+            s.initial.ship_speed,
+            s.anchor.mass / 1e3,
+            s.chain.elements,
+            s.chain.element_length
+        )
     }
 }
 

@@ -20,6 +20,9 @@ def test_scene_round_trips(case01: kanestop.Scene) -> None:
     assert kanestop.Scene.from_toml(case01.to_toml()) == case01
     assert pickle.loads(pickle.dumps(case01)) == case01
     assert case01.name == "case01"
+    assert repr(case01) == 'Scene("case01": 46 bodies, ship 500 t at 3 m/s, anchor 40 t, chain 15 × 1 m)'
+    heavier = case01.with_overrides({"ship.mass": 6e5, "chain.elements": 20})
+    assert repr(heavier) == 'Scene("case01": 51 bodies, ship 600 t at 3 m/s, anchor 40 t, chain 20 × 1 m)'
 
 
 def test_overrides_set_fields_and_are_checked(case01: kanestop.Scene) -> None:
