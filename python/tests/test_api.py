@@ -36,6 +36,11 @@ def test_overrides_set_fields_and_are_checked(case01: kanestop.Scene) -> None:
     assert kanestop.Scene.from_dict(d2) == s
     # NumPy scalars are numbers.
     assert case01.with_overrides({"ship.mass": np.float64(1e6), "chain.elements": np.int64(15)}).to_dict()["ship"]["mass"] == 1e6
+    # A dict of the wrong shape: the message names the entry's position in its array.
+    d3 = case01.to_dict()
+    d3["cable"]["stages"][1]["elements"] = "x"
+    with pytest.raises(kanestop.SceneError, match=r"in `cable\.stages\[1\]\.elements`"):
+        kanestop.Scene.from_dict(d3)
 
 
 def test_overridden_runs_change_the_result(case01: kanestop.Scene) -> None:

@@ -499,9 +499,8 @@ impl Scene {
     /// Checks a scene given as a TOML value (a file's tables after `extends`, or a table
     /// built in code); `file` names it in errors.
     pub fn from_value(value: toml::Value, file: &str) -> Result<Scene, SceneError> {
-        let scene: Scene = value
-            .try_into()
-            .map_err(|e: toml::de::Error| SceneError::Parse { file: file.to_string(), message: e.to_string() })?;
+        let scene: Scene =
+            from_value_at(value).map_err(|message| SceneError::Parse { file: file.to_string(), message })?;
         scene.checked(file)
     }
 
@@ -1040,6 +1039,22 @@ fn read_scene_file(path: &Path) -> std::io::Result<String> {
         return Err(std::io::Error::other(format!("{} bytes, more than a scene's {MAX_SCENE_BYTES}", meta.len())));
     }
     std::fs::read_to_string(path)
+}
+
+/// Deserialises `value` (a table built in memory: Python's dict, a scene with overrides); an
+/// error ends `in `PATH`` with the array indices in its path (`cable.stages[1].elements`),
+/// where toml's own names only the keys (`cable.stages.elements`).
+pub fn from_value_at<T: serde::de::DeserializeOwned>(value: toml::Value) -> Result<T, String> {
+    serde_path_to_error::deserialize(value).map_err(|e| {
+        let path = e.path().to_string();
+        let text = e.into_inner().to_string();
+        let message = text.trim_end().rsplit_once("\nin `").map_or(text.trim_end(), |(m, _)| m).trim_end();
+        if path.is_empty() || path == "." {
+            message.to_string()
+        } else {
+            format!("{message}\nin `{path}`")
+        }
+    })
 }
 
 /// A TOML reader's message with Rust's type names in words: `expected usize` → `expected a

@@ -165,9 +165,9 @@ impl Spec {
 
     /// [`Spec::from_toml`] of a spec given as a table of the same fields (a Python dict).
     pub fn from_table(table: toml::Table, file: &Path, dir: &Path, scene: Option<Scene>) -> Result<Spec> {
-        let raw = SpecFile::deserialize(Value::Table(table)).map_err(|e| {
-            // The message ends "in `sampling.samples`" when the error is at a key: its field.
-            let text = kanestop_runtime::scene::plain_types(&e.to_string());
+        let raw: SpecFile = kanestop_runtime::scene::from_value_at(Value::Table(table)).map_err(|e| {
+            // The message ends "in `axis[1].range.steps`" when the error is at a key: its field.
+            let text = kanestop_runtime::scene::plain_types(&e);
             match text.trim_end().rsplit_once("\nin `") {
                 Some((message, key)) => bad(file, key.trim_end_matches('`'), "", message.trim()),
                 None => bad(file, "(spec)", "", text.trim()),
