@@ -284,6 +284,7 @@ fn resume_all(args: &SweepArgs, id: &SweepId, plan: &[PlannedRow]) -> Result<Exi
         eprintln!("resume    shard {shard}: {kept} rows kept, {} run", file.rows.len() - kept);
     }
     let merged = merge::merge(std::slice::from_ref(&args.out))?;
+    merged.check_rows(plan)?;
     report(&merged.rows, merged.sampling, &merged.scenes, &args.out)
 }
 
@@ -313,6 +314,7 @@ fn merge(m: &MergeArgs) -> Result<Exit> {
             file.display(),
             merged.plan_hash
         );
+        merged.check_rows(&plan)?;
     }
     eprintln!(
         "merged    {} shard files of {} ({} rows, plan {})",

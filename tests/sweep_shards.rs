@@ -270,7 +270,8 @@ fn a_merge_refuses_another_sweep_a_missing_shard_and_a_row_twice() {
 fn a_merge_refuses_edited_shard_files_without_a_panic() {
     let dir = temp_dir("edited");
     let out = dir.join("out");
-    run_shards(&spec(&dir, 3.0), &out, 1, |k| (vec!["--shard".into(), format!("{k}/1")], vec![]));
+    let spec_path = spec(&dir, 3.0);
+    run_shards(&spec_path, &out, 1, |k| (vec!["--shard".into(), format!("{k}/1")], vec![]));
     let good: Value = serde_json::from_slice(&std::fs::read(out.join("shards/shard-0-of-1.json")).unwrap()).unwrap();
     let edited = |name: &str, edit: &dyn Fn(&mut Value)| -> PathBuf {
         let mut v = good.clone();
@@ -306,6 +307,22 @@ fn a_merge_refuses_edited_shard_files_without_a_panic() {
         v["rows"] = serde_json::json!([]);
     });
     refused(&[&a, &b], "rows_total = 2, but");
+    // Rows edited under the plan hash: the merge with the spec checks each against the plan.
+    let with_spec =
+        |file: &Path| run(&["sweep", "merge", s(file), "--spec", s(&spec_path), "--out", s(&dir.join("m"))], &[]);
+    let scene = edited("scene.json", &|v| {
+        let text = v["rows"][0]["scene"].as_str().unwrap().replace("mass = 30000.0", "mass = 31000.0");
+        v["rows"][0]["scene"] = text.into();
+    });
+    let o = with_spec(&scene);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("row 0 (shards-000): its scene file, not the plan's"), "{}", stderr(&o));
+    let message = edited("message.json", &|v| v["rows"][4]["row"]["message"] = "fine".into());
+    let o = with_spec(&message);
+    assert!(stderr(&o).contains("row 4 (shards-004): its message \"fine\", not the plan's"), "{}", stderr(&o));
+    assert!(!dir.join("m/sweep.csv").exists(), "a refused merge writes nothing");
+    let o = with_spec(&out.join("shards/shard-0-of-1.json"));
+    assert!(o.status.code() != Some(2), "{}", stderr(&o));
 }
 
 #[test]

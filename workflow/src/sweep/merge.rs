@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 
 use super::shard::{Shard, ShardError};
 use super::shard_file::{self, ShardFile, ShardRow};
-use super::SweepRow;
+use super::{PlannedRow, SweepRow};
 use crate::{Error, Result};
 
 /// A whole sweep put back together from its shards.
@@ -23,6 +23,45 @@ pub struct Merged {
     pub scenes: Vec<(String, String)>,
     /// The shard files read.
     pub files: Vec<PathBuf>,
+    /// The shard file each row came from (`rows[i]` from `sources[i]`).
+    pub sources: Vec<PathBuf>,
+}
+
+impl Merged {
+    /// Checks every row against `plan`, the sweep's plan (whose hash the files carry): its
+    /// name, its scene file and, for a row whose inputs give no scene, why. The plan hash
+    /// names the sweep but a file's rows are only as good as the file: this refuses rows
+    /// edited, or copied from another sweep, naming the row and its file.
+    pub fn check_rows(&self, plan: &[PlannedRow]) -> Result<()> {
+        let scenes: std::collections::HashMap<&str, &str> =
+            self.scenes.iter().map(|(name, text)| (name.as_str(), text.as_str())).collect();
+        let problem = |i: usize, what: String| {
+            Err(Error::Shard(ShardError::File {
+                file: self.sources[i].clone(),
+                problem: format!(
+                    "row {i} ({}): {what}, not the plan's: the file was edited or holds another sweep's rows",
+                    self.rows[i].name
+                ),
+            }))
+        };
+        if plan.len() != self.rows.len() {
+            return problem(0, format!("{} rows in all", self.rows.len()));
+        }
+        for (i, (row, planned)) in self.rows.iter().zip(plan).enumerate() {
+            if row.name != planned.name {
+                return problem(i, format!("its name {:?}", row.name));
+            }
+            if scenes.get(row.name.as_str()).copied() != super::scene_file(planned).as_deref() {
+                return problem(i, "its scene file".into());
+            }
+            if let Err(why) = &planned.scene {
+                if row.message != super::one_line(why) {
+                    return problem(i, format!("its message {:?}", row.message));
+                }
+            }
+        }
+        Ok(())
+    }
 }
 
 /// The shard files named by `paths`: a folder gives its shard files
@@ -89,7 +128,8 @@ pub fn merge(paths: &[PathBuf]) -> Result<Merged> {
     if !missing.is_empty() {
         return Err(Error::Shard(missing_rows(&read, &missing, first.rows_total)));
     }
-    let done: Vec<&ShardRow> = slots.into_iter().map(|s| s.expect("no row missing").0).collect();
+    let (done, sources): (Vec<&ShardRow>, Vec<PathBuf>) =
+        slots.into_iter().map(|s| s.expect("no row missing")).map(|(r, p)| (r, p.to_path_buf())).unzip();
     Ok(Merged {
         plan_hash: first.plan_hash.clone(),
         name: first.sweep.clone(),
@@ -97,6 +137,7 @@ pub fn merge(paths: &[PathBuf]) -> Result<Merged> {
         rows: done.iter().map(|r| r.row.clone()).collect(),
         scenes: done.iter().filter_map(|r| Some((r.row.name.clone(), r.scene.clone()?))).collect(),
         files,
+        sources,
     })
 }
 
