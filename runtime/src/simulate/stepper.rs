@@ -418,7 +418,7 @@ impl<'a> Stepper<'a> {
             Ok(drift) | Err(FailureKind::EnergyRunaway { drift, .. }) => drift,
             Err(_) => self.max_energy_drift,
         };
-        if !(drift <= self.max_energy_drift) {
+        if drift.is_nan() || drift > self.max_energy_drift {
             self.max_energy_drift = drift;
         }
         checked?;
