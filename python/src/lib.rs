@@ -206,6 +206,8 @@ fn warn(py: Python<'_>, note: &str) -> PyResult<()> {
 #[pyclass(module = "kanestop._kanestop", name = "_History", frozen)]
 pub struct PyHistory {
     result: simulate::RunResult,
+    /// The model's body count N: the channels exist (empty) for a run with no samples.
+    bodies: usize,
 }
 
 #[pymethods]
@@ -215,8 +217,7 @@ impl PyHistory {
     fn columns<'py>(&self, py: Python<'py>) -> PyResult<(Bound<'py, PyDict>, Bound<'py, PyList>)> {
         let arrays = PyDict::new(py);
         let info = PyList::empty(py);
-        let n = self.result.samples.first().map_or(0, |s| s.bodies.len());
-        let channels = if n == 0 { Vec::new() } else { history::all_channels(n) };
+        let channels = history::all_channels(self.bodies);
         for (c, values) in channels.iter().zip(history::columns(&self.result, &channels)) {
             arrays.set_item(&c.name, PyArray1::from_vec(py, values))?;
             info.append((c.name.as_str(), c.unit, c.group, c.description.as_str()))?;
@@ -280,7 +281,7 @@ fn _run(
         py,
         [
             json.into_pyobject(py)?.into_any(),
-            Bound::new(py, PyHistory { result })?.into_any(),
+            Bound::new(py, PyHistory { result, bodies: model.body_count() })?.into_any(),
             events.into_any(),
             failure.into_bound(py),
             core_time.into_pyobject(py)?.into_any(),

@@ -39,6 +39,9 @@ def test_a_failure_is_a_result_with_the_cli_diagnostic() -> None:
     assert r.diagnostic is not None and "stability limit" in r.diagnostic
     assert r.failure is not None and r.failure["kind"] == "RK4 step above the stability limit"
     assert without_wall_time(r.summary) == without_wall_time(json.loads(p.stdout))
+    # No sample before the refusal: every channel is there, empty, with its unit.
+    assert r.channels.shape == (0, len(r.units)) and list(r.channels.columns)[:2] == ["t", "ship_x"]
+    assert r.units["ship_x"] == "m"
 
 
 def test_eval_equals_the_cli_eval(case01: kanestop.Scene) -> None:
