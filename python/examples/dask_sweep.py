@@ -9,6 +9,7 @@ Scenes and results pickle, so the scene travels to the workers with each task an
 from __future__ import annotations
 
 import sys
+from pathlib import Path
 from typing import Any, Dict, List, Mapping
 
 import pandas as pd
@@ -46,4 +47,6 @@ def main(path: str) -> None:
 
 
 if __name__ == "__main__":
-    main(sys.argv[1] if len(sys.argv) > 1 else "scenes/paper/case01.toml")
+    # Case 1 of the checkout this file is in, from whatever folder it is run.
+    case01 = Path(__file__).resolve().parents[2] / "scenes" / "paper" / "case01.toml"
+    main(sys.argv[1] if len(sys.argv) > 1 else str(case01))

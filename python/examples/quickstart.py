@@ -6,6 +6,7 @@
 from __future__ import annotations
 
 import sys
+from pathlib import Path
 from typing import Optional
 
 import numpy as np
@@ -33,6 +34,9 @@ def main(path: str) -> None:
     e0 = kanestop.eval(scene)
     m: np.ndarray = e0["M"]
     print(f"eval: {m.shape[0]} active speeds, cond(M) = {e0['cond']:.3e}")
+    # At another state: q and u as NumPy arrays (or lists), here the first link turned 0.01 rad.
+    e1 = kanestop.eval(scene, q=e0["q"] + np.eye(len(e0["q"]))[0] * 0.01, u=e0["u"])
+    print(f"eval: first link +0.01 rad changes its acceleration by {float(e1['qdd'][0] - e0['qdd'][0]):.3e} rad/s²")
 
     frame = kanestop.sweep(
         {"base": scene, "axis": [{"path": "ship.mass", "values": [4e5, 5e5, 6e5]}]},
@@ -42,4 +46,6 @@ def main(path: str) -> None:
 
 
 if __name__ == "__main__":
-    main(sys.argv[1] if len(sys.argv) > 1 else "scenes/paper/case01.toml")
+    # Case 1 of the checkout this file is in, from whatever folder it is run.
+    case01 = Path(__file__).resolve().parents[2] / "scenes" / "paper" / "case01.toml"
+    main(sys.argv[1] if len(sys.argv) > 1 else str(case01))

@@ -24,6 +24,7 @@ import warnings
 from typing import Any, Callable, Dict, Iterable, List, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
+import numpy.typing as npt
 
 from ._kanestop import MAX_JOBS, EvalError, ModelError, Scene, SceneError, Spec, SpecError, __version__
 from ._kanestop import _History, _run, _sweep
@@ -308,8 +309,8 @@ def run(
 
 def eval(
     scene: Union[Scene, PathLike],
-    q: Optional[Sequence[float]] = None,
-    u: Optional[Sequence[float]] = None,
+    q: Optional[Union[Sequence[float], "npt.NDArray[np.floating[Any]]"]] = None,
+    u: Optional[Union[Sequence[float], "npt.NDArray[np.floating[Any]]"]] = None,
     *,
     anchor: Optional[str] = None,
     kernel: str = "generated",

@@ -105,8 +105,8 @@ def _run(
 ) -> Tuple[str, _History, List[Dict[str, Any]], Optional[Dict[str, Any]], float]: ...
 def eval(
     scene: Scene,
-    q: Optional[Sequence[float]] = None,
-    u: Optional[Sequence[float]] = None,
+    q: Optional[Union[Sequence[float], "npt.NDArray[np.floating[Any]]"]] = None,
+    u: Optional[Union[Sequence[float], "npt.NDArray[np.floating[Any]]"]] = None,
     *,
     anchor: Optional[str] = None,
     kernel: str = "generated",
