@@ -206,3 +206,14 @@ def test_bad_spec_dicts_name_the_field(case01: kanestop.Scene) -> None:
     assert scene_info.value.problems == [("ship.mass", "-1", "finite and > 0 kg")]
     with pytest.raises(kanestop.SceneError):
         kanestop.Spec.from_dict({"base": "no-such-scene.toml"})
+
+
+def test_a_spec_file_with_rows_or_a_stray_base_dir_is_refused_in_words(tmp_path: Path, case01: kanestop.Scene) -> None:
+    spec = write_spec(tmp_path)
+    with pytest.raises(ValueError, match="is a sweep spec, whose rows come from its axes"):
+        kanestop.sweep(spec, [{"ship.mass": 5e5}])
+    # A scene file with rows is what it always was.
+    assert len(kanestop.sweep(CASE01, [{"ship.mass": 5e5}], end_time=0.1)) == 1
+    for not_a_dict in (spec, case01, kanestop.Spec.load(spec)):
+        with pytest.raises(ValueError, match="base_dir is the folder of a spec dict's base path"):
+            kanestop.sweep(not_a_dict, base_dir=tmp_path)

@@ -357,8 +357,22 @@ def _legacy_spec(spec: Mapping[str, Any], rows: Optional[Rows]) -> "Tuple[Spec, 
     return Spec.from_dict(fields), rows if rows is not None else spec.get("rows")
 
 
+def _is_spec_file(path: PathLike) -> bool:
+    """Whether the file reads as a sweep spec."""
+    try:
+        Spec.load(path)
+        return True
+    except (SpecError, SceneError):
+        return False
+
+
 def _spec(spec: SweepSpec, rows: Optional[Rows], base_dir: Optional[PathLike]) -> "Tuple[Spec, Optional[Rows]]":
     """The spec, and the rows when a scene needs them (``ValueError`` when none are given)."""
+    if base_dir is not None and not (isinstance(spec, Mapping) and "base" in spec):
+        raise ValueError(
+            "sweep: base_dir is the folder of a spec dict's base path; a spec file's base is "
+            f"relative to the file, and a {type(spec).__name__} has no base path to resolve"
+        )
     if isinstance(spec, Spec):
         return spec, rows
     if isinstance(spec, (str, os.PathLike)) and rows is None:
@@ -373,6 +387,17 @@ def _spec(spec: SweepSpec, rows: Optional[Rows], base_dir: Optional[PathLike]) -
     if isinstance(spec, (Scene, str, os.PathLike, Mapping)):
         if rows is None:
             raise ValueError("sweep: a scene needs rows=[{...}, …] (one dict of overrides per row), or give a sweep spec")
+        if isinstance(spec, (str, os.PathLike)):
+            try:
+                scene = Scene.load(spec)
+            except SceneError:
+                if _is_spec_file(spec):
+                    raise ValueError(
+                        f"sweep: {os.fspath(spec)} is a sweep spec, whose rows come from its axes and "
+                        "sampling; rows=[...] go with a scene (a Scene, a scene file or a dict of its tables)"
+                    ) from None
+                raise
+            return Spec.from_scene(scene), rows
         return Spec.from_scene(_scene(spec)), rows
     raise TypeError(
         f"sweep takes a kanestop.Spec, a spec file, a spec dict (with base) or a scene with rows, not {type(spec).__name__}"
