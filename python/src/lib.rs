@@ -106,6 +106,26 @@ impl PyScene {
         other.downcast::<PyScene>().is_ok_and(|o| o.get().inner == self.inner)
     }
 
+    /// Equal scenes hash alike (a scene is a dict key, a set member): every field's value,
+    /// a zero's sign dropped as `==` drops it.
+    fn __hash__(&self) -> u64 {
+        use std::hash::{Hash, Hasher};
+        fn feed(v: &Value, h: &mut std::collections::hash_map::DefaultHasher) {
+            match v {
+                Value::Float(x) => (x + 0.0).to_bits().hash(h),
+                Value::Table(t) => t.iter().for_each(|(k, v)| {
+                    k.hash(h);
+                    feed(v, h);
+                }),
+                Value::Array(a) => a.iter().for_each(|v| feed(v, h)),
+                other => other.to_string().hash(h),
+            }
+        }
+        let mut h = std::collections::hash_map::DefaultHasher::new();
+        feed(&self.inner.to_value(), &mut h);
+        h.finish()
+    }
+
     /// The name and the values a study most often changes, so that two scenes of one name
     /// (a scene and its overrides) read apart: `Scene("case01": 46 bodies, ship 500 t at
     /// 3 m/s, anchor 40 t, chain 15 × 1 m)`.

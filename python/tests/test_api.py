@@ -19,6 +19,10 @@ def test_scene_round_trips(case01: kanestop.Scene) -> None:
     assert kanestop.Scene.from_dict(d) == case01
     assert kanestop.Scene.from_toml(case01.to_toml()) == case01
     assert pickle.loads(pickle.dumps(case01)) == case01
+    # Hashable, equal scenes alike: a dict key, a set member.
+    heavy = case01.with_overrides({"ship.mass": 6e5})
+    assert hash(pickle.loads(pickle.dumps(case01))) == hash(case01)
+    assert len({case01, kanestop.Scene.from_dict(d), heavy}) == 2 and {case01: 1}[kanestop.Scene.from_dict(d)] == 1
     assert case01.name == "case01"
     assert repr(case01) == 'Scene("case01": 46 bodies, ship 500 t at 3 m/s, anchor 40 t, chain 15 × 1 m)'
     heavier = case01.with_overrides({"ship.mass": 6e5, "chain.elements": 20})
