@@ -188,3 +188,41 @@ fn accuracy_study_compares_methods_with_a_tight_reference() {
     let svg = std::fs::read_to_string(&files[2]).unwrap();
     assert!(svg.starts_with("<svg") && svg.contains("Error against run time"));
 }
+
+/// A setting refused before its first step (RK4 above the stability limit) is a row of its
+/// own, `refused`, with no error to compare and its CPU time (the start-up analysis): no
+/// panic, the others judged by CPU time still; with the paper's RK4 at 2 ms refused too,
+/// the table says there is nothing to match.
+#[test]
+fn an_accuracy_study_reports_refused_settings_and_an_unmatched_base() {
+    use kanestop_runtime::scene::Method;
+    use kanestop_workflow::accuracy;
+    let mut scene = CASES[2].scene();
+    // Seabed ×100: RK4's limit at t = 0 falls to about 8 ms (tests/stress_scenes.rs).
+    scene.environment.seabed_stiffness *= 100.0;
+    let plan = [(Method::Rk4, 0.05, 1e-6), (Method::Rk4, 0.002, 1e-6), (Method::Dp5, 0.02, 1e-4)];
+    let kernel =
+        |m: &Model| -> Box<dyn kanestop_runtime::kernel::Kernel> { Box::new(GeneratedKernel::new(&m.chain).unwrap()) };
+    let s = accuracy::study(&scene, &plan, accuracy::DEFAULT_ATOL_RATIO, &kernel, 1, &|_| {}).unwrap();
+    let refused = &s.rows[0];
+    assert_eq!((refused.status.as_str(), refused.rhs_evaluations), ("refused", 0), "{refused:?}");
+    assert!(refused.stopping_time_error.is_none() && refused.trajectory_error.is_none(), "{refused:?}");
+    assert!(refused.cpu_time.is_some() && !refused.best, "{refused:?}");
+    let table = accuracy::table(&s);
+    assert!(table.contains("cheaper in CPU time"), "{table}");
+    assert!(table.contains("matched: the paper's RK4 at dt = 2 ms errs by"), "{table}");
+    let unmatched = accuracy::AccuracyStudy {
+        rows: vec![s.rows[0].clone(), {
+            let mut r = s.rows[0].clone();
+            r.setting = 0.002;
+            r
+        }],
+        ..s
+    };
+    assert!(
+        accuracy::table(&unmatched)
+            .contains("matched: none: the paper's RK4 at dt = 2 ms did not stop the ship (refused)"),
+        "{}",
+        accuracy::table(&unmatched)
+    );
+}
