@@ -375,7 +375,14 @@ pub fn sensitivity(args: &SensitivityArgs) -> Result<Exit> {
     let probes = sensitivity::probes(&scene, args.step);
     let kernel = kernels::factory(KernelChoice::Generated);
     let bar = progress::bar(sensitivity::run_count(&probes), "runs");
-    let study = sensitivity::study(&scene, args.step, &probes, &kernel, args.jobs, &|| bar.inc(1))?;
+    let study = match sensitivity::study(&scene, args.step, &probes, &kernel, args.jobs, &|| bar.inc(1)) {
+        Err(e @ kanestop_workflow::Error::BaseRun { refused, .. }) => {
+            bar.finish_and_clear();
+            eprintln!("error: {e}");
+            return Ok(if refused { Exit::BadInput } else { Exit::NumericalFailure });
+        }
+        study => study?,
+    };
     bar.finish_and_clear();
     print!("{}", sensitivity::table(&study));
     if !sigmas.is_empty() {

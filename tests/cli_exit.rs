@@ -164,6 +164,33 @@ fn exit_2_a_step_refused_before_the_run_writes_nothing() {
 }
 
 #[test]
+fn a_sensitivity_study_whose_base_run_fails_says_so_and_runs_no_probe() {
+    // Regression: every probe ran and the table was all dashes, exit 0, without a word why;
+    // the progress line then read 73/73 runs.
+    let dir = temp_dir("sensitivity-base");
+    let out_dir = dir.join("sens");
+    let out =
+        kanestop().args(["report", "sensitivity"]).arg(refused(&dir)).arg("--out").arg(&out_dir).output().unwrap();
+    let (stdout, stderr) = text(&out);
+    assert_eq!(out.status.code(), Some(2), "{stdout}{stderr}");
+    assert!(stderr.contains("the base run failed, so there is nothing to take differences from"), "{stderr}");
+    assert!(stderr.contains("stability limit") && stderr.contains("progress  1/"), "{stderr}");
+    assert!(!out_dir.exists(), "nothing written");
+    // Failed on the way (not refused): exit 3, as `run` exits.
+    let failing = scene(&dir, "gravity-only", |t| {
+        t.replace("water = true", "water = false")
+            .replace("seabed = true", "seabed = false")
+            .replace("end_time = 0.05", "end_time = 10.0")
+            .replace("dt = 0.0005", "dt = 0.002")
+            .replace("stop_when_ship_stops = true", "stop_when_ship_stops = false")
+    });
+    let out = kanestop().args(["report", "sensitivity"]).arg(&failing).arg("--out").arg(&out_dir).output().unwrap();
+    let (stdout, stderr) = text(&out);
+    assert_eq!(out.status.code(), Some(3), "{stdout}{stderr}");
+    assert!(stderr.contains("numerical failure at t ="), "{stderr}");
+}
+
+#[test]
 fn run_plot_of_the_stress_scene_dt_too_large_does_not_panic() {
     // Regression: `run --plot` on scenes/stress/dt_too_large.toml panicked.
     let dir = temp_dir("stress-plot");

@@ -106,6 +106,14 @@ pub enum Error {
     /// The accuracy study's reference run did not stop the ship.
     #[error("the reference run did not stop the ship: {0}")]
     NoReference(String),
+    /// The sensitivity study's base run failed (or was refused before its first step).
+    #[error("the base run failed, so there is nothing to take differences from:\n{message}")]
+    BaseRun {
+        /// Its diagnostic.
+        message: String,
+        /// Refused before its first step (bad input) rather than failed on the way.
+        refused: bool,
+    },
 }
 
 /// A spec's problem in words: `field = value: expected`; without a value (the spec did not

@@ -50,10 +50,12 @@ impl Progress {
 
     /// Clears the bar; off a terminal, the last line (every unit done) if not yet printed.
     pub fn finish_and_clear(&self) {
+        // Read before finishing: indicatif's finish sets the position to the length, and
+        // work that stopped early (a sensitivity study's failed base run) did not do it all.
+        let (pos, len) = (self.bar.position(), self.bar.length().unwrap_or(0));
         self.bar.finish_and_clear();
         if let Some(last) = &self.plain {
             let mut last = last.lock().unwrap_or_else(|e| e.into_inner());
-            let (pos, len) = (self.bar.position(), self.bar.length().unwrap_or(0));
             if last.0 < pos {
                 eprintln!("{}", line(pos, len.max(1), &self.unit, self.start.elapsed().as_secs_f64()));
                 *last = (pos, Instant::now());

@@ -232,7 +232,17 @@ pub fn study(
     done: &(dyn Fn() + Sync),
 ) -> Result<Study> {
     check_step(step)?;
-    let scenes: Vec<&Scene> = std::iter::once(scene).chain(probes.iter().flat_map(|p| &p.scenes)).collect();
+    // The base first: when it fails, no probe is worth running.
+    let base_failed = |message: String, refused: bool| crate::Error::BaseRun { message, refused };
+    let model = Model::new(scene).map_err(|e| base_failed(e.to_string(), true))?;
+    let result = simulate::run(&model, kernel(&model));
+    let summary = RunSummary::of(&model, &result);
+    done();
+    if let Some(f) = &summary.failure {
+        return Err(base_failed(f.message.clone(), result.steps == 0));
+    }
+    let base = outputs(&summary);
+    let scenes: Vec<&Scene> = probes.iter().flat_map(|p| &p.scenes).collect();
     let runs = parallel::map_jobs(jobs, &scenes, |s| {
         let r = Model::new(s).map_err(|e| e.to_string()).map(|model| {
             let result = simulate::run(&model, kernel(&model));
@@ -241,8 +251,7 @@ pub fn study(
         done();
         r
     })?;
-    let base = runs[0].clone().map_err(crate::Error::NoReference)?;
-    let mut next = 1;
+    let mut next = 0;
     let mut rows: Vec<Sensitivity> = probes
         .iter()
         .map(|probe| {
@@ -285,7 +294,7 @@ pub fn study(
     rows.sort_by(|a, b| {
         b.stopping_time.map(f64::abs).unwrap_or(-1.0).total_cmp(&a.stopping_time.map(f64::abs).unwrap_or(-1.0))
     });
-    Ok(Study { scene: scene.meta.name.clone(), step, base, rows, runs: scenes.len() })
+    Ok(Study { scene: scene.meta.name.clone(), step, base, rows, runs: 1 + scenes.len() })
 }
 
 /// The first-order standard deviation of each output, from each parameter's σ of ln p
