@@ -174,7 +174,10 @@ fn a_sensitivity_study_whose_base_run_fails_says_so_and_runs_no_probe() {
     let (stdout, stderr) = text(&out);
     assert_eq!(out.status.code(), Some(2), "{stdout}{stderr}");
     assert!(stderr.contains("the base run failed, so there is nothing to take differences from"), "{stderr}");
-    assert!(stderr.contains("stability limit") && stderr.contains("progress  1/"), "{stderr}");
+    assert!(
+        stderr.contains("stability limit") && stderr.contains("progress  1/") && !stderr.contains("ETA"),
+        "{stderr}"
+    );
     assert!(!out_dir.exists(), "nothing written");
     // Failed on the way (not refused): exit 3, as `run` exits.
     let failing = scene(&dir, "gravity-only", |t| {

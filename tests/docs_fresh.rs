@@ -28,9 +28,9 @@ fn render(source: &str) -> String {
         "# Scene files\n\n<!-- Rendered from runtime/src/scene.rs by tests/docs_fresh.rs; edit the doc comments there. -->\n\n\
          Scenes are TOML. Every field is required unless marked optional, unknown keys are\n\
          rejected, and every value is checked (finite, in range) before a run; an error names the\n\
-         file, the field, the value and the valid range. A size, mass, load, stiffness or\n\
-         coefficient is at most 1e15 in its SI unit (far beyond any mooring; larger values\n\
-         overflow the equations' products). The paper's 19 cases are in\n\
+         file, the field, the value and the valid range. Every positive or non-negative\n\
+         quantity but `solver.end_time` is at most 1e15 in its SI unit (far beyond any\n\
+         mooring; larger values overflow the equations' products). The paper's 19 cases are in\n\
          `scenes/paper/`, generated from `runtime/src/paper.rs`.\n\n\
          A scene can be a few lines over another: `extends = \"base.toml\"` (a path relative to the\n\
          file; chains allowed) takes every table of the base and lays the file's own over it, key\n\

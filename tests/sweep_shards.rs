@@ -321,8 +321,25 @@ fn a_merge_refuses_edited_shard_files_without_a_panic() {
     let o = with_spec(&message);
     assert!(stderr(&o).contains("row 4 (shards-004): its message \"fine\", not the plan's"), "{}", stderr(&o));
     assert!(!dir.join("m/sweep.csv").exists(), "a refused merge writes nothing");
+    let empty = edited("empty.json", &|v| {
+        v["rows_total"] = 0.into();
+        v["row_indices"] = serde_json::json!([]);
+        v["rows"] = serde_json::json!([]);
+    });
+    let o = with_spec(&empty);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("0 rows in all, not the plan's"), "{}", stderr(&o));
+    let inputs = edited("inputs.json", &|v| v["rows"][1]["row"]["label"] = "anchor.mass=1".into());
+    assert!(stderr(&with_spec(&inputs)).contains("row 1 (shards-001): its inputs \"anchor.mass=1\""));
+    // The file as written merges: the invalid row gives exit 3, as the local run.
     let o = with_spec(&out.join("shards/shard-0-of-1.json"));
-    assert!(o.status.code() != Some(2), "{}", stderr(&o));
+    assert_eq!(o.status.code(), Some(3), "{}", stderr(&o));
+    assert!(dir.join("m/sweep.csv").exists());
+    // --resume checks the rows it keeps before running the rest.
+    std::fs::copy(&scene, out.join("shards/shard-0-of-1.json")).unwrap();
+    let o = run(&["sweep", s(&spec_path), "--out", s(&out), "--shard", "0/1", "--resume"], &[]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("row 0 (shards-000): its scene file, not the plan's"), "{}", stderr(&o));
 }
 
 #[test]

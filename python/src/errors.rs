@@ -58,9 +58,10 @@ pyo3::create_exception!(
     SpecError,
     PyValueError,
     "A sweep spec that could not be read or is not valid (docs/sweeps.md).\n\n`field` names the spec's field \
-     (`axis[0].range.steps`, `uncertain[1].sd`, `checks.safety_factor`; in a dict the key, e.g. \
-     `sampling.samples`; `(file)` or `(spec)` when the TOML \
-     or the dict does not have the spec's shape, e.g. an unknown key), `value` is its value as given, \
+     (`axis[0].range.steps`, `uncertain[1].sd`, `checks.safety_factor`; in a dict the key with its \
+     position, e.g. `sampling.samples`, `axis[1].range.steps`, or an unknown key itself, `axes`; \
+     `(file)` when a file's TOML does not parse or has an unknown key, `(spec)` when a dict is no \
+     spec at all), `value` is its value as given, \
      `expected` the valid range, `file` the spec; `str(e)` is the command line's message."
 );
 

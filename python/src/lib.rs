@@ -37,7 +37,7 @@ use errors::{scene_error, EvalError, ModelError, SceneError, SpecError};
 #[pyclass(module = "kanestop._kanestop", name = "Scene", frozen)]
 #[derive(Clone)]
 pub struct PyScene {
-    inner: Scene,
+    pub(crate) inner: Scene,
 }
 
 #[pymethods]
@@ -67,7 +67,7 @@ impl PyScene {
     /// A scene from TOML text. Raises SceneError.
     #[staticmethod]
     #[pyo3(signature = (text, name = "<string>"))]
-    fn from_toml(py: Python<'_>, text: &str, name: &str) -> PyResult<Self> {
+    pub(crate) fn from_toml(py: Python<'_>, text: &str, name: &str) -> PyResult<Self> {
         let inner = Scene::from_toml(text, name).map_err(|e| scene_error(py, e))?;
         Ok(PyScene { inner })
     }
@@ -148,6 +148,18 @@ impl PyScene {
 #[pyfunction]
 fn _scene_from_toml(py: Python<'_>, text: &str, name: &str) -> PyResult<PyScene> {
     PyScene::from_toml(py, text, name)
+}
+
+/// The top-level keys of a TOML file, or None when it cannot be read or parsed: tells a
+/// sweep spec (`base`, `axis`) from a scene file for `sweep(path, rows)`'s message.
+#[pyfunction]
+fn _toml_keys(path: PathBuf) -> Option<Vec<String>> {
+    let meta = std::fs::metadata(&path).ok()?;
+    if !meta.is_file() || meta.len() > kanestop_runtime::scene::MAX_SCENE_BYTES {
+        return None;
+    }
+    let table: toml::Table = std::fs::read_to_string(&path).ok()?.parse().ok()?;
+    Some(table.keys().cloned().collect())
 }
 
 /// (dotted path, value) pairs of a dict of overrides.
@@ -333,8 +345,16 @@ fn interruptible<T: Send>(py: Python<'_>, work: impl FnOnce(&AtomicBool) -> Opti
                 Ok(Some(out)) => return Ok(out),
                 Ok(None) => return Err(PyValueError::new_err("the run was cancelled")),
                 Err(mpsc::RecvTimeoutError::Disconnected) => {
-                    let _ = py.allow_threads(|| worker.join());
-                    return Err(PyValueError::new_err("the run's thread panicked: please report it"));
+                    let panic = py.allow_threads(|| worker.join()).err();
+                    let what = panic
+                        .as_deref()
+                        .and_then(|p| {
+                            p.downcast_ref::<&str>()
+                                .map(|s| s.to_string())
+                                .or_else(|| p.downcast_ref::<String>().cloned())
+                        })
+                        .unwrap_or_default();
+                    return Err(PyValueError::new_err(format!("the run's thread panicked ({what}): please report it")));
                 }
                 Err(mpsc::RecvTimeoutError::Timeout) => {
                     if let Err(e) = py.check_signals() {
@@ -406,6 +426,8 @@ fn _kanestop(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyScene>()?;
     m.add_class::<PyHistory>()?;
     m.add_function(wrap_pyfunction!(_scene_from_toml, m)?)?;
+    m.add_function(wrap_pyfunction!(_toml_keys, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep::_spec_from_parts, m)?)?;
     m.add_function(wrap_pyfunction!(_run, m)?)?;
     m.add_function(wrap_pyfunction!(eval, m)?)?;
     m.add_class::<sweep::PySpec>()?;

@@ -115,6 +115,28 @@ impl PySpec {
     fn __repr__(&self) -> String {
         format!("Spec({:?}, {} rows, base {:?})", self.inner.name, self.inner.rows(), self.inner.base.meta.name)
     }
+
+    /// Pickles as its own fields (`Spec::to_table`) and its base scene's TOML, checked again
+    /// when read back: a spec travels to worker processes as a scene does.
+    fn __reduce__(&self, py: Python<'_>) -> PyResult<(PyObject, (String, String, String, String))> {
+        let f = py.import("kanestop._kanestop")?.getattr("_spec_from_parts")?.unbind();
+        let fields = toml::to_string(&self.inner.to_table()).map_err(|e| PyValueError::new_err(e.to_string()))?;
+        let base = &self.inner.base;
+        Ok((f, (fields, base.to_toml(), base.meta.name.clone(), self.inner.file.display().to_string())))
+    }
+
+    fn __eq__(&self, other: &Bound<'_, PyAny>) -> bool {
+        other.downcast::<PySpec>().is_ok_and(|o| o.get().inner == self.inner)
+    }
+}
+
+/// Unpickles a spec (`Spec.__reduce__`): its fields over its base scene, named by its file.
+#[pyfunction]
+pub fn _spec_from_parts(py: Python<'_>, fields: &str, base: &str, base_name: &str, file: &str) -> PyResult<PySpec> {
+    let scene = PyScene::from_toml(py, base, base_name)?.inner;
+    let inner =
+        Spec::from_toml(fields, Path::new(file), Path::new(""), Some(scene)).map_err(|e| workflow_error(py, e))?;
+    Ok(PySpec { inner })
 }
 
 fn inputs_dict(py: Python<'_>, inputs: &[(String, Value)]) -> PyResult<PyObject> {

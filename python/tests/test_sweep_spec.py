@@ -212,8 +212,25 @@ def test_a_spec_file_with_rows_or_a_stray_base_dir_is_refused_in_words(tmp_path:
     spec = write_spec(tmp_path)
     with pytest.raises(ValueError, match="is a sweep spec, whose rows come from its axes"):
         kanestop.sweep(spec, [{"ship.mass": 5e5}])
+    # Told apart by its keys, a spec that is itself invalid too.
+    bad = tmp_path / "bad.toml"
+    bad.write_text('base = "base.toml"\n[[axis]]\npath = "ship.mass"\nvalues = []\n')
+    with pytest.raises(ValueError, match="is a sweep spec, whose rows come from its axes"):
+        kanestop.sweep(bad, [{"ship.mass": 5e5}])
     # A scene file with rows is what it always was.
     assert len(kanestop.sweep(CASE01, [{"ship.mass": 5e5}], end_time=0.1)) == 1
     for not_a_dict in (spec, case01, kanestop.Spec.load(spec)):
         with pytest.raises(ValueError, match="base_dir is the folder of a spec dict's base path"):
             kanestop.sweep(not_a_dict, base_dir=tmp_path)
+
+
+def test_a_spec_pickles_and_compares(tmp_path: Path) -> None:
+    """A spec travels to worker processes as a scene does: its fields and base scene."""
+    import pickle
+
+    spec = kanestop.Spec.load(write_spec(tmp_path))
+    back = pickle.loads(pickle.dumps(spec))
+    assert back == spec and back is not spec and back.file == spec.file
+    assert back.inputs() == spec.inputs() and len(back) == len(spec) and back.base == spec.base
+    other = kanestop.Spec.from_dict({"base": spec.base, "axis": [{"path": "ship.mass", "values": [5e5]}]})
+    assert other != spec and pickle.loads(pickle.dumps(other)) == other

@@ -19,7 +19,7 @@ use std::path::{Path, PathBuf};
 use kanestop_runtime::kernel::Kernel;
 use kanestop_runtime::model::Model;
 use kanestop_runtime::scene::{Method, Scene};
-use kanestop_runtime::simulate::{self, RunResult, Stop};
+use kanestop_runtime::simulate::{self, FailureKind, RunResult, Stop};
 use serde::{Deserialize, Serialize};
 
 use crate::output::write_atomically;
@@ -207,7 +207,7 @@ pub fn study(
         let status = match &r.stop {
             Stop::ShipStopped => "stopped".to_string(),
             Stop::EndTime => "end time".to_string(),
-            Stop::Failed(_) if r.steps == 0 => "refused".to_string(),
+            Stop::Failed(f) if matches!(f.kind, FailureKind::StepAboveLimit { .. }) => "refused".to_string(),
             Stop::Failed(f) => format!("failed at {:.3} s", f.t),
         };
         // Only a stopped run is compared at the stop (a run refused before its first step
@@ -297,6 +297,12 @@ fn e(v: Option<f64>) -> String {
     v.map(|v| format!("{v:.2e}")).unwrap_or_else(|| "—".into())
 }
 
+/// Whether every run that made a step has its CPU time (a run refused before its first step
+/// has none, and no cost to compare).
+fn by_cpu_time(s: &AccuracyStudy) -> bool {
+    s.rows.iter().filter(|r| r.rhs_evaluations > 0).all(|r| r.cpu_time.is_some())
+}
+
 /// The study as a terminal table.
 pub fn table(s: &AccuracyStudy) -> String {
     let mut out = format!(
@@ -340,7 +346,7 @@ pub fn table(s: &AccuracyStudy) -> String {
             if r.best { "*" } else { "" }
         ));
     }
-    let by = if s.rows.iter().all(|r| r.cpu_time.is_some()) { "CPU time" } else { "wall time (no CPU time here)" };
+    let by = if by_cpu_time(s) { "CPU time" } else { "wall time (no CPU time here)" };
     out.push_str(&format!("best: * = no other run is both more accurate in stopping time and cheaper in {by}\n"));
     if let Some((base, runs)) = matched(s, Method::Rk4, 0.002) {
         let target = base.stopping_time_error.unwrap_or(f64::NAN);
@@ -412,7 +418,7 @@ pub fn write(s: &AccuracyStudy, dir: &Path) -> Result<Vec<PathBuf>> {
 /// The work–precision chart: stopping-time error (and trajectory error, thin) against CPU
 /// time (wall time where a run has none), log–log, one colour per method.
 pub fn work_precision(s: &AccuracyStudy) -> Result<String> {
-    let cpu = s.rows.iter().all(|r| r.cpu_time.is_some());
+    let cpu = by_cpu_time(s);
     let mut curves = Vec::new();
     for (color, method) in Method::ALL.into_iter().enumerate() {
         for (thin, pick) in [

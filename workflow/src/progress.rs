@@ -57,7 +57,9 @@ impl Progress {
         if let Some(last) = &self.plain {
             let mut last = last.lock().unwrap_or_else(|e| e.into_inner());
             if last.0 < pos {
-                eprintln!("{}", line(pos, len.max(1), &self.unit, self.start.elapsed().as_secs_f64()));
+                // The work is over: no time left to estimate, even if it stopped early.
+                let done = line(pos, len.max(1), &self.unit, self.start.elapsed().as_secs_f64());
+                eprintln!("{}", done.split(", ETA").next().unwrap_or(&done));
                 *last = (pos, Instant::now());
             }
         }

@@ -13,7 +13,7 @@
 
 use kanestop_runtime::model::Model;
 use kanestop_runtime::scene::{Scene, SceneError};
-use kanestop_runtime::simulate;
+use kanestop_runtime::simulate::{self, FailureKind, Stop};
 use serde::Serialize;
 use toml::Value;
 
@@ -239,7 +239,8 @@ pub fn study(
     let summary = RunSummary::of(&model, &result);
     done();
     if let Some(f) = &summary.failure {
-        return Err(base_failed(f.message.clone(), result.steps == 0));
+        let refused = matches!(&result.stop, Stop::Failed(f) if matches!(f.kind, FailureKind::StepAboveLimit { .. }));
+        return Err(base_failed(f.message.clone(), refused));
     }
     let base = outputs(&summary);
     let scenes: Vec<&Scene> = probes.iter().flat_map(|p| &p.scenes).collect();

@@ -27,7 +27,7 @@ import numpy as np
 import numpy.typing as npt
 
 from ._kanestop import MAX_JOBS, EvalError, ModelError, Scene, SceneError, Spec, SpecError, __version__
-from ._kanestop import _History, _run, _sweep
+from ._kanestop import _History, _run, _sweep, _toml_keys
 from ._kanestop import eval as _eval
 
 __all__ = [
@@ -358,20 +358,18 @@ def _legacy_spec(spec: Mapping[str, Any], rows: Optional[Rows]) -> "Tuple[Spec, 
 
 
 def _is_spec_file(path: PathLike) -> bool:
-    """Whether the file reads as a sweep spec."""
-    try:
-        Spec.load(path)
-        return True
-    except (SpecError, SceneError):
-        return False
+    """Whether the file has a sweep spec's keys (``base``, ``axis``), valid or not."""
+    keys = _toml_keys(path)
+    return keys is not None and bool({"base", "axis"} & set(keys))
 
 
 def _spec(spec: SweepSpec, rows: Optional[Rows], base_dir: Optional[PathLike]) -> "Tuple[Spec, Optional[Rows]]":
     """The spec, and the rows when a scene needs them (``ValueError`` when none are given)."""
     if base_dir is not None and not (isinstance(spec, Mapping) and "base" in spec):
+        what = "this dict has no base" if isinstance(spec, Mapping) else f"a {type(spec).__name__} has none to resolve"
         raise ValueError(
-            "sweep: base_dir is the folder of a spec dict's base path; a spec file's base is "
-            f"relative to the file, and a {type(spec).__name__} has no base path to resolve"
+            "sweep: base_dir is the folder of a spec dict's base path (a spec file's base is "
+            f"relative to the file); {what}"
         )
     if isinstance(spec, Spec):
         return spec, rows

@@ -23,7 +23,8 @@ class SpecError(ValueError):
     """A sweep spec that could not be read or is not valid."""
 
     field: str
-    """The spec's field, e.g. ``axis[0].range.steps``; ``(file)``/``(spec)`` for its shape."""
+    """The spec's field, e.g. ``axis[0].range.steps`` (an unknown key of a dict: the key,
+    ``axis[0].valuez``); ``(file)`` for a file's TOML that does not parse or has an unknown key."""
     value: str
     expected: str
     file: str
@@ -86,8 +87,12 @@ class Spec:
     def inputs(self) -> List[Dict[str, Any]]:
         """Every row's inputs in spec order."""
     def __len__(self) -> int: ...
+    def __reduce__(self) -> Tuple[Callable[[str, str, str, str], "Spec"], Tuple[str, str, str, str]]: ...
+    def __eq__(self, other: object) -> bool: ...
 
 def _scene_from_toml(text: str, name: str) -> Scene: ...
+def _spec_from_parts(fields: str, base: str, base_name: str, file: str) -> Spec: ...
+def _toml_keys(path: Union[str, "os.PathLike[str]"]) -> Optional[List[str]]: ...
 class _History:
     """A run's time history, still in Rust (``kanestop.Result`` converts it on first use)."""
 

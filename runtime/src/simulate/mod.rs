@@ -101,10 +101,7 @@ pub fn run_cancellable(model: &Model, kernel: Box<dyn Kernel>, cancel: &AtomicBo
     let started = stepper.start();
     result.stability = stepper.stability();
     if let Err(f) = started {
-        // Refused before the first step: what the start-up analysis cost is its cost.
         result.stop = Stop::Failed(f);
-        result.wall_time = start.elapsed();
-        result.cpu_time = cpu::since(cpu_start);
         return Ok(result);
     }
     result.energy0 = stepper.energy0();

@@ -413,12 +413,13 @@ impl<'a> Stepper<'a> {
     fn check(&mut self, obs: &Observation) -> Result<(), FailureKind> {
         let limit = self.model.scene.solver.max_energy_drift;
         let checked = health::energy_drift(obs.energy.balance(), self.energy0, limit);
-        // The drift that failed the run is its largest too (NaN included), as the failure says.
+        // The drift that failed the run is its largest too, as the failure says (when it is
+        // finite: the summary's number is a number; a NaN or infinite one is in the failure).
         let drift = match checked {
             Ok(drift) | Err(FailureKind::EnergyRunaway { drift, .. }) => drift,
             Err(_) => self.max_energy_drift,
         };
-        if drift.is_nan() || drift > self.max_energy_drift {
+        if drift.is_finite() && drift > self.max_energy_drift {
             self.max_energy_drift = drift;
         }
         checked?;

@@ -33,35 +33,43 @@ impl Merged {
     /// names the sweep but a file's rows are only as good as the file: this refuses rows
     /// edited, or copied from another sweep, naming the row and its file.
     pub fn check_rows(&self, plan: &[PlannedRow]) -> Result<()> {
-        let scenes: std::collections::HashMap<&str, &str> =
-            self.scenes.iter().map(|(name, text)| (name.as_str(), text.as_str())).collect();
-        let problem = |i: usize, what: String| {
+        let problem = |file: &Path, what: String| {
             Err(Error::Shard(ShardError::File {
-                file: self.sources[i].clone(),
-                problem: format!(
-                    "row {i} ({}): {what}, not the plan's: the file was edited or holds another sweep's rows",
-                    self.rows[i].name
-                ),
+                file: file.to_path_buf(),
+                problem: format!("{what}, not the plan's: the file was edited or holds another sweep's rows"),
             }))
         };
         if plan.len() != self.rows.len() {
-            return problem(0, format!("{} rows in all", self.rows.len()));
+            return problem(&self.files[0], format!("{} rows in all", self.rows.len()));
         }
+        let scenes: std::collections::HashMap<&str, &str> =
+            self.scenes.iter().map(|(name, text)| (name.as_str(), text.as_str())).collect();
         for (i, (row, planned)) in self.rows.iter().zip(plan).enumerate() {
-            if row.name != planned.name {
-                return problem(i, format!("its name {:?}", row.name));
-            }
-            if scenes.get(row.name.as_str()).copied() != super::scene_file(planned).as_deref() {
-                return problem(i, "its scene file".into());
-            }
-            if let Err(why) = &planned.scene {
-                if row.message != super::one_line(why) {
-                    return problem(i, format!("its message {:?}", row.message));
-                }
+            if let Some(what) = differs(row, scenes.get(row.name.as_str()).copied(), planned) {
+                return problem(&self.sources[i], what);
             }
         }
         Ok(())
     }
+}
+
+/// What of a done row (its scene file `scene`, if it has one) is not `planned`'s, in words
+/// (`row 3 (name-003): its scene file`), or None: its name, its inputs, its scene file and, for
+/// a row whose inputs give no scene, its message.
+pub fn differs(row: &SweepRow, scene: Option<&str>, planned: &PlannedRow) -> Option<String> {
+    let what = if row.name != planned.name {
+        format!("its name {:?}", row.name)
+    } else if row.label != super::label(&planned.inputs) {
+        format!("its inputs {:?}", row.label)
+    } else if scene != super::scene_file(planned).as_deref() {
+        "its scene file".into()
+    } else {
+        match &planned.scene {
+            Err(why) if row.message != super::one_line(why) => format!("its message {:?}", row.message),
+            _ => return None,
+        }
+    };
+    Some(format!("row {} ({}): {what}", planned.index, planned.name))
 }
 
 /// The shard files named by `paths`: a folder gives its shard files

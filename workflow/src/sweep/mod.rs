@@ -93,7 +93,7 @@ pub struct SweepRow {
     pub message: String,
 }
 
-fn label(inputs: &[(String, Value)]) -> String {
+pub(crate) fn label(inputs: &[(String, Value)]) -> String {
     inputs.iter().map(|(k, v)| format!("{k}={}", fmt_value(v))).collect::<Vec<_>>().join(" ")
 }
 

@@ -48,7 +48,9 @@ impl Distribution {
     /// The value at cumulative probability `u` in (0, 1).
     pub fn quantile(self, u: f64) -> f64 {
         match self {
-            // Weighted, not low + u·(high − low): finite for bounds near ±f64::MAX too.
+            // low + u·(high − low), bit for bit as before (the plan hash of a sweep started
+            // with an earlier build holds); weighted where the width overflows.
+            Distribution::Uniform { low, high } if (high - low).is_finite() => low + u * (high - low),
             Distribution::Uniform { low, high } => (1.0 - u) * low + u * high,
             Distribution::Normal { mean, sd } => mean + sd * inverse_normal(u),
             Distribution::Lognormal { median, sigma } => median * (sigma * inverse_normal(u)).exp(),

@@ -213,6 +213,15 @@ impl ShardRun {
                     second_hash: id.plan_hash.clone(),
                 }));
             }
+            // Kept rows are the plan's, checked now rather than at the merge after the rest ran.
+            if let Some(what) =
+                old.rows.iter().find_map(|r| super::merge::differs(&r.row, r.scene.as_deref(), &plan[r.row.index]))
+            {
+                return Err(Error::Shard(ShardError::File {
+                    file: path,
+                    problem: format!("{what}, not the plan's: the file was edited or holds another sweep's rows"),
+                }));
+            }
             file.rows = old.rows.into_iter().filter(|r| !r.row.status.is_problem()).collect();
         }
         let kept = file.rows.len();

@@ -99,7 +99,7 @@ pub struct Uncertain {
 }
 
 /// A checked sweep spec.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Spec {
     /// The spec file.
     pub file: PathBuf,
@@ -273,6 +273,52 @@ impl Spec {
         let name = raw.name.unwrap_or(stem);
         check_name(&name).map_err(|expected| bad(file, "name", format!("{name:?}"), expected))?;
         Ok(Spec { file: file.to_path_buf(), name, base, axes, sampling, uncertain, checks: raw.checks })
+    }
+
+    /// The spec's own fields as a spec file's table, without `base` (the scene, with
+    /// `[solver]` and `[set]` already applied, is [`Spec::base`]): `name`, every axis as its
+    /// values, `sampling`, `uncertain` and `checks`. `Spec::from_table` of it with the base
+    /// gives the spec back (Python pickles a spec so).
+    pub fn to_table(&self) -> toml::Table {
+        let mut t = toml::Table::new();
+        t.insert("name".into(), Value::String(self.name.clone()));
+        let axes = self.axes.iter().map(|a| {
+            let mut axis = toml::Table::new();
+            axis.insert("path".into(), Value::String(a.path.clone()));
+            axis.insert("values".into(), Value::Array(a.values.clone()));
+            Value::Table(axis)
+        });
+        t.insert("axis".into(), Value::Array(axes.collect()));
+        if let Some((method, samples, seed)) = self.sampling {
+            let method = match method {
+                Method::Random => "random",
+                Method::LatinHypercube => "latin-hypercube",
+            };
+            let mut sampling = toml::Table::new();
+            sampling.insert("method".into(), Value::String(method.into()));
+            sampling.insert("samples".into(), Value::Integer(samples as i64));
+            sampling.insert("seed".into(), Value::Integer(seed as i64));
+            t.insert("sampling".into(), Value::Table(sampling));
+        }
+        let uncertain = self.uncertain.iter().map(|u| {
+            let (name, params) = match u.distribution {
+                Distribution::Uniform { low, high } => ("uniform", [("low", low), ("high", high)]),
+                Distribution::Normal { mean, sd } => ("normal", [("mean", mean), ("sd", sd)]),
+                Distribution::Lognormal { median, sigma } => ("lognormal", [("median", median), ("sigma", sigma)]),
+            };
+            let mut entry = toml::Table::new();
+            entry.insert("path".into(), Value::String(u.path.clone()));
+            entry.insert("distribution".into(), Value::String(name.into()));
+            for (k, v) in params {
+                entry.insert(k.into(), Value::Float(v));
+            }
+            Value::Table(entry)
+        });
+        t.insert("uncertain".into(), Value::Array(uncertain.collect()));
+        if let Some(checks) = &self.checks {
+            t.insert("checks".into(), Value::try_from(checks).expect("design checks are optional numbers"));
+        }
+        t
     }
 
     /// Number of rows: the grid's size times the samples.
@@ -549,6 +595,22 @@ mod tests {
         let e = spec("from = 10.0, to = 20.0, steps = 3, scale = \"log\"").unwrap_err().to_string();
         assert!(e.contains("axis[0].values = 14.142135623730"), "{e}");
         assert!(e.contains("whole numbers: chain.elements is an integer field"), "{e}");
+    }
+
+    #[test]
+    fn a_spec_s_table_over_its_base_gives_the_spec_back() {
+        let text = "name = \"all\"\n[solver]\nend_time = 1.0\n[[axis]]\npath = \"chain.elements\"\nvalues = [10, 12]\n\
+                    [[axis]]\npath = \"ship.mass\"\nrange = { from = 4e5, to = 6e5, steps = 3, scale = \"log\" }\n\
+                    [sampling]\nmethod = \"latin-hypercube\"\nsamples = 4\nseed = 7\n\
+                    [[uncertain]]\npath = \"anchor.mass\"\ndistribution = \"uniform\"\nlow = 3e4\nhigh = 5e4\n\
+                    [[uncertain]]\npath = \"initial.ship_speed\"\ndistribution = \"normal\"\nmean = 3.0\nsd = 0.1\n\
+                    [[uncertain]]\npath = \"environment.seabed_friction\"\ndistribution = \"lognormal\"\nmedian = 0.3\nsigma = 0.2\n\
+                    [checks]\nmax_stopping_distance = 40.0\nsafety_factor = 1.5\n";
+        let spec = Spec::from_toml(text, Path::new("all.toml"), Path::new(""), Some(case01())).unwrap();
+        let back =
+            Spec::from_table(spec.to_table(), Path::new("all.toml"), Path::new(""), Some(spec.base.clone())).unwrap();
+        assert_eq!(back, spec);
+        assert_eq!(back.plan().len(), 24);
     }
 
     #[test]
