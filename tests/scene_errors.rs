@@ -82,6 +82,16 @@ fn magnitudes_that_overflow_the_equations_are_refused() {
 }
 
 #[test]
+fn element_counts_whose_sum_overflows_are_counted_exactly() {
+    let max = "9223372036854775807"; // i64::MAX, the largest TOML integer
+    let text = edited("[[cable.stages]]\nelements = 3\n", &format!("[[cable.stages]]\nelements = {max}\n"))
+        .replace("[[cable.stages]]\nelements = 12\n", &format!("[[cable.stages]]\nelements = {max}\n"));
+    let e = error(&text);
+    // 2 × (2^63 − 1) + 13 cable elements, + 15 chain links + 3: not usize::MAX.
+    assert_mentions(&e, &["cable.stages = 18446744073709551627 elements", "N = 18446744073709551645"]);
+}
+
+#[test]
 fn a_count_that_is_not_whole_is_refused_in_words() {
     let e = error(&edited("[chain]\nelements = 15", "[chain]\nelements = 15.5"));
     assert_mentions(&e, &["bad.toml", "15.5", "expected a whole number ≥ 0"]);

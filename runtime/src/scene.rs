@@ -799,13 +799,15 @@ impl Scene {
     fn check_size(&self, c: &mut Checker) {
         let n = self.body_count();
         if n > MAX_BODIES {
+            // Counted without overflow (the sum of counts near usize::MAX saturated and read as N).
+            let cable: u128 = self.cable.stages.iter().map(|s| s.elements as u128).sum();
+            let exact = cable + self.chain.elements as u128 + 3;
             let why = format!(
-                "with the cable stages at most {MAX_BODIES} bodies in all (N = {n}: the dense matrices of the start-up \
-                 stability analysis and the reference kernel would need about {:.3e} bytes)",
-                bytes_for_bodies(n)
+                "with the cable stages at most {MAX_BODIES} bodies in all (N = {exact}: the dense matrices of the \
+                 start-up stability analysis and the reference kernel would need about {:.3e} bytes)",
+                bytes_for_bodies(usize::try_from(exact).unwrap_or(usize::MAX))
             );
-            let cable = n.saturating_sub(3).saturating_sub(self.chain.elements);
-            if self.chain.elements >= cable {
+            if self.chain.elements as u128 >= cable {
                 c.push("chain.elements", &self.chain.elements.to_string(), &why);
             } else {
                 c.push("cable.stages", &format!("{cable} elements"), &why);
