@@ -1,7 +1,7 @@
 """Type stubs of the Rust extension module (python/src/lib.rs)."""
 
 import os
-from typing import Any, Callable, Dict, Iterable, List, Mapping, Optional, Sequence, Tuple, Union
+from typing import Any, Callable, Dict, Iterable, List, Mapping, Optional, Sequence, Tuple, Union, final
 
 import numpy as np
 import numpy.typing as npt
@@ -35,6 +35,7 @@ class ModelError(ValueError):
 class EvalError(ValueError):
     """A state that ``eval`` cannot evaluate."""
 
+@final
 class Scene:
     """A checked scene: every field present, finite and in range. Immutable."""
 
@@ -60,6 +61,7 @@ class Scene:
     def __eq__(self, other: object) -> bool: ...
     def __hash__(self) -> int: ...
 
+@final
 class Spec:
     """A checked sweep spec (docs/sweeps.md). Immutable."""
 
@@ -93,6 +95,7 @@ class Spec:
 def _scene_from_toml(text: str, name: str) -> Scene: ...
 def _spec_from_parts(fields: str, base: str, base_name: str, file: str) -> Spec: ...
 def _toml_keys(path: Union[str, "os.PathLike[str]"]) -> Optional[List[str]]: ...
+@final
 class _History:
     """A run's time history, still in Rust (``kanestop.Result`` converts it on first use)."""
 
