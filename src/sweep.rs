@@ -84,8 +84,9 @@ struct MergeArgs {
     /// Folder for sweep.csv, sweep.json and scenes/ (default: the first folder given).
     #[arg(long)]
     out: Option<PathBuf>,
-    /// The sweep's spec: checked against the shards' plan hash, it lets the merge draw the
-    /// heat maps a local run draws (without it, the merge writes none).
+    /// The sweep's spec: checked against the shards' plan hash and every row against its
+    /// plan (name, inputs, scene), it lets the merge draw the heat maps a local run draws
+    /// (without it, the merge writes none).
     #[arg(long)]
     spec: Option<PathBuf>,
     /// Heat maps to draw with --spec, as for a local run [default: the first three].
