@@ -128,14 +128,27 @@ impl PySpec {
     fn __eq__(&self, other: &Bound<'_, PyAny>) -> bool {
         other.downcast::<PySpec>().is_ok_and(|o| o.get().inner == self.inner)
     }
+
+    /// Equal specs hash alike: by name, row count and base scene's name (`==` decides).
+    fn __hash__(&self) -> u64 {
+        use std::hash::{Hash, Hasher};
+        let mut h = std::collections::hash_map::DefaultHasher::new();
+        (&self.inner.name, self.inner.rows(), &self.inner.base.meta.name).hash(&mut h);
+        h.finish()
+    }
 }
 
 /// Unpickles a spec (`Spec.__reduce__`): its fields over its base scene, named by its file.
 #[pyfunction]
 pub fn _spec_from_parts(py: Python<'_>, fields: &str, base: &str, base_name: &str, file: &str) -> PyResult<PySpec> {
     let scene = PyScene::from_toml(py, base, base_name)?.inner;
-    let inner =
-        Spec::from_toml(fields, Path::new(file), Path::new(""), Some(scene)).map_err(|e| workflow_error(py, e))?;
+    let mut table: toml::Table = fields.parse().map_err(|e: toml::de::Error| PyValueError::new_err(e.to_string()))?;
+    // The name as it was: `Spec.from_scene` takes a scene's name unchecked, which a spec
+    // file's `name` could not be.
+    let name = table.remove("name").and_then(|n| n.as_str().map(String::from)).unwrap_or_default();
+    let mut inner =
+        Spec::from_table(table, Path::new(file), Path::new(""), Some(scene)).map_err(|e| workflow_error(py, e))?;
+    inner.name = name;
     Ok(PySpec { inner })
 }
 

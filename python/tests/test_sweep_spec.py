@@ -234,3 +234,7 @@ def test_a_spec_pickles_and_compares(tmp_path: Path) -> None:
     assert back.inputs() == spec.inputs() and len(back) == len(spec) and back.base == spec.base
     other = kanestop.Spec.from_dict({"base": spec.base, "axis": [{"path": "ship.mass", "values": [5e5]}]})
     assert other != spec and pickle.loads(pickle.dumps(other)) == other
+    assert len({spec, back, other}) == 2
+    # A scene's own name, which a spec file's name could not be, comes back as it was.
+    named = kanestop.Spec.from_scene(spec.base, "case 1 (paper)")
+    assert pickle.loads(pickle.dumps(named)).name == "case 1 (paper)"

@@ -886,7 +886,8 @@ impl Scene {
     fn check_solver(&self, c: &mut Checker) {
         let so = &self.solver;
         c.range("solver.dt", so.dt, 0.0, 1.0, false, "s");
-        c.positive("solver.end_time", so.end_time, "s");
+        // No magnitude cap: the step count's limit below bounds it, and says so.
+        c.range("solver.end_time", so.end_time, 0.0, f64::MAX, false, "s");
         if so.dt.is_finite() && so.dt > 0.0 {
             c.range("solver.output_interval", so.output_interval, so.dt, f64::MAX, true, "s (at least solver.dt)");
             if so.end_time.is_finite() && so.end_time < so.dt {
@@ -1149,9 +1150,7 @@ impl Checker {
             self.push(
                 field,
                 &fmt_value(v),
-                &format!(
-                    "at most 1e15 {unit} (beyond any mooring system; larger values overflow the equations' products)"
-                ),
+                &format!("at most 1e15 {unit}: larger values overflow the products of the equations"),
             );
         }
     }

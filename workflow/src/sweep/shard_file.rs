@@ -214,9 +214,11 @@ impl ShardRun {
                 }));
             }
             // Kept rows are the plan's, checked now rather than at the merge after the rest ran.
-            if let Some(what) =
-                old.rows.iter().find_map(|r| super::merge::differs(&r.row, r.scene.as_deref(), &plan[r.row.index]))
-            {
+            let differs = |r: &ShardRow| match plan.get(r.row.index) {
+                Some(planned) => super::merge::differs(&r.row, r.scene.as_deref(), planned),
+                None => Some(format!("row {} ({}): beyond the plan's {} rows", r.row.index, r.row.name, plan.len())),
+            };
+            if let Some(what) = old.rows.iter().find_map(differs) {
                 return Err(Error::Shard(ShardError::File {
                     file: path,
                     problem: format!("{what}, not the plan's: the file was edited or holds another sweep's rows"),
