@@ -33,6 +33,18 @@ fn refused(dir: &Path) -> PathBuf {
     })
 }
 
+/// Case 1 without water or seabed, run on for 10 s past the ship's stop: a run that fails
+/// numerically on the way (exit 3), not refused before it.
+fn gravity_only(dir: &Path) -> PathBuf {
+    scene(&dir, "gravity-only", |t| {
+        t.replace("water = true", "water = false")
+            .replace("seabed = true", "seabed = false")
+            .replace("end_time = 0.05", "end_time = 10.0")
+            .replace("dt = 0.0005", "dt = 0.002")
+            .replace("stop_when_ship_stops = true", "stop_when_ship_stops = false")
+    })
+}
+
 fn text(out: &Output) -> (String, String) {
     (String::from_utf8_lossy(&out.stdout).into_owned(), String::from_utf8_lossy(&out.stderr).into_owned())
 }
@@ -180,13 +192,7 @@ fn a_sensitivity_study_whose_base_run_fails_says_so_and_runs_no_probe() {
     );
     assert!(!out_dir.exists(), "nothing written");
     // Failed on the way (not refused): exit 3, as `run` exits.
-    let failing = scene(&dir, "gravity-only", |t| {
-        t.replace("water = true", "water = false")
-            .replace("seabed = true", "seabed = false")
-            .replace("end_time = 0.05", "end_time = 10.0")
-            .replace("dt = 0.0005", "dt = 0.002")
-            .replace("stop_when_ship_stops = true", "stop_when_ship_stops = false")
-    });
+    let failing = gravity_only(&dir);
     let out = kanestop().args(["report", "sensitivity"]).arg(&failing).arg("--out").arg(&out_dir).output().unwrap();
     let (stdout, stderr) = text(&out);
     assert_eq!(out.status.code(), Some(3), "{stdout}{stderr}");
@@ -207,13 +213,7 @@ fn run_plot_of_the_stress_scene_dt_too_large_does_not_panic() {
 #[test]
 fn exit_3_numerical_failure() {
     let dir = temp_dir("numerical");
-    let path = scene(&dir, "gravity-only", |t| {
-        t.replace("water = true", "water = false")
-            .replace("seabed = true", "seabed = false")
-            .replace("end_time = 0.05", "end_time = 10.0")
-            .replace("dt = 0.0005", "dt = 0.002")
-            .replace("stop_when_ship_stops = true", "stop_when_ship_stops = false")
-    });
+    let path = gravity_only(&dir);
     let csv = dir.join("h.csv");
     let out = kanestop().arg("run").arg(&path).arg("--out").arg(&csv).output().unwrap();
     let (stdout, stderr) = text(&out);
