@@ -36,7 +36,7 @@ fn refused(dir: &Path) -> PathBuf {
 /// Case 1 without water or seabed, run on for 10 s past the ship's stop: a run that fails
 /// numerically on the way (exit 3), not refused before it.
 fn gravity_only(dir: &Path) -> PathBuf {
-    scene(&dir, "gravity-only", |t| {
+    scene(dir, "gravity-only", |t| {
         t.replace("water = true", "water = false")
             .replace("seabed = true", "seabed = false")
             .replace("end_time = 0.05", "end_time = 10.0")
