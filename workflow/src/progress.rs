@@ -58,17 +58,16 @@ impl Progress {
             let mut last = last.lock().unwrap_or_else(|e| e.into_inner());
             if last.0 < pos {
                 // The work is over: no time left to estimate, even if it stopped early.
-                let done = line(pos, len.max(1), &self.unit, self.start.elapsed().as_secs_f64());
-                eprintln!("{}", done.split(", ETA").next().unwrap_or(&done));
+                eprintln!("{}", line(pos, len.max(1), &self.unit, self.start.elapsed().as_secs_f64(), false));
                 *last = (pos, Instant::now());
             }
         }
     }
 }
 
-/// `progress  done/len unit (p %), t s, ETA s`.
-fn line(pos: u64, len: u64, unit: &str, elapsed: f64) -> String {
-    let left = if pos > 0 && pos < len {
+/// `progress  done/len unit (p %), t s, ETA s`, the ETA only while `running` and partly done.
+fn line(pos: u64, len: u64, unit: &str, elapsed: f64, running: bool) -> String {
+    let left = if running && pos > 0 && pos < len {
         format!(", ETA {:.0} s", elapsed / pos as f64 * (len - pos) as f64)
     } else {
         String::new()
@@ -90,7 +89,7 @@ fn watch(bar: &ProgressBar, last: Arc<Mutex<(u64, Instant)>>, unit: String, star
             }
             let step = (len / 10).max(1);
             if pos >= last.0 + step || (last.1.elapsed() >= Duration::from_secs(5) && pos < len) {
-                eprintln!("{}", line(pos, len, &unit, start.elapsed().as_secs_f64()));
+                eprintln!("{}", line(pos, len, &unit, start.elapsed().as_secs_f64(), true));
                 *last = (pos, Instant::now());
             }
         }
@@ -103,8 +102,9 @@ mod tests {
 
     #[test]
     fn a_line_says_what_is_done_and_what_is_left() {
-        assert_eq!(line(2, 10, "runs", 4.0), "progress  2/10 runs (20 %), 4 s, ETA 16 s");
-        assert_eq!(line(10, 10, "runs", 20.0), "progress  10/10 runs (100 %), 20 s");
-        assert_eq!(line(0, 10, "runs", 0.2), "progress  0/10 runs (0 %), 0 s");
+        assert_eq!(line(2, 10, "runs", 4.0, true), "progress  2/10 runs (20 %), 4 s, ETA 16 s");
+        assert_eq!(line(10, 10, "runs", 20.0, true), "progress  10/10 runs (100 %), 20 s");
+        assert_eq!(line(0, 10, "runs", 0.2, true), "progress  0/10 runs (0 %), 0 s");
+        assert_eq!(line(1, 73, "runs", 0.2, false), "progress  1/73 runs (1 %), 0 s");
     }
 }

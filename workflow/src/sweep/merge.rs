@@ -33,12 +33,7 @@ impl Merged {
     /// names the sweep but a file's rows are only as good as the file: this refuses rows
     /// edited, or copied from another sweep, naming the row and its file.
     pub fn check_rows(&self, plan: &[PlannedRow]) -> Result<()> {
-        let problem = |file: &Path, what: String| {
-            Err(Error::Shard(ShardError::File {
-                file: file.to_path_buf(),
-                problem: format!("{what}, not the plan's: the file was edited or holds another sweep's rows"),
-            }))
-        };
+        let problem = |file: &Path, what: String| Err(not_the_plans(file, what));
         if plan.len() != self.rows.len() {
             return problem(&self.files[0], format!("{} rows in all", self.rows.len()));
         }
@@ -51,6 +46,14 @@ impl Merged {
         }
         Ok(())
     }
+}
+
+/// The error for a shard file whose rows are not the plan's: `what` of them differs.
+pub fn not_the_plans(file: &Path, what: String) -> Error {
+    Error::Shard(ShardError::File {
+        file: file.to_path_buf(),
+        problem: format!("{what}, not the plan's: the file was edited or holds another sweep's rows"),
+    })
 }
 
 /// What of a done row (its scene file `scene`, if it has one) is not `planned`'s, in words

@@ -219,10 +219,7 @@ impl ShardRun {
                 None => Some(format!("row {} ({}): beyond the plan's {} rows", r.row.index, r.row.name, plan.len())),
             };
             if let Some(what) = old.rows.iter().find_map(differs) {
-                return Err(Error::Shard(ShardError::File {
-                    file: path,
-                    problem: format!("{what}, not the plan's: the file was edited or holds another sweep's rows"),
-                }));
+                return Err(super::merge::not_the_plans(&path, what));
             }
             file.rows = old.rows.into_iter().filter(|r| !r.row.status.is_problem()).collect();
         }
