@@ -30,7 +30,7 @@ pub const SECONDS_PER_BODY_EVALUATION: f64 = 1.9e-7;
 
 /// Bytes of the dense matrices a run of N bodies holds at start-up: the reference kernel's
 /// N × N mass matrix and the stability analysis's (2N)² Jacobian with its eigen-decomposition
-/// workspace (about three copies), 8 bytes each.
+/// or Arnoldi basis (at most three copies in all), 8 bytes each.
 pub fn bytes_for_bodies(n: usize) -> f64 {
     let n = n as f64;
     8.0 * (n * n + 3.0 * (2.0 * n) * (2.0 * n))
