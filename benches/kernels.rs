@@ -10,7 +10,10 @@
 //! and the others are skipped. Medians of 15 batches of at least 20 ms each; the ratios are
 //! measured side by side in one run. Results are recorded in docs/codegen.md. Then the
 //! rolled kernel (any N) against the unrolled ones, to N = 520, and whole runs of paper cases
-//! 1 and 17 with full physics.
+//! 1 and 17 with full physics. And issue 14's comparator (section `c_aba`): weight alone
+//! through `Dynamics` (the generated, fused right-hand side, loads included) against a
+//! hand-written planar articulated-body algorithm in C (`benches/c-aba`), alternated in one
+//! run.
 
 use std::hint::black_box;
 use std::time::Instant;
@@ -106,15 +109,16 @@ fn per_solve(kernel: &mut dyn Kernel, chain: &Chain, anchor: AnchorDof) -> f64 {
 
 fn main() {
     // `cargo bench --bench kernels -- whole_rhs whole_runs`: only the named sections (solves,
-    // rolled_vs_unrolled, fused_gravity, whole_rhs, folded, whole_runs); none named: all.
+    // rolled_vs_unrolled, fused_gravity, whole_rhs, folded, whole_runs, c_aba); none named: all.
     let only: Vec<String> = std::env::args().skip(1).filter(|a| !a.starts_with('-')).collect();
     let wanted = |name: &str| only.is_empty() || only.iter().any(|o| o == name);
-    let sections: [(&str, fn()); 5] = [
+    let sections: [(&str, fn()); 6] = [
         ("rolled_vs_unrolled", rolled_vs_unrolled),
         ("fused_gravity", fused_gravity),
         ("whole_rhs", whole_rhs),
         ("folded", folded),
         ("whole_runs", whole_runs),
+        ("c_aba", c_aba),
     ];
     if wanted("solves") {
         solves();
@@ -407,5 +411,74 @@ whole runs, full physics, RK4 dt = 0.002 s, generated kernel (median of 5)"
             1e6 * wall / solves,
             1e6 * cpu / solves
         );
+    }
+}
+
+/// A right-hand side timed by [`c_aba`]: `(q, u, qdd)`.
+type Solver<'a> = dyn FnMut(&[f64], &[f64], &mut [f64]) + 'a;
+
+/// Weight alone, anchor free: the generated right-hand side as the integrator calls it
+/// (`Dynamics::accelerations`, the weights fused into the rolled or unrolled kernel's steps)
+/// against the hand-written C articulated-body algorithm (`kanestop_c_aba`, its own `sin` and
+/// `cos`, gravity as the base's acceleration), over the same 1 000 smooth states, the two
+/// alternated for 7 rounds: medians of CPU µs per call (this thread) and of wall µs.
+/// `tests/c_aba.rs` checks the two give the same accelerations.
+fn c_aba() {
+    use kanestop_runtime::dynamics::Dynamics;
+    println!("\nweight alone, anchor free: generated (Dynamics) vs hand-written C planar ABA (µs per call, medians of 7 rounds)");
+    println!("{:>5} {:>10} {:>10} {:>10} {:>10} {:>14}", "N", "generated", "CPU", "C ABA", "CPU", "C / generated");
+    for n in [12, 46, 200, 520] {
+        let c = chain(n, false);
+        let states: Vec<(Vec<f64>, Vec<f64>)> = (0..1000)
+            .map(|s| {
+                let phase = s as f64 * 0.01;
+                let q = (0..n).map(|i| 0.05 * ((i as f64) * 0.7 + phase).sin()).collect();
+                let u = (0..n).map(|i| 0.1 * ((i as f64) * 1.3 + phase).cos()).collect();
+                (q, u)
+            })
+            .collect();
+        let kernel = GeneratedKernel::new(&c).unwrap();
+        let mut dynamics = Dynamics::new(Box::new(kernel), Forces::gravity_only(&c, 9.81), AnchorDof::Free);
+        let bodies = c
+            .bodies
+            .iter()
+            .map(|b| kanestop_c_aba::Body { mass: b.mass, inertia: b.inertia[1], centroid: b.centroid, joint: b.joint })
+            .collect();
+        let mut aba = kanestop_c_aba::Aba::new(bodies, 9.81);
+        let mut qdd = vec![0.0; n];
+        let passes = (20_000 / n).max(2);
+        let calls = (passes * states.len()) as f64;
+        let mut timed = |f: &mut Solver| {
+            let (t, cpu) = (Instant::now(), thread_cpu());
+            for _ in 0..passes {
+                for (q, u) in &states {
+                    f(black_box(q), black_box(u), &mut qdd);
+                }
+                black_box(&qdd);
+            }
+            (t.elapsed().as_secs_f64() * 1e6 / calls, (thread_cpu() - cpu) * 1e6 / calls)
+        };
+        let (mut generated, mut c_aba) = (Vec::new(), Vec::new());
+        for round in 0..7 {
+            let mut ours = |q: &[f64], u: &[f64], qdd: &mut [f64]| {
+                dynamics.accelerations(q, u, qdd).unwrap();
+            };
+            let mut theirs = |q: &[f64], u: &[f64], qdd: &mut [f64]| aba.accelerations(q, u, qdd);
+            if round % 2 == 0 {
+                generated.push(timed(&mut ours));
+                c_aba.push(timed(&mut theirs));
+            } else {
+                c_aba.push(timed(&mut theirs));
+                generated.push(timed(&mut ours));
+            }
+        }
+        let median = |v: &[(f64, f64)], pick: fn(&(f64, f64)) -> f64| {
+            let mut x: Vec<f64> = v.iter().map(pick).collect();
+            x.sort_by(f64::total_cmp);
+            x[x.len() / 2]
+        };
+        let (gw, gc) = (median(&generated, |x| x.0), median(&generated, |x| x.1));
+        let (cw, cc) = (median(&c_aba, |x| x.0), median(&c_aba, |x| x.1));
+        println!("{n:>5} {gw:>10.3} {gc:>10.3} {cw:>10.3} {cc:>10.3} {:>13.2}×", cc / gc);
     }
 }

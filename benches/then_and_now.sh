@@ -14,6 +14,9 @@
 # Dynamics) and weight alone at N = 46 (benches/replay.rs), case 1's whole `kanestop run`, and
 # the 19 paper cases' `kanestop batch` (CPU time of the process and its threads). Prints every
 # measurement and, per round, then / now. Any failed step ends the script with its error.
+# (Weight alone's goal is stated against a hand-written C planar ABA, not the old build:
+# `cargo bench --bench kernels -- c_aba` measures that one; the old build's figure is here
+# for the record.)
 set -euo pipefail
 
 rounds=${1:-3}
@@ -58,14 +61,17 @@ build now
 
 cpu_of() { # command… -> user + system CPU seconds of the command and its threads
     # kanestop's exit codes 0 (done) and 4 (a design check failed: a result like any other)
-    # are measurements; 1, 2 and 3 (a scene failed or was refused) are not.
+    # are measurements; 1, 2 and 3 (a scene failed or was refused) are not. The children's
+    # times are taken as a difference: Linux keeps them across exec, so a launcher that ran
+    # processes before exec'ing Python (a pyenv shim does, about 0.05 s) would add its own.
     python3 -c '
 import resource, subprocess, sys
+before = resource.getrusage(resource.RUSAGE_CHILDREN)
 p = subprocess.run(sys.argv[1:], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
 if p.returncode not in (0, 4):
     sys.exit(f"{sys.argv[1:]} exited with {p.returncode}:\n{p.stderr}")
 r = resource.getrusage(resource.RUSAGE_CHILDREN)
-print(f"{r.ru_utime + r.ru_stime:.3f}")' "$@"
+print(f"{r.ru_utime + r.ru_stime - before.ru_utime - before.ru_stime:.3f}")' "$@"
 }
 
 replay() { # WHICH -> "rhs_cpu_us gravity_cpu_us"
