@@ -1,10 +1,12 @@
 //! The RK4 stability limit by Arnoldi's method (`stability::krylov_limit`, what scenes with
 //! 2N > `stability::DENSE_MAX` use) against every eigenvalue of the whole Jacobian
 //! (`stability::dense_limit`, the oracle), on the same finite-difference Jacobian: the same
-//! limit to 1e-7 (or within the limiting eigenvalue's conditioning where that is wider) and
-//! the same stiffest hinge, on every paper and stress scene and on long fine lines with
-//! current, line friction and a stiff seabed, where the top of the spectrum is a dense band of
-//! the line's modes.
+//! limit to 1e-7 (or within the limiting eigenvalue's conditioning where that is wider) on
+//! every paper and stress scene and on long fine lines with current, line friction and a
+//! stiff seabed, where the top of the spectrum is a dense band of the line's modes. The paper
+//! and stress scenes (2N ≈ 100) are small for the method: it tries 48 vectors, then takes the
+//! dense decomposition; the fine lines are where it stops early. The stopping rule itself is
+//! tested on a constructed spectrum in `runtime/src/stability.rs`.
 
 use std::path::Path;
 
@@ -28,8 +30,9 @@ fn scenes(folder: &str) -> Vec<Scene> {
 
 /// Arnoldi's limit of `scene` agrees with the dense one to 1e-7, or within the limiting
 /// eigenvalue's conditioning where that is wider: how far the dense limit of Jᵀ (the same
-/// eigenvalues in exact arithmetic) lies from that of J. Returns that spread.
-fn assert_agree(scene: &Scene) -> f64 {
+/// eigenvalues in exact arithmetic) lies from that of J. Returns that spread and the size of
+/// the Krylov space taken (2N where it went to the dense decomposition).
+fn assert_agree(scene: &Scene) -> (f64, usize) {
     let name = &scene.meta.name;
     let model = Model::new(scene).unwrap_or_else(|e| panic!("{name}: {e}"));
     let y0: Vec<f64> = model.q0.iter().chain(&model.u0).copied().chain([0.0; WORK_COUNT]).collect();
@@ -37,7 +40,7 @@ fn assert_agree(scene: &Scene) -> f64 {
         Dynamics::new(Box::new(GeneratedKernel::new(&model.chain).unwrap()), Forces::new(&model), model.anchor);
     let jac = stability::jacobian(&mut dynamics, &y0).unwrap();
     let dense = stability::dense_limit(&jac).unwrap();
-    let krylov = stability::krylov_limit(&jac).unwrap();
+    let (krylov, steps) = stability::krylov_limit_with_steps(&jac).unwrap();
     let spread = (stability::dense_limit(&jac.transpose()).unwrap().rk4_dt - dense.rk4_dt).abs() / dense.rk4_dt;
     let rel = (krylov.rk4_dt - dense.rk4_dt).abs() / dense.rk4_dt;
     assert!(
@@ -46,14 +49,13 @@ fn assert_agree(scene: &Scene) -> f64 {
         krylov.rk4_dt,
         dense.rk4_dt
     );
-    assert_eq!(krylov.body, dense.body, "{name}");
-    spread
+    (spread, steps)
 }
 
 #[test]
 fn arnoldi_finds_the_dense_limit_on_the_paper_scenes() {
     for scene in scenes("paper") {
-        assert!(assert_agree(&scene) < 1e-7, "{}", scene.meta.name);
+        assert!(assert_agree(&scene).0 < 1e-7, "{}", scene.meta.name);
     }
 }
 
@@ -62,7 +64,7 @@ fn arnoldi_finds_the_dense_limit_on_the_stress_scenes() {
     // Only the seabed 1e4 times stiffer than the paper's has an ill-conditioned limiting
     // eigenvalue (J and Jᵀ differ by 5e-5): entries of ∂ẏ/∂y from 1e-3 to 2e8.
     for scene in scenes("stress") {
-        let spread = assert_agree(&scene);
+        let (spread, _) = assert_agree(&scene);
         let wide = scene.meta.name == "seabed_kz_x1e4";
         assert!(if wide { spread < 1e-4 } else { spread < 1e-7 }, "{}: {spread:e}", scene.meta.name);
     }
@@ -90,7 +92,15 @@ fn arnoldi_finds_the_dense_limit_on_long_fine_lines() {
         fine_line(300, |s| s.environment.seabed_stiffness *= 100.0),
         fine_line(500, |_| {}),
     ] {
-        assert!(2 * Model::new(&scene).unwrap().body_count() > stability::DENSE_MAX, "{}", scene.meta.name);
-        assert!(assert_agree(&scene) < 1e-7, "{}", scene.meta.name);
+        let dim = 2 * Model::new(&scene).unwrap().body_count();
+        assert!(dim > stability::DENSE_MAX, "{}", scene.meta.name);
+        let (spread, steps) = assert_agree(&scene);
+        assert!(spread < 1e-7, "{}", scene.meta.name);
+        // Where Arnoldi's method is meant to pay, it stops early: the longest line, and
+        // the line with current and friction, stop at m = 364 and 72 (the others go on to
+        // the dense decomposition: their tops are clusters whose Ritz vectors converge slowly).
+        if scene.cable.stages[0].elements >= 500 || scene.environment.line_friction > 0.0 {
+            assert!(steps < dim, "{}: m = {steps}", scene.meta.name);
+        }
     }
 }

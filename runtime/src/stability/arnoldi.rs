@@ -12,7 +12,16 @@
 //! subspace, β = 0) the basis goes on from a fresh vector orthogonal to it, so H_m stays
 //! block upper Hessenberg and its eigenvalues stay A's.
 
-use nalgebra::{Complex, DMatrix, DVector};
+use nalgebra::{Complex, DMatrix};
+
+/// A Ritz value θ and the residual ‖A x − θ x‖ of its unit Ritz vector x.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RitzPair {
+    /// θ, an eigenvalue of H_m.
+    pub value: Complex<f64>,
+    /// ‖A x − θ x‖ (in the operator's units; infinite where the eigenvector overflowed).
+    pub residual: f64,
+}
 
 /// A growing Arnoldi factorisation of an n × n operator.
 pub struct Arnoldi {
@@ -58,7 +67,7 @@ impl Arnoldi {
             let beta = norm(&w);
             let next = if j + 1 == self.n {
                 None
-            } else if beta > 1e-12 * size && beta > 0.0 {
+            } else if beta > 1e-12 * size {
                 column[j + 1] = beta;
                 Some(w.iter().map(|x| x / beta).collect())
             } else {
@@ -87,38 +96,106 @@ impl Arnoldi {
         }
     }
 
-    /// The Ritz values: the eigenvalues of H_m (None if the QR iteration does not converge).
+    /// The Ritz values: the eigenvalues of H_m (a real Schur decomposition; None if the QR
+    /// iteration does not converge). What [`Arnoldi::ritz_pairs`] gives without the residuals.
     pub fn ritz_values(&self) -> Option<Vec<Complex<f64>>> {
         let schur = nalgebra::linalg::Schur::try_new(self.hessenberg(), 1e-14, 100_000)?;
         Some(schur.complex_eigenvalues().iter().copied().collect())
     }
 
-    /// The residual ‖A x − θ x‖ of the Ritz pair of `theta` (a Ritz value), x = V_m s with
-    /// ‖s‖ = 1: β |s_m|, s found by two steps of inverse iteration on H_m − θ I.
-    pub fn residual(&self, theta: Complex<f64>) -> f64 {
-        let beta = self.beta();
-        if beta == 0.0 {
-            return 0.0;
-        }
+    /// The Ritz pairs: each eigenvalue θ of H_m with the residual ‖A x − θ x‖ of its Ritz
+    /// vector x = V_m s, ‖s‖ = 1, which is β |s_m| (0 once the basis is complete). From the
+    /// real Schur form H_m = Q T Qᵀ (T quasi-triangular: 1 × 1 blocks for real eigenvalues,
+    /// 2 × 2 for complex pairs): s = Q z with z the eigenvector of T, by block back
+    /// substitution as LAPACK's `trevc` does (a divisor below ε‖T‖ taken as ε‖T‖), so
+    /// s_m = (row m of Q) · z / ‖z‖. O(m³) in all; a conjugate's residual is its partner's.
+    /// None if the QR iteration does not converge.
+    pub fn ritz_pairs(&self) -> Option<Vec<RitzPair>> {
         let m = self.steps();
-        // Shifted off θ by a relative 1e-10 so the factorisation is not exactly singular.
-        let shift = theta + Complex::new(1e-10 * theta.norm().max(f64::MIN_POSITIVE), 0.0);
-        let h = self.hessenberg().map(|x| Complex::new(x, 0.0)) - DMatrix::identity(m, m) * shift;
-        let lu = h.lu();
-        let mut s = DVector::from_element(m, Complex::new(1.0, 0.0));
-        for _ in 0..2 {
-            match lu.solve(&s) {
-                Some(z) if z.iter().all(|c| c.re.is_finite() && c.im.is_finite()) => {
-                    let size = z.norm();
-                    if size == 0.0 {
-                        return f64::INFINITY;
-                    }
-                    s = z / Complex::new(size, 0.0);
-                }
-                _ => return f64::INFINITY,
+        let (q, t) = nalgebra::linalg::Schur::try_new(self.hessenberg(), 1e-14, 100_000)?.unpack();
+        let beta = self.beta();
+        let small = f64::EPSILON * t.norm().max(f64::MIN_POSITIVE);
+        // The diagonal blocks: (first row, size).
+        let mut blocks = Vec::new();
+        let mut i = 0;
+        while i < m {
+            let size = if i + 1 < m && t[(i + 1, i)] != 0.0 { 2 } else { 1 };
+            blocks.push((i, size));
+            i += size;
+        }
+        let mut z = vec![Complex::new(0.0, 0.0); m];
+        let mut pairs: Vec<RitzPair> = Vec::with_capacity(m);
+        for (b, &(k, size)) in blocks.iter().enumerate() {
+            let values = block_eigenvalues(&t, k, size);
+            if beta == 0.0 {
+                pairs.extend(values.iter().map(|&value| RitzPair { value, residual: 0.0 }));
+                continue;
+            }
+            for (v, &value) in values.iter().enumerate() {
+                let residual = match pairs.last() {
+                    // The conjugate of a complex pair: the conjugate vector, the same residual.
+                    Some(&RitzPair { value: partner, residual }) if v == 1 && partner == value.conj() => residual,
+                    _ => self.block_residual(&t, &q, &blocks[..=b], value, small, &mut z),
+                };
+                pairs.push(RitzPair { value, residual: if residual.is_finite() { residual } else { f64::INFINITY } });
             }
         }
-        beta * s[m - 1].norm()
+        Some(pairs)
+    }
+
+    /// β |s_m| for the eigenvalue `value` of the last of `blocks` (T's diagonal blocks from
+    /// the top, as (first row, size)): its eigenvector z of T by back substitution into `z`.
+    fn block_residual(
+        &self,
+        t: &DMatrix<f64>,
+        q: &DMatrix<f64>,
+        blocks: &[(usize, usize)],
+        value: Complex<f64>,
+        small: f64,
+        z: &mut [Complex<f64>],
+    ) -> f64 {
+        let zero = Complex::new(0.0, 0.0);
+        let real = |x: f64| Complex::new(x, 0.0);
+        let ((k, size), above) = blocks.split_last().expect("at least the block itself");
+        let (k, end) = (*k, k + size);
+        // The block's own null vector: (t_01, θ − t_00) from its first row, or (θ − t_11, t_10)
+        // from its second where that one is larger.
+        if *size == 1 {
+            z[k] = real(1.0);
+        } else {
+            let first = (real(t[(k, k + 1)]), value - t[(k, k)]);
+            let second = (value - t[(k + 1, k + 1)], real(t[(k + 1, k)]));
+            let (x, y) =
+                if first.0.norm() + first.1.norm() >= second.0.norm() + second.1.norm() { first } else { second };
+            z[k] = x;
+            z[k + 1] = y;
+        }
+        // The blocks above, from the bottom up: (T_ii − θ) z_i = −Σ_j T_ij z_j over the rows
+        // already found.
+        for &(i, rows) in above.iter().rev() {
+            let rhs = |r: usize, z: &[Complex<f64>]| -(i + rows..end).fold(zero, |acc, j| acc + z[j] * t[(r, j)]);
+            if rows == 1 {
+                let mut d = real(t[(i, i)]) - value;
+                if d.norm() < small {
+                    d = real(small);
+                }
+                z[i] = rhs(i, z) / d;
+            } else {
+                // Cramer's rule on the 2 × 2 system.
+                let (r0, r1) = (rhs(i, z), rhs(i + 1, z));
+                let (a, b) = (real(t[(i, i)]) - value, real(t[(i, i + 1)]));
+                let (c, d) = (real(t[(i + 1, i)]), real(t[(i + 1, i + 1)]) - value);
+                let mut det = a * d - b * c;
+                if det.norm() < small * small {
+                    det = real(small * small);
+                }
+                z[i] = (r0 * d - b * r1) / det;
+                z[i + 1] = (a * r1 - c * r0) / det;
+            }
+        }
+        let size_z = z[..end].iter().map(|c| c.norm_sqr()).sum::<f64>().sqrt();
+        let last = (0..end).fold(zero, |acc, i| acc + z[i] * q[(self.steps() - 1, i)]);
+        self.beta() * last.norm() / size_z
     }
 
     /// A pseudo-random vector of unit length (xorshift64*, entries uniform in [−1, 1)).
@@ -139,6 +216,7 @@ impl Arnoldi {
 
     /// A fresh unit vector orthogonal to the basis so far.
     fn fresh_orthogonal(&mut self) -> Vec<f64> {
+        debug_assert!(self.basis.len() < self.n, "no direction is left orthogonal to a complete basis");
         loop {
             let mut v = self.fresh();
             let mut coefficients = vec![0.0; self.basis.len()];
@@ -150,6 +228,19 @@ impl Arnoldi {
             }
         }
     }
+}
+
+/// The eigenvalues of the diagonal block of `t` at row `k` of size 1 or 2 (a 2 × 2 block of
+/// a real Schur form has a complex pair, the one with Im ≥ 0 first).
+fn block_eigenvalues(t: &DMatrix<f64>, k: usize, size: usize) -> Vec<Complex<f64>> {
+    if size == 1 {
+        return vec![Complex::new(t[(k, k)], 0.0)];
+    }
+    let (a, b, c, d) = (t[(k, k)], t[(k, k + 1)], t[(k + 1, k)], t[(k + 1, k + 1)]);
+    let mean = 0.5 * (a + d);
+    let disc = 0.25 * (a - d) * (a - d) + b * c; // < 0 for a complex pair
+    let im = (-disc).max(0.0).sqrt();
+    vec![Complex::new(mean, im), Complex::new(mean, -im)]
 }
 
 /// Removes from `w` its components along `basis` (modified Gram–Schmidt, run twice), adding
@@ -186,6 +277,25 @@ fn norm(v: &[f64]) -> f64 {
 mod tests {
     use super::*;
 
+    use nalgebra::DVector;
+
+    impl Arnoldi {
+        /// The unit Ritz vector V_m s of the Ritz value `theta`, s by inverse iteration on
+        /// H_m − θ I (for checking the residuals of `ritz_pairs` in full).
+        fn ritz_vector(&self, theta: Complex<f64>) -> DVector<Complex<f64>> {
+            let m = self.steps();
+            let shift = theta + Complex::new(1e-13 * theta.norm(), 0.0);
+            let h = self.hessenberg().map(|x| Complex::new(x, 0.0)) - DMatrix::identity(m, m) * shift;
+            let mut s = DVector::from_element(m, Complex::new(1.0, 0.0));
+            for _ in 0..3 {
+                s = h.clone().lu().solve(&s).unwrap();
+                s /= Complex::new(s.norm(), 0.0);
+            }
+            let v = DMatrix::from_fn(self.n, m, |i, j| Complex::new(self.basis[j][i], 0.0));
+            v * s
+        }
+    }
+
     /// A dense operator's product.
     fn product(a: &DMatrix<f64>) -> impl FnMut(&[f64], &mut [f64]) -> Result<(), ()> + '_ {
         move |v, out| {
@@ -211,13 +321,12 @@ mod tests {
         let mut k = Arnoldi::new(4);
         k.extend_to(10, &mut product(&a)).unwrap();
         assert_eq!(k.steps(), 4);
-        let got = sorted(k.ritz_values().unwrap());
+        let pairs = k.ritz_pairs().unwrap();
+        assert!(pairs.iter().all(|p| p.residual == 0.0), "{pairs:?}");
+        let got = sorted(pairs.iter().map(|p| p.value).collect());
         let want = sorted(a.complex_eigenvalues().iter().copied().collect());
         for (g, w) in got.iter().zip(&want) {
             assert!((g - w).norm() < 1e-12, "{got:?} against {want:?}");
-        }
-        for g in &got {
-            assert_eq!(k.residual(*g), 0.0);
         }
     }
 
@@ -237,12 +346,62 @@ mod tests {
         });
         let mut k = Arnoldi::new(n);
         k.extend_to(40, &mut product(&a)).unwrap();
-        let ritz = k.ritz_values().unwrap();
-        let top = ritz.iter().copied().max_by(|a, b| a.norm().total_cmp(&b.norm())).unwrap();
-        assert!((top.re - 1000.0).abs() < 1e-9 && top.im == 0.0, "{top}");
-        assert!(k.residual(top) < 1e-6, "{}", k.residual(top));
-        let inner = ritz.iter().copied().min_by(|a, b| (a.re - 100.0).abs().total_cmp(&(b.re - 100.0).abs())).unwrap();
-        assert!(k.residual(inner) > 1e-3, "{}", k.residual(inner));
+        let ritz = k.ritz_pairs().unwrap();
+        let top = ritz.iter().copied().max_by(|a, b| a.value.norm().total_cmp(&b.value.norm())).unwrap();
+        assert!((top.value.re - 1000.0).abs() < 1e-9 && top.value.im.abs() < 1e-9, "{top:?}");
+        assert!(top.residual < 1e-6, "{top:?}");
+        let inner = ritz
+            .iter()
+            .copied()
+            .min_by(|a, b| (a.value.re - 100.0).abs().total_cmp(&(b.value.re - 100.0).abs()))
+            .unwrap();
+        assert!(inner.residual > 1e-3, "{inner:?}");
+        // Each residual is what it says: ‖A x − θ x‖ of the Ritz vector, formed here in full.
+        for pair in [top, inner] {
+            let x = k.ritz_vector(pair.value);
+            let ax = a.map(|v| Complex::new(v, 0.0)) * &x;
+            let direct = (ax - &x * pair.value).norm();
+            assert!((direct - pair.residual).abs() <= 1e-9 + 1e-6 * direct, "{direct} against {pair:?}");
+        }
+    }
+
+    #[test]
+    fn residuals_of_complex_pairs_are_those_of_their_ritz_vectors() {
+        // Rotations ±i ω_k, damped by −ω_k/20, and a few real modes, mixed by an orthogonal
+        // change of basis: the Schur form has 2 × 2 blocks. Every Ritz pair's residual at
+        // m = 30 equals ‖A x − θ x‖ of its Ritz vector formed in full.
+        let n = 60;
+        let mut d = DMatrix::zeros(n, n);
+        for k in 0..25 {
+            let w = 1.0 + k as f64;
+            let (i, j) = (2 * k, 2 * k + 1);
+            d[(i, i)] = -w / 20.0;
+            d[(j, j)] = -w / 20.0;
+            d[(i, j)] = w;
+            d[(j, i)] = -w;
+        }
+        for k in 50..n {
+            d[(k, k)] = -3.0 * (k - 49) as f64;
+        }
+        let mixed = DMatrix::from_fn(n, n, |i, j| ((i * 31 + j * 17) % 23) as f64 - 11.0);
+        let q = mixed.qr().q();
+        let a = &q * d * q.transpose();
+        let mut k = Arnoldi::new(n);
+        k.extend_to(30, &mut product(&a)).unwrap();
+        let pairs = k.ritz_pairs().unwrap();
+        assert_eq!(pairs.len(), 30);
+        assert!(pairs.iter().filter(|p| p.value.im != 0.0).count() >= 10, "{pairs:?}");
+        let values = sorted(k.ritz_values().unwrap());
+        let mine = sorted(pairs.iter().map(|p| p.value).collect());
+        for (x, y) in values.iter().zip(&mine) {
+            assert!((x - y).norm() <= 1e-12 * (1.0 + x.norm()), "{x} against {y}");
+        }
+        let complex = a.map(|v| Complex::new(v, 0.0));
+        for pair in &pairs {
+            let x = k.ritz_vector(pair.value);
+            let direct = (&complex * &x - &x * pair.value).norm();
+            assert!((direct - pair.residual).abs() <= 1e-7 * (1.0 + direct), "{direct} against {pair:?}");
+        }
     }
 
     #[test]
@@ -252,7 +411,7 @@ mod tests {
         let a = DMatrix::from_diagonal(&DVector::from_vec(vec![2.0, 2.0, 2.0, -1.0, 5.0]));
         let mut k = Arnoldi::new(5);
         k.extend_to(5, &mut product(&a)).unwrap();
-        let got = sorted(k.ritz_values().unwrap());
+        let got = sorted(k.ritz_pairs().unwrap().iter().map(|p| p.value).collect());
         let want = [-1.0, 2.0, 2.0, 2.0, 5.0];
         for (g, w) in got.iter().zip(want) {
             assert!((g.re - w).abs() < 1e-12 && g.im.abs() < 1e-12, "{got:?}");
