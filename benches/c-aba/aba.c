@@ -92,7 +92,7 @@ void aba_accelerations(size_t n, const aba_body *bodies, double g, const double 
 {
     /* Per body, at these offsets of its ABA_WORK_PER_BODY doubles: its transform from the
      * parent 0, velocity 9, velocity product c 12, articulated bias p^A 15 and inertia I^A 18,
-     * U = I^A S 27, D = S^T U 30, u = tau - S^T p^A 31 (tau = 0), acceleration 32. */
+     * U = I^A S 27, D^-1 = 1/(S^T U) 30 (one division per body), u = tau - S^T p^A 31 (tau = 0), acceleration 32. */
     for (size_t k = 0; k < n; k++) {
         double *w = work + k * ABA_WORK_PER_BODY;
         double(*x)[3] = (double(*)[3])(w);
@@ -126,22 +126,23 @@ void aba_accelerations(size_t n, const aba_body *bodies, double g, const double 
         double(*x)[3] = (double(*)[3])(w);
         double *c = w + 12, *p = w + 15;
         double(*ia)[3] = (double(*)[3])(w + 18);
-        double *uu = w + 27, *d = w + 30, *tau = w + 31;
+        double *uu = w + 27, *d_inv = w + 30, *tau = w + 31;
         int axis = k == 0 ? 1 : 0; /* S: the unit motion of the joint */
         for (int i = 0; i < 3; i++)
             uu[i] = ia[i][axis];
-        *d = uu[axis];
+        *d_inv = 1.0 / uu[axis];
         *tau = -p[axis];
         if (k == 0)
             break;
+        const double dinv = *d_inv;
         mat3 ia_joint;
         for (int i = 0; i < 3; i++)
             for (int j = 0; j < 3; j++)
-                ia_joint[i][j] = ia[i][j] - uu[i] * uu[j] / *d;
+                ia_joint[i][j] = ia[i][j] - uu[i] * uu[j] * dinv;
         vec3 pa, iac, carried;
         mat_vec(ia_joint, c, iac);
         for (int i = 0; i < 3; i++)
-            pa[i] = p[i] + iac[i] + uu[i] * *tau / *d;
+            pa[i] = p[i] + iac[i] + uu[i] * *tau * dinv;
         double *parent = work + (k - 1) * ABA_WORK_PER_BODY;
         add_congruence(x, ia_joint, (double(*)[3])(parent + 18));
         mat_t_vec(x, pa, carried);
@@ -153,13 +154,13 @@ void aba_accelerations(size_t n, const aba_body *bodies, double g, const double 
     for (size_t k = 0; k < n; k++) {
         double *w = work + k * ABA_WORK_PER_BODY;
         double(*x)[3] = (double(*)[3])(w);
-        double *c = w + 12, *uu = w + 27, *d = w + 30, *tau = w + 31, *a = w + 32;
+        double *c = w + 12, *uu = w + 27, *d_inv = w + 30, *tau = w + 31, *a = w + 32;
         const double *parent_a = k > 0 ? work + (k - 1) * ABA_WORK_PER_BODY + 32 : base;
         vec3 ap;
         mat_vec(x, parent_a, ap);
         for (int i = 0; i < 3; i++)
             ap[i] += c[i];
-        double acc = (*tau - (uu[0] * ap[0] + uu[1] * ap[1] + uu[2] * ap[2])) / *d;
+        double acc = (*tau - (uu[0] * ap[0] + uu[1] * ap[1] + uu[2] * ap[2])) * *d_inv;
         int axis = k == 0 ? 1 : 0;
         for (int i = 0; i < 3; i++)
             a[i] = ap[i];
