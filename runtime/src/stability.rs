@@ -183,7 +183,7 @@ const CONVERGED: f64 = 1e-10;
 
 /// RK4's reach h|λ| ([`rk4_step_limit`] × |λ|) by the angle α of λ from the negative real
 /// axis, at `REACH_TABLE` + 1 angles evenly over [0, π/2] (2.785 at α = 0, 2.83 at π/2, at
-/// least 2.6156 between): built once.
+/// least 2.6155 between): built once.
 const REACH_TABLE: usize = 1024;
 
 fn reach_table() -> &'static [f64; REACH_TABLE + 1] {
@@ -197,11 +197,11 @@ fn reach_table() -> &'static [f64; REACH_TABLE + 1] {
 }
 
 /// How much the reach can fall between two angles of [`reach_table`] (its largest slope,
-/// 2.12 per radian at α → π/2, over half a spacing of 1.5e-3 rad is 1.6e-3; with room to
+/// 2.125 = 17/8 per radian at α → π/2, over half a spacing of 1.5e-3 rad is 1.6e-3; with room to
 /// spare).
 const REACH_BETWEEN: f64 = 5e-3;
 
-/// A bound of the reach's slope by angle (measured: at most 2.12 per radian, at α → π/2), for
+/// A bound of the reach's slope by angle (measured: at most 2.125 = 17/8 per radian, at α → π/2), for
 /// disks narrow enough that the reach at their centre's angle bounds it best.
 const REACH_SLOPE_BOUND: f64 = 3.0;
 
@@ -365,6 +365,25 @@ mod tests {
             }
         }
         assert!(left >= 60 && right >= 60 && across >= 20, "{left} left, {right} right, {across} across");
+        // Where the reach falls fastest (17/8 per radian, α → π/2) and on the table's cell
+        // edges, narrow disks that random draws rarely give.
+        let cell = std::f64::consts::FRAC_PI_2 / REACH_TABLE as f64;
+        let mut fixed: Vec<(Complex<f64>, f64)> = Vec::new();
+        for relative in [1e-7, 1e-3, 1.6e-3] {
+            for alpha in [std::f64::consts::FRAC_PI_2 - 4e-7, std::f64::consts::FRAC_PI_2 - 0.01, 1000.5 * cell, 0.9993]
+            {
+                let theta = Complex::from_polar(0.2448, std::f64::consts::PI - alpha);
+                fixed.push((theta, relative * 0.2448));
+            }
+        }
+        for (theta, r) in fixed {
+            let bound = disk_limit_lower_bound(theta, r);
+            let least = (0..4000)
+                .map(|i| theta + Complex::from_polar(r, std::f64::consts::TAU * i as f64 / 4000.0))
+                .map(rk4_step_limit)
+                .fold(rk4_step_limit(theta), f64::min);
+            assert!(bound <= least, "θ = {theta}, r = {r:e}: {bound:e} against {least:e}");
+        }
     }
 
     /// A Jacobian with undamped modes ±i·ω for each ω of `band`, one damped mode −984.55
