@@ -45,7 +45,7 @@ impl LoadModel for StateLoads {
         }
     }
 
-    fn fused(&mut self, _loads: &[[f64; 3]], _power: &[f64]) {
+    fn fused(&mut self, _power: &[f64]) {
         unreachable!("these loads are never offered to a kernel for fusing");
     }
 }

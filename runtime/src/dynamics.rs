@@ -29,6 +29,9 @@ pub struct Dynamics {
     /// Whether `assembly.bodies` holds the last solve's body states, or the kernel still
     /// keeps them ([`Kernel::last_states`]).
     states_settled: bool,
+    /// Whether `loads` holds the last evaluation's loads, friction included, or the kernel
+    /// still keeps them ([`Kernel::last_loads`]).
+    loads_settled: bool,
     evaluations: u64,
     loads: Vec<Load>,
     /// The seabed's reaction and the sliding friction force (N, along +x) of the last
@@ -68,7 +71,8 @@ impl LastEvaluation {
     }
 }
 
-/// The forces seen by the kernel, keeping a copy of the loads they returned.
+/// The forces seen by the kernel, keeping a copy of the loads they returned (a fused
+/// kernel keeps its own: [`Kernel::last_loads`]).
 struct Recording<'a> {
     forces: &'a mut Forces,
     loads: &'a mut Vec<Load>,
@@ -81,10 +85,8 @@ impl LoadModel for Recording<'_> {
         self.loads.extend_from_slice(loads);
     }
 
-    fn fused(&mut self, loads: &[[f64; 3]], power: &[f64]) {
-        self.forces.fused(loads, power);
-        self.loads.clear();
-        self.loads.extend(loads.iter().map(|&[fx, fz, my]| Load { fx, fz, my }));
+    fn fused(&mut self, power: &[f64]) {
+        self.forces.fused(power);
     }
 }
 
@@ -158,6 +160,7 @@ impl Dynamics {
             direction: 0.0,
             assembly: Assembly::new(n),
             states_settled: true,
+            loads_settled: true,
             evaluations: 0,
             loads: vec![Load::default(); n],
             reaction: AnchorReaction::default(),
@@ -192,7 +195,7 @@ impl Dynamics {
     /// kinematics: it leaves the last evaluation valid, so the fixed-step driver's observation
     /// at the end of a step is also the next step's first stage.
     pub fn body_accelerations(&mut self, q: &[f64], u: &[f64], qdd: &[f64], out: &mut [BodyAcceleration]) {
-        self.settle_states();
+        self.settle();
         self.kernel.accelerations(q, u, qdd, out);
     }
 
@@ -235,22 +238,29 @@ impl Dynamics {
 
     /// The last evaluation's body states, B_1 first.
     pub fn body_states(&mut self) -> &[BodyState] {
-        self.settle_states();
+        self.settle();
         &self.assembly.bodies
     }
 
-    /// The last solve's body states into `assembly.bodies` where the kernel kept them
-    /// itself: before any call that may overwrite them, and when they are asked for.
-    fn settle_states(&mut self) {
+    /// The last solve's body states into `assembly.bodies` and its loads into `loads`,
+    /// the anchor's sliding friction added, where the kernel kept them itself: before any
+    /// call that may overwrite them, and when they are asked for.
+    fn settle(&mut self) {
         if !self.states_settled {
             self.kernel.last_states(&mut self.assembly.bodies);
             self.states_settled = true;
+        }
+        if !self.loads_settled {
+            self.kernel.last_loads(&mut self.loads);
+            self.loads[0].fx += self.friction;
+            self.loads_settled = true;
         }
     }
 
     /// The applied loads of the last evaluation, per body, the anchor's sliding friction
     /// included.
-    pub fn loads(&self) -> &[Load] {
+    pub fn loads(&mut self) -> &[Load] {
+        self.settle();
         &self.loads
     }
 
@@ -290,6 +300,9 @@ impl Dynamics {
             AnchorDof::Stuck => 0.0,
         };
         self.states_settled = false;
+        self.loads_settled = false;
+        // Until the solve succeeds: the loads of a refused evaluation carry no friction.
+        self.friction = 0.0;
         let mut model = Recording { forces: &mut self.forces, loads: &mut self.loads };
         let mut reaction = self.kernel.solve(q, u, self.anchor, k, &mut model, &mut self.assembly, qdd)?;
         if k != 0.0 && reaction.normal < 0.0 {
@@ -302,7 +315,6 @@ impl Dynamics {
             return Err(RhsError::NonFiniteAcceleration);
         }
         self.friction = AnchorForces::sliding_friction(k, reaction.normal);
-        self.loads[0].fx += self.friction;
         self.reaction = reaction;
         self.last.set(q, u, qdd);
         Ok(reaction)
@@ -311,7 +323,7 @@ impl Dynamics {
     /// a_lp and f_l at (q, u) with this system's loads, whatever path `accelerations` takes
     /// (for reports such as `eval`).
     pub fn assemble(&mut self, q: &[f64], u: &[f64], out: &mut Assembly) {
-        self.settle_states();
+        self.settle();
         self.last.valid = false;
         self.kernel.assemble(q, u, &mut self.forces, out);
     }

@@ -174,6 +174,9 @@ pub struct GeneratedKernel {
     /// Whether `ws.bodies` and `ws.trig` hold the states of the last solve, a fused one,
     /// which left `scratch.bodies` as it was ([`Kernel::last_states`]).
     states_of_last_solve: bool,
+    /// Whether `ws.loads` holds the loads the last solve, a fused one, computed
+    /// ([`Kernel::last_loads`]).
+    loads_of_last_solve: bool,
     loads: Vec<Load>,
     acc: Vec<[f64; 3]>,
     /// a_{w,p} and f_w from `assemble`.
@@ -236,6 +239,7 @@ impl GeneratedKernel {
             trig_q: Vec::with_capacity(n),
             rows_of_last_solve: false,
             states_of_last_solve: false,
+            loads_of_last_solve: false,
             loads: vec![Load::default(); n],
             acc: vec![[0.0; 3]; n],
             heave: vec![0.0; n + 1],
@@ -363,12 +367,14 @@ impl GeneratedKernel {
         // The workspace holds the kinematics at q whether or not the solve is refused.
         self.kinematics_at(q);
         self.states_of_last_solve = true;
+        self.loads_of_last_solve = true;
         check_friction_factor(factor)?;
-        model.fused(&self.ws.loads, &self.ws.power);
+        model.fused(&self.ws.power);
         Ok(reaction)
     }
 
     fn loads(&mut self, model: &mut dyn LoadModel, bodies: &[BodyState]) {
+        self.loads_of_last_solve = false;
         model.loads(bodies, &mut self.loads);
         for (a, l) in self.ws.loads.iter_mut().zip(&self.loads) {
             *a = [l.fx, l.fz, l.my];
@@ -473,6 +479,18 @@ impl Kernel for GeneratedKernel {
             self.copy_states(bodies);
         }
         self.states_of_last_solve
+    }
+
+    /// From `ws.loads`, where the last solve, a fused one, left them: converted only when
+    /// asked (an observation on a path without the solve's rows, a report), not at every
+    /// evaluation.
+    fn last_loads(&self, loads: &mut [Load]) -> bool {
+        if self.loads_of_last_solve {
+            for (l, &[fx, fz, my]) in loads.iter_mut().zip(&self.ws.loads) {
+                *l = Load { fx, fz, my };
+            }
+        }
+        self.loads_of_last_solve
     }
 
     /// From the rows the last successful rolled solve left (`joint_forces` of the rolled

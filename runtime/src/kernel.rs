@@ -157,11 +157,11 @@ pub trait LoadModel {
     fn loads(&mut self, bodies: &[BodyState], loads: &mut [Load]);
 
     /// Told instead of [`LoadModel::loads`] by a kernel that computed the loads in its own
-    /// code ([`Kernel::fuse_loads`]): every body's load as the generated code holds it,
-    /// `[F_x, F_z, M_y]` (a [`Load`]'s fields in order), and the power of each work term
-    /// (W, in the order of `forces::WORK_TERMS`), for the model to keep as if it had
-    /// computed them.
-    fn fused(&mut self, loads: &[[f64; 3]], power: &[f64]);
+    /// code ([`Kernel::fuse_loads`]): the power of each work term (W, in the order of
+    /// `forces::WORK_TERMS`), for the model to keep as if it had computed it. The loads
+    /// themselves stay in the kernel until asked for ([`Kernel::last_loads`]): an
+    /// integration reads them only when it reports them, not at every evaluation.
+    fn fused(&mut self, power: &[f64]);
 }
 
 /// A Kane kernel for one chain.
@@ -231,6 +231,15 @@ pub trait Kernel {
     /// at every evaluation). Valid until the kernel's next call. Returns whether it wrote
     /// them; the default has nothing to write, its solve filled `scratch.bodies`.
     fn last_states(&self, _bodies: &mut [BodyState]) -> bool {
+        false
+    }
+
+    /// The applied loads of the last [`Kernel::solve`] into `loads`, B_1 first, when that
+    /// solve computed them in its own code ([`Kernel::fuse_loads`]) and told the load model
+    /// only their power ([`LoadModel::fused`]). Valid until the kernel's next call. Returns
+    /// whether it wrote them; the default has nothing to write, its solve asked the load
+    /// model for them.
+    fn last_loads(&self, _loads: &mut [Load]) -> bool {
         false
     }
 

@@ -288,7 +288,7 @@ impl LoadModel for Forces {
         self.power = power;
     }
 
-    fn fused(&mut self, _loads: &[[f64; 3]], power: &[f64]) {
+    fn fused(&mut self, power: &[f64]) {
         self.power.copy_from_slice(power);
     }
 }
