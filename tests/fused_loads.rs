@@ -29,6 +29,7 @@ use kanestop_codegen::loads::{generate_loads, signature_code, LoadBody};
 use kanestop_codegen::rolled::{anchor, inward, Kind, Loads};
 use kanestop_runtime::chain::Chain;
 use kanestop_runtime::dynamics::{fused_loads, Dynamics};
+use kanestop_runtime::forces::anchor::AnchorForces;
 use kanestop_runtime::forces::{Forces, WORK_TERMS};
 use kanestop_runtime::generated::{Form, GeneratedKernel, SolvePath};
 use kanestop_runtime::kernel::{AnchorDof, Assembly, BodyState, Kernel, Load, LoadModel};
@@ -469,13 +470,16 @@ fn a_chain_out_of_order_keeps_the_force_modules() {
 /// steps): the whole right-hand side (q̇ and ü equal, the work terms' power, the anchor's
 /// friction included, to round-off), the loads it reports and the seabed's reaction, equal,
 /// with the anchor held and sliding both ways (the retry without friction when the chain
-/// lifts the anchor included).
+/// lifts the anchor included); and the loads each reports equal to the force modules' at its
+/// body states with the anchor's friction added once, asked before and after the body
+/// accelerations.
 #[test]
 fn dynamics_with_fused_loads_is_dynamics_on_the_force_modules() {
     use kanestop_runtime::integrate::OdeSystem;
-    let mut retried = 0;
+    let (mut retried, mut with_friction) = (0, 0);
     for (name, model) in case1_signatures().into_iter().chain(scenes("scenes/stress")) {
         let n = model.body_count();
+        let mut oracle = Forces::new(&model);
         let kernel = GeneratedKernel::new(&model.chain).unwrap();
         let mut fused = Dynamics::new(Box::new(kernel), Forces::new(&model), model.anchor);
         let rolled = GeneratedKernel::with_form(&model.chain, Form::Rolled).unwrap();
@@ -506,13 +510,44 @@ fn dynamics_with_fused_loads_is_dynamics_on_the_force_modules() {
             if fused.sliding_direction() != 0.0 && fused.reaction().normal < 0.0 {
                 retried += 1;
             }
-            // Asked again, the same loads: the anchor's friction is added once.
-            let first = fused.loads().to_vec();
-            assert_eq!(first.len(), n);
-            assert_eq!(fused.loads(), first, "{name} state {trial}: the loads changed on asking twice");
+            // Against the force modules at the reported states, the anchor's sliding friction
+            // (Eq. 37) added once, on B_1; asked again after the body accelerations (which
+            // recompute the kinematics), the same.
+            for (which, d) in [("fused", &mut fused), ("fed", &mut fed)] {
+                let bodies = d.body_states().to_vec();
+                let mut expected = vec![Load::default(); n];
+                oracle.loads(&bodies, &mut expected);
+                let k = match d.anchor() {
+                    AnchorDof::Free => oracle.anchor.friction_factor(d.sliding_direction()),
+                    AnchorDof::Stuck => 0.0,
+                };
+                let friction = AnchorForces::sliding_friction(k, d.reaction().normal);
+                expected[0].fx += friction;
+                with_friction += usize::from(friction != 0.0);
+                let loads_scale =
+                    expected.iter().fold(1.0f64, |m, l| m.max(l.fx.abs()).max(l.fz.abs()).max(l.my.abs()));
+                for ask in 0..2 {
+                    if ask == 1 {
+                        let mut acc = vec![Default::default(); n];
+                        d.body_accelerations(&q, &u, &b[n..2 * n], &mut acc);
+                    }
+                    let got = d.loads();
+                    assert_eq!(got.len(), n);
+                    let diff = got.iter().zip(&expected).fold(0.0f64, |m, (x, y)| {
+                        m.max((x.fx - y.fx).abs()).max((x.fz - y.fz).abs()).max((x.my - y.my).abs())
+                    });
+                    assert!(
+                        diff <= 1e-12 * loads_scale,
+                        "{name} state {trial}, {which}, ask {ask}: the loads differ from the force modules' by {diff:e}"
+                    );
+                }
+            }
         }
     }
-    eprintln!("right-hand sides compared; {retried} solved again without friction");
+    assert!(with_friction > 0, "some states slide against friction");
+    eprintln!(
+        "right-hand sides compared; {retried} solved again without friction, {with_friction} loads with friction"
+    );
 }
 
 /// A dry scene without seabed runs on the fused right-hand side of `dry`, case 1 on that of

@@ -29,8 +29,9 @@ pub struct Dynamics {
     /// Whether `assembly.bodies` holds the last solve's body states, or the kernel still
     /// keeps them ([`Kernel::last_states`]).
     states_settled: bool,
-    /// Whether `loads` holds the last evaluation's loads, friction included, or the kernel
-    /// still keeps them ([`Kernel::last_loads`]).
+    /// Whether `loads` holds the last evaluation's loads with the anchor's friction added.
+    /// Until then they are in the kernel ([`Kernel::last_loads`]) or, when the force
+    /// modules computed them, in `loads` without the friction.
     loads_settled: bool,
     evaluations: u64,
     loads: Vec<Load>,
@@ -195,7 +196,7 @@ impl Dynamics {
     /// kinematics: it leaves the last evaluation valid, so the fixed-step driver's observation
     /// at the end of a step is also the next step's first stage.
     pub fn body_accelerations(&mut self, q: &[f64], u: &[f64], qdd: &[f64], out: &mut [BodyAcceleration]) {
-        self.settle();
+        self.settle_states();
         self.kernel.accelerations(q, u, qdd, out);
     }
 
@@ -238,20 +239,26 @@ impl Dynamics {
 
     /// The last evaluation's body states, B_1 first.
     pub fn body_states(&mut self) -> &[BodyState] {
-        self.settle();
+        self.settle_states();
         &self.assembly.bodies
     }
 
-    /// The last solve's body states into `assembly.bodies` and its loads into `loads`,
-    /// the anchor's sliding friction added, where the kernel kept them itself: before any
-    /// call that may overwrite them, and when they are asked for.
-    fn settle(&mut self) {
+    /// The last solve's body states into `assembly.bodies` where the kernel kept them
+    /// itself: before any call that may overwrite them, and when they are asked for.
+    fn settle_states(&mut self) {
         if !self.states_settled {
             self.kernel.last_states(&mut self.assembly.bodies);
             self.states_settled = true;
         }
+    }
+
+    /// The last evaluation's loads into `loads` where the kernel kept them itself, and the
+    /// anchor's sliding friction added to them (once): before any call that may overwrite
+    /// them in the kernel, and when they are asked for.
+    fn settle_loads(&mut self) {
         if !self.loads_settled {
-            self.kernel.last_loads(&mut self.loads);
+            let kept = self.kernel.last_loads(&mut self.loads);
+            debug_assert!(kept || !self.fused, "a kernel that fuses its loads keeps them (Kernel::last_loads)");
             self.loads[0].fx += self.friction;
             self.loads_settled = true;
         }
@@ -260,7 +267,7 @@ impl Dynamics {
     /// The applied loads of the last evaluation, per body, the anchor's sliding friction
     /// included.
     pub fn loads(&mut self) -> &[Load] {
-        self.settle();
+        self.settle_loads();
         &self.loads
     }
 
@@ -323,7 +330,8 @@ impl Dynamics {
     /// a_lp and f_l at (q, u) with this system's loads, whatever path `accelerations` takes
     /// (for reports such as `eval`).
     pub fn assemble(&mut self, q: &[f64], u: &[f64], out: &mut Assembly) {
-        self.settle();
+        self.settle_states();
+        self.settle_loads();
         self.last.valid = false;
         self.kernel.assemble(q, u, &mut self.forces, out);
     }

@@ -341,8 +341,8 @@ impl GeneratedKernel {
     }
 
     /// The scene's fused right-hand side at (q, u): states, loads and ẍ in one generated
-    /// function; the loads and powers are told to `model`, the states kept in `ws` for
-    /// [`Kernel::last_states`].
+    /// function; the powers are told to `model`, the states and loads kept in `ws` for
+    /// [`Kernel::last_states`] and [`Kernel::last_loads`].
     fn solve_fused(
         &mut self,
         q: &[f64],

@@ -5,8 +5,8 @@
 //! applied loads come from a [`LoadModel`]: the kernel calls back into the force models
 //! with the body states it computed and projects what they return (Eq. 23), unless it took
 //! the loads into its own code ([`Kernel::fuse_loads`], the generated load code of the
-//! scene's signature), in which case it tells the model what it computed
-//! ([`LoadModel::fused`]).
+//! scene's signature), in which case it tells the model the power it computed
+//! ([`LoadModel::fused`]) and keeps the loads until asked ([`Kernel::last_loads`]).
 //!
 //! # Coordinates (used by every kernel, `eval` and the state files)
 //!
@@ -179,9 +179,10 @@ pub trait Kernel {
     }
 
     /// Takes the scene's loads into the kernel's own code (the generated load code of their
-    /// signature): afterwards [`Kernel::solve`] computes them itself and hands them to its
-    /// `model` through [`LoadModel::fused`] instead of calling [`LoadModel::loads`].
-    /// Returns whether it did; the default cannot.
+    /// signature): afterwards [`Kernel::solve`] computes them itself, tells its `model` their
+    /// power through [`LoadModel::fused`] instead of calling [`LoadModel::loads`], and keeps
+    /// the loads for [`Kernel::last_loads`], which a kernel that fuses must therefore
+    /// implement too. Returns whether it did; the default cannot.
     fn fuse_loads(&mut self, _loads: &FusedLoads) -> bool {
         false
     }

@@ -5,8 +5,8 @@
 //! operations, per load signature; `tests/fused_loads.rs` checks them equal). The reference
 //! kernel, the assembled path and `eval` call [`Forces::loads`] with the body states they
 //! computed and project the result with the partial velocities (Eq. 23); the generated
-//! kernel's solve runs the generated copy and hands its loads and power back
-//! ([`LoadModel::fused`]). Each load is the resultant at the body's
+//! kernel's solve runs the generated copy and hands back the power ([`LoadModel::fused`]),
+//! keeping the loads for whoever asks (`Kernel::last_loads`). Each load is the resultant at the body's
 //! centroid (force in N, moment about y in N·m). Added mass (Eq. 46) is not a load: it is
 //! part of each body's inertia ([`crate::chain::Body::added_mass`]) and so of a_lp.
 //!
