@@ -8,13 +8,21 @@
 //! dense decomposition; the fine lines are where it stops early. The stopping rule itself is
 //! tested on a constructed spectrum in `runtime/src/stability.rs`.
 
-use std::path::Path;
+mod common;
 
+use std::path::Path;
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::Arc;
+
+use common::Unfused;
 use kanestop_runtime::dynamics::{Dynamics, WORK_COUNT};
 use kanestop_runtime::forces::Forces;
 use kanestop_runtime::generated::GeneratedKernel;
+use kanestop_runtime::integrate::RhsError;
+use kanestop_runtime::kernel::{AnchorDof, AnchorReaction, Assembly, BodyAcceleration, BodyState, Kernel, LoadModel};
 use kanestop_runtime::model::Model;
 use kanestop_runtime::scene::{CableStage, Scene};
+use kanestop_runtime::simulate::{self, Cancelled};
 use kanestop_runtime::stability;
 
 fn load(path: &Path) -> Scene {
@@ -38,9 +46,9 @@ fn assert_agree(scene: &Scene) -> (f64, usize) {
     let y0: Vec<f64> = model.q0.iter().chain(&model.u0).copied().chain([0.0; WORK_COUNT]).collect();
     let mut dynamics =
         Dynamics::new(Box::new(GeneratedKernel::new(&model.chain).unwrap()), Forces::new(&model), model.anchor);
-    let jac = stability::jacobian(&mut dynamics, &y0).unwrap();
+    let jac = stability::jacobian(&mut dynamics, &y0, &AtomicBool::new(false)).unwrap();
     let dense = stability::dense_limit(&jac).unwrap();
-    let (krylov, steps) = stability::krylov_limit_with_steps(&jac).unwrap();
+    let (krylov, steps) = stability::krylov_limit_with_steps(&jac, &AtomicBool::new(false)).unwrap();
     let spread = (stability::dense_limit(&jac.transpose()).unwrap().rk4_dt - dense.rk4_dt).abs() / dense.rk4_dt;
     let rel = (krylov.rk4_dt - dense.rk4_dt).abs() / dense.rk4_dt;
     assert!(
@@ -104,4 +112,79 @@ fn arnoldi_finds_the_dense_limit_on_long_fine_lines() {
             assert!(steps < dim, "{}: m = {steps}", scene.meta.name);
         }
     }
+}
+
+/// The generated kernel (on the force modules) that sets `cancel` at its `at`-th solve and
+/// counts its solves: a user's Ctrl-C arriving during the start-up analysis, on cue.
+struct CancelAt {
+    inner: Unfused,
+    at: usize,
+    cancel: Arc<AtomicBool>,
+    solves: Arc<AtomicUsize>,
+}
+
+impl Kernel for CancelAt {
+    fn name(&self) -> &'static str {
+        "cancel-at"
+    }
+    fn body_count(&self) -> usize {
+        self.inner.body_count()
+    }
+    fn kinematics(&mut self, q: &[f64], u: &[f64], bodies: &mut [BodyState]) {
+        self.inner.kinematics(q, u, bodies)
+    }
+    fn assemble(&mut self, q: &[f64], u: &[f64], model: &mut dyn LoadModel, out: &mut Assembly) {
+        self.inner.assemble(q, u, model, out)
+    }
+    fn accelerations(&mut self, q: &[f64], u: &[f64], qdd: &[f64], out: &mut [BodyAcceleration]) {
+        self.inner.accelerations(q, u, qdd, out)
+    }
+    #[allow(clippy::too_many_arguments)]
+    fn solve(
+        &mut self,
+        q: &[f64],
+        u: &[f64],
+        anchor: AnchorDof,
+        friction: f64,
+        model: &mut dyn LoadModel,
+        scratch: &mut Assembly,
+        qdd: &mut [f64],
+    ) -> Result<AnchorReaction, RhsError> {
+        if self.solves.fetch_add(1, Ordering::Relaxed) + 1 == self.at {
+            self.cancel.store(true, Ordering::Relaxed);
+        }
+        self.inner.solve(q, u, anchor, friction, model, scratch, qdd)
+    }
+}
+
+/// A run cancelled while RK4's start-up analysis forms the Jacobian of a 500 m line
+/// (N = 518, about 2 100 right-hand sides and 0.5 s of Arnoldi's method in all) stops
+/// within a column of the flag, before any step; the Krylov path stops at its first
+/// product once the flag is set.
+#[test]
+fn the_start_up_analysis_stops_when_cancelled() {
+    let model = Model::new(&fine_line(500, |_| {})).unwrap();
+    let at = 10;
+    let (cancel, solves) = (Arc::new(AtomicBool::new(false)), Arc::new(AtomicUsize::new(0)));
+    let kernel = CancelAt {
+        inner: Unfused(GeneratedKernel::new(&model.chain).unwrap()),
+        at,
+        cancel: cancel.clone(),
+        solves: solves.clone(),
+    };
+    let run = simulate::run_cancellable(&model, Box::new(kernel), &cancel);
+    assert_eq!(run.unwrap_err(), Cancelled { t: 0.0 });
+    // A column takes two right-hand sides (each one solve, or two when friction is retried).
+    let taken = solves.load(Ordering::Relaxed);
+    assert!((at..=at + 4).contains(&taken), "{taken} solves after the flag was set at the {at}th");
+
+    let y0: Vec<f64> = model.q0.iter().chain(&model.u0).copied().chain([0.0; WORK_COUNT]).collect();
+    let mut dynamics =
+        Dynamics::new(Box::new(GeneratedKernel::new(&model.chain).unwrap()), Forces::new(&model), model.anchor);
+    let jac = stability::jacobian(&mut dynamics, &y0, &AtomicBool::new(false)).unwrap();
+    assert!(jac.nrows() > stability::DENSE_MAX);
+    assert_eq!(
+        stability::krylov_limit_with_steps(&jac, &AtomicBool::new(true)).unwrap_err(),
+        stability::StabilityError::Cancelled
+    );
 }

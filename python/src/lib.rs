@@ -325,7 +325,7 @@ fn _run(
 
 /// Runs `work` on its own thread while this one waits with the GIL released, waking every
 /// 50 ms to check for Ctrl-C: a signal sets the flag `work` polls (a run stops at its next
-/// step), waits for it to return, and raises the signal's exception (KeyboardInterrupt).
+/// step, or within its start-up stability analysis), waits for it to return, and raises the signal's exception (KeyboardInterrupt).
 /// `work` returns None only when cancelled.
 fn interruptible<T: Send>(py: Python<'_>, work: impl FnOnce(&AtomicBool) -> Option<T> + Send) -> PyResult<T> {
     let cancel = AtomicBool::new(false);

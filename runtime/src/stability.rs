@@ -24,6 +24,12 @@
 //! state change during a run, which is why every step is still checked for energy runaway
 //! ([`crate::simulate`]). It names the body whose hinge is stiffest, where the fastest mode
 //! lives.
+//!
+//! The analysis can be cancelled from another thread (a Python user's Ctrl-C during the
+//! start-up of a long line): the flag is read before each column of the Jacobian and each
+//! product of Arnoldi's method; a dense decomposition, once begun, runs to its end.
+
+use std::sync::atomic::{AtomicBool, Ordering};
 
 use nalgebra::{Complex, DMatrix};
 
@@ -48,6 +54,18 @@ pub enum StabilityError {
     /// The real Schur decomposition did not converge.
     #[error("the eigenvalues of the Jacobian at the initial state did not converge")]
     NoEigenvalues,
+    /// The caller's cancel flag was set before the analysis ended.
+    #[error("the stability analysis was cancelled")]
+    Cancelled,
+}
+
+/// `Err(Cancelled)` once `cancel` is set.
+fn go_on(cancel: &AtomicBool) -> Result<(), StabilityError> {
+    if cancel.load(Ordering::Relaxed) {
+        Err(StabilityError::Cancelled)
+    } else {
+        Ok(())
+    }
 }
 
 /// The fastest mode of a scene at t = 0 and the step RK4 can take on it.
@@ -101,23 +119,26 @@ pub fn rk4_step_limit(lambda: Complex<f64>) -> f64 {
 
 /// The [`StabilityLimit`] of `dynamics` at the state `y0` = (q, u, W): every eigenvalue of
 /// the [`jacobian`] up to 2N = [`DENSE_MAX`], the outer ones by Arnoldi's method above it.
-pub fn limit(dynamics: &mut Dynamics, y0: &[f64]) -> Result<StabilityLimit, StabilityError> {
-    let jac = jacobian(dynamics, y0)?;
+/// Stops with [`StabilityError::Cancelled`] soon after `cancel` is set (see the module
+/// documentation).
+pub fn limit(dynamics: &mut Dynamics, y0: &[f64], cancel: &AtomicBool) -> Result<StabilityLimit, StabilityError> {
+    let jac = jacobian(dynamics, y0, cancel)?;
     if jac.nrows() <= DENSE_MAX {
         dense_limit(&jac)
     } else {
-        krylov_limit(&jac)
+        krylov_limit(&jac, cancel)
     }
 }
 
 /// ∂ẏ/∂y of the (q, u) part at `y0` by central differences, column by column: coordinate j
 /// moves by ±1e-6 · max(|y_j|, 1e-2). 4N right-hand sides.
-pub fn jacobian(dynamics: &mut Dynamics, y0: &[f64]) -> Result<DMatrix<f64>, StabilityError> {
+pub fn jacobian(dynamics: &mut Dynamics, y0: &[f64], cancel: &AtomicBool) -> Result<DMatrix<f64>, StabilityError> {
     let dim = 2 * dynamics.body_count();
     let mut jac = DMatrix::zeros(dim, dim);
     let (mut fp, mut fm) = (vec![0.0; y0.len()], vec![0.0; y0.len()]);
     let mut y = y0.to_vec();
     for j in 0..dim {
+        go_on(cancel)?;
         let h = 1e-6 * y0[j].abs().max(1e-2);
         y[j] = y0[j] + h;
         dynamics.rhs(0.0, &y, &mut fp)?;
@@ -248,8 +269,8 @@ fn disk_limit_lower_bound(theta: Complex<f64>, r: f64) -> f64 {
 
 /// The limit from the outer eigenvalues of `jac`, a [`jacobian`], by Arnoldi's method on its
 /// products with vectors (O(N²) each): see [`krylov_limit_with_steps`].
-pub fn krylov_limit(jac: &DMatrix<f64>) -> Result<StabilityLimit, StabilityError> {
-    krylov_limit_with_steps(jac).map(|(limit, _)| limit)
+pub fn krylov_limit(jac: &DMatrix<f64>, cancel: &AtomicBool) -> Result<StabilityLimit, StabilityError> {
+    krylov_limit_with_steps(jac, cancel).map(|(limit, _)| limit)
 }
 
 /// [`krylov_limit`] and the size of the Krylov space it took (2N where it handed over to
@@ -266,14 +287,18 @@ pub fn krylov_limit(jac: &DMatrix<f64>) -> Result<StabilityLimit, StabilityError
 ///
 /// # Panics
 /// If `jac` is not square with at least two rows.
-pub fn krylov_limit_with_steps(jac: &DMatrix<f64>) -> Result<(StabilityLimit, usize), StabilityError> {
+pub fn krylov_limit_with_steps(
+    jac: &DMatrix<f64>,
+    cancel: &AtomicBool,
+) -> Result<(StabilityLimit, usize), StabilityError> {
     assert!(jac.is_square() && jac.nrows() >= 2, "a Jacobian of (q, u) is square, 2N ≥ 2 rows");
     if jac.iter().any(|v| !v.is_finite()) {
         return Err(StabilityError::NonFiniteJacobian);
     }
     let body = stiffest_hinge(jac);
     let dim = jac.nrows();
-    let mut product = |v: &[f64], out: &mut [f64]| -> Result<(), std::convert::Infallible> {
+    let mut product = |v: &[f64], out: &mut [f64]| -> Result<(), StabilityError> {
+        go_on(cancel)?;
         out.fill(0.0);
         // Column by column (the matrix is stored so): out += x_j J_j.
         for (column, &x) in jac.as_slice().chunks_exact(dim).zip(v) {
@@ -289,7 +314,7 @@ pub fn krylov_limit_with_steps(jac: &DMatrix<f64>) -> Result<(StabilityLimit, us
             // A space this large costs about what the whole Jacobian's decomposition does.
             return dense_limit(jac).map(|limit| (limit, dim));
         }
-        krylov.extend_to(m, &mut product).unwrap_or_else(|never| match never {});
+        krylov.extend_to(m, &mut product)?;
         let ritz = krylov.ritz_values().ok_or(StabilityError::NoEigenvalues)?;
         if ritz.iter().any(|v| !(v.re.is_finite() && v.im.is_finite())) {
             return Err(StabilityError::NoEigenvalues);
@@ -406,7 +431,7 @@ mod tests {
     /// finds that mode and its limit 2√2/1000 s to 1e-9, and returns the Krylov size m.
     fn krylov_steps_to_the_top_at_1000i(jac: &DMatrix<f64>) -> usize {
         let exact = 8f64.sqrt() / 1000.0;
-        let (found, steps) = krylov_limit_with_steps(jac).unwrap();
+        let (found, steps) = krylov_limit_with_steps(jac, &AtomicBool::new(false)).unwrap();
         assert!(
             (found.rk4_dt - exact).abs() <= 1e-9 * exact,
             "{:e} s against {exact:e} s at m = {steps}",

@@ -286,8 +286,8 @@ def run(
     kernel: str = "generated",
 ) -> Result:
     """Runs a scene (a ``Scene`` or a path) until the ship stops, the end time or a
-    numerical failure, with the GIL released; Ctrl-C stops it at its next step and
-    raises KeyboardInterrupt.
+    numerical failure, with the GIL released; Ctrl-C stops it at its next step (or
+    within the start-up stability analysis) and raises KeyboardInterrupt.
 
     The keywords override the scene's ``[solver]`` like ``kanestop run --integrator --dt
     --rtol --atol`` (and ``solver.end_time``, ``solver.output_interval``); the result is

@@ -8,6 +8,8 @@
 //! A completed interval is checked ([`super::health`]); a first zero of the ship's surge
 //! speed inside it is then located under the anchor state of the segment it fell in.
 
+use std::sync::atomic::AtomicBool;
+
 use super::events::{self, Located};
 use super::failure::{Failure, FailureKind};
 use super::health;
@@ -212,8 +214,15 @@ impl<'a> Stepper<'a> {
     /// initial state's stability limit ([`Stepper::stability`]); then the energy balance
     /// E_0 is taken. Right-hand-side evaluations are counted from after the limit.
     pub fn start(&mut self) -> Result<(), Failure> {
+        self.start_cancellable(&AtomicBool::new(false))
+    }
+
+    /// [`Stepper::start`], whose stability analysis stops soon after `cancel` is set, with
+    /// the failure [`FailureKind::Stability`] of [`stability::StabilityError::Cancelled`].
+    pub fn start_cancellable(&mut self, cancel: &AtomicBool) -> Result<(), Failure> {
         if self.model.scene.solver.integrator == Method::Rk4 {
-            let limit = stability::limit(&mut self.m.dynamics, &self.y).map_err(|e| self.failure(0.0, e.into()))?;
+            let limit =
+                stability::limit(&mut self.m.dynamics, &self.y, cancel).map_err(|e| self.failure(0.0, e.into()))?;
             self.stability = Some(limit);
             let dt = self.model.scene.solver.dt;
             if dt > limit.rk4_dt {
