@@ -142,6 +142,14 @@ fn steps_beyond_the_limit_are_refused_with_the_estimate() {
     assert!(Scene::from_toml(&s.to_toml(), "fine.toml").is_ok());
 }
 
+/// An output interval below the step names the step it must reach and the two ways out.
+#[test]
+fn an_output_interval_below_the_step_names_the_step() {
+    let mut s = case1();
+    s.solver.dt = 0.5;
+    assert_refused(&s, "solver.output_interval", "at least solver.dt = 0.5 s: raise it, or take a smaller step");
+}
+
 /// The command line refuses an impossible geometry with exit 2, naming the field.
 #[test]
 fn cli_refuses_the_h_l_60_scene_with_exit_2() {

@@ -889,7 +889,8 @@ impl Scene {
         // No magnitude cap: the step count's limit below bounds it, and says so.
         c.range("solver.end_time", so.end_time, 0.0, f64::MAX, false, "s");
         if so.dt.is_finite() && so.dt > 0.0 {
-            c.range("solver.output_interval", so.output_interval, so.dt, f64::MAX, true, "s (at least solver.dt)");
+            let hint = format!("s (at least solver.dt = {} s: raise it, or take a smaller step)", fmt_value(so.dt));
+            c.range("solver.output_interval", so.output_interval, so.dt, f64::MAX, true, &hint);
             if so.end_time.is_finite() && so.end_time < so.dt {
                 c.push("solver.end_time", &fmt_value(so.end_time), &format!("≥ solver.dt = {} s", fmt_value(so.dt)));
             }

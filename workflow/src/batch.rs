@@ -136,7 +136,10 @@ pub fn row(file: &Path, model: &Model, result: &RunResult) -> BatchRow {
     let ran = result.steps > 0;
     let peak = result.peak_tension().filter(|_| ran);
     let outcomes = model.scene.checks.as_ref().map(|c| checks::evaluate(c, model, result)).unwrap_or_default();
-    let failed_checks: Vec<String> = outcomes.iter().filter(|o| !o.pass).map(checks::outcome_words).collect();
+    let failed_checks: Vec<String> = match &model.scene.checks {
+        Some(c) => outcomes.iter().filter(|o| !o.pass).map(|o| checks::outcome_words(o, c)).collect(),
+        None => Vec::new(),
+    };
     // The break-load check applies to every scene, `[checks]` or not (as in `run`).
     let over = break_exceedances(model, result);
     let failures: Vec<String> = checks::break_failure(&over).into_iter().chain(failed_checks).collect();

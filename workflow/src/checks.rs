@@ -106,14 +106,39 @@ pub fn evaluate(checks: &DesignChecks, model: &Model, result: &RunResult) -> Vec
     out
 }
 
-/// A `[checks]` outcome in words: `max_stopping_distance 41.2 > 40` (failed),
-/// `max_stopping_distance 27 ≤ 40` (passed), or the check without a value (the run did not
-/// reach it, e.g. the ship did not stop).
-pub fn outcome_words(o: &CheckOutcome) -> String {
-    match o.value {
-        Some(v) => format!("{} {v:.4} {} {}", o.name, if o.pass { "≤" } else { ">" }, o.limit),
-        None => format!("{} (no value: the run did not reach it) > {}", o.name, o.limit),
-    }
+/// A `[checks]` outcome in words, as the scene sets it and in the engineer's terms, with
+/// its own verdict: `max_stopping_distance = 40 m: stopped in 41.20 m (FAIL)`,
+/// `safety_factor = 7: 5.85 on the break load at joint 33 (FAIL)` (the factor the run
+/// achieved, break load over peak tension, not the utilisation ratio the outcome holds),
+/// `max_stopping_time = 30 s: no value as the run did not reach it (FAIL)`. `checks` is what
+/// `o` was evaluated against.
+pub fn outcome_words(o: &CheckOutcome, checks: &DesignChecks) -> String {
+    let verdict = if o.pass { "pass" } else { "FAIL" };
+    let at = o.joint.map(|j| format!(" at joint {j}")).unwrap_or_default();
+    let unit = match o.name.as_str() {
+        "max_stopping_distance" | "max_anchor_drag" => " m",
+        "max_stopping_time" => " s",
+        _ => "",
+    };
+    // The safety factor's outcome holds utilisation × factor against 1: say the factor set.
+    let required = checks.safety_factor.unwrap_or(f64::NAN);
+    let set = match o.name.as_str() {
+        "safety_factor" => format!("{} = {required}", o.name),
+        _ => format!("{} = {}{unit}", o.name, o.limit),
+    };
+    let gave = match (o.name.as_str(), o.value) {
+        (_, None) => "no value as the run did not reach it".to_string(),
+        ("max_stopping_distance", Some(v)) => format!("stopped in {v:.2} m"),
+        ("max_stopping_time", Some(v)) => format!("stopped in {v:.3} s"),
+        ("max_anchor_drag", Some(v)) => format!("dragged {v:.2} m"),
+        ("safety_factor", Some(v)) => {
+            let achieved = if v > 0.0 { format!("{:.2}", required / v) } else { "∞ (no tension)".into() };
+            format!("{achieved} on the break load{at}")
+        }
+        ("max_proof_utilisation", Some(v)) => format!("{v:.3} of the proof load{at}"),
+        (_, Some(v)) => format!("{v:.3}{at}"),
+    };
+    format!("{set}: {gave} ({verdict})")
 }
 
 /// The design checks' verdict: false when a break load was exceeded (`exceedances`, a check
@@ -124,4 +149,61 @@ pub fn verdict(outcomes: &[CheckOutcome], exceedances: &[Exceedance]) -> Option<
         return Some(false);
     }
     (!outcomes.is_empty()).then(|| outcomes.iter().all(|o| o.pass))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn outcome(name: &str, value: Option<f64>, limit: f64, joint: Option<usize>, pass: bool) -> CheckOutcome {
+        CheckOutcome { name: name.into(), value, limit, joint, pass }
+    }
+
+    /// The safety factor is said as the factor the run achieved (break load over peak
+    /// tension), not as the utilisation × required factor the outcome holds against 1.
+    #[test]
+    fn the_safety_factor_is_said_as_achieved() {
+        let checks = DesignChecks { safety_factor: Some(7.0), ..Default::default() };
+        // Utilisation 430.7/2520 = 0.1709: 7 × that = 1.196 > 1 fails; the factor is 5.85.
+        let u = 430.7 / 2520.0;
+        let failed = outcome("safety_factor", Some(7.0 * u), 1.0, Some(46), false);
+        assert_eq!(outcome_words(&failed, &checks), "safety_factor = 7: 5.85 on the break load at joint 46 (FAIL)");
+        let checks = DesignChecks { safety_factor: Some(1.5), ..Default::default() };
+        let passed = outcome("safety_factor", Some(1.5 * u), 1.0, Some(46), true);
+        assert_eq!(outcome_words(&passed, &checks), "safety_factor = 1.5: 5.85 on the break load at joint 46 (pass)");
+    }
+
+    #[test]
+    fn each_check_is_said_with_its_unit_and_its_own_verdict() {
+        let checks = DesignChecks { safety_factor: Some(1.5), ..Default::default() };
+        let cases = [
+            (
+                outcome("max_stopping_distance", Some(26.997), 20.0, None, false),
+                "max_stopping_distance = 20 m: stopped in 27.00 m (FAIL)",
+            ),
+            (
+                outcome("max_stopping_time", Some(19.8084), 30.0, None, true),
+                "max_stopping_time = 30 s: stopped in 19.808 s (pass)",
+            ),
+            (
+                outcome("max_anchor_drag", Some(22.381), 100.0, None, true),
+                "max_anchor_drag = 100 m: dragged 22.38 m (pass)",
+            ),
+            (
+                outcome("max_proof_utilisation", Some(0.85), 0.9, Some(12), true),
+                "max_proof_utilisation = 0.9: 0.850 of the proof load at joint 12 (pass)",
+            ),
+            (
+                outcome("max_stopping_time", None, 30.0, None, false),
+                "max_stopping_time = 30 s: no value as the run did not reach it (FAIL)",
+            ),
+            (
+                outcome("safety_factor", None, 1.0, None, false),
+                "safety_factor = 1.5: no value as the run did not reach it (FAIL)",
+            ),
+        ];
+        for (o, words) in cases {
+            assert_eq!(outcome_words(&o, &checks), words);
+        }
+    }
 }

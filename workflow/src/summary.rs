@@ -263,13 +263,17 @@ fn tension_lines(out: &mut Lines, model: &Model, result: &RunResult) {
         ),
         (None, None) => {}
     }
-    // The scene's own `[checks]`, each with its value (exit 4 when one fails).
+    // The scene's own `[checks]`, a line each with its value and verdict (exit 4 when one
+    // fails).
     if let Some(c) = &model.scene.checks {
         let outcomes = crate::checks::evaluate(c, model, result);
         if !outcomes.is_empty() {
-            let verdict = if outcomes.iter().all(|o| o.pass) { "PASS" } else { "FAIL" };
-            let words: Vec<String> = outcomes.iter().map(crate::checks::outcome_words).collect();
-            out.line("checks", format!("{verdict} [checks]: {}", words.join("; ")));
+            let failed = outcomes.iter().filter(|o| !o.pass).count();
+            let verdict = if failed == 0 { "PASS" } else { "FAIL" };
+            out.line("checks", format!("{verdict} [checks]: {failed} of {} failed", outcomes.len()));
+            for o in &outcomes {
+                out.line("", crate::checks::outcome_words(o, c));
+            }
         }
     }
 }
