@@ -18,12 +18,25 @@ const TABLES: [(&str, &str); 11] = [
     ("solver", "Solver"),
 ];
 
-/// (field, doc) pairs of `pub struct name` in `source`.
-fn fields(source: &str, name: &str) -> Vec<(String, String)> {
-    typed_fields(source, name).into_iter().map(|(field, _, doc)| (field, doc)).collect()
+/// (field, doc, optional) of `pub struct name` in `source`: optional when serde defaults it
+/// (`#[serde(default…)]`, an `Option`).
+fn fields(source: &str, name: &str) -> Vec<(String, String, bool)> {
+    parsed_fields(source, name).into_iter().map(|(field, _, doc, optional)| (field, doc, optional)).collect()
 }
 
-fn render(source: &str) -> String {
+/// A table's rows: `| `field` | doc |`, the field marked "(optional)" where it is.
+fn rows(out: &mut String, source: &str, name: &str) {
+    for (field, doc, optional) in fields(source, name) {
+        if field == "stages" {
+            continue; // its own table below
+        }
+        let mark = if optional { " (optional)" } else { "" };
+        out.push_str(&format!("| `{field}`{mark} | {} |\n", doc.replace('|', "\\|")));
+    }
+}
+
+/// `scene` is runtime/src/scene.rs, `design` runtime/src/design.rs (`[checks]`).
+fn render(scene: &str, design: &str) -> String {
     let mut out = String::from(
         "# Scene files\n\n<!-- Rendered from runtime/src/scene.rs by tests/docs_fresh.rs; edit the doc comments there. -->\n\n\
          Scenes are TOML. Every field is required unless marked optional, unknown keys are\n\
@@ -45,18 +58,22 @@ fn render(source: &str) -> String {
     );
     for (table, name) in TABLES {
         out.push_str(&format!("\n## `[{table}]`\n\n| field | meaning and unit |\n| --- | --- |\n"));
-        for (field, doc) in fields(source, name) {
-            if field == "stages" {
-                continue; // its own table below
-            }
-            out.push_str(&format!("| `{field}` | {} |\n", doc.replace('|', "\\|")));
-        }
+        rows(&mut out, scene, name);
     }
     out.push_str(
         "\nThe integrators a scene can name: `rk4` (classic fourth-order Runge–Kutta, fixed step), `dp5`\n\
          (Dormand–Prince 5(4), adaptive) and `sdirk4` (L-stable SDIRK of order 4, adaptive, for stiff\n\
          scenes); see docs/integrators.md.\n",
     );
+    out.push_str(
+        "\n## `[checks]` (optional)\n\n\
+         Design checks the run's results are held to, each a limit; a check that is absent is not\n\
+         made. `run`, `batch` and `sweep` report them (`run --json`: `checks`, `checks_pass`, see\n\
+         docs/conventions.md) and exit 4 when one fails; a sweep spec's `[checks]` replaces its base\n\
+         scene's (docs/sweeps.md). The break-load check needs no entry: every run makes it.\n\n\
+         | field | meaning and unit |\n| --- | --- |\n",
+    );
+    rows(&mut out, design, "DesignChecks");
     out
 }
 
@@ -64,7 +81,8 @@ fn render(source: &str) -> String {
 fn scene_reference_is_fresh() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let source = std::fs::read_to_string(root.join("runtime/src/scene.rs")).unwrap();
-    let expected = render(&source);
+    let design = std::fs::read_to_string(root.join("runtime/src/design.rs")).unwrap();
+    let expected = render(&source, &design);
     let path = root.join("docs/scenes.md");
     let actual = std::fs::read_to_string(&path).unwrap_or_default();
     if actual != expected {
@@ -75,19 +93,30 @@ fn scene_reference_is_fresh() {
 
 /// (field, type, doc) of every `pub` field of `pub struct name` in `source`.
 fn typed_fields(source: &str, name: &str) -> Vec<(String, String, String)> {
+    parsed_fields(source, name).into_iter().map(|(field, ty, doc, _)| (field, ty, doc)).collect()
+}
+
+/// (field, type, doc, optional) of every `pub` field of `pub struct name` in `source`.
+fn parsed_fields(source: &str, name: &str) -> Vec<(String, String, String, bool)> {
     let start = source.find(&format!("pub struct {name} {{")).unwrap_or_else(|| panic!("struct {name}"));
     let body = &source[start..];
     let body = &body[..body.find("\n}").unwrap()];
     let mut out = Vec::new();
     let mut doc = Vec::new();
+    let mut defaulted = false;
     for line in body.lines().skip(1) {
         let line = line.trim();
         if let Some(d) = line.strip_prefix("///") {
             doc.push(d.trim().to_string());
+        } else if line.starts_with("#[serde(default") {
+            defaulted = true;
         } else if let Some(f) = line.strip_prefix("pub ") {
             let (field, ty) = f.split_once(':').unwrap();
-            out.push((field.trim().to_string(), ty.trim().trim_end_matches(',').to_string(), doc.join(" ")));
+            let ty = ty.trim().trim_end_matches(',').to_string();
+            let optional = defaulted || ty.starts_with("Option<");
+            out.push((field.trim().to_string(), ty, doc.join(" "), optional));
             doc.clear();
+            defaulted = false;
         }
     }
     out
