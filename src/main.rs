@@ -100,8 +100,8 @@ enum Command {
         /// (`@dt` sets that method's step or observation interval, s). Replaces --integrator.
         #[arg(long, value_delimiter = ',')]
         methods: Vec<MethodSpec>,
-        /// Repeat every run refined (RK4 at dt/2, adaptive methods at rtol/10 and atol/10)
-        /// and report the differences as error estimates (stopping time, trajectory).
+        /// Repeat every run refined (dt/2; adaptive methods also at rtol/10 and atol/10) and
+        /// report the differences as error estimates (stopping time, trajectory, peak tension).
         #[arg(long)]
         error_estimate: bool,
     },

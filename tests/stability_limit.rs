@@ -159,8 +159,9 @@ impl Kernel for CancelAt {
 
 /// A run cancelled while RK4's start-up analysis forms the Jacobian of a 500 m line
 /// (N = 518, about 2 100 right-hand sides and 0.5 s of Arnoldi's method in all) stops
-/// within a column of the flag, before any step; the Krylov path stops at its first
-/// product once the flag is set.
+/// within a column of the flag, before any step; Arnoldi's method on that line's Jacobian,
+/// given a set flag, returns `Cancelled` (without the check in its products it runs to the
+/// limit, m = 243).
 #[test]
 fn the_start_up_analysis_stops_when_cancelled() {
     let model = Model::new(&fine_line(500, |_| {})).unwrap();

@@ -5,7 +5,7 @@
 //!
 //! The rows run on a rayon pool of their own while the calling thread waits with the GIL
 //! released, waking only to call the progress callback and to check for Ctrl-C (which stops
-//! the rows running at their next step).
+//! the rows running at their next step or within their start-up analysis).
 
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};

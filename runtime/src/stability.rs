@@ -311,7 +311,9 @@ pub fn krylov_limit_with_steps(
     let mut previous = f64::NAN;
     loop {
         if m > KRYLOV_START && m as f64 > KRYLOV_SHARE_MAX * dim as f64 {
-            // A space this large costs about what the whole Jacobian's decomposition does.
+            // A space this large costs about what the whole Jacobian's decomposition does,
+            // which, once begun, runs to its end.
+            go_on(cancel)?;
             return dense_limit(jac).map(|limit| (limit, dim));
         }
         krylov.extend_to(m, &mut product)?;

@@ -1,7 +1,7 @@
 //! Many scenes at once: every scene of a folder run in parallel ([`crate::parallel`]), one
 //! result row each, written as a terminal table, CSV and JSON. On request each run is repeated with a
-//! refined setting (RK4: dt/2; adaptive methods: rtol and atol/10) and the difference is its
-//! error estimate.
+//! refined setting ([`refined`]: dt/2, adaptive methods also rtol and atol/10) and the
+//! differences are its error estimates (stopping time, trajectory, peak tension).
 
 use std::path::{Path, PathBuf};
 
@@ -185,8 +185,14 @@ pub fn row(file: &Path, model: &Model, result: &RunResult) -> BatchRow {
 /// output times: RK4 at dt/2; an adaptive method at a tenth of its tolerances and half its
 /// observation interval dt (where the peak tensions and the anchor's events are looked at:
 /// a snap load between two observations is missed by both runs alike otherwise).
+///
+/// The output interval becomes the coarse run's own (a whole number of its steps, as the
+/// stepper rounds it), so that every output time of the coarse run is one of the refined
+/// run's and the trajectories are compared at all of them.
 pub fn refined(scene: &Scene) -> Scene {
     let mut s = scene.clone();
+    let stride = (s.solver.output_interval / s.solver.dt).round().max(1.0);
+    s.solver.output_interval = stride * s.solver.dt;
     s.solver.dt /= 2.0;
     if s.solver.integrator != Method::Rk4 {
         s.solver.rtol /= 10.0;
@@ -221,8 +227,16 @@ fn estimate(row: &mut BatchRow, model: &Model, result: &RunResult, fine_model: &
             peak(result).unwrap_or(0.0) / 1e3,
             peak(fine).unwrap_or(0.0) / 1e3
         );
-        row.message = if row.message.is_empty() { note } else { format!("{}; {note}", row.message) };
+        append(&mut row.message, &note);
     }
+}
+
+/// Appends `note` to a row's message, after "; " when it has one.
+fn append(message: &mut String, note: &str) {
+    if !message.is_empty() {
+        message.push_str("; ");
+    }
+    message.push_str(note);
 }
 
 /// Adjusts a loaded scene before it runs (e.g. command-line solver overrides); an error
@@ -249,9 +263,18 @@ pub fn run_all(
                 let result = simulate::run(&model, kernel(&model));
                 let mut row = row(file, &model, &result);
                 if error_estimate {
-                    match Model::new(&refined(&model.scene)) {
+                    // The refined scene is checked as a scene (its dt/2 may pass the step
+                    // count's limit).
+                    let fine = refined(&model.scene);
+                    let problems: Vec<String> = fine.problems().iter().map(|p| p.to_string()).collect();
+                    let fine = if problems.is_empty() {
+                        Model::new(&fine).map_err(|e| e.to_string())
+                    } else {
+                        Err(format!("the refined scene is invalid: {}", problems.join("; ")))
+                    };
+                    match fine {
                         Ok(fine) => estimate(&mut row, &model, &result, &fine, &simulate::run(&fine, kernel(&fine))),
-                        Err(e) => row.message = one_line(&format!("no error estimate: {e}")),
+                        Err(e) => append(&mut row.message, &one_line(&format!("no error estimate: {e}"))),
                     }
                 }
                 row

@@ -128,17 +128,28 @@ pub fn outcome_words(o: &CheckOutcome, checks: &DesignChecks) -> String {
     };
     let gave = match (o.name.as_str(), o.value) {
         (_, None) => "no value as the run did not reach it".to_string(),
-        ("max_stopping_distance", Some(v)) => format!("stopped in {v:.2} m"),
-        ("max_stopping_time", Some(v)) => format!("stopped in {v:.3} s"),
-        ("max_anchor_drag", Some(v)) => format!("dragged {v:.2} m"),
+        (_, Some(v)) if !v.is_finite() => format!("{v} (not finite)"),
+        ("max_stopping_distance", Some(v)) => format!("stopped in {} m", shown(v, o.limit, 2)),
+        ("max_stopping_time", Some(v)) => format!("stopped in {} s", shown(v, o.limit, 3)),
+        ("max_anchor_drag", Some(v)) => format!("dragged {} m", shown(v, o.limit, 2)),
         ("safety_factor", Some(v)) => {
-            let achieved = if v > 0.0 { format!("{:.2}", required / v) } else { "∞ (no tension)".into() };
+            let achieved = if v > 0.0 { shown(required / v, required, 2) } else { "∞ (no tension)".into() };
             format!("{achieved} on the break load{at}")
         }
-        ("max_proof_utilisation", Some(v)) => format!("{v:.3} of the proof load{at}"),
-        (_, Some(v)) => format!("{v:.3}{at}"),
+        ("max_proof_utilisation", Some(v)) => format!("{} of the proof load{at}", shown(v, o.limit, 3)),
+        (_, Some(v)) => format!("{}{at}", shown(v, o.limit, 3)),
     };
     format!("{set}: {gave} ({verdict})")
+}
+
+/// `v` to `decimals` places, or to as many more (up to 9) as it takes not to read as `limit`
+/// when it is not: "20.004" against a limit of 20, not "20.00" beside a FAIL.
+fn shown(v: f64, limit: f64, decimals: usize) -> String {
+    let mut places = decimals;
+    while places < 9 && v != limit && format!("{v:.places$}") == format!("{limit:.places$}") {
+        places += 1;
+    }
+    format!("{v:.places$}")
 }
 
 /// The design checks' verdict: false when a break load was exceeded (`exceedances`, a check
@@ -205,5 +216,20 @@ mod tests {
         for (o, words) in cases {
             assert_eq!(outcome_words(&o, &checks), words);
         }
+    }
+
+    /// A value that rounds to its limit is shown with the places that tell them apart.
+    #[test]
+    fn a_value_next_to_its_limit_does_not_read_as_the_limit() {
+        let checks = DesignChecks { safety_factor: Some(7.0), ..Default::default() };
+        let o = outcome("max_stopping_distance", Some(20.0004), 20.0, None, false);
+        assert_eq!(outcome_words(&o, &checks), "max_stopping_distance = 20 m: stopped in 20.0004 m (FAIL)");
+        let o = outcome("max_stopping_distance", Some(20.0), 20.0, None, true);
+        assert_eq!(outcome_words(&o, &checks), "max_stopping_distance = 20 m: stopped in 20.00 m (pass)");
+        // A factor of 6.9999 against 7: value = 7 / 6.9999 > 1.
+        let o = outcome("safety_factor", Some(7.0 / 6.9999), 1.0, Some(3), false);
+        assert_eq!(outcome_words(&o, &checks), "safety_factor = 7: 6.9999 on the break load at joint 3 (FAIL)");
+        let o = outcome("max_anchor_drag", Some(f64::NAN), 100.0, None, false);
+        assert_eq!(outcome_words(&o, &checks), "max_anchor_drag = 100 m: NaN (not finite) (FAIL)");
     }
 }

@@ -7,12 +7,17 @@
 use kanestop_runtime::model::Model;
 use kanestop_runtime::scene::{Method, MAX_STEPS};
 use kanestop_runtime::simulate::{Failure, FailureKind, StaticResidual, SPIKE_FACTOR};
-use kanestop_runtime::stability::StabilityLimit;
+use kanestop_runtime::stability::{StabilityError, StabilityLimit};
 
 /// The diagnostic of `failure` in `model`'s run, on several lines: `numerical failure at t =
 /// …`, or `refused before the run: …` for a step above the stability limit (bad input, not a
 /// failure of the integration).
 pub fn describe(model: &Model, failure: &Failure) -> String {
+    // Not a numerical failure: `run_cancellable` returns it as `Cancelled`; a caller of
+    // `Stepper::start_cancellable` that describes it is told so, without advice.
+    if failure.kind == FailureKind::Stability(StabilityError::Cancelled) {
+        return "cancelled before the run: the start-up stability analysis was stopped on request".to_string();
+    }
     let refused = matches!(failure.kind, FailureKind::StepAboveLimit { .. });
     let (what, cause, suggestion) = match &failure.kind {
         FailureKind::StepAboveLimit { dt, limit } => refusal(*dt, limit),

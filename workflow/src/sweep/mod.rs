@@ -110,7 +110,8 @@ pub fn run_row(row: &PlannedRow, kernel: KernelFactory) -> SweepRow {
     run_row_cancellable(row, kernel, &AtomicBool::new(false)).expect("nothing cancels it")
 }
 
-/// [`run_row`], stopped at the run's next step once `cancel` is set (Python's Ctrl-C): None.
+/// [`run_row`], stopped at the run's next step (or within its start-up stability analysis)
+/// once `cancel` is set (Python's Ctrl-C): None.
 pub fn run_row_cancellable(row: &PlannedRow, kernel: KernelFactory, cancel: &AtomicBool) -> Option<SweepRow> {
     let mut out = SweepRow {
         index: row.index,
