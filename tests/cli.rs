@@ -100,6 +100,11 @@ fn run_prints_a_summary_and_writes_the_csv_whole() {
         assert!(stdout.contains(label), "summary lacks {label}: {stdout}");
     }
     assert!(!stdout.contains("catenary"), "solver internals only with --verbose: {stdout}");
+    // RK4 sees the tensions at every step; an adaptive method only every dt, and says so.
+    assert!(!stdout.contains("tensions observed every"), "{stdout}");
+    let out = kanestop().arg("run").arg(&scene).args(["--integrator", "dp5", "--dt", "0.01"]).output().unwrap();
+    let adaptive = String::from_utf8_lossy(&out.stdout);
+    assert!(adaptive.contains("(tensions observed every 0.01 s: `batch --error-estimate` gives ±peak)"), "{adaptive}");
     let out = kanestop().arg("run").arg(&scene).arg("--verbose").output().unwrap();
     let verbose = String::from_utf8_lossy(&out.stdout);
     for label in ["physics", "bodies", "N = 46", "catenary", "stability", "final", "balance"] {
