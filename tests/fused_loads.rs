@@ -483,7 +483,7 @@ fn dynamics_with_fused_loads_is_dynamics_on_the_force_modules() {
         let kernel = GeneratedKernel::new(&model.chain).unwrap();
         let mut fused = Dynamics::new(Box::new(kernel), Forces::new(&model), model.anchor);
         let rolled = GeneratedKernel::with_form(&model.chain, Form::Rolled).unwrap();
-        let mut fed = Dynamics::new(Box::new(Unfused(rolled)), Forces::new(&model), model.anchor);
+        let mut fed = Dynamics::new(Box::new(Unfused::new(rolled)), Forces::new(&model), model.anchor);
         assert!(fused.loads_fused() && !fed.loads_fused(), "{name}");
         let mut rng = rng(6000);
         for trial in 0..30 {

@@ -82,7 +82,7 @@ fn case1_stopping_time_is_the_same_with_both_kernels() {
 fn case1_is_the_same_on_the_rolled_kernel() {
     use kanestop_runtime::generated::Form;
     let model = case1(None);
-    let kernel = |form| Box::new(Unfused(GeneratedKernel::with_form(&model.chain, form).unwrap()));
+    let kernel = |form| Box::new(Unfused::new(GeneratedKernel::with_form(&model.chain, form).unwrap()));
     let unrolled = simulate::run(&model, kernel(Form::Unrolled));
     let rolled = simulate::run(&model, kernel(Form::Rolled));
     assert_eq!((unrolled.kernel_form, rolled.kernel_form), (Some("unrolled"), Some("rolled")));

@@ -18,8 +18,6 @@ use common::Unfused;
 use kanestop_runtime::dynamics::{Dynamics, WORK_COUNT};
 use kanestop_runtime::forces::Forces;
 use kanestop_runtime::generated::GeneratedKernel;
-use kanestop_runtime::integrate::RhsError;
-use kanestop_runtime::kernel::{AnchorDof, AnchorReaction, Assembly, BodyAcceleration, BodyState, Kernel, LoadModel};
 use kanestop_runtime::model::Model;
 use kanestop_runtime::scene::{CableStage, Scene};
 use kanestop_runtime::simulate::{self, Cancelled};
@@ -114,49 +112,6 @@ fn arnoldi_finds_the_dense_limit_on_long_fine_lines() {
     }
 }
 
-/// The generated kernel (on the force modules) that sets `cancel` at its `at`-th solve and
-/// counts its solves: a user's Ctrl-C arriving during the start-up analysis, on cue.
-struct CancelAt {
-    inner: Unfused,
-    at: usize,
-    cancel: Arc<AtomicBool>,
-    solves: Arc<AtomicUsize>,
-}
-
-impl Kernel for CancelAt {
-    fn name(&self) -> &'static str {
-        "cancel-at"
-    }
-    fn body_count(&self) -> usize {
-        self.inner.body_count()
-    }
-    fn kinematics(&mut self, q: &[f64], u: &[f64], bodies: &mut [BodyState]) {
-        self.inner.kinematics(q, u, bodies)
-    }
-    fn assemble(&mut self, q: &[f64], u: &[f64], model: &mut dyn LoadModel, out: &mut Assembly) {
-        self.inner.assemble(q, u, model, out)
-    }
-    fn accelerations(&mut self, q: &[f64], u: &[f64], qdd: &[f64], out: &mut [BodyAcceleration]) {
-        self.inner.accelerations(q, u, qdd, out)
-    }
-    #[allow(clippy::too_many_arguments)]
-    fn solve(
-        &mut self,
-        q: &[f64],
-        u: &[f64],
-        anchor: AnchorDof,
-        friction: f64,
-        model: &mut dyn LoadModel,
-        scratch: &mut Assembly,
-        qdd: &mut [f64],
-    ) -> Result<AnchorReaction, RhsError> {
-        if self.solves.fetch_add(1, Ordering::Relaxed) + 1 == self.at {
-            self.cancel.store(true, Ordering::Relaxed);
-        }
-        self.inner.solve(q, u, anchor, friction, model, scratch, qdd)
-    }
-}
-
 /// A run cancelled while RK4's start-up analysis forms the Jacobian of a 500 m line
 /// (N = 518, about 2 100 right-hand sides and 0.5 s of Arnoldi's method in all) stops
 /// within a column of the flag, before any step; Arnoldi's method on that line's Jacobian,
@@ -167,12 +122,14 @@ fn the_start_up_analysis_stops_when_cancelled() {
     let model = Model::new(&fine_line(500, |_| {})).unwrap();
     let at = 10;
     let (cancel, solves) = (Arc::new(AtomicBool::new(false)), Arc::new(AtomicUsize::new(0)));
-    let kernel = CancelAt {
-        inner: Unfused(GeneratedKernel::new(&model.chain).unwrap()),
-        at,
-        cancel: cancel.clone(),
-        solves: solves.clone(),
-    };
+    // The generated kernel (on the force modules) that sets the flag at its `at`-th solve: a
+    // user's Ctrl-C arriving during the start-up analysis, on cue.
+    let (flag, count) = (cancel.clone(), solves.clone());
+    let kernel = Unfused::with_hook(GeneratedKernel::new(&model.chain).unwrap(), move || {
+        if count.fetch_add(1, Ordering::Relaxed) + 1 == at {
+            flag.store(true, Ordering::Relaxed);
+        }
+    });
     let run = simulate::run_cancellable(&model, Box::new(kernel), &cancel);
     assert_eq!(run.unwrap_err(), Cancelled { t: 0.0 });
     // A column takes two right-hand sides (each one solve, or two when friction is retried).

@@ -147,10 +147,24 @@ pub fn backward_error(asm: &Assembly, active: usize, friction: f64, qdd: &[f64])
 
 /// A kernel that is the generated one but cannot fuse (the trait's default), so that
 /// `Dynamics` calls the force modules, and keeps no rows for the joint forces (the
-/// observation takes Newton's form): the same right-hand side, entry for entry.
-pub struct Unfused(pub GeneratedKernel);
+/// observation takes Newton's form): the same right-hand side, entry for entry. A test may
+/// give it a hook called before each solve ([`Unfused::with_hook`]).
+pub struct Unfused<F: FnMut() = fn()>(pub GeneratedKernel, pub F);
 
-impl Kernel for Unfused {
+impl Unfused {
+    pub fn new(kernel: GeneratedKernel) -> Self {
+        Unfused(kernel, || {})
+    }
+}
+
+impl<F: FnMut()> Unfused<F> {
+    /// `before_solve` runs before every solve (e.g. counts them, or sets a cancel flag).
+    pub fn with_hook(kernel: GeneratedKernel, before_solve: F) -> Self {
+        Unfused(kernel, before_solve)
+    }
+}
+
+impl<F: FnMut()> Kernel for Unfused<F> {
     fn name(&self) -> &'static str {
         "unfused"
     }
@@ -180,6 +194,7 @@ impl Kernel for Unfused {
         scratch: &mut Assembly,
         qdd: &mut [f64],
     ) -> Result<AnchorReaction, RhsError> {
+        (self.1)();
         self.0.solve(q, u, anchor, friction, model, scratch, qdd)
     }
 }

@@ -201,10 +201,10 @@ pub fn refined(scene: &Scene) -> Scene {
     s
 }
 
-/// Fills the error estimates of `row` (of `result`, a run of `model`) from the refined run
-/// `fine` of `fine_model`; where the design checks' verdict of the two runs differs, says so
-/// in the message: the verdict is not resolved at this step or tolerance.
-fn estimate(row: &mut BatchRow, model: &Model, result: &RunResult, fine_model: &Model, fine: &RunResult) {
+/// Fills the error estimates of `row` (of `result`) from the refined run `fine` of
+/// `fine_model`; where the design checks' verdict of the two runs differs, says so in the
+/// message: the verdict is not resolved at this step or tolerance.
+fn estimate(row: &mut BatchRow, result: &RunResult, fine_model: &Model, fine: &RunResult) {
     let failed = |r: &RunResult| matches!(r.stop, Stop::Failed(_));
     if failed(result) || failed(fine) {
         return;
@@ -213,11 +213,7 @@ fn estimate(row: &mut BatchRow, model: &Model, result: &RunResult, fine_model: &
     row.trajectory_error_estimate = Some(simulate::trajectory_difference(result, fine));
     let peak = |r: &RunResult| r.peak_tension().map(|(_, p)| p.tension);
     row.peak_error_estimate = peak(result).zip(peak(fine)).map(|(a, b)| (a - b).abs());
-    let verdict = |m: &Model, r: &RunResult| {
-        let outcomes = m.scene.checks.as_ref().map(|c| checks::evaluate(c, m, r)).unwrap_or_default();
-        checks::verdict(&outcomes, &break_exceedances(m, r)).unwrap_or(true)
-    };
-    let (coarse, refined) = (verdict(model, result), verdict(fine_model, fine));
+    let (coarse, refined) = (row.checks_pass.unwrap_or(true), checks::verdict_of(fine_model, fine).unwrap_or(true));
     if coarse != refined {
         let word = |pass: bool| if pass { "pass" } else { "fail" };
         let note = format!(
@@ -273,7 +269,7 @@ pub fn run_all(
                         Err(format!("the refined scene is invalid: {}", problems.join("; ")))
                     };
                     match fine {
-                        Ok(fine) => estimate(&mut row, &model, &result, &fine, &simulate::run(&fine, kernel(&fine))),
+                        Ok(fine) => estimate(&mut row, &result, &fine, &simulate::run(&fine, kernel(&fine))),
                         Err(e) => append(&mut row.message, &one_line(&format!("no error estimate: {e}"))),
                     }
                 }

@@ -152,6 +152,13 @@ fn shown(v: f64, limit: f64, decimals: usize) -> String {
     format!("{v:.places$}")
 }
 
+/// The design checks' [`verdict`] of the run `result` of `model`: its `[checks]` evaluated
+/// and its break loads.
+pub fn verdict_of(model: &Model, result: &RunResult) -> Option<bool> {
+    let outcomes = model.scene.checks.as_ref().map(|c| evaluate(c, model, result)).unwrap_or_default();
+    verdict(&outcomes, &break_exceedances(model, result))
+}
+
 /// The design checks' verdict: false when a break load was exceeded (`exceedances`, a check
 /// every scene has) or an outcome of `[checks]` failed, true when `[checks]` gave outcomes
 /// and all passed, none when the scene has no `[checks]` and no break load was exceeded.
