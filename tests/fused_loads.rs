@@ -350,7 +350,7 @@ fn random_scenes_fuse_and_match_the_force_modules() {
         s.environment.seabed_stiffness *= 10f64.powf(rng.gen_range(-1.0..2.0));
         s.environment.current_surface_speed = if rng.gen_bool(0.5) { rng.gen_range(-2.0..2.0) } else { 0.0 };
         s.environment.line_friction = if rng.gen_bool(0.5) { rng.gen_range(0.1..1.0) } else { 0.0 };
-        s.initial.horizontal_projection *= rng.gen_range(0.97..1.0);
+        s.initial.horizontal_projection = s.initial.horizontal_projection.map(|x| x * rng.gen_range(0.97..1.0));
         match Model::new(&s) {
             Ok(model) => models.push((format!("random scene {} (N = {})", models.len(), model.body_count()), model)),
             Err(e) => refused.push(e.to_string()),

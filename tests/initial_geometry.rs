@@ -79,12 +79,12 @@ fn the_old_taut_cable_is_refused_and_the_new_one_lays() {
     let mut s = Scene::load(&path).unwrap_or_else(|e| panic!("{e}"));
     assert_physical(&s);
     let (_, hi) = laid_range(&s.cable_element_lengths(), 6.0).unwrap();
-    assert!(s.initial.horizontal_projection > hi - 0.05, "nearly taut: within 5 cm of {hi}");
+    assert!(s.initial.horizontal_projection.unwrap() > hi - 0.05, "nearly taut: within 5 cm of {hi}");
     // The scene as it was: √(x_L² + h_L²) = 152.018 m > L_c, and past the fully suspended span.
-    s.initial.horizontal_projection = 151.9;
+    s.initial.horizontal_projection = Some(151.9);
     refused(&s, "initial.horizontal_projection");
     // Just infeasible.
-    s.initial.horizontal_projection = hi + 1e-6;
+    s.initial.horizontal_projection = Some(hi + 1e-6);
     refused(&s, "initial.horizontal_projection");
 }
 
@@ -95,7 +95,7 @@ fn short_line(elements: usize, length: f64, x: f64, h: f64) -> Scene {
     s.cable.stages.truncate(1);
     s.cable.stages[0].elements = elements;
     s.cable.stages[0].element_length = length;
-    s.initial.horizontal_projection = x;
+    s.initial.horizontal_projection = Some(x);
     s.initial.vertical_projection = h;
     s
 }
@@ -136,7 +136,7 @@ fn two_short_elements_lay_or_are_refused_with_the_range() {
 fn sweep(base: &Scene, points: &[(f64, f64)]) {
     for &(x, h) in points {
         let mut s = base.clone();
-        s.initial.horizontal_projection = x;
+        s.initial.horizontal_projection = Some(x);
         s.initial.vertical_projection = h;
         let range = laid_range(&s.cable_element_lengths(), h);
         let inside = range.is_some_and(|(lo, hi)| x >= lo && x <= hi);
@@ -186,4 +186,95 @@ fn sweep_of_h_l_from_2_to_30_m() {
     for h in [2.0, 4.0, 8.0, 12.0, 20.0, 30.0] {
         sweep(&base, &x_points(&base, h, 6));
     }
+}
+
+/// Case 1 laid by its horizontal tension T_h instead of x_L, by dotted path (as a sweep's
+/// `[set]` or the Python package sets it): the path takes the place of x_L.
+fn by_tension(t: f64) -> Result<Scene, SceneError> {
+    case1().with_overrides(&[("initial.horizontal_tension", toml::Value::Float(t))])
+}
+
+#[test]
+fn a_line_laid_by_its_tension_is_the_line_laid_at_that_projection() {
+    let base = assert_physical(&case1());
+    let w = case1().cable_weight_per_length();
+    // w_c in water: (m' − ρ π R²) g.
+    let expected = (13.852119244119578 - 1025.0 * std::f64::consts::PI * 0.0237f64.powi(2)) * 9.81;
+    assert!((w - expected).abs() < 1e-12 * expected, "{w}");
+    let t = base.catenary.a * w;
+    // Case 1's line is slack: about 150 N at 4 m of slack under 6 m of rise.
+    assert!((140.0..160.0).contains(&t), "T_h = {t} N");
+    let scene = by_tension(t).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!((scene.initial.horizontal_projection, scene.initial.horizontal_tension), (None, Some(t)));
+    let model = assert_physical(&scene);
+    assert!((model.catenary.horizontal - 148.0).abs() < 1e-9, "x_L = {}", model.catenary.horizontal);
+    assert!((model.catenary.a * w - t).abs() < 1e-9 * t);
+    for (p, q) in model.initial_joints().iter().zip(base.initial_joints()) {
+        assert!((p[0] - q[0]).abs() < 1e-8 && (p[1] - q[1]).abs() < 1e-8, "{p:?} against {q:?}");
+    }
+    // And it runs as case 1 does (19.808 s, docs/scenes.md): the joints agree to 1e-8 m.
+    let run = |m: &Model| simulate::run(m, Box::new(GeneratedKernel::new(&m.chain).unwrap()));
+    let (a, b) = (run(&model), run(&base));
+    assert_eq!((&a.stop, &b.stop), (&Stop::ShipStopped, &Stop::ShipStopped));
+    let (ta, tb) = (a.stopping_time.unwrap(), b.stopping_time.unwrap());
+    assert!((ta - tb).abs() < 1e-6, "stopped at {ta} s by T_h, {tb} s by x_L");
+}
+
+#[test]
+fn a_fixed_tension_keeps_the_line_laid_where_a_fixed_projection_cannot() {
+    // The cable's length and h_L of a line-length and depth study: at case 1's x_L = 148 m
+    // most of these do not lay (that x_L's window is a few metres wide), at its T_h all do.
+    let t = 150.0;
+    let mut laid_by_projection = 0;
+    for stage_length in [8.0, 10.0, 12.0] {
+        for h in [4.0, 6.0, 10.0, 20.0, 40.0] {
+            let set = |s: &mut Scene| {
+                s.cable.stages[1].element_length = stage_length;
+                s.initial.vertical_projection = h;
+                s.anchor.height = 1.0;
+            };
+            let mut fixed = case1();
+            set(&mut fixed);
+            laid_by_projection += usize::from(problems(&fixed).is_empty());
+            let mut tensioned = by_tension(t).unwrap();
+            set(&mut tensioned);
+            assert_eq!(problems(&tensioned), [], "L_c with {stage_length} m elements, h_L = {h} m");
+            let model = assert_physical(&tensioned);
+            let w = tensioned.cable_weight_per_length();
+            assert!((model.catenary.a * w - t).abs() < 1e-9 * t, "T_h = {}", model.catenary.a * w);
+            // x_L follows the line: the suspended part's shape is the same, so the grounded
+            // cable takes up the change of length.
+            let lc = tensioned.cable_length();
+            assert!(model.catenary.horizontal < lc && model.catenary.horizontal > lc - h);
+        }
+    }
+    assert!(laid_by_projection <= 5, "{laid_by_projection} of 15 laid at x_L = 148 m");
+}
+
+#[test]
+fn a_tension_out_of_range_or_given_with_the_projection_is_refused() {
+    // Above the fully suspended line's tension: refused with the range, in N.
+    let mut s = case1();
+    s.initial.horizontal_projection = None;
+    s.initial.horizontal_tension = Some(1e6);
+    let p = refused(&s, "initial.horizontal_tension");
+    assert_eq!(p.value, "1000000");
+    let w = s.cable_weight_per_length();
+    let top = laid_range(&s.cable_element_lengths(), 6.0).unwrap().1;
+    let t_max = kanestop_runtime::catenary::lay_elements(&s.cable_element_lengths(), top, 6.0).unwrap().0.a * w;
+    assert!(p.expected.starts_with("in (0.1, ") && p.expected.contains("Eq. 31"), "{}", p.expected);
+    assert!(p.expected.contains(&format!("{}] N", (t_max * 10.0).floor() / 10.0)), "{} ({t_max})", p.expected);
+    for bad in [0.0, -5.0, f64::NAN] {
+        s.initial.horizontal_tension = Some(bad);
+        assert!(refused(&s, "initial.horizontal_tension").expected.contains("> 0 N"), "{bad}");
+    }
+    // Both, or neither: named, with the way out.
+    s.initial.horizontal_tension = Some(150.0);
+    s.initial.horizontal_projection = Some(148.0);
+    let p = refused(&s, "initial.horizontal_projection");
+    assert!(p.expected.contains("left out when initial.horizontal_tension is given"), "{p}");
+    s.initial.horizontal_projection = None;
+    s.initial.horizontal_tension = None;
+    let p = refused(&s, "initial.horizontal_projection");
+    assert_eq!(p.to_string(), "initial.horizontal_projection = (missing): must be given (x_L, m, as in Table 2), or initial.horizontal_tension instead (T_h, N)");
 }

@@ -40,7 +40,7 @@ fn rod_under_water() {
 fn anchor_taller_than_the_water() {
     let mut s = case1();
     s.initial.vertical_projection = 2.0;
-    s.initial.horizontal_projection = 151.0;
+    s.initial.horizontal_projection = Some(151.0);
     assert_refused(&s, "anchor.height", "below the water depth");
 }
 
@@ -59,7 +59,7 @@ fn the_depth_check_counts_the_cable_s_resting_height() {
     s.ship.mass = 1.0e4;
     s.ship.hinge_z = 1.45;
     s.initial.vertical_projection = 0.5;
-    s.initial.horizontal_projection = 151.95;
+    s.initial.horizontal_projection = Some(151.95);
     let approximate = s.initial.vertical_projection + s.rod.length - s.ship.hinge_z;
     assert!(s.anchor.height < approximate && s.water_depth() < 0.0, "{approximate}, {}", s.water_depth());
     assert_refused(&s, "anchor.height", "below the water depth d = h_L + the cable's resting height");
@@ -79,7 +79,7 @@ fn the_scene_s_water_depth_is_the_model_s() {
 fn ship_aground() {
     let mut s = case1();
     s.initial.vertical_projection = 2.5;
-    s.initial.horizontal_projection = 151.0;
+    s.initial.horizontal_projection = Some(151.0);
     s.anchor.height = 1.0;
     s.ship.mass = 3.0e6; // draught 5.9 m, depth 10 m: floats, but in 2.5 m of water
     s.ship.depth = 10.0;

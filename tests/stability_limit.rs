@@ -82,7 +82,7 @@ fn fine_line(elements: usize, edit: impl FnOnce(&mut Scene)) -> Scene {
     let mut scene = load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/paper/case01.toml"));
     scene.meta.name = format!("case 1, {elements} × 1 m of cable");
     scene.cable.stages = vec![CableStage { elements, element_length: 1.0 }];
-    scene.initial.horizontal_projection = elements as f64 - 3.0;
+    scene.initial.horizontal_projection = Some(elements as f64 - 3.0);
     edit(&mut scene);
     scene
 }

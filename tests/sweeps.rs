@@ -131,6 +131,53 @@ fn a_3x3_grid_runs_in_spec_order_with_inputs_as_columns_and_checks() {
 }
 
 #[test]
+fn a_line_length_and_depth_sweep_lays_every_row_by_its_tension() {
+    let dir = temp_dir("line-depth");
+    let spec_path = root().join("scenes/sweeps/line_depth.toml");
+    let o = sweep(&spec_path, &dir.join("tension"));
+    assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+    let by_tension = rows(&dir.join("tension"));
+    assert_eq!(by_tension.len(), 12);
+    for r in &by_tension {
+        assert_eq!(r["status"], "stopped", "{r}");
+        // Each row's scene lays its line by T_h, x_L left out.
+        let scene = std::fs::read_to_string(dir.join(format!("tension/scenes/{}.toml", r["name"].as_str().unwrap())))
+            .unwrap()
+            .parse::<toml::Table>()
+            .unwrap();
+        assert_eq!(scene["initial"].get("horizontal_tension"), Some(&toml::Value::Float(150.0)));
+        assert_eq!(scene["initial"].get("horizontal_projection"), None);
+    }
+    // The same study at case 1's x_L (the spec without its [set]): docs/sweeps.md quotes how
+    // many rows are refused.
+    let text = std::fs::read_to_string(&spec_path).unwrap();
+    let without_set: String = text
+        .replace(
+            "\"../paper/case01.toml\"",
+            &format!("{:?}", root().join("scenes/paper/case01.toml").display().to_string()),
+        )
+        .lines()
+        .filter(|l| !l.starts_with("[set]") && !l.starts_with("\"initial.horizontal_tension\""))
+        .map(|l| format!("{l}\n"))
+        .collect();
+    let fixed_spec = dir.join("fixed.toml");
+    std::fs::write(&fixed_spec, without_set).unwrap();
+    let o = sweep(&fixed_spec, &dir.join("fixed"));
+    // Exit 3: rows were invalid (docs/sweeps.md, exit codes).
+    assert_eq!(o.status.code(), Some(3), "{}", String::from_utf8_lossy(&o.stderr));
+    let refused = rows(&dir.join("fixed")).iter().filter(|r| r["status"] == "invalid").count();
+    assert!(refused > 0);
+    let doc = std::fs::read_to_string(root().join("docs/sweeps.md"))
+        .unwrap()
+        .split_whitespace()
+        .collect::<Vec<_>>()
+        .join(" ");
+    let quoted = format!("{refused} of the 12 are refused");
+    assert!(doc.contains(&quoted), "docs/sweeps.md should say of scenes/sweeps/line_depth.toml: {quoted}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
 fn a_sweep_row_equals_its_scene_run_alone() {
     let dir = temp_dir("alone");
     let out = dir.join("out");

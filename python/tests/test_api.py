@@ -47,6 +47,20 @@ def test_overrides_set_fields_and_are_checked(case01: kanestop.Scene) -> None:
         kanestop.Scene.from_dict(d3)
 
 
+def test_a_line_laid_by_its_tension_follows_the_cable_length(case01: kanestop.Scene) -> None:
+    # T_h replaces x_L (the two are alternatives), and holds where a fixed x_L does not lay.
+    by_tension = case01.with_overrides({"initial.horizontal_tension": 150})
+    initial = by_tension.to_dict()["initial"]
+    assert initial["horizontal_tension"] == 150.0 and "horizontal_projection" not in initial
+    longer = by_tension.with_overrides({"cable.stages[1].element_length": 12.0})
+    result = kanestop.run(longer)
+    assert result.stopping_time is not None
+    with pytest.raises(kanestop.SceneError, match=r"initial\.horizontal_projection = 148: must be in \[170"):
+        case01.with_overrides({"cable.stages[1].element_length": 12.0})
+    with pytest.raises(kanestop.SceneError, match=r"initial\.horizontal_tension = 1000000: must be in \(0\.1, 226722\.2\] N"):
+        case01.with_overrides({"initial.horizontal_tension": 1e6})
+
+
 def test_overridden_runs_change_the_result(case01: kanestop.Scene) -> None:
     light = kanestop.run(case01.with_overrides({"ship.mass": 4e5}))
     heavy = kanestop.run(case01.with_overrides({"ship.mass": 6e5}))

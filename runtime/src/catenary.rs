@@ -73,6 +73,18 @@ pub enum CatenaryError {
         /// The largest x_L with touchdown, m.
         max: f64,
     },
+    /// No x_L lays the elements on a catenary of this a = T_h / w_c (see
+    /// [`horizontal_for_parameter`]).
+    #[error("no laid line has a = T_h / w_c = {a} m{}", match range {
+        Some((lo, hi)) => format!(" (the laid lines have a in ({lo}, {hi}] m)"),
+        None => String::new(),
+    })]
+    TensionOutOfRange {
+        /// The a asked for, m.
+        a: f64,
+        /// The a of the laid range's ends, m, when there is a laid range.
+        range: Option<(f64, f64)>,
+    },
     /// The laid chord polygon ends farther than [`END_TOLERANCE`] from (x_L, h_L).
     #[error("the laid elements end {gap:.3e} m from (x_L, h_L)")]
     EndMissed {
@@ -213,6 +225,75 @@ pub fn laid_range(lengths: &[f64], vertical: f64) -> Option<(f64, f64)> {
     };
     let upper = if lays(hi) { hi } else { edge(inside, hi) };
     Some((edge(inside, lo), upper))
+}
+
+/// The x_L, m, at which [`lay_elements`] lays these elements on a catenary of parameter
+/// `a` = T_h / w_c (Eq. 31), for this h_L: the horizontal projection that gives the laid line
+/// a chosen horizontal tension T_h. The laid curve's a grows with x_L (less slack, more
+/// tension), so the crossing is bracketed from the continuous cable's x_L at this a (Eqs. 33,
+/// 34: S_c² = h_L² + 2 a h_L, x_s = a asinh(S_c/a), x_L = L_c − S_c + x_s) and found to
+/// 1e-15 of x_L. Fails with [`CatenaryError::TensionOutOfRange`] when no x_L in
+/// [`laid_range`] gives this a (too slack to lay, or no cable left on the seabed).
+pub fn horizontal_for_parameter(lengths: &[f64], vertical: f64, a: f64) -> Result<f64, CatenaryError> {
+    let total: f64 = lengths.iter().sum();
+    let out_of_range = || {
+        let range = laid_range(lengths, vertical).and_then(|(lo, hi)| {
+            let at = |x: f64| lay_elements(lengths, x, vertical).ok().map(|(c, _)| c.a);
+            Some((at(lo)?, at(hi)?))
+        });
+        CatenaryError::TensionOutOfRange { a, range }
+    };
+    let Some((lo, hi)) = continuous_range(total, vertical) else { return Err(out_of_range()) };
+    if !(a > 0.0 && a.is_finite()) {
+        return Err(out_of_range());
+    }
+    // f(x) = a of the laid curve − a: increasing in x; None where the elements do not lay.
+    let f = |x: f64| lay_elements(lengths, x, vertical).ok().map(|(c, _)| c.a - a);
+    let suspended = (vertical * vertical + 2.0 * a * vertical).sqrt();
+    let guess = (total - suspended + a * (suspended / a).asinh()).clamp(lo, hi);
+    // Near the corner (x_L → L_c − h_L) the chords may not lay at the continuous guess:
+    // start from the laid range's nearer end instead.
+    let start = match f(guess) {
+        Some(_) => guess,
+        None => {
+            let (laid_lo, laid_hi) = laid_range(lengths, vertical).ok_or_else(out_of_range)?;
+            guess.clamp(laid_lo, laid_hi)
+        }
+    };
+    bracket_from(f, start, lo, hi, total).ok_or_else(out_of_range)
+}
+
+/// The crossing of the increasing `f` near `start` in [lo, hi]: steps of 1e-9·`scale`,
+/// doubling, toward the sign change (a side that stops laying first is out of range), then
+/// [`crossing`]. `None` when `f` stops being defined
+/// (or the range ends) before its sign changes.
+fn bracket_from(f: impl Fn(f64) -> Option<f64>, start: f64, lo: f64, hi: f64, scale: f64) -> Option<f64> {
+    let f0 = f(start)?;
+    if f0 == 0.0 {
+        return Some(start);
+    }
+    let direction = if f0 < 0.0 { 1.0 } else { -1.0 };
+    let (mut near, mut f_near) = (start, f0);
+    let mut step = 1e-9 * scale;
+    loop {
+        let x = (near + direction * step).clamp(lo, hi);
+        if x == near {
+            return None;
+        }
+        let fx = f(x)?;
+        if fx == 0.0 {
+            return Some(x);
+        }
+        if (fx > 0.0) != (f0 > 0.0) {
+            let ((a, fa), (b, fb)) =
+                if direction > 0.0 { ((near, f_near), (x, fx)) } else { ((x, fx), (near, f_near)) };
+            let g = |t: f64| f(t).ok_or(());
+            let (a, b) = crossing(g, (a, fa), (b, fb), 1e-15).ok()?;
+            return Some(0.5 * (a + b));
+        }
+        (near, f_near) = (x, fx);
+        step *= 2.0;
+    }
 }
 
 /// [`lay_elements`] before the check of its end.
@@ -359,6 +440,45 @@ mod tests {
             let d = ((w[1][0] - w[0][0]).powi(2) + (w[1][1] - w[0][1]).powi(2)).sqrt();
             assert!((d - len).abs() < 1e-9);
         }
+    }
+
+    #[test]
+    fn a_tension_lays_the_line_at_the_projection_that_has_it() {
+        let mut lengths = vec![2.0; 3];
+        lengths.extend(vec![10.0; 12]);
+        lengths.extend(vec![2.0; 13]);
+        for h in [6.0, 20.0] {
+            let (lo, hi) = laid_range(&lengths, h).unwrap();
+            // Across the laid range, the corner and the fully suspended end included: the
+            // projection found from the laid curve's a is the one it was laid at.
+            for f in [1e-6, 0.01, 0.3, 0.7, 0.99, 1.0] {
+                let x = lo + f * (hi - lo);
+                let a = lay_elements(&lengths, x, h).unwrap().0.a;
+                let found = horizontal_for_parameter(&lengths, h, a).unwrap();
+                assert!((found - x).abs() < 1e-9 * 152.0, "h_L = {h}, x_L = {x}: found {found}");
+                // At the corner a is nearly 0 and steep in x_L (f = 1e-6, h_L = 6 m: a = 5e-7 m,
+                // 6e-6 apart at x_L 1e-12 apart): a is held away from it.
+                let again = lay_elements(&lengths, found, h).unwrap().0.a;
+                let tolerance = if f < 0.01 { 1e-4 } else { 1e-9 };
+                assert!((again - a).abs() <= tolerance * a, "h_L = {h}, x_L = {x} (f = {f}): a {a}, again {again}");
+            }
+            // Outside: more tension than the fully suspended line has, none, or not a number;
+            // the error gives the laid lines' range of a.
+            let top = lay_elements(&lengths, hi, h).unwrap().0.a;
+            for a in [top * 1.001, 0.0, -1.0, f64::NAN, f64::INFINITY] {
+                match horizontal_for_parameter(&lengths, h, a) {
+                    Err(CatenaryError::TensionOutOfRange { range: Some((r_lo, r_hi)), .. }) => {
+                        assert!(r_lo > 0.0 && r_lo < 1e-2 * r_hi && (r_hi - top).abs() <= 1e-12 * top, "{r_lo} {r_hi}");
+                    }
+                    other => panic!("h_L = {h}, a = {a}: {other:?}"),
+                }
+            }
+        }
+        // No laid line at all: h_L above the cable's length.
+        assert!(matches!(
+            horizontal_for_parameter(&lengths, 200.0, 10.0),
+            Err(CatenaryError::TensionOutOfRange { range: None, .. })
+        ));
     }
 
     #[test]

@@ -113,7 +113,7 @@ impl Model {
         let joints = self.initial_joints();
         let top = joints[self.body_count() - 2]; // o_{N−1}: the rod stands on the cable top
         let o = self.catenary_origin;
-        let target = [o[0] + self.scene.initial.horizontal_projection, o[1] + self.scene.initial.vertical_projection];
+        let target = [o[0] + self.catenary.horizontal, o[1] + self.catenary.vertical];
         (top[0] - target[0]).hypot(top[1] - target[1])
     }
 
@@ -199,7 +199,7 @@ impl LaidLine {
         // Element lengths along the line.
         let cable_lengths = scene.cable_element_lengths();
         let (catenary, cable_points) =
-            lay_elements(&cable_lengths, scene.initial.horizontal_projection, scene.initial.vertical_projection)?;
+            lay_elements(&cable_lengths, scene.horizontal_projection()?, scene.initial.vertical_projection)?;
 
         // Chain links and grounded cable lie level at their static embedment height (weight
         // less buoyancy = foundation reaction, Eqs. 41, 42). The chain leaves the anchor's

@@ -89,11 +89,39 @@ fn steps(path: &str) -> Result<Vec<Step<'_>>, OverrideError> {
     Ok(out)
 }
 
-/// Sets the existing field at `path` of `root` to `value`. A path that names no field of
-/// `root` is refused with the keys that exist there (a scene has no optional fields, so a
-/// new key is always a typing error).
+/// Fields that give one quantity in different ways, by table: a scene gives one of each
+/// group, so setting one (by path, or in a file that extends another) drops the others. The
+/// initial line is laid by its horizontal projection x_L or by its horizontal tension T_h
+/// (`crate::scene::Initial`).
+pub const ALTERNATIVES: &[(&str, &[&str])] = &[("initial", &["horizontal_projection", "horizontal_tension"])];
+
+/// The group of [`ALTERNATIVES`] that `path` (`table.field`) belongs to.
+fn alternatives_of(path: &str) -> Option<(&'static str, &'static [&'static str], &str)> {
+    let (table, key) = path.split_once('.')?;
+    ALTERNATIVES.iter().find(|(t, keys)| *t == table && keys.contains(&key)).map(|(t, keys)| (*t, *keys, key))
+}
+
+/// Sets the field at `path` of `root` to `value`. A path that names no field of `root` is
+/// refused with the keys that exist there (a new key is a typing error), except a field of
+/// [`ALTERNATIVES`], which takes the place of the one of its group that `root` has.
 pub fn set(root: &mut Value, path: &str, value: Value) -> Result<(), OverrideError> {
     let steps = steps(path)?;
+    if let Some((table, group, key)) = alternatives_of(path) {
+        if let Some(t) = root.get_mut(table).and_then(Value::as_table_mut) {
+            if !t.contains_key(key) && group.iter().any(|k| t.contains_key(*k)) {
+                for k in group {
+                    t.remove(*k);
+                }
+                // The group's fields are real: a whole number sets it as that number.
+                let value = match value {
+                    Value::Integer(n) => Value::Float(n as f64),
+                    v => v,
+                };
+                t.insert(key.to_string(), value);
+                return Ok(());
+            }
+        }
+    }
     let mut node = root;
     for step in &steps {
         node = match (step, node) {
@@ -128,6 +156,16 @@ pub fn set(root: &mut Value, path: &str, value: Value) -> Result<(), OverrideErr
     Ok(())
 }
 
+/// The value at `path` of `root`, or for a field of [`ALTERNATIVES`] that `root` does not
+/// have, the value of the one of its group it has: what [`set`] would replace (its type is
+/// the one `path` takes).
+pub fn get_or_alternative<'a>(root: &'a Value, path: &str) -> Option<&'a Value> {
+    get(root, path).or_else(|| {
+        let (table, group, _) = alternatives_of(path)?;
+        group.iter().find_map(|k| get(root, &format!("{table}.{k}")))
+    })
+}
+
 /// The value at `path` of `root`, if there is one.
 pub fn get<'a>(root: &'a Value, path: &str) -> Option<&'a Value> {
     let mut node = root;
@@ -141,13 +179,29 @@ pub fn get<'a>(root: &'a Value, path: &str) -> Option<&'a Value> {
 }
 
 /// Lays `over` onto `base`: tables merge key by key, recursively; anything else (values,
-/// arrays such as `cable.stages`) replaces what `base` had.
+/// arrays such as `cable.stages`) replaces what `base` had; a field of [`ALTERNATIVES`] in
+/// `over` drops the others of its group from `base`.
 pub fn merge(base: &mut Value, over: Value) {
+    for (table, group) in ALTERNATIVES {
+        let given = over.get(table).and_then(Value::as_table).map(|t| group.iter().any(|k| t.contains_key(*k)));
+        if given == Some(true) {
+            if let Some(t) = base.get_mut(table).and_then(Value::as_table_mut) {
+                for k in *group {
+                    t.remove(*k);
+                }
+            }
+        }
+    }
+    merge_tables(base, over);
+}
+
+/// [`merge`] without the rule of alternatives.
+fn merge_tables(base: &mut Value, over: Value) {
     match (base, over) {
         (Value::Table(b), Value::Table(o)) => {
             for (k, v) in o {
                 match b.get_mut(&k) {
-                    Some(existing) => merge(existing, v),
+                    Some(existing) => merge_tables(existing, v),
                     None => {
                         b.insert(k, v);
                     }
@@ -249,6 +303,34 @@ mod tests {
         for bad in ["", "ship..mass", "ship.mass[", "ship.mass[x]", "ship mass", "cable.stages[0]x"] {
             assert!(matches!(set(&mut v, bad, Value::Integer(1)), Err(OverrideError::Syntax { .. })), "{bad}");
         }
+    }
+
+    #[test]
+    fn a_field_of_a_group_of_alternatives_takes_the_place_of_the_other() {
+        let base = "[initial]\nhorizontal_projection = 148.0\nvertical_projection = 6.0\n";
+        // By path: the tension replaces the projection (a whole number as a real), and back.
+        let mut v = value(base);
+        set(&mut v, "initial.horizontal_tension", Value::Integer(150)).unwrap();
+        assert_eq!(v, value("[initial]\nhorizontal_tension = 150.0\nvertical_projection = 6.0\n"));
+        set(&mut v, "initial.horizontal_projection", Value::Float(149.0)).unwrap();
+        assert_eq!(v, value("[initial]\nhorizontal_projection = 149.0\nvertical_projection = 6.0\n"));
+        // What a sweep's axis on the tension finds in a base that has the projection.
+        assert_eq!(get(&value(base), "initial.horizontal_tension"), None);
+        assert_eq!(get_or_alternative(&value(base), "initial.horizontal_tension"), Some(&Value::Float(148.0)));
+        assert_eq!(get_or_alternative(&value(base), "initial.ship_speed"), None);
+        // Other new keys are still typing errors, in a group's table too.
+        assert!(matches!(
+            set(&mut v, "initial.horizontal_tensoin", Value::Float(1.0)),
+            Err(OverrideError::NoSuchField { .. })
+        ));
+        // By `extends`: the file's tension drops its base's projection; a file that gives
+        // neither keeps the base's.
+        let mut b = value(base);
+        merge(&mut b, value("[initial]\nhorizontal_tension = 150.0\n"));
+        assert_eq!(b, value("[initial]\nvertical_projection = 6.0\nhorizontal_tension = 150.0\n"));
+        let mut b = value(base);
+        merge(&mut b, value("[initial]\nvertical_projection = 8.0\n"));
+        assert_eq!(b, value("[initial]\nhorizontal_projection = 148.0\nvertical_projection = 8.0\n"));
     }
 
     #[test]

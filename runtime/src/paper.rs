@@ -242,7 +242,8 @@ impl Case {
                 hinge_z: 1.0,
             },
             initial: Initial {
-                horizontal_projection: self.horizontal,
+                horizontal_projection: Some(self.horizontal),
+                horizontal_tension: None,
                 vertical_projection: self.vertical,
                 ship_speed: self.ship_speed,
             },

@@ -10,7 +10,7 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
-use crate::catenary;
+use crate::catenary::{self, CatenaryError};
 use crate::geometry::segment_area;
 use crate::overrides::{self, OverrideError};
 
@@ -258,15 +258,30 @@ pub struct Ship {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Initial {
-    /// x_L, horizontal projection of the whole cable, m. Joined with the cable's length L_c
-    /// and `vertical_projection` h_L: the line must lay as the paper lays it (Section 3.1),
+    /// x_L, horizontal projection of the whole cable, m. The paper's way to lay the line
+    /// (Table 2); give this or `horizontal_tension`, not both. Joined with the cable's length
+    /// L_c and `vertical_projection` h_L: the line must lay as the paper lays it (Section 3.1),
     /// grounded from o, then the catenary of Eqs. 30–34 up to (x_L, h_L), so
     /// L_c − h_L < x_L ≤ a asinh(L_c/a) with a = (L_c² − h_L²)/(2 h_L) (below: no tension,
     /// the cable would hang vertically; above: nothing on the seabed, the cable would leave o
     /// with a slope and lift the chain; for case 1, (146, 151.842056] m); the rigid elements
     /// may raise the lower end (case 1: by less than 1e-5 m), found by laying them. The laid
     /// elements end at (x_L, h_L) to 1e-9 m, or the scene is refused with the range.
-    pub horizontal_projection: f64,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub horizontal_projection: Option<f64>,
+    /// T_h, the cable's horizontal tension at rest, N. Instead of `horizontal_projection`,
+    /// the line laid by its pretension. T_h = w_c a (Eq. 31), w_c the cable's weight per
+    /// metre in water (in air without water); x_L is then the one at which the rigid
+    /// elements lie on the catenary of that a (docs/model-choices.md). Setting it (a sweep's
+    /// path, the Python package, a file that `extends` another) replaces x_L. Held fixed, it keeps the suspended part's shape while a sweep changes the cable's
+    /// length (x_L follows it), and keeps the line laid while a sweep changes h_L; a fixed
+    /// x_L has a window of a few metres (see `horizontal_projection`). Must be in the range
+    /// of the laid lines, from nearly 0 (the rigid elements cannot follow a sharper corner at
+    /// the touchdown) to T_max, where no cable is left on the seabed; the scene is refused
+    /// with the range (case 1: (0.1, 226 722.2] N; its x_L = 148 m has T_h ≈ 150 N, the
+    /// paper's line hanging nearly vertically from its touchdown).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub horizontal_tension: Option<f64>,
     /// h_L, vertical projection of the cable (seabed line to cable top), m. Must be below the
     /// cable's length L_c; with x_L, see `horizontal_projection`. Sets the water depth
     /// d = h_L + δ_c + `rod.length` − `ship.hinge_z`, where δ_c is the laid cable's resting
@@ -561,6 +576,30 @@ impl Scene {
         self.cable.stages.iter().map(|s| s.elements as f64 * s.element_length).sum()
     }
 
+    /// w_c, the cable's weight per metre where it lies, N/m (Eqs. 30, 31): in water less its
+    /// buoyancy, (m'_c − ρ π R_c²) g, in air m'_c g.
+    pub fn cable_weight_per_length(&self) -> f64 {
+        let e = &self.environment;
+        let rho = if e.water { e.water_density } else { 0.0 };
+        (self.cable.mass_per_length - rho * std::f64::consts::PI * self.cable.radius.powi(2)) * e.gravity
+    }
+
+    /// x_L, m: `initial.horizontal_projection` as given, or the one that lays the line at
+    /// `initial.horizontal_tension` (a = T_h / w_c, Eq. 31,
+    /// [`catenary::horizontal_for_parameter`]). A scene that gives neither (refused by its
+    /// checks) has none: [`CatenaryError::TensionOutOfRange`] with a NaN.
+    pub fn horizontal_projection(&self) -> Result<f64, CatenaryError> {
+        match (self.initial.horizontal_projection, self.initial.horizontal_tension) {
+            (Some(x), _) => Ok(x),
+            (None, Some(t)) => catenary::horizontal_for_parameter(
+                &self.cable_element_lengths(),
+                self.initial.vertical_projection,
+                t / self.cable_weight_per_length(),
+            ),
+            (None, None) => Err(CatenaryError::TensionOutOfRange { a: f64::NAN, range: None }),
+        }
+    }
+
     /// The water depth d = h_L + δ_c + `rod.length` − `ship.hinge_z`, m: the seabed lies d
     /// below the water plane, the cable's top h_L above the laid line, which rests at the
     /// cable's resting height δ_c ([`Environment::resting_height`]); the rod stands on the
@@ -620,7 +659,8 @@ impl Scene {
     /// resting heights (a link rests within its radius of the seabed plane).
     fn check_first_element(&self, c: &mut Checker) {
         let lengths = self.cable_element_lengths();
-        let (x, h) = (self.initial.horizontal_projection, self.initial.vertical_projection);
+        let h = self.initial.vertical_projection;
+        let Ok(x) = self.horizontal_projection() else { return };
         let Ok((_, points)) = catenary::lay_elements(&lengths, x, h) else { return };
         let Some(joint) = points.get(1) else { return };
         let bound = joint[1].abs() + 2.0 * (self.chain.radius + self.cable.radius);
@@ -819,7 +859,20 @@ impl Scene {
     /// when the cable and the initial values are valid): see [`Scene::check_geometry`].
     fn check_initial(&self, c: &mut Checker) {
         let ini = &self.initial;
-        c.positive("initial.horizontal_projection", ini.horizontal_projection, "m");
+        match (ini.horizontal_projection, ini.horizontal_tension) {
+            (Some(x), None) => c.positive("initial.horizontal_projection", x, "m"),
+            (None, Some(t)) => c.positive("initial.horizontal_tension", t, "N"),
+            (Some(x), Some(_)) => c.push(
+                "initial.horizontal_projection",
+                &fmt_value(x),
+                "left out when initial.horizontal_tension is given (the line is laid by one of them)",
+            ),
+            (None, None) => c.push(
+                "initial.horizontal_projection",
+                "(missing)",
+                "given (x_L, m, as in Table 2), or initial.horizontal_tension instead (T_h, N)",
+            ),
+        }
         c.positive("initial.vertical_projection", ini.vertical_projection, "m");
         c.range("initial.ship_speed", ini.ship_speed, 0.0, 20.0, true, "m/s");
         let joined = |f: &Problem| {
@@ -839,7 +892,7 @@ impl Scene {
     /// end a little ([`catenary::laid_range`]). A single cable element cannot lie on the seabed
     /// and reach (x_L, h_L).
     fn check_geometry(&self, c: &mut Checker) {
-        let (x, h, lc) = (self.initial.horizontal_projection, self.initial.vertical_projection, self.cable_length());
+        let (h, lc) = (self.initial.vertical_projection, self.cable_length());
         let lengths = self.cable_element_lengths();
         if h >= lc {
             let why = format!(
@@ -854,6 +907,32 @@ impl Scene {
             c.push("cable.stages", "1 element", why);
             return;
         }
+        let x = match (self.initial.horizontal_projection, self.initial.horizontal_tension) {
+            (Some(x), _) => x,
+            (None, Some(t)) => {
+                if let Err(e) = self.horizontal_projection() {
+                    let w = self.cable_weight_per_length();
+                    let range = match e {
+                        CatenaryError::TensionOutOfRange { range: Some((lo, hi)), .. } => format!(
+                            "in ({}, {}] N for cable length L_c = {} m, h_L = {} m and w_c = {} N/m",
+                            fmt_value((lo * w * 10.0).ceil() / 10.0),
+                            fmt_value((hi * w * 10.0).floor() / 10.0),
+                            fmt_value(lc),
+                            fmt_value(h),
+                            fmt_rounded(w, 3)
+                        ),
+                        _ => format!("a tension at which the {} cable elements lay (none does here)", lengths.len()),
+                    };
+                    let why = format!(
+                        "{range}: T_h = w_c a (Eq. 31) of the catenary the elements are laid on; lower, the rigid \
+                         elements cannot follow the curve's corner at the touchdown; higher, no cable is left on the seabed"
+                    );
+                    c.push("initial.horizontal_tension", &fmt_value(t), &why);
+                }
+                return;
+            }
+            (None, None) => return,
+        };
         if catenary::lay_elements(&lengths, x, h).is_ok() {
             return;
         }
@@ -867,7 +946,7 @@ impl Scene {
                 fmt_value(lc),
                 fmt_value(h),
                 vertical_hint(lc, x),
-            ),
+            ) + "; or lay the line by its tension instead (initial.horizontal_tension, N), which holds as the cable's length and h_L change",
             None => format!(
                 "a value for which the {} cable elements lay on the catenary of Eqs. 30–34 (none does for h_L = {} m)",
                 lengths.len(),
@@ -948,7 +1027,7 @@ impl Scene {
 /// Every numeric field of a scene by dotted path (array indices left out) with its unit as the
 /// field's documentation states it: "" for a dimensionless number or a count. Held to the doc
 /// comments of this file and of `design.rs` by `tests/docs_fresh.rs`.
-pub const UNITS: [(&str, &str); 52] = [
+pub const UNITS: [(&str, &str); 53] = [
     ("meta.paper_stopping_time", "s"),
     ("environment.gravity", "m/s²"),
     ("environment.water_density", "kg/m³"),
@@ -988,6 +1067,7 @@ pub const UNITS: [(&str, &str); 52] = [
     ("ship.hinge_x", "m"),
     ("ship.hinge_z", "m"),
     ("initial.horizontal_projection", "m"),
+    ("initial.horizontal_tension", "N"),
     ("initial.vertical_projection", "m"),
     ("initial.ship_speed", "m/s"),
     ("solver.dt", "s"),

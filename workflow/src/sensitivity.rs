@@ -461,7 +461,7 @@ mod tests {
         // x_L near the top of its valid range (146, 151.84] m at case 1's line: at ±40 % and
         // at ±8 % both sides leave the range.
         let mut scene = case1();
-        scene.initial.horizontal_projection = 151.8;
+        scene.initial.horizontal_projection = Some(151.8);
         let probes = probes(&scene, 0.4);
         let probe = probes.iter().find(|p| p.parameter == "initial.horizontal_projection").unwrap();
         assert_eq!(probe.difference, None);

@@ -122,9 +122,10 @@ fn scene_lines(out: &mut Lines, model: &Model, result: &RunResult) {
     out.line(
         "initial",
         format!(
-            "x_L = {} m, h_L = {} m, water depth {:.3} m, {:.2} m of cable on the seabed ({:.2} m of the catenary), ship {} m/s",
-            s.initial.horizontal_projection,
+            "x_L = {}, h_L = {} m, T_h = {:.2} kN, water depth {:.3} m, {:.2} m of cable on the seabed ({:.2} m of the catenary), ship {} m/s",
+            fmt_projection(model),
             s.initial.vertical_projection,
+            model.catenary.a * s.cable_weight_per_length() / 1e3,
             model.water_depth(),
             model.grounded_cable_length(),
             model.catenary.grounded_length(),
@@ -139,6 +140,14 @@ fn scene_lines(out: &mut Lines, model: &Model, result: &RunResult) {
         None => String::new(),
     };
     out.line("catenary", format!("cable ends {:.1e} m from (x_L, h_L){residual}", model.cable_end_error()));
+}
+
+/// x_L as the scene gives it, or as the line's horizontal tension lays it.
+fn fmt_projection(model: &Model) -> String {
+    match model.scene.initial.horizontal_projection {
+        Some(x) => format!("{x} m"),
+        None => format!("{:.4} m (laid by initial.horizontal_tension)", model.catenary.horizontal),
+    }
 }
 
 /// How it was integrated and what it cost; `verbose` adds the stability limit.

@@ -385,7 +385,7 @@ impl Spec {
 
 fn axis(file: &Path, base: &Value, i: usize, a: AxisFile) -> Result<Axis> {
     let field = |f: &str| format!("axis[{i}].{f}");
-    let current = overrides::get(base, &a.path).ok_or_else(|| {
+    let current = overrides::get_or_alternative(base, &a.path).ok_or_else(|| {
         bad(file, field("path"), &a.path, "a field of the scene, e.g. ship.mass or cable.stages[1].elements")
     })?;
     let integer = current.is_integer();
@@ -448,7 +448,7 @@ fn axis(file: &Path, base: &Value, i: usize, a: AxisFile) -> Result<Axis> {
 
 fn uncertain(file: &Path, base: &Value, i: usize, u: UncertainFile) -> Result<Uncertain> {
     let field = |f: &str| format!("uncertain[{i}].{f}");
-    if !overrides::get(base, &u.path).is_some_and(Value::is_float) {
+    if !overrides::get_or_alternative(base, &u.path).is_some_and(Value::is_float) {
         return Err(bad(file, field("path"), &u.path, "a real-valued (float) field of the scene, e.g. ship.mass"));
     }
     let need = |name: &str, v: Option<f64>, ok: fn(f64) -> bool, expected: &str| {
