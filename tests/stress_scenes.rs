@@ -367,15 +367,16 @@ fn full_stress_set_completes_with_at_least_one_method() {
     };
     let (taut, taut_rk4) = result("taut_cable", 0);
     assert!(!kanestop_workflow::checks::break_exceedances(&model(taut), taut_rk4).is_empty(), "taut cable under RK4");
-    // DP5 observing every 0.02 s misses the taut cable's snap loads: its peak stays under the
-    // break load, its refined run's (every 0.01 s) does not, which `batch --error-estimate`
-    // reports as a verdict not resolved.
+    // DP5 observing every 0.02 s still sees the taut cable's snap loads, its peak looked at
+    // after each of its own steps: above the break load, as its refined run's, and within 2 %
+    // of it (looked at every 0.02 s it missed them: 2 482 kN against the refined 3 051 kN).
     let ((dp5, dp5_run), (dp5_fine, dp5_fine_run)) = (result("taut_cable", 2), result("taut_cable", 3));
-    assert!(kanestop_workflow::checks::break_exceedances(&model(dp5), dp5_run).is_empty(), "taut cable, DP5");
-    assert!(
-        !kanestop_workflow::checks::break_exceedances(&model(dp5_fine), dp5_fine_run).is_empty(),
-        "taut cable, DP5 refined"
-    );
+    for (scene, run, which) in [(dp5, dp5_run, "DP5"), (dp5_fine, dp5_fine_run, "DP5 refined")] {
+        assert!(!kanestop_workflow::checks::break_exceedances(&model(scene), run).is_empty(), "taut cable, {which}");
+    }
+    let peak = |r: &RunResult| r.peak_tension().unwrap().1.tension;
+    let (coarse, fine) = (peak(dp5_run), peak(dp5_fine_run));
+    assert!((coarse - fine).abs() < 0.02 * fine, "DP5 peak {coarse} N, refined {fine} N");
     // And on the taut cable, DP5's own error estimate is an order below RK4's.
     let stop_estimate = |slot: usize| {
         let (a, b) = (result("taut_cable", slot).1, result("taut_cable", slot + 1).1);

@@ -46,6 +46,12 @@ pub trait Integrator {
     fn dense_state(&self, _t: f64, _out: &mut [f64]) -> bool {
         false
     }
+
+    /// Appends to `out` the times, s, at which the last `step` call's error-controlled
+    /// sub-steps ended inside its span (its own end excluded): where an adaptive method
+    /// accepted states between the driver's intervals, each at hand through
+    /// [`Integrator::dense_state`]. Nothing for a fixed-step method (RK4).
+    fn inner_step_ends(&self, _out: &mut Vec<f64>) {}
 }
 
 /// The classic fourth-order Runge–Kutta method with a fixed step (the paper's method).
@@ -154,6 +160,11 @@ impl<M: AdaptiveIntegrator> Integrator for Adaptive<M> {
         steps[k].at(t, out);
         true
     }
+
+    fn inner_step_ends(&self, out: &mut Vec<f64>) {
+        let inner = self.used.saturating_sub(1);
+        out.extend(self.dense[..inner].iter().map(|s| s.t0 + s.h));
+    }
 }
 
 /// Test problems the methods' tests share.
@@ -194,5 +205,31 @@ mod tests {
         // Halving the step divides the error by 2⁴ = 16.
         let ratio = decay_error(&mut Rk4::new(1), 20) / decay_error(&mut Rk4::new(1), 40);
         assert!((ratio - 16.0).abs() < 1.0, "ratio {ratio}");
+    }
+
+    #[test]
+    fn an_adaptive_step_names_its_inner_sub_step_ends_and_their_states() {
+        use super::test_problems::Decay;
+        let mut ends = Vec::new();
+        Rk4::new(1).inner_step_ends(&mut ends);
+        assert!(ends.is_empty(), "RK4 has no inner steps");
+        let mut dp = Adaptive::new(Dp5::new(1, 1e-10, 1e-12).unwrap());
+        let mut y = [1.0];
+        dp.step(&mut Decay, 2.0, &mut y, 1.0).unwrap();
+        dp.inner_step_ends(&mut ends);
+        // Several sub-steps at this tolerance; their ends inside (2, 3), increasing, each a
+        // state of the solution e^−(t−2) to the tolerance.
+        assert!(ends.len() >= 3, "{ends:?}");
+        assert!(ends.windows(2).all(|w| w[0] < w[1]) && ends[0] > 2.0 && ends[ends.len() - 1] < 3.0, "{ends:?}");
+        let mut state = [0.0];
+        for &t in &ends {
+            assert!(dp.dense_state(t, &mut state));
+            assert!((state[0] - (2.0 - t).exp()).abs() < 1e-9, "t = {t}: {}", state[0]);
+        }
+        // A second call names its own.
+        dp.step(&mut Decay, 3.0, &mut y, 1.0).unwrap();
+        let mut again = Vec::new();
+        dp.inner_step_ends(&mut again);
+        assert!(again.iter().all(|&t| t > 3.0 && t < 4.0), "{again:?}");
     }
 }

@@ -298,9 +298,10 @@ pub struct Initial {
 pub struct Solver {
     /// The method.
     pub integrator: Method,
-    /// Time step of `rk4`, s. For the adaptive methods, the observation interval: events,
-    /// stability checks and peak tensions are evaluated every `dt`, and the method takes its
-    /// own error-controlled steps (never longer) in between. At least `end_time` / 1e7: more
+    /// Time step of `rk4`, s. For the adaptive methods, the observation interval: events and
+    /// stability checks are evaluated every `dt`, and the method takes its own
+    /// error-controlled steps (never longer) in between, after each of which the peak
+    /// tensions are looked at. At least `end_time` / 1e7: more
     /// steps are refused with the time estimate (`MAX_STEPS`).
     pub dt: f64,
     /// Relative tolerance of the adaptive methods (`dp5`, `sdirk4`), dimensionless, in

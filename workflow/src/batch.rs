@@ -116,8 +116,7 @@ pub struct BatchRow {
     /// times, m (with `estimate`, when neither run failed).
     pub trajectory_error_estimate: Option<f64>,
     /// |peak tension − the refined run's|, N: the peak's error estimate (with `estimate`,
-    /// when neither run failed). A snap load shorter than the observation interval or the
-    /// step shows here.
+    /// when neither run failed). A snap load shorter than the method's steps shows here.
     #[serde(default)]
     pub peak_error_estimate: Option<f64>,
     /// Error or diagnostic, if any.
@@ -183,8 +182,8 @@ pub fn row(file: &Path, model: &Model, result: &RunResult) -> BatchRow {
 
 /// The same scene integrated more accurately and observed twice as often, on the same
 /// output times: RK4 at dt/2; an adaptive method at a tenth of its tolerances and half its
-/// observation interval dt (where the peak tensions and the anchor's events are looked at:
-/// a snap load between two observations is missed by both runs alike otherwise).
+/// observation interval dt (where the anchor's events and the checks are looked at, and its
+/// longest step; the peak tensions are looked at after every step of either method).
 ///
 /// The output interval becomes the coarse run's own (a whole number of its steps, as the
 /// stepper rounds it), so that every output time of the coarse run is one of the refined
@@ -452,5 +451,42 @@ mod method_or_empty {
         } else {
             name.parse().map(Some).map_err(serde::de::Error::custom)
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use kanestop_runtime::generated::GeneratedKernel;
+    use kanestop_runtime::paper::DEFAULT_SCENE;
+
+    #[test]
+    fn a_verdict_that_differs_in_the_refined_run_is_said_to_be_unresolved() {
+        let mut scene = Scene::from_toml(DEFAULT_SCENE, "case01.toml").unwrap();
+        scene.solver.end_time = 0.05;
+        let model = Model::new(&scene).unwrap();
+        let coarse = simulate::run(&model, Box::new(GeneratedKernel::new(&model.chain).unwrap()));
+        let mut row = row(Path::new("case01.toml"), &model, &coarse);
+        // No [checks] and no break load exceeded: no verdict, taken as a pass.
+        assert_eq!(row.checks_pass, None);
+        // The refined run's peak at the fairlead above the cable's break load (2 520 kN).
+        let mut fine = coarse.clone();
+        let last = fine.peak_tensions.len() - 1;
+        fine.peak_tensions[last].tension = 3.0e6;
+        estimate(&mut row, &coarse, &model, &fine);
+        let (a, b) = (coarse.peak_tension().unwrap().1.tension, 3.0e6);
+        assert_eq!(row.peak_error_estimate, Some((a - b).abs()));
+        assert!(
+            row.message.ends_with(&format!(
+                "the checks pass here but fail in the refined run (peak {:.0} against 3000 kN): not resolved at this step or tolerance",
+                a / 1e3
+            )),
+            "{}",
+            row.message
+        );
+        // The same verdict: nothing said.
+        let mut same = super::row(Path::new("case01.toml"), &model, &coarse);
+        estimate(&mut same, &coarse, &model, &coarse);
+        assert_eq!((same.message.as_str(), same.peak_error_estimate), ("", Some(0.0)));
     }
 }

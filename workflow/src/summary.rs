@@ -4,7 +4,6 @@ use std::fmt::Write as _;
 
 use kanestop_runtime::kernel::AnchorDof;
 use kanestop_runtime::model::Model;
-use kanestop_runtime::scene::Method;
 use kanestop_runtime::simulate::{FailureKind, RunResult, Stop};
 
 use crate::checks::{break_exceedances, break_failure};
@@ -246,17 +245,10 @@ fn tension_lines(out: &mut Lines, model: &Model, result: &RunResult) {
     let limit = |name: &str, v: Option<f64>| {
         v.map(|v| format!("; {:.0} % of {name} load {:.0} kN", 100.0 * peak.tension / v, v / 1e3)).unwrap_or_default()
     };
-    // An adaptive method looks at the tensions only every solver.dt (its observation
-    // interval), between its own steps: a snap load shorter than that is not seen.
-    let solver = &model.scene.solver;
-    let observed = match solver.integrator {
-        Method::Rk4 => String::new(),
-        _ => format!(" (tensions observed every {} s: `batch --error-estimate` gives ±peak)", solver.dt),
-    };
     out.line(
         "tension",
         format!(
-            "peak {:.1} kN at joint {k} ({} – {}) at t = {:.3} s{}{}{observed}",
+            "peak {:.1} kN at joint {k} ({} – {}) at t = {:.3} s{}{}",
             peak.tension / 1e3,
             model.chain.bodies[k - 2].kind,
             model.chain.bodies[k - 1].kind,

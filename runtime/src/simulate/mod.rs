@@ -118,6 +118,9 @@ pub fn run_cancellable(model: &Model, kernel: Box<dyn Kernel>, cancel: &AtomicBo
         match stepper.step() {
             Ok(Stopped::AnchorSwitched(event)) => result.anchor_events.push(event),
             Ok(stopped @ (Stopped::Step | Stopped::ShipStopped { .. })) => {
+                for (t, tensions) in stepper.inner_tensions() {
+                    result.track_peaks(t, tensions);
+                }
                 result.track_peaks(stepper.t(), stepper.tensions());
                 if stopped != Stopped::Step || stepper.at_output() {
                     result.samples.extend(stepper.sample());

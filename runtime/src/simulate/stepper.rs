@@ -169,6 +169,9 @@ pub struct Stepper<'a> {
     max_energy_drift: f64,
     spike_bound: f64,
     stopping_time: Option<f64>,
+    /// The tensions at an adaptive method's sub-step ends inside the current interval
+    /// (time, s; |F^H_k|, N), before any anchor switch or ship stop in it.
+    inner: Vec<(f64, Vec<f64>)>,
 }
 
 impl<'a> Stepper<'a> {
@@ -207,6 +210,7 @@ impl<'a> Stepper<'a> {
             max_energy_drift: 0.0,
             spike_bound: health::spike_bound(model),
             stopping_time: None,
+            inner: Vec::new(),
         }
     }
 
@@ -245,7 +249,10 @@ impl<'a> Stepper<'a> {
         }
         let mut iv = match self.interval.take() {
             Some(iv) => iv,
-            None => self.open_interval(),
+            None => {
+                self.inner.clear();
+                self.open_interval()
+            }
         };
         let t_next = iv.t_next;
         let (y_new, obs_new) = match self.segment(&mut iv).map_err(|k| self.failure(t_next, k))? {
@@ -295,6 +302,14 @@ impl<'a> Stepper<'a> {
     /// |F^H_k| at the last good state, k = 2 … N (index k − 2), N (Eq. 52).
     pub fn tensions(&self) -> &[f64] {
         self.obs.as_ref().map_or(&[], |o| &o.tensions)
+    }
+
+    /// The tensions |F^H_k| (N, k = 2 … N) at the sub-steps an adaptive method ended inside
+    /// the last completed interval, with their times (s), before its ship stop if it has one:
+    /// the states between two observations at which a peak may fall. Empty under RK4.
+    pub fn inner_tensions(&self) -> impl Iterator<Item = (f64, &[f64])> {
+        let until = self.t;
+        self.inner.iter().filter(move |(t, _)| *t < until).map(|(t, v)| (*t, v.as_slice()))
     }
 
     /// The energy balance at t = 0, J (0 before a successful start).
@@ -377,16 +392,36 @@ impl<'a> Stepper<'a> {
         let y_end = events::advance(self.m.integrator.as_mut(), &mut self.m.dynamics, iv.t_seg, &iv.y_seg, h)?;
         health::finite(&y_end)?;
         let end = self.m.observe(self.model, &y_end)?;
+        let inner_from = self.inner.len();
+        self.observe_inner_steps()?;
         iv.count += 1;
         let switch = if iv.count < MAX_SEGMENTS { self.anchor_switch(iv, h, &end)? } else { None };
         let Some((hs, ys, now, ship_vx)) = switch else { return Ok(SegmentEnd::Interval(y_end, end)) };
         let event = AnchorEvent { t: iv.t_seg + hs, now };
+        // The segment's states after the switch were integrated under the anchor's old state.
+        let kept = inner_from + self.inner[inner_from..].iter().take_while(|(t, _)| *t < event.t).count();
+        self.inner.truncate(kept);
         iv.t_seg += hs;
         iv.y_seg = ys;
         let direction = self.m.dynamics.sliding_direction();
         iv.segments.push(Segment { t: iv.t_seg, y: iv.y_seg.clone(), anchor: now, direction, ship_vx });
         iv.at_end = iv.t_next - iv.t_seg <= 1e-12 * self.model.scene.solver.dt;
         Ok(SegmentEnd::Switched(event))
+    }
+
+    /// Observes the tensions at the sub-step ends inside the segment the method has just
+    /// integrated (an adaptive method's accepted states, from its interpolants).
+    fn observe_inner_steps(&mut self) -> Result<(), FailureKind> {
+        let mut ends = Vec::new();
+        self.m.integrator.inner_step_ends(&mut ends);
+        let mut y = vec![0.0; self.y.len()];
+        for t in ends {
+            if self.m.integrator.dense_state(t, &mut y) {
+                let o = self.m.observe(self.model, &y)?;
+                self.inner.push((t, o.tensions));
+            }
+        }
+        Ok(())
     }
 
     /// A switch of the anchor inside the segment of length h ending in `end`, located and
