@@ -260,10 +260,21 @@ fn a_tension_out_of_range_or_given_with_the_projection_is_refused() {
     let p = refused(&s, "initial.horizontal_tension");
     assert_eq!(p.value, "1000000");
     let w = s.cable_weight_per_length();
-    let top = laid_range(&s.cable_element_lengths(), 6.0).unwrap().1;
-    let t_max = kanestop_runtime::catenary::lay_elements(&s.cable_element_lengths(), top, 6.0).unwrap().0.a * w;
-    assert!(p.expected.starts_with("in (0.1, ") && p.expected.contains("Eq. 31"), "{}", p.expected);
-    assert!(p.expected.contains(&format!("{}] N", (t_max * 10.0).floor() / 10.0)), "{} ({t_max})", p.expected);
+    let (bottom, top) = laid_range(&s.cable_element_lengths(), 6.0).unwrap();
+    let t_at = |x: f64| kanestop_runtime::catenary::lay_elements(&s.cable_element_lengths(), x, 6.0).unwrap().0.a * w;
+    let (t_min, t_max) = (t_at(bottom), t_at(top));
+    // The range in N, its bounds to 6 significant digits rounded inwards: "in (lo, hi] N …".
+    let range = p.expected.strip_prefix("in (").and_then(|r| r.split_once("] N")).unwrap().0;
+    let (lo, hi) = range.split_once(", ").unwrap();
+    let (lo, hi): (f64, f64) = (lo.parse().unwrap(), hi.parse().unwrap());
+    assert!(lo >= t_min && lo - t_min <= 1e-5 * t_min, "{lo} against {t_min}");
+    assert!(hi <= t_max && t_max - hi <= 1e-5 * t_max, "{hi} against {t_max}");
+    assert!(p.expected.contains("Eq. 31"), "{}", p.expected);
+    // Just inside both ends, the line lays.
+    for t in [lo * 1.01, hi * 0.999] {
+        s.initial.horizontal_tension = Some(t);
+        assert_eq!(problems(&s), [], "T_h = {t} N");
+    }
     for bad in [0.0, -5.0, f64::NAN] {
         s.initial.horizontal_tension = Some(bad);
         assert!(refused(&s, "initial.horizontal_tension").expected.contains("> 0 N"), "{bad}");
@@ -277,4 +288,21 @@ fn a_tension_out_of_range_or_given_with_the_projection_is_refused() {
     s.initial.horizontal_tension = None;
     let p = refused(&s, "initial.horizontal_projection");
     assert_eq!(p.to_string(), "initial.horizontal_projection = (missing): must be given (x_L, m, as in Table 2), or initial.horizontal_tension instead (T_h, N)");
+    // A cable that floats has no catenary: refused by its weight, not by a range of T_h
+    // computed with a negative w_c.
+    s.initial.horizontal_tension = Some(150.0);
+    s.cable.mass_per_length = 1.0;
+    let p = refused(&s, "cable.mass_per_length");
+    assert!(p.expected.contains("would float"), "{p}");
+    // Both set in one set of overrides: refused, whichever order, naming both.
+    for pair in [
+        ["initial.horizontal_tension", "initial.horizontal_projection"],
+        ["initial.horizontal_projection", "initial.horizontal_tension"],
+    ] {
+        let e = case1()
+            .with_overrides(&[(pair[0], toml::Value::Float(150.0)), (pair[1], toml::Value::Float(149.0))])
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains(&format!("{} and {} are both set", pair[0], pair[1])), "{e}");
+    }
 }

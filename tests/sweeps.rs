@@ -147,6 +147,20 @@ fn a_line_length_and_depth_sweep_lays_every_row_by_its_tension() {
             .unwrap();
         assert_eq!(scene["initial"].get("horizontal_tension"), Some(&toml::Value::Float(150.0)));
         assert_eq!(scene["initial"].get("horizontal_projection"), None);
+        // The laid line in the row's summary: T_h as set, x_L and the depth as laid.
+        let s = &r["summary"];
+        let (lc, h) = (
+            3.0 * 2.0 + 12.0 * r["inputs"]["cable.stages[1].element_length"].as_f64().unwrap() + 13.0 * 2.0,
+            r["inputs"]["initial.vertical_projection"].as_f64().unwrap(),
+        );
+        let (x, t, d) = (
+            s["initial_horizontal_projection"].as_f64().unwrap(),
+            s["initial_horizontal_tension"].as_f64().unwrap(),
+            s["water_depth"].as_f64().unwrap(),
+        );
+        assert!((t - 150.0).abs() < 1e-9 * 150.0, "T_h {t}");
+        assert!(x > lc - h && x < lc, "x_L {x} for L_c {lc}, h_L {h}");
+        assert!(d > h && d < h + 0.05, "depth {d} for h_L {h}");
     }
     // The same study at case 1's x_L (the spec without its [set]): docs/sweeps.md quotes how
     // many rows are refused.
@@ -253,6 +267,18 @@ fn a_failing_check_exits_4_and_a_bad_spec_exits_2_naming_the_field() {
     assert!(stderr(&bad).contains("axis[0].path = ship.mas"), "{}", stderr(&bad));
     let bad = sweep(&spec(&dir, "[checks]\nsafety_factor = 0.5\n"), &out);
     assert!(stderr(&bad).contains("checks.safety_factor = 0.5: finite and ≥ 1"), "{}", stderr(&bad));
+    // x_L and T_h give one quantity: set together ([set] and an axis), refused, naming both;
+    // an axis value of the wrong type names the field's type, not x_L's value as an example.
+    let both = "[set]\n\"initial.horizontal_projection\" = 149.0\n[[axis]]\npath = \"initial.horizontal_tension\"\nvalues = [150.0]\n";
+    let bad = sweep(&spec(&dir, both), &out);
+    assert_eq!(bad.status.code(), Some(2));
+    assert!(
+        stderr(&bad).contains("axis[0].path = initial.horizontal_tension: not set with initial.horizontal_projection"),
+        "{}",
+        stderr(&bad)
+    );
+    let bad = sweep(&spec(&dir, "[[axis]]\npath = \"initial.horizontal_tension\"\nvalues = [\"high\"]\n"), &out);
+    assert!(stderr(&bad).contains("values of the field's type (float)"), "{}", stderr(&bad));
     // --heatmap: a name that is no output, or a spec without two grid axes, is refused
     // before any run.
     let one_axis = spec(&dir, "[[axis]]\npath = \"ship.mass\"\nvalues = [4e5, 5e5]\n");

@@ -57,8 +57,11 @@ def test_a_line_laid_by_its_tension_follows_the_cable_length(case01: kanestop.Sc
     assert result.stopping_time is not None
     with pytest.raises(kanestop.SceneError, match=r"initial\.horizontal_projection = 148: must be in \[170"):
         case01.with_overrides({"cable.stages[1].element_length": 12.0})
-    with pytest.raises(kanestop.SceneError, match=r"initial\.horizontal_tension = 1000000: must be in \(0\.1, 226722\.2\] N"):
+    with pytest.raises(kanestop.SceneError, match=r"initial\.horizontal_tension = 1000000: must be in \(0\.0000100595, 226722\] N"):
         case01.with_overrides({"initial.horizontal_tension": 1e6})
+    # Both in one dict: refused, whatever the dict's order.
+    with pytest.raises(kanestop.SceneError, match=r"are both set"):
+        case01.with_overrides({"initial.horizontal_tension": 150.0, "initial.horizontal_projection": 149.0})
 
 
 def test_overridden_runs_change_the_result(case01: kanestop.Scene) -> None:

@@ -73,18 +73,21 @@ pub enum CatenaryError {
         /// The largest x_L with touchdown, m.
         max: f64,
     },
-    /// No x_L lays the elements on a catenary of this a = T_h / w_c (see
+    /// No x_L lays the elements on a catenary of this a = T_h / w_c, m (see
     /// [`horizontal_for_parameter`]).
     #[error("no laid line has a = T_h / w_c = {a} m{}", match range {
         Some((lo, hi)) => format!(" (the laid lines have a in ({lo}, {hi}] m)"),
         None => String::new(),
     })]
-    TensionOutOfRange {
+    NoLineWithParameter {
         /// The a asked for, m.
         a: f64,
         /// The a of the laid range's ends, m, when there is a laid range.
         range: Option<(f64, f64)>,
     },
+    /// The scene gives neither x_L nor T_h, or both (`scene::Initial::layout`).
+    #[error("the line is laid by x_L or by T_h: give one of them")]
+    NoLayout,
     /// The laid chord polygon ends farther than [`END_TOLERANCE`] from (x_L, h_L).
     #[error("the laid elements end {gap:.3e} m from (x_L, h_L)")]
     EndMissed {
@@ -232,7 +235,7 @@ pub fn laid_range(lengths: &[f64], vertical: f64) -> Option<(f64, f64)> {
 /// a chosen horizontal tension T_h. The laid curve's a grows with x_L (less slack, more
 /// tension), so the crossing is bracketed from the continuous cable's x_L at this a (Eqs. 33,
 /// 34: S_c² = h_L² + 2 a h_L, x_s = a asinh(S_c/a), x_L = L_c − S_c + x_s) and found to
-/// 1e-15 of x_L. Fails with [`CatenaryError::TensionOutOfRange`] when no x_L in
+/// 1e-15 of x_L. Fails with [`CatenaryError::NoLineWithParameter`] when no x_L in
 /// [`laid_range`] gives this a (too slack to lay, or no cable left on the seabed).
 pub fn horizontal_for_parameter(lengths: &[f64], vertical: f64, a: f64) -> Result<f64, CatenaryError> {
     let total: f64 = lengths.iter().sum();
@@ -241,7 +244,7 @@ pub fn horizontal_for_parameter(lengths: &[f64], vertical: f64, a: f64) -> Resul
             let at = |x: f64| lay_elements(lengths, x, vertical).ok().map(|(c, _)| c.a);
             Some((at(lo)?, at(hi)?))
         });
-        CatenaryError::TensionOutOfRange { a, range }
+        CatenaryError::NoLineWithParameter { a, range }
     };
     let Some((lo, hi)) = continuous_range(total, vertical) else { return Err(out_of_range()) };
     if !(a > 0.0 && a.is_finite()) {
@@ -263,7 +266,7 @@ pub fn horizontal_for_parameter(lengths: &[f64], vertical: f64, a: f64) -> Resul
     bracket_from(f, start, lo, hi, total).ok_or_else(out_of_range)
 }
 
-/// The crossing of the increasing `f` near `start` in [lo, hi]: steps of 1e-9·`scale`,
+/// The crossing of the increasing `f` near `start` in [lo, hi]: steps of 1e-6·`scale`,
 /// doubling, toward the sign change (a side that stops laying first is out of range), then
 /// [`crossing`]. `None` when `f` stops being defined
 /// (or the range ends) before its sign changes.
@@ -274,7 +277,7 @@ fn bracket_from(f: impl Fn(f64) -> Option<f64>, start: f64, lo: f64, hi: f64, sc
     }
     let direction = if f0 < 0.0 { 1.0 } else { -1.0 };
     let (mut near, mut f_near) = (start, f0);
-    let mut step = 1e-9 * scale;
+    let mut step = 1e-6 * scale;
     loop {
         let x = (near + direction * step).clamp(lo, hi);
         if x == near {
@@ -467,7 +470,7 @@ mod tests {
             let top = lay_elements(&lengths, hi, h).unwrap().0.a;
             for a in [top * 1.001, 0.0, -1.0, f64::NAN, f64::INFINITY] {
                 match horizontal_for_parameter(&lengths, h, a) {
-                    Err(CatenaryError::TensionOutOfRange { range: Some((r_lo, r_hi)), .. }) => {
+                    Err(CatenaryError::NoLineWithParameter { range: Some((r_lo, r_hi)), .. }) => {
                         assert!(r_lo > 0.0 && r_lo < 1e-2 * r_hi && (r_hi - top).abs() <= 1e-12 * top, "{r_lo} {r_hi}");
                     }
                     other => panic!("h_L = {h}, a = {a}: {other:?}"),
@@ -477,7 +480,7 @@ mod tests {
         // No laid line at all: h_L above the cable's length.
         assert!(matches!(
             horizontal_for_parameter(&lengths, 200.0, 10.0),
-            Err(CatenaryError::TensionOutOfRange { range: None, .. })
+            Err(CatenaryError::NoLineWithParameter { range: None, .. })
         ));
     }
 

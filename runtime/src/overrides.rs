@@ -47,6 +47,15 @@ pub enum OverrideError {
         /// The part that is a plain value.
         part: String,
     },
+    /// Two fields of one group of [`ALTERNATIVES`] set together: which one lays the scene
+    /// would depend on their order.
+    #[error("{first} and {second} are both set: they give one quantity in two ways (set one of them)")]
+    Alternatives {
+        /// The first path.
+        first: String,
+        /// The second path.
+        second: String,
+    },
     /// `extends` is not a string.
     #[error("extends must be a file name, e.g. extends = \"base.toml\"")]
     ExtendsType,
@@ -154,6 +163,16 @@ pub fn set(root: &mut Value, path: &str, value: Value) -> Result<(), OverrideErr
         (_, value) => value,
     };
     Ok(())
+}
+
+/// The first two of `paths` (by position) that are fields of one group of [`ALTERNATIVES`]:
+/// set together, the last set would silently replace the other.
+pub fn conflicting_alternatives(paths: &[&str]) -> Option<(usize, usize)> {
+    let group = |p: &str| alternatives_of(p).map(|(table, keys, _)| (table, keys));
+    (0..paths.len()).find_map(|j| {
+        let of_j = group(paths[j])?;
+        (0..j).find(|&i| paths[i] != paths[j] && group(paths[i]) == Some(of_j)).map(|i| (i, j))
+    })
 }
 
 /// The value at `path` of `root`, or for a field of [`ALTERNATIVES`] that `root` does not

@@ -269,16 +269,18 @@ pub struct Initial {
     /// elements end at (x_L, h_L) to 1e-9 m, or the scene is refused with the range.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub horizontal_projection: Option<f64>,
-    /// T_h, the cable's horizontal tension at rest, N. Instead of `horizontal_projection`,
-    /// the line laid by its pretension. T_h = w_c a (Eq. 31), w_c the cable's weight per
-    /// metre in water (in air without water); x_L is then the one at which the rigid
-    /// elements lie on the catenary of that a (docs/model-choices.md). Setting it (a sweep's
+    /// T_h, the horizontal tension of the cable's catenary at rest, N. Instead of
+    /// `horizontal_projection`, the line laid by its tension: T_h = w_c a (Eq. 31), w_c the
+    /// cable's weight per metre in water (in air without water), a that of the catenary the
+    /// rigid elements are laid on; x_L is the one that lays them so (docs/model-choices.md).
+    /// Not the top tension (T_h + w_c h_L, what a mooring engineer's pretension usually
+    /// means). Setting it (a sweep's
     /// path, the Python package, a file that `extends` another) replaces x_L. Held fixed, it keeps the suspended part's shape while a sweep changes the cable's
     /// length (x_L follows it), and keeps the line laid while a sweep changes h_L; a fixed
     /// x_L has a window of a few metres (see `horizontal_projection`). Must be in the range
     /// of the laid lines, from nearly 0 (the rigid elements cannot follow a sharper corner at
     /// the touchdown) to T_max, where no cable is left on the seabed; the scene is refused
-    /// with the range (case 1: (0.1, 226 722.2] N; its x_L = 148 m has T_h ≈ 150 N, the
+    /// with the range (case 1: (1.006e-5, 226 722] N; its x_L = 148 m has T_h = 148.0 N, the
     /// paper's line hanging nearly vertically from its touchdown).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub horizontal_tension: Option<f64>,
@@ -290,6 +292,26 @@ pub struct Initial {
     pub vertical_projection: f64,
     /// The ship's initial surge speed, m/s.
     pub ship_speed: f64,
+}
+
+/// How `[initial]` lays the line: by its horizontal projection or by its horizontal tension.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Layout {
+    /// x_L, m.
+    Projection(f64),
+    /// T_h, N.
+    Tension(f64),
+}
+
+impl Initial {
+    /// The layout the scene gives, `None` when it gives neither or both (a scene error).
+    pub fn layout(&self) -> Option<Layout> {
+        match (self.horizontal_projection, self.horizontal_tension) {
+            (Some(x), None) => Some(Layout::Projection(x)),
+            (None, Some(t)) => Some(Layout::Tension(t)),
+            _ => None,
+        }
+    }
 }
 
 /// Time integration.
@@ -529,6 +551,11 @@ impl Scene {
     /// `[("ship.mass", 1e6.into()), ("cable.stages[1].elements", 20.into())]`.
     pub fn with_overrides(&self, values: &[(&str, toml::Value)]) -> Result<Scene, SceneError> {
         let file = format!("{} (with overrides)", self.meta.name);
+        let paths: Vec<&str> = values.iter().map(|(p, _)| *p).collect();
+        if let Some((i, j)) = overrides::conflicting_alternatives(&paths) {
+            let error = OverrideError::Alternatives { first: paths[i].to_string(), second: paths[j].to_string() };
+            return Err(SceneError::Override { file, error });
+        }
         let mut value = self.to_value();
         for (path, v) in values {
             overrides::set(&mut value, path, v.clone())
@@ -587,17 +614,17 @@ impl Scene {
 
     /// x_L, m: `initial.horizontal_projection` as given, or the one that lays the line at
     /// `initial.horizontal_tension` (a = T_h / w_c, Eq. 31,
-    /// [`catenary::horizontal_for_parameter`]). A scene that gives neither (refused by its
-    /// checks) has none: [`CatenaryError::TensionOutOfRange`] with a NaN.
+    /// [`catenary::horizontal_for_parameter`]). A scene that gives neither or both (refused
+    /// by its checks) has none: [`CatenaryError::NoLayout`].
     pub fn horizontal_projection(&self) -> Result<f64, CatenaryError> {
-        match (self.initial.horizontal_projection, self.initial.horizontal_tension) {
-            (Some(x), _) => Ok(x),
-            (None, Some(t)) => catenary::horizontal_for_parameter(
+        match self.initial.layout() {
+            Some(Layout::Projection(x)) => Ok(x),
+            Some(Layout::Tension(t)) => catenary::horizontal_for_parameter(
                 &self.cable_element_lengths(),
                 self.initial.vertical_projection,
                 t / self.cable_weight_per_length(),
             ),
-            (None, None) => Err(CatenaryError::TensionOutOfRange { a: f64::NAN, range: None }),
+            None => Err(CatenaryError::NoLayout),
         }
     }
 
@@ -628,18 +655,18 @@ impl Scene {
         self.check_cable(&mut c);
         self.check_size(&mut c);
         self.check_rod_and_ship(&mut c);
-        self.check_initial(&mut c);
+        let laid = self.check_initial(&mut c);
         self.check_solver(&mut c);
         self.check_checks(&mut c);
         if c.problems.is_empty() {
-            self.check_joined(&mut c);
+            self.check_joined(&mut c, laid);
         }
         c.problems
     }
 
     /// Rules between fields of different tables, checked when every value alone is valid;
-    /// each is documented beside the fields it joins.
-    fn check_joined(&self, c: &mut Checker) {
+    /// each is documented beside the fields it joins. `laid`: the x_L that lays the line.
+    fn check_joined(&self, c: &mut Checker, laid: Option<f64>) {
         let ch = &self.chain;
         if ch.proof_load > ch.break_load {
             c.push(
@@ -652,16 +679,17 @@ impl Scene {
         if self.environment.water {
             self.check_sinking(c);
         }
-        self.check_first_element(c);
+        if let Some(x) = laid {
+            self.check_first_element(c, x);
+        }
     }
 
     /// The first cable element bridges the chain's resting height and its upper joint on the
     /// laid line: it must be longer than that rise, taken with both radii as the bound of the
     /// resting heights (a link rests within its radius of the seabed plane).
-    fn check_first_element(&self, c: &mut Checker) {
+    fn check_first_element(&self, c: &mut Checker, x: f64) {
         let lengths = self.cable_element_lengths();
         let h = self.initial.vertical_projection;
-        let Ok(x) = self.horizontal_projection() else { return };
         let Ok((_, points)) = catenary::lay_elements(&lengths, x, h) else { return };
         let Some(joint) = points.get(1) else { return };
         let bound = joint[1].abs() + 2.0 * (self.chain.radius + self.cable.radius);
@@ -857,8 +885,9 @@ impl Scene {
     }
 
     /// `[initial]`: each value in range, then the line must lay as the paper lays it (checked
-    /// when the cable and the initial values are valid): see [`Scene::check_geometry`].
-    fn check_initial(&self, c: &mut Checker) {
+    /// when the cable and the initial values are valid): see [`Scene::check_geometry`]. The
+    /// x_L that lays it, when it lays.
+    fn check_initial(&self, c: &mut Checker) -> Option<f64> {
         let ini = &self.initial;
         match (ini.horizontal_projection, ini.horizontal_tension) {
             (Some(x), None) => c.positive("initial.horizontal_projection", x, "m"),
@@ -879,9 +908,10 @@ impl Scene {
         let joined = |f: &Problem| {
             f.field.starts_with("cable.") || f.field.starts_with("initial.") || f.field == "chain.elements"
         };
-        if !c.problems.iter().any(joined) {
-            self.check_geometry(c);
+        if c.problems.iter().any(joined) {
+            return None;
         }
+        self.check_geometry(c)
     }
 
     /// The initial line exists (Section 3.1, Eqs. 30–35): chain on the seabed, the cable
@@ -891,8 +921,10 @@ impl Scene {
     /// cable would hang vertically; above: nothing left on the seabed, the cable would leave o
     /// with a slope and lift the chain), and needs h_L < L_c; the rigid elements raise the lower
     /// end a little ([`catenary::laid_range`]). A single cable element cannot lie on the seabed
-    /// and reach (x_L, h_L).
-    fn check_geometry(&self, c: &mut Checker) {
+    /// and reach (x_L, h_L). Laid by T_h, the line must have a laid x_L for a = T_h / w_c
+    /// ([`catenary::horizontal_for_parameter`]); a cable that does not sink (w_c ≤ 0) is left
+    /// to the sinking check. The x_L that lays the line, when it lays.
+    fn check_geometry(&self, c: &mut Checker) -> Option<f64> {
         let (h, lc) = (self.initial.vertical_projection, self.cable_length());
         let lengths = self.cable_element_lengths();
         if h >= lc {
@@ -901,41 +933,45 @@ impl Scene {
                 fmt_value(lc)
             );
             c.push("initial.vertical_projection", &fmt_value(h), &why);
-            return;
+            return None;
         }
         if lengths.len() == 1 {
             let why = "at least 2 cable elements in all: one rigid element cannot lie on the seabed at o and reach (x_L, h_L)";
             c.push("cable.stages", "1 element", why);
-            return;
+            return None;
         }
-        let x = match (self.initial.horizontal_projection, self.initial.horizontal_tension) {
-            (Some(x), _) => x,
-            (None, Some(t)) => {
-                if let Err(e) = self.horizontal_projection() {
-                    let w = self.cable_weight_per_length();
-                    let range = match e {
-                        CatenaryError::TensionOutOfRange { range: Some((lo, hi)), .. } => format!(
-                            "in ({}, {}] N for cable length L_c = {} m, h_L = {} m and w_c = {} N/m",
-                            fmt_value((lo * w * 10.0).ceil() / 10.0),
-                            fmt_value((hi * w * 10.0).floor() / 10.0),
-                            fmt_value(lc),
-                            fmt_value(h),
-                            fmt_rounded(w, 3)
-                        ),
-                        _ => format!("a tension at which the {} cable elements lay (none does here)", lengths.len()),
-                    };
-                    let why = format!(
-                        "{range}: T_h = w_c a (Eq. 31) of the catenary the elements are laid on; lower, the rigid \
-                         elements cannot follow the curve's corner at the touchdown; higher, no cable is left on the seabed"
-                    );
-                    c.push("initial.horizontal_tension", &fmt_value(t), &why);
+        let x = match self.initial.layout()? {
+            Layout::Projection(x) => x,
+            Layout::Tension(t) => {
+                let w = self.cable_weight_per_length();
+                if !(w > 0.0 && w.is_finite()) {
+                    return None;
                 }
-                return;
+                let e = match self.horizontal_projection() {
+                    Ok(x) => return Some(x),
+                    Err(e) => e,
+                };
+                let range = match e {
+                    CatenaryError::NoLineWithParameter { range: Some((lo, hi)), .. } => format!(
+                        "in ({}, {}] N for cable length L_c = {} m, h_L = {} m and w_c = {} N/m",
+                        fmt_bound(lo * w, true),
+                        fmt_bound(hi * w, false),
+                        fmt_value(lc),
+                        fmt_value(h),
+                        fmt_rounded(w, 3)
+                    ),
+                    _ => format!("a tension at which the {} cable elements lay (none does here)", lengths.len()),
+                };
+                let why = format!(
+                    "{range}: T_h = w_c a (Eq. 31) of the catenary the elements are laid on; lower, the rigid \
+                     elements cannot follow the curve's corner at the touchdown; higher, no cable is left on the seabed"
+                );
+                c.push("initial.horizontal_tension", &fmt_value(t), &why);
+                return None;
             }
-            (None, None) => return,
         };
         if catenary::lay_elements(&lengths, x, h).is_ok() {
-            return;
+            return Some(x);
         }
         let expected = match catenary::laid_range(&lengths, h) {
             Some((lo, hi)) => format!(
@@ -955,6 +991,7 @@ impl Scene {
             ),
         };
         c.push("initial.horizontal_projection", &fmt_value(x), &expected);
+        None
     }
 
     /// The length of every cable element, from the chain toward the ship, m.
@@ -1169,6 +1206,17 @@ pub fn fmt_value(v: f64) -> String {
     } else {
         format!("{v}")
     }
+}
+
+/// A bound of a range the message computed, to 6 significant digits, rounded inwards: up
+/// for a lower bound (`up`), down for an upper one, so that the range shown holds.
+fn fmt_bound(v: f64, up: bool) -> String {
+    if !(v.is_finite() && v != 0.0) {
+        return fmt_value(v);
+    }
+    let scale = 10f64.powi(5 - v.abs().log10().floor() as i32);
+    let r = if up { (v * scale).ceil() } else { (v * scale).floor() } / scale;
+    fmt_value(r)
 }
 
 /// A value the message computed (a bound, a depth), rounded to `decimals` places; in

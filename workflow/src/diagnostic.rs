@@ -60,8 +60,9 @@ fn not_static(t: f64, r: &StaticResidual) -> (String, String) {
          the likely cause",
         r.line.0, r.line.1, r.top.0, r.top.1
     );
-    let suggestion = "check the initial geometry (initial.horizontal_projection, initial.vertical_projection, the \
-                      cable stages, rod.length and ship.hinge_z) and the line's weights; a smaller step will not help"
+    let suggestion = "check the initial geometry (initial.horizontal_projection or initial.horizontal_tension, \
+                      initial.vertical_projection, the cable stages, rod.length and ship.hinge_z) and the line's \
+                      weights; a smaller step will not help"
         .to_string();
     (cause, suggestion)
 }

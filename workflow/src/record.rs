@@ -93,6 +93,17 @@ pub struct RunSummary {
     /// exceeded).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub checks_pass: Option<bool>,
+    /// x_L of the laid line, m: `initial.horizontal_projection`, or the one that
+    /// `initial.horizontal_tension` lays it at.
+    #[serde(default)]
+    pub initial_horizontal_projection: f64,
+    /// T_h of the laid line, N: w_c a of the catenary its elements are laid on (Eq. 31), as
+    /// given by `initial.horizontal_tension` or as x_L lays it.
+    #[serde(default)]
+    pub initial_horizontal_tension: f64,
+    /// The water depth d, m (`Scene::water_depth`).
+    #[serde(default)]
+    pub water_depth: f64,
 }
 
 /// A peak joint tension.
@@ -216,6 +227,9 @@ impl RunSummary {
             },
             checks_pass: checks::verdict(&outcomes, &checks::break_exceedances(model, result)),
             checks: outcomes,
+            initial_horizontal_projection: model.catenary.horizontal,
+            initial_horizontal_tension: model.catenary.a * model.scene.cable_weight_per_length(),
+            water_depth: model.water_depth(),
         }
     }
 }

@@ -121,13 +121,14 @@ fn scene_lines(out: &mut Lines, model: &Model, result: &RunResult) {
     out.line(
         "initial",
         format!(
-            "x_L = {}, h_L = {} m, T_h = {:.2} kN, water depth {:.3} m, {:.2} m of cable on the seabed ({:.2} m of the catenary), ship {} m/s",
+            "x_L = {}, h_L = {} m, T_h = {}, water depth {:.3} m, {:.2} m of cable on the seabed ({:.2} m of the catenary), ship {} m/s",
             fmt_projection(model),
             s.initial.vertical_projection,
-            model.catenary.a * s.cable_weight_per_length() / 1e3,
+            fmt_tension(model.catenary.a * s.cable_weight_per_length()),
             model.water_depth(),
-            model.grounded_cable_length(),
-            model.catenary.grounded_length(),
+            // A line laid at the touchdown's end reads a rounding's −0.00.
+            model.grounded_cable_length().max(0.0),
+            model.catenary.grounded_length().max(0.0),
             s.initial.ship_speed
         ),
     );
@@ -146,6 +147,15 @@ fn fmt_projection(model: &Model) -> String {
     match model.scene.initial.horizontal_projection {
         Some(x) => format!("{x} m"),
         None => format!("{:.4} m (laid by initial.horizontal_tension)", model.catenary.horizontal),
+    }
+}
+
+/// The horizontal tension T_h (N) to a tenth of a newton below 10 kN, else in kN.
+fn fmt_tension(t: f64) -> String {
+    if t.abs() < 1e4 {
+        format!("{t:.1} N")
+    } else {
+        format!("{:.2} kN", t / 1e3)
     }
 }
 

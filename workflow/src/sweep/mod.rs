@@ -274,6 +274,9 @@ pub fn cells(rows: &[SweepRow]) -> (Vec<String>, Vec<Vec<Cell>>) {
             "message",
             "cpu_time",
             "initial_kinetic_energy",
+            "initial_horizontal_projection",
+            "initial_horizontal_tension",
+            "water_depth",
         ]
         .map(String::from),
     );
@@ -319,6 +322,9 @@ pub fn cells(rows: &[SweepRow]) -> (Vec<String>, Vec<Vec<Cell>>) {
                 cells.push(Cell::Text(r.message.clone()));
                 cells.push(f(&|s| s.cpu_time));
                 cells.push(f(&|s| Some(s.initial_kinetic_energy)));
+                cells.push(f(&|s| Some(s.initial_horizontal_projection)));
+                cells.push(f(&|s| Some(s.initial_horizontal_tension)));
+                cells.push(f(&|s| Some(s.water_depth)));
                 cells
             })
             .collect();

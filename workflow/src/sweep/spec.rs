@@ -211,7 +211,9 @@ impl Spec {
         for (k, v) in raw.solver.into_iter().flatten() {
             set(&format!("solver.{k}"), v)?;
         }
+        let mut inputs: Vec<(String, String)> = Vec::new();
         for (k, v) in raw.set.into_iter().flatten() {
+            inputs.push((format!("set.\"{k}\""), k.clone()));
             set(&k, v)?;
         }
         let base = Scene::from_value(value, &format!("{} (base with [solver] and [set])", file.display()))?;
@@ -241,6 +243,15 @@ impl Spec {
                     "a path not already an input (each path once, as an axis or an uncertain input)",
                 ));
             }
+        }
+        // Two ways to give one quantity (x_L and T_h) in one spec: the row's scene would keep
+        // the one set last.
+        inputs.extend(axes.iter().enumerate().map(|(i, a)| (format!("axis[{i}].path"), a.path.clone())));
+        inputs.extend(uncertain.iter().enumerate().map(|(i, u)| (format!("uncertain[{i}].path"), u.path.clone())));
+        let paths: Vec<&str> = inputs.iter().map(|(_, p)| p.as_str()).collect();
+        if let Some((i, j)) = overrides::conflicting_alternatives(&paths) {
+            let why = format!("not set with {} ({}): both give one quantity, set one of them", paths[i], inputs[i].0);
+            return Err(bad(file, &inputs[j].0, paths[j], why));
         }
         let sampling = match (raw.sampling, uncertain.is_empty()) {
             (Some(s), false) if (1..=MAX_ROWS).contains(&s.samples) => Some((s.method, s.samples, s.seed)),
@@ -435,11 +446,15 @@ fn axis(file: &Path, base: &Value, i: usize, a: AxisFile) -> Result<Axis> {
             }
             (Value::Integer(n), _, true) => Ok(Value::Float(*n as f64)),
             _ if v.same_type(current) => Ok(v),
+            // The example is the field's own value, not that of an alternative it replaces.
             _ => Err(bad(
                 file,
                 field("values"),
                 &v,
-                format!("values of the field's type ({}, e.g. {current})", current.type_str()),
+                match overrides::get(base, &a.path) {
+                    Some(own) => format!("values of the field's type ({}, e.g. {own})", current.type_str()),
+                    None => format!("values of the field's type ({})", current.type_str()),
+                },
             )),
         })
         .collect::<Result<_>>()?;
