@@ -27,6 +27,14 @@ pub trait OdeSystem {
     fn quadrature_components(&self) -> usize {
         0
     }
+
+    /// Called by an adaptive method after each error-controlled step it accepts inside the
+    /// span it was asked to cross (not at the span's end, which its caller sees): the states
+    /// between a driver's observations, e.g. for the peaks of a quantity. DP5 has just
+    /// evaluated the right-hand side there (its last stage). The default does nothing.
+    fn accepted(&mut self, _t: f64, _y: &[f64]) -> Result<(), RhsError> {
+        Ok(())
+    }
 }
 
 /// A one-step method.
@@ -46,12 +54,6 @@ pub trait Integrator {
     fn dense_state(&self, _t: f64, _out: &mut [f64]) -> bool {
         false
     }
-
-    /// Appends to `out` the times, s, at which the last `step` call's error-controlled
-    /// sub-steps ended inside its span (its own end excluded): where an adaptive method
-    /// accepted states between the driver's intervals, each at hand through
-    /// [`Integrator::dense_state`]. Nothing for a fixed-step method (RK4).
-    fn inner_step_ends(&self, _out: &mut Vec<f64>) {}
 }
 
 /// The classic fourth-order Runge–Kutta method with a fixed step (the paper's method).
@@ -160,11 +162,6 @@ impl<M: AdaptiveIntegrator> Integrator for Adaptive<M> {
         steps[k].at(t, out);
         true
     }
-
-    fn inner_step_ends(&self, out: &mut Vec<f64>) {
-        let inner = self.used.saturating_sub(1);
-        out.extend(self.dense[..inner].iter().map(|s| s.t0 + s.h));
-    }
 }
 
 /// Test problems the methods' tests share.
@@ -208,28 +205,41 @@ mod tests {
     }
 
     #[test]
-    fn an_adaptive_step_names_its_inner_sub_step_ends_and_their_states() {
+    fn an_adaptive_step_shows_the_system_its_inner_accepted_states() {
         use super::test_problems::Decay;
-        let mut ends = Vec::new();
-        Rk4::new(1).inner_step_ends(&mut ends);
-        assert!(ends.is_empty(), "RK4 has no inner steps");
-        let mut dp = Adaptive::new(Dp5::new(1, 1e-10, 1e-12).unwrap());
-        let mut y = [1.0];
-        dp.step(&mut Decay, 2.0, &mut y, 1.0).unwrap();
-        dp.inner_step_ends(&mut ends);
-        // Several sub-steps at this tolerance; their ends inside (2, 3), increasing, each a
-        // state of the solution e^−(t−2) to the tolerance.
-        assert!(ends.len() >= 3, "{ends:?}");
-        assert!(ends.windows(2).all(|w| w[0] < w[1]) && ends[0] > 2.0 && ends[ends.len() - 1] < 3.0, "{ends:?}");
-        let mut state = [0.0];
-        for &t in &ends {
-            assert!(dp.dense_state(t, &mut state));
-            assert!((state[0] - (2.0 - t).exp()).abs() < 1e-9, "t = {t}: {}", state[0]);
+        /// ẏ = −y, recording where `accepted` is called and with what.
+        #[derive(Default)]
+        struct Watched(Vec<(f64, f64)>);
+        impl OdeSystem for Watched {
+            fn dim(&self) -> usize {
+                1
+            }
+            fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), RhsError> {
+                Decay.rhs(t, y, dy)
+            }
+            fn accepted(&mut self, t: f64, y: &[f64]) -> Result<(), RhsError> {
+                self.0.push((t, y[0]));
+                Ok(())
+            }
         }
-        // A second call names its own.
-        dp.step(&mut Decay, 3.0, &mut y, 1.0).unwrap();
-        let mut again = Vec::new();
-        dp.inner_step_ends(&mut again);
-        assert!(again.iter().all(|&t| t > 3.0 && t < 4.0), "{again:?}");
+        let mut rk4 = Watched::default();
+        Rk4::new(1).step(&mut rk4, 0.0, &mut [1.0], 0.1).unwrap();
+        assert!(rk4.0.is_empty(), "RK4 has no inner steps");
+        let mut dp = Adaptive::new(Dp5::new(1, 1e-10, 1e-12).unwrap());
+        let (mut sys, mut y) = (Watched::default(), [1.0]);
+        dp.step(&mut sys, 2.0, &mut y, 1.0).unwrap();
+        // Several sub-steps at this tolerance; their ends inside (2, 3), increasing, each the
+        // solution e^−(t−2) to the tolerance and the interpolant's state there.
+        let seen = std::mem::take(&mut sys.0);
+        assert!(seen.len() >= 3, "{seen:?}");
+        assert!(seen.windows(2).all(|w| w[0].0 < w[1].0) && seen[0].0 > 2.0 && seen[seen.len() - 1].0 < 3.0);
+        let mut state = [0.0];
+        for &(t, v) in &seen {
+            assert!((v - (2.0 - t).exp()).abs() < 1e-9, "t = {t}: {v}");
+            assert!(dp.dense_state(t, &mut state) && state[0] == v, "t = {t}");
+        }
+        // A second call shows its own.
+        dp.step(&mut sys, 3.0, &mut y, 1.0).unwrap();
+        assert!(!sys.0.is_empty() && sys.0.iter().all(|&(t, _)| t > 3.0 && t < 4.0), "{:?}", sys.0);
     }
 }

@@ -302,7 +302,8 @@ pub trait AdaptiveIntegrator {
     }
 
     /// As [`AdaptiveIntegrator::integrate_to`], calling `accepted` after every accepted step
-    /// (e.g. to keep its dense output).
+    /// (e.g. to keep its dense output), and the system's [`OdeSystem::accepted`] after each
+    /// that ends inside (t0, t1).
     fn integrate_to_with(
         &mut self,
         sys: &mut dyn OdeSystem,
@@ -318,12 +319,16 @@ pub trait AdaptiveIntegrator {
         let mut t = t0;
         let mut h = h_try;
         let span = t1 - t0;
-        while t1 - t > 1e-14 * span.abs().max(t1.abs()) {
+        let tol = 1e-14 * span.abs().max(t1.abs());
+        while t1 - t > tol {
             let remaining = t1 - t;
             let clipped = h >= remaining;
             let out = self.step_adaptive(sys, t, y, h.min(remaining))?;
             accepted(self);
             t = if clipped && out.h == remaining { t1 } else { t + out.h };
+            if t1 - t > tol {
+                sys.accepted(t, y)?;
+            }
             // A clipped last step says nothing about the step size the problem allows.
             h = if clipped && out.rejected == 0 { h.max(out.h_next) } else { out.h_next };
         }

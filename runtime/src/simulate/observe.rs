@@ -4,6 +4,7 @@
 
 use crate::dynamics::{Dynamics, WORK_COUNT};
 use crate::energy::Energy;
+use crate::integrate::OdeSystem;
 use crate::joints;
 use crate::kernel::{AnchorReaction, BodyAcceleration, BodyState, RhsError};
 use crate::model::Model;
@@ -63,5 +64,36 @@ impl Observer {
         let env = &model.scene.environment;
         let energy = Energy::of(&model.chain, &bodies, env.gravity, model.seabed_z, work);
         Ok(Observation { bodies, tensions, reaction, energy })
+    }
+}
+
+/// The right-hand side for a segment's integration that also watches the states an adaptive
+/// method accepts inside it: their joint tensions (time, s; |F^H_k|, N) go to `inner`, for
+/// the run's peaks. DP5 has evaluated its last stage at such a state, so `Dynamics` answers
+/// the observation's solve from memory.
+pub(crate) struct Watched<'a> {
+    pub model: &'a Model,
+    pub dynamics: &'a mut Dynamics,
+    pub observer: &'a mut Observer,
+    pub inner: &'a mut Vec<(f64, Vec<f64>)>,
+}
+
+impl OdeSystem for Watched<'_> {
+    fn dim(&self) -> usize {
+        self.dynamics.dim()
+    }
+
+    fn quadrature_components(&self) -> usize {
+        self.dynamics.quadrature_components()
+    }
+
+    fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), RhsError> {
+        self.dynamics.rhs(t, y, dy)
+    }
+
+    fn accepted(&mut self, t: f64, y: &[f64]) -> Result<(), RhsError> {
+        let o = self.observer.observe(self.model, self.dynamics, y)?;
+        self.inner.push((t, o.tensions));
+        Ok(())
     }
 }

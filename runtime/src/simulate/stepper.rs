@@ -13,7 +13,7 @@ use std::sync::atomic::AtomicBool;
 use super::events::{self, Located};
 use super::failure::{Failure, FailureKind};
 use super::health;
-use super::observe::{Observation, Observer};
+use super::observe::{Observation, Observer, Watched};
 use super::{integrator, AnchorEvent, Sample};
 use crate::dynamics::{Dynamics, WORK_COUNT};
 use crate::forces::Forces;
@@ -304,9 +304,12 @@ impl<'a> Stepper<'a> {
         self.obs.as_ref().map_or(&[], |o| &o.tensions)
     }
 
-    /// The tensions |F^H_k| (N, k = 2 … N) at the sub-steps an adaptive method ended inside
-    /// the last completed interval, with their times (s), before its ship stop if it has one:
-    /// the states between two observations at which a peak may fall. Empty under RK4.
+    /// The tensions |F^H_k| (N, k = 2 … N) at the states an adaptive method accepted inside
+    /// the interval in progress or last completed (`OdeSystem::accepted`), with their times
+    /// (s), before its ship stop if it has one: where a peak may fall between two
+    /// observations. Those after an anchor switch are dropped (integrated under the anchor's
+    /// old state; the ones before it come from the first integration of the segment, not the
+    /// switch's location, which agree to the tolerance). Empty under RK4.
     pub fn inner_tensions(&self) -> impl Iterator<Item = (f64, &[f64])> {
         let until = self.t;
         self.inner.iter().filter(move |(t, _)| *t < until).map(|(t, v)| (*t, v.as_slice()))
@@ -389,11 +392,16 @@ impl<'a> Stepper<'a> {
             return Ok(SegmentEnd::Interval(std::mem::take(&mut iv.y_seg), o));
         }
         let h = iv.t_next - iv.t_seg;
-        let y_end = events::advance(self.m.integrator.as_mut(), &mut self.m.dynamics, iv.t_seg, &iv.y_seg, h)?;
-        health::finite(&y_end)?;
-        let end = self.m.observe(self.model, &y_end)?;
         let inner_from = self.inner.len();
-        self.observe_inner_steps()?;
+        let Machine { dynamics, integrator, observer } = &mut self.m;
+        let mut watched = Watched { model: self.model, dynamics, observer, inner: &mut self.inner };
+        let y_end = events::advance(integrator.as_mut(), &mut watched, iv.t_seg, &iv.y_seg, h)?;
+        health::finite(&y_end)?;
+        // The states inside pass the spike check as the interval's end does.
+        for (_, tensions) in &self.inner[inner_from..] {
+            health::no_spike(tensions, self.spike_bound)?;
+        }
+        let end = self.m.observe(self.model, &y_end)?;
         iv.count += 1;
         let switch = if iv.count < MAX_SEGMENTS { self.anchor_switch(iv, h, &end)? } else { None };
         let Some((hs, ys, now, ship_vx)) = switch else { return Ok(SegmentEnd::Interval(y_end, end)) };
@@ -407,21 +415,6 @@ impl<'a> Stepper<'a> {
         iv.segments.push(Segment { t: iv.t_seg, y: iv.y_seg.clone(), anchor: now, direction, ship_vx });
         iv.at_end = iv.t_next - iv.t_seg <= 1e-12 * self.model.scene.solver.dt;
         Ok(SegmentEnd::Switched(event))
-    }
-
-    /// Observes the tensions at the sub-step ends inside the segment the method has just
-    /// integrated (an adaptive method's accepted states, from its interpolants).
-    fn observe_inner_steps(&mut self) -> Result<(), FailureKind> {
-        let mut ends = Vec::new();
-        self.m.integrator.inner_step_ends(&mut ends);
-        let mut y = vec![0.0; self.y.len()];
-        for t in ends {
-            if self.m.integrator.dense_state(t, &mut y) {
-                let o = self.m.observe(self.model, &y)?;
-                self.inner.push((t, o.tensions));
-            }
-        }
-        Ok(())
     }
 
     /// A switch of the anchor inside the segment of length h ending in `end`, located and
