@@ -36,7 +36,8 @@ enum Command {
     Run {
         /// Scene TOML file; omitted: the embedded case 1.
         scene: Option<PathBuf>,
-        /// Write the time history as CSV to this file (written whole or not at all).
+        /// Write the time history as CSV to this file (written whole or not at all; a missing
+        /// folder is created).
         #[arg(long)]
         out: Option<PathBuf>,
         /// Write plots (SVG) of the run into this folder.
@@ -64,8 +65,10 @@ enum Command {
     /// Evaluate the equations of motion once and print JSON (M, f, qdd, body states).
     Eval {
         /// Scene TOML file; omitted: the embedded case 1.
-        #[arg(long)]
         scene: Option<PathBuf>,
+        /// The scene, as a flag (the same as the positional argument).
+        #[arg(long = "scene", value_name = "SCENE", conflicts_with = "scene")]
+        scene_flag: Option<PathBuf>,
         /// State JSON {"q": [...], "u": [...], "anchor": "free"|"stuck"}; omitted: the
         /// scene's initial state.
         #[arg(long)]
@@ -630,8 +633,8 @@ fn try_main() -> Result<Exit> {
                 RunOutcome::CheckFailed => Exit::CheckFailed,
             })
         }
-        Command::Eval { scene, state, kernel: choice } => {
-            let model = load_model(scene.as_ref())?;
+        Command::Eval { scene, scene_flag, state, kernel: choice } => {
+            let model = load_model(scene.as_ref().or(scene_flag.as_ref()))?;
             commands::eval(&model, &choice.factory(), state.as_deref())?;
             Ok(Exit::Done)
         }

@@ -150,12 +150,38 @@ fn run_prints_a_summary_and_writes_the_csv_whole() {
 fn unwritable_output_is_an_error_and_leaves_nothing() {
     let dir = temp_dir("unwritable");
     let scene = short_scene(&dir);
-    let out = kanestop().arg("run").arg(&scene).arg("--out").arg(dir.join("missing-dir/history.csv")).output().unwrap();
+    // A folder that cannot be made: its would-be parent is a file.
+    std::fs::write(dir.join("plain"), "x").unwrap();
+    let out = kanestop().arg("run").arg(&scene).arg("--out").arg(dir.join("plain/new/history.csv")).output().unwrap();
     assert_eq!(out.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&out.stderr).contains("cannot write"));
-    assert!(!dir.join("missing-dir").exists());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("cannot write") && err.contains("not a folder"), "{err}");
     // Checked before the run: no summary was printed.
     assert!(out.stdout.is_empty(), "{}", String::from_utf8_lossy(&out.stdout));
+    assert_eq!(std::fs::read_to_string(dir.join("plain")).unwrap(), "x");
+}
+
+#[test]
+fn run_out_creates_its_folder_as_plot_and_batch_do() {
+    let dir = temp_dir("run-new-folder");
+    let scene = short_scene(&dir);
+    let csv = dir.join("results/case/history.csv");
+    let out = kanestop().arg("run").arg(&scene).arg("--out").arg(&csv).output().unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(csv.is_file() && dir.join("results/case/history.units.csv").is_file());
+}
+
+#[test]
+fn eval_takes_its_scene_as_run_does_or_by_flag() {
+    let dir = temp_dir("eval-positional");
+    let scene = short_scene(&dir);
+    let positional = kanestop().arg("eval").arg(&scene).output().unwrap();
+    assert!(positional.status.success(), "{}", String::from_utf8_lossy(&positional.stderr));
+    let flag = kanestop().args(["eval", "--scene"]).arg(&scene).output().unwrap();
+    assert!(flag.status.success(), "{}", String::from_utf8_lossy(&flag.stderr));
+    assert_eq!(positional.stdout, flag.stdout);
+    let both = kanestop().arg("eval").arg(&scene).arg("--scene").arg(&scene).output().unwrap();
+    assert_eq!(both.status.code(), Some(2), "one scene, not two");
 }
 
 #[test]

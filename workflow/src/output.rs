@@ -4,10 +4,12 @@ use std::io::Write as _;
 use std::path::Path;
 
 /// Writes `bytes` to a temporary file beside `path`, then renames it into place, so a
-/// reader never sees a partial file and a failed write leaves any old file untouched.
+/// reader never sees a partial file and a failed write leaves any old file untouched. A
+/// missing folder is created first ([`check_file_target`] has checked that it can be).
 pub fn write_atomically(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
     let dir = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
     let name = path.file_name().ok_or_else(|| std::io::Error::other("output path has no file name"))?;
+    std::fs::create_dir_all(dir)?;
     let tmp = dir.join(format!(".{}.tmp{}", name.to_string_lossy(), std::process::id()));
     let result = (|| {
         let mut f = std::fs::File::create(&tmp)?;
@@ -21,9 +23,10 @@ pub fn write_atomically(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
     result
 }
 
-/// Checks, before any work, that a file can be written at `path`: its folder exists and
-/// accepts a new file, and nothing but a regular file is there (a folder, a pipe or a device
-/// would be replaced or fail the write after the work). Nothing is left behind.
+/// Checks, before any work, that a file can be written at `path`: its folder accepts a new
+/// file, or does not exist yet and can be created ([`check_dir_target`]; the write creates
+/// it), and nothing but a regular file is there (a folder, a pipe or a device would be
+/// replaced or fail the write after the work). Nothing is left behind.
 pub fn check_file_target(path: &Path) -> std::io::Result<()> {
     if path.file_name().is_none() || path.is_dir() {
         return Err(std::io::Error::other("not a file name"));
@@ -32,7 +35,7 @@ pub fn check_file_target(path: &Path) -> std::io::Result<()> {
         return Err(std::io::Error::other("exists and is not a regular file"));
     }
     let dir = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
-    check_writable_dir(dir)
+    check_dir_target(dir)
 }
 
 /// Checks, before any work, that files can be written into the folder `dir`: it is a
@@ -48,6 +51,9 @@ pub fn check_dir_target(dir: &Path) -> std::io::Result<()> {
     let mut parent = dir.parent();
     while let Some(p) = parent.filter(|p| !p.as_os_str().is_empty()) {
         if p.exists() {
+            if !p.is_dir() {
+                return Err(std::io::Error::other(format!("{} exists and is not a folder", p.display())));
+            }
             return check_writable_dir(p);
         }
         parent = p.parent();
@@ -127,7 +133,11 @@ mod tests {
         let dir = std::env::temp_dir().join(format!("kanestop-output-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
         assert!(check_file_target(&dir.join("a.csv")).is_ok());
-        assert!(check_file_target(&dir.join("missing/a.csv")).is_err());
+        assert!(check_file_target(&dir.join("missing/a.csv")).is_ok(), "its folder is created by the write");
+        std::fs::write(dir.join("plain"), "x").unwrap();
+        let e = check_file_target(&dir.join("plain/a.csv")).unwrap_err();
+        assert!(e.to_string().contains("not a folder"), "{e}");
+        std::fs::remove_file(dir.join("plain")).unwrap();
         assert!(check_file_target(&dir).is_err(), "a folder is not a file");
         assert!(check_dir_target(&dir.join("new/deeper")).is_ok(), "created later");
         std::fs::write(dir.join("file"), "x").unwrap();
