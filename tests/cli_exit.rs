@@ -97,7 +97,7 @@ fn exit_2_bad_arguments_scene_and_paths() {
     // Output targets are checked before the run: nothing printed, nothing written.
     let file = dir.join("a-file");
     std::fs::write(&file, "").unwrap();
-    for (flag, target) in [("--out", dir.join("missing/history.csv")), ("--plot", file.join("plots"))] {
+    for (flag, target) in [("--out", file.join("sub/history.csv")), ("--plot", file.join("plots"))] {
         let out = kanestop().arg("run").arg(&short).arg(flag).arg(&target).output().unwrap();
         let (stdout, stderr) = text(&out);
         assert_eq!(out.status.code(), Some(2), "{flag}: {stdout}{stderr}");

@@ -287,7 +287,7 @@ fn a_tension_out_of_range_or_given_with_the_projection_is_refused() {
     s.initial.horizontal_projection = None;
     s.initial.horizontal_tension = None;
     let p = refused(&s, "initial.horizontal_projection");
-    assert_eq!(p.to_string(), "initial.horizontal_projection = (missing): must be given (x_L, m, as in Table 2), or initial.horizontal_tension instead (T_h, N)");
+    assert_eq!(p.to_string(), "initial.horizontal_projection = (missing): must be given (x_L, m, as in Table 2), or initial.horizontal_tension (T_h, N) or initial.top_tension (T_t, N) instead");
     // A cable that floats has no catenary: refused by its weight, not by a range of T_h
     // computed with a negative w_c.
     s.initial.horizontal_tension = Some(150.0);
@@ -305,4 +305,100 @@ fn a_tension_out_of_range_or_given_with_the_projection_is_refused() {
             .to_string();
         assert!(e.contains(&format!("{} and {} are both set", pair[0], pair[1])), "{e}");
     }
+}
+
+/// Case 1 laid by its top tension T_t, by dotted path.
+fn by_top_tension(t: f64) -> Result<Scene, SceneError> {
+    case1().with_overrides(&[("initial.top_tension", toml::Value::Float(t))])
+}
+
+#[test]
+fn a_line_laid_by_its_top_tension_is_the_line_laid_at_t_h_less_the_suspended_weight() {
+    let base = assert_physical(&case1());
+    let w = case1().cable_weight_per_length();
+    let (t_h, t_t) = base.initial_tensions();
+    // T_t = w_c (a + h_L): the catenary's tension grows by w_c per metre of rise.
+    assert!((t_t - (t_h + w * 6.0)).abs() < 1e-9 * t_t, "{t_h} N, {t_t} N");
+    assert!((856.0..858.0).contains(&t_t), "case 1's T_t = {t_t} N (docs/model-choices.md: 857 N)");
+    for t in [t_t, 2e3, 2e4] {
+        let scene = by_top_tension(t).unwrap_or_else(|e| panic!("{e}"));
+        let i = &scene.initial;
+        assert_eq!((i.horizontal_projection, i.horizontal_tension, i.top_tension), (None, None, Some(t)));
+        let model = assert_physical(&scene);
+        assert!((model.initial_tensions().1 - t).abs() < 1e-9 * t, "T_t = {} N", model.initial_tensions().1);
+        let same = by_tension(t - w * 6.0).unwrap();
+        assert_eq!(scene.horizontal_projection(), same.horizontal_projection(), "T_t = {t} N");
+    }
+    let x = by_top_tension(t_t).unwrap().horizontal_projection().unwrap();
+    assert!((x - 148.0).abs() < 1e-9, "x_L = {x} m");
+}
+
+#[test]
+fn a_top_tension_out_of_range_or_given_with_another_layout_is_refused() {
+    let mut s = case1();
+    s.initial.horizontal_projection = None;
+    s.initial.top_tension = Some(500.0);
+    let p = refused(&s, "initial.top_tension");
+    // The T_h range raised by the suspended weight w_c h_L, named as T_t.
+    let w = s.cable_weight_per_length();
+    let (bottom, top) = laid_range(&s.cable_element_lengths(), 6.0).unwrap();
+    let t_at =
+        |x: f64| (kanestop_runtime::catenary::lay_elements(&s.cable_element_lengths(), x, 6.0).unwrap().0.a + 6.0) * w;
+    let range = p.expected.strip_prefix("in (").and_then(|r| r.split_once("] N")).unwrap().0;
+    let (lo, hi) = range.split_once(", ").unwrap();
+    let (lo, hi): (f64, f64) = (lo.parse().unwrap(), hi.parse().unwrap());
+    assert!(lo >= t_at(bottom) && lo - t_at(bottom) <= 1e-5 * lo, "{lo} against {}", t_at(bottom));
+    assert!(hi <= t_at(top) && t_at(top) - hi <= 1e-5 * hi, "{hi} against {}", t_at(top));
+    assert!(lo > w * 6.0, "above the suspended cable's weight");
+    assert!(p.expected.contains("T_t = w_c (a + h_L)"), "{}", p.expected);
+    for t in [lo * 1.001, hi * 0.999] {
+        s.initial.top_tension = Some(t);
+        assert_eq!(problems(&s), [], "T_t = {t} N");
+    }
+    s.initial.top_tension = Some(-1.0);
+    assert!(refused(&s, "initial.top_tension").expected.contains("> 0 N"));
+    // Two layouts: the first is named, with the one that leaves it out.
+    s.initial.top_tension = Some(1000.0);
+    s.initial.horizontal_tension = Some(150.0);
+    let p = refused(&s, "initial.horizontal_tension");
+    assert!(p.expected.contains("left out when initial.top_tension is given"), "{p}");
+    s.initial.horizontal_tension = None;
+    s.initial.top_tension = None;
+    let p = refused(&s, "initial.horizontal_projection");
+    assert!(p.expected.contains("or initial.top_tension (T_t, N)"), "{p}");
+    // Set by path it replaces x_L or T_h; two of the three at once are refused.
+    let scene = by_tension(150.0).unwrap().with_overrides(&[("initial.top_tension", toml::Value::Float(1e3))]).unwrap();
+    assert_eq!((scene.initial.horizontal_tension, scene.initial.top_tension), (None, Some(1e3)));
+    let e = case1()
+        .with_overrides(&[
+            ("initial.top_tension", toml::Value::Float(1e3)),
+            ("initial.horizontal_projection", toml::Value::Float(149.0)),
+        ])
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("initial.top_tension and initial.horizontal_projection are both set"), "{e}");
+}
+
+/// What docs/model-choices.md says of a laid tension: a parameter of the laid shape, not a
+/// tension the model holds at t = 0. The paper starts the auxiliary rod vertical: case 1's
+/// slack line, pulling nearly along it, carries the catenary's T_t in order of magnitude (its
+/// cable top 1.7× it, the ship already pulling the rod); a taut line's rod cannot hold the
+/// horizontal pull, swings, and the line starts nearly slack.
+#[test]
+fn a_laid_tension_is_a_shape_not_a_tension_the_model_holds_at_the_start() {
+    let top_joint_at_start = |scene: &Scene| {
+        let model = Model::new(scene).unwrap();
+        let run = simulate::run(&model, Box::new(GeneratedKernel::new(&model.chain).unwrap()));
+        let n = model.body_count();
+        // Joint N − 1: the cable top, at the rod's foot.
+        (run.samples[0].tensions[n - 1 - 2], model.initial_tensions().1)
+    };
+    let mut short = case1();
+    short.solver.end_time = 0.01;
+    let (held, t_t) = top_joint_at_start(&short);
+    assert!((1.0..2.0).contains(&(held / t_t)), "case 1: {held} N against T_t = {t_t} N");
+    let mut taut = by_top_tension(2e4).unwrap();
+    taut.solver.end_time = 0.01;
+    let (held, t_t) = top_joint_at_start(&taut);
+    assert!(held < 0.02 * t_t, "taut: {held} N against T_t = {t_t} N");
 }

@@ -159,6 +159,10 @@ fn a_line_length_and_depth_sweep_lays_every_row_by_its_tension() {
             s["water_depth"].as_f64().unwrap(),
         );
         assert!((t - 150.0).abs() < 1e-9 * 150.0, "T_h {t}");
+        // T_t = T_h + w_c h_L, the cable's weight in water (docs/model-choices.md).
+        let w = (13.852119244119578 - 1025.0 * std::f64::consts::PI * 0.0237f64.powi(2)) * 9.81;
+        let top = s["initial_top_tension"].as_f64().unwrap();
+        assert!((top - (t + w * h)).abs() < 1e-9 * top, "T_t {top} for T_h {t}, h_L {h}");
         assert!(x > lc - h && x < lc, "x_L {x} for L_c {lc}, h_L {h}");
         assert!(d > h && d < h + 0.05, "depth {d} for h_L {h}");
     }

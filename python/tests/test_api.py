@@ -64,6 +64,21 @@ def test_a_line_laid_by_its_tension_follows_the_cable_length(case01: kanestop.Sc
         case01.with_overrides({"initial.horizontal_tension": 150.0, "initial.horizontal_projection": 149.0})
 
 
+def test_a_line_laid_by_its_top_tension(case01: kanestop.Scene) -> None:
+    # T_t = T_h + w_c h_L replaces T_h or x_L; the summary gives all three of the laid line.
+    by_top = case01.with_overrides({"initial.horizontal_tension": 150}).with_overrides({"initial.top_tension": 2000})
+    initial = by_top.to_dict()["initial"]
+    assert initial["top_tension"] == 2000.0 and "horizontal_tension" not in initial
+    summary = kanestop.run(by_top).summary
+    assert summary["initial_top_tension"] == pytest.approx(2000.0, rel=1e-12)
+    w_c = (summary["initial_top_tension"] - summary["initial_horizontal_tension"]) / 6.0
+    assert w_c == pytest.approx(118.146, rel=1e-5)
+    base = kanestop.run(case01).summary
+    assert base["initial_top_tension"] == pytest.approx(base["initial_horizontal_tension"] + 6.0 * w_c, rel=1e-12)
+    with pytest.raises(kanestop.SceneError, match=r"initial\.top_tension = 500: must be in \(708\.875, 227431\] N"):
+        case01.with_overrides({"initial.top_tension": 500})
+
+
 def test_overridden_runs_change_the_result(case01: kanestop.Scene) -> None:
     light = kanestop.run(case01.with_overrides({"ship.mass": 4e5}))
     heavy = kanestop.run(case01.with_overrides({"ship.mass": 6e5}))

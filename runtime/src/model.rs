@@ -147,6 +147,13 @@ impl Model {
             .sum()
     }
 
+    /// The laid line's tensions at rest, N: its horizontal tension T_h = w_c a (Eq. 31) and its
+    /// top tension T_t = w_c (a + h_L), of the catenary its elements are laid on.
+    pub fn initial_tensions(&self) -> (f64, f64) {
+        let w = self.scene.cable_weight_per_length();
+        (w * self.catenary.a, w * (self.catenary.a + self.catenary.vertical))
+    }
+
     /// Water depth d, m.
     pub fn water_depth(&self) -> f64 {
         -self.seabed_z

@@ -100,9 +100,10 @@ fn steps(path: &str) -> Result<Vec<Step<'_>>, OverrideError> {
 
 /// Fields that give one quantity in different ways, by table: a scene gives one of each
 /// group, so setting one (by path, or in a file that extends another) drops the others. The
-/// initial line is laid by its horizontal projection x_L or by its horizontal tension T_h
-/// (`crate::scene::Initial`).
-pub const ALTERNATIVES: &[(&str, &[&str])] = &[("initial", &["horizontal_projection", "horizontal_tension"])];
+/// initial line is laid by its horizontal projection x_L, its horizontal tension T_h or its
+/// top tension T_t (`crate::scene::Initial`).
+pub const ALTERNATIVES: &[(&str, &[&str])] =
+    &[("initial", &["horizontal_projection", "horizontal_tension", "top_tension"])];
 
 /// The group of [`ALTERNATIVES`] that `path` (`table.field`) belongs to.
 fn alternatives_of(path: &str) -> Option<(&'static str, &'static [&'static str], &str)> {

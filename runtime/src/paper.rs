@@ -244,6 +244,7 @@ impl Case {
             initial: Initial {
                 horizontal_projection: Some(self.horizontal),
                 horizontal_tension: None,
+                top_tension: None,
                 vertical_projection: self.vertical,
                 ship_speed: self.ship_speed,
             },

@@ -259,7 +259,7 @@ pub struct Ship {
 #[serde(deny_unknown_fields)]
 pub struct Initial {
     /// x_L, horizontal projection of the whole cable, m. The paper's way to lay the line
-    /// (Table 2); give this or `horizontal_tension`, not both. Joined with the cable's length
+    /// (Table 2); give this, `horizontal_tension` or `top_tension`, one of them. Joined with the cable's length
     /// L_c and `vertical_projection` h_L: the line must lay as the paper lays it (Section 3.1),
     /// grounded from o, then the catenary of Eqs. 30–34 up to (x_L, h_L), so
     /// L_c − h_L < x_L ≤ a asinh(L_c/a) with a = (L_c² − h_L²)/(2 h_L) (below: no tension,
@@ -274,8 +274,8 @@ pub struct Initial {
     /// cable's weight per metre in water (in air without water), a that of the catenary the
     /// rigid elements are laid on; x_L is the one that lays them so (docs/model-choices.md).
     /// Not the top tension (T_h + w_c h_L, what a mooring engineer's pretension usually
-    /// means). Setting it (a sweep's
-    /// path, the Python package, a file that `extends` another) replaces x_L. Held fixed, it keeps the suspended part's shape while a sweep changes the cable's
+    /// means: `top_tension`). Setting it (a sweep's
+    /// path, the Python package, a file that `extends` another) replaces x_L or the top tension. Held fixed, it keeps the suspended part's shape while a sweep changes the cable's
     /// length (x_L follows it), and keeps the line laid while a sweep changes h_L; a fixed
     /// x_L has a window of a few metres (see `horizontal_projection`). Must be in the range
     /// of the laid lines, from nearly 0 (the rigid elements cannot follow a sharper corner at
@@ -284,6 +284,18 @@ pub struct Initial {
     /// paper's line hanging nearly vertically from its touchdown).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub horizontal_tension: Option<f64>,
+    /// T_t, the pretension: the cable's tension at its top at rest, N. Instead of x_L or T_h,
+    /// the line laid by its top tension, T_t = T_h + w_c h_L (the catenary's tension grows by
+    /// w_c per metre of rise, Eqs. 30–34), so T_h = T_t − w_c h_L and the line is laid as by
+    /// `horizontal_tension`. Setting it replaces x_L or T_h. Must be in the range of the laid
+    /// lines, the T_h range raised by w_c h_L, from just above the suspended cable's weight
+    /// w_c h_L (a slack line hanging from its touchdown) to where no cable is left on the
+    /// seabed (case 1: (708.875, 227 431] N; its x_L = 148 m has T_t = 856.8 N). Like T_h, a
+    /// parameter of the laid shape, not a tension the model holds at t = 0: the paper starts
+    /// the auxiliary rod vertical (Section 2.1), and a taut line's rod swings at the start,
+    /// the line nearly slack until the ship takes it up (docs/model-choices.md).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub top_tension: Option<f64>,
     /// h_L, vertical projection of the cable (seabed line to cable top), m. Must be below the
     /// cable's length L_c; with x_L, see `horizontal_projection`. Sets the water depth
     /// d = h_L + δ_c + `rod.length` − `ship.hinge_z`, where δ_c is the laid cable's resting
@@ -294,23 +306,40 @@ pub struct Initial {
     pub ship_speed: f64,
 }
 
-/// How `[initial]` lays the line: by its horizontal projection or by its horizontal tension.
+/// How `[initial]` lays the line: by its horizontal projection, its horizontal tension or its
+/// top tension.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Layout {
     /// x_L, m.
     Projection(f64),
     /// T_h, N.
     Tension(f64),
+    /// T_t, N.
+    TopTension(f64),
 }
 
 impl Initial {
-    /// The layout the scene gives, `None` when it gives neither or both (a scene error).
+    /// The layout the scene gives, `None` when it gives none or more than one (a scene error).
     pub fn layout(&self) -> Option<Layout> {
-        match (self.horizontal_projection, self.horizontal_tension) {
-            (Some(x), None) => Some(Layout::Projection(x)),
-            (None, Some(t)) => Some(Layout::Tension(t)),
+        match (self.horizontal_projection, self.horizontal_tension, self.top_tension) {
+            (Some(x), None, None) => Some(Layout::Projection(x)),
+            (None, Some(t), None) => Some(Layout::Tension(t)),
+            (None, None, Some(t)) => Some(Layout::TopTension(t)),
             _ => None,
         }
+    }
+
+    /// The fields of the layouts the scene gives, with their values, in the order of
+    /// [`Layout`].
+    fn layouts_given(&self) -> Vec<(&'static str, f64)> {
+        [
+            ("initial.horizontal_projection", self.horizontal_projection),
+            ("initial.horizontal_tension", self.horizontal_tension),
+            ("initial.top_tension", self.top_tension),
+        ]
+        .into_iter()
+        .filter_map(|(field, v)| Some((field, v?)))
+        .collect()
     }
 }
 
@@ -614,18 +643,18 @@ impl Scene {
 
     /// x_L, m: `initial.horizontal_projection` as given, or the one that lays the line at
     /// `initial.horizontal_tension` (a = T_h / w_c, Eq. 31,
-    /// [`catenary::horizontal_for_parameter`]). A scene that gives neither or both (refused
-    /// by its checks) has none: [`CatenaryError::NoLayout`].
+    /// [`catenary::horizontal_for_parameter`]) or at `initial.top_tension` (a = T_t / w_c −
+    /// h_L). A scene that gives none or more than one (refused by its checks) has none:
+    /// [`CatenaryError::NoLayout`].
     pub fn horizontal_projection(&self) -> Result<f64, CatenaryError> {
-        match self.initial.layout() {
-            Some(Layout::Projection(x)) => Ok(x),
-            Some(Layout::Tension(t)) => catenary::horizontal_for_parameter(
-                &self.cable_element_lengths(),
-                self.initial.vertical_projection,
-                t / self.cable_weight_per_length(),
-            ),
-            None => Err(CatenaryError::NoLayout),
-        }
+        let (w, h) = (self.cable_weight_per_length(), self.initial.vertical_projection);
+        let a = match self.initial.layout() {
+            Some(Layout::Projection(x)) => return Ok(x),
+            Some(Layout::Tension(t)) => t / w,
+            Some(Layout::TopTension(t)) => t / w - h,
+            None => return Err(CatenaryError::NoLayout),
+        };
+        catenary::horizontal_for_parameter(&self.cable_element_lengths(), h, a)
     }
 
     /// The water depth d = h_L + δ_c + `rod.length` − `ship.hinge_z`, m: the seabed lies d
@@ -889,18 +918,18 @@ impl Scene {
     /// x_L that lays it, when it lays.
     fn check_initial(&self, c: &mut Checker) -> Option<f64> {
         let ini = &self.initial;
-        match (ini.horizontal_projection, ini.horizontal_tension) {
-            (Some(x), None) => c.positive("initial.horizontal_projection", x, "m"),
-            (None, Some(t)) => c.positive("initial.horizontal_tension", t, "N"),
-            (Some(x), Some(_)) => c.push(
-                "initial.horizontal_projection",
-                &fmt_value(x),
-                "left out when initial.horizontal_tension is given (the line is laid by one of them)",
-            ),
-            (None, None) => c.push(
+        match ini.layouts_given()[..] {
+            [] => c.push(
                 "initial.horizontal_projection",
                 "(missing)",
-                "given (x_L, m, as in Table 2), or initial.horizontal_tension instead (T_h, N)",
+                "given (x_L, m, as in Table 2), or initial.horizontal_tension (T_h, N) or initial.top_tension \
+                 (T_t, N) instead",
+            ),
+            [(field, v)] => c.positive(field, v, if field.ends_with("projection") { "m" } else { "N" }),
+            [(field, v), (other, _), ..] => c.push(
+                field,
+                &fmt_value(v),
+                &format!("left out when {other} is given (the line is laid by one of them)"),
             ),
         }
         c.positive("initial.vertical_projection", ini.vertical_projection, "m");
@@ -942,33 +971,7 @@ impl Scene {
         }
         let x = match self.initial.layout()? {
             Layout::Projection(x) => x,
-            Layout::Tension(t) => {
-                let w = self.cable_weight_per_length();
-                if !(w > 0.0 && w.is_finite()) {
-                    return None;
-                }
-                let e = match self.horizontal_projection() {
-                    Ok(x) => return Some(x),
-                    Err(e) => e,
-                };
-                let range = match e {
-                    CatenaryError::NoLineWithParameter { range: Some((lo, hi)), .. } => format!(
-                        "in ({}, {}] N for cable length L_c = {} m, h_L = {} m and w_c = {} N/m",
-                        fmt_bound(lo * w, true),
-                        fmt_bound(hi * w, false),
-                        fmt_value(lc),
-                        fmt_value(h),
-                        fmt_rounded(w, 3)
-                    ),
-                    _ => format!("a tension at which the {} cable elements lay (none does here)", lengths.len()),
-                };
-                let why = format!(
-                    "{range}: T_h = w_c a (Eq. 31) of the catenary the elements are laid on; lower, the rigid \
-                     elements cannot follow the curve's corner at the touchdown; higher, no cable is left on the seabed"
-                );
-                c.push("initial.horizontal_tension", &fmt_value(t), &why);
-                return None;
-            }
+            layout @ (Layout::Tension(t) | Layout::TopTension(t)) => return self.check_tension_layout(c, layout, t),
         };
         if catenary::lay_elements(&lengths, x, h).is_ok() {
             return Some(x);
@@ -983,7 +986,7 @@ impl Scene {
                 fmt_value(lc),
                 fmt_value(h),
                 vertical_hint(lc, x),
-            ) + "; or lay the line by its tension instead (initial.horizontal_tension, N), which holds as the cable's length and h_L change",
+            ) + "; or lay the line by its tension instead (initial.horizontal_tension or initial.top_tension, N), which holds as the cable's length and h_L change",
             None => format!(
                 "a value for which the {} cable elements lay on the catenary of Eqs. 30–34 (none does for h_L = {} m)",
                 lengths.len(),
@@ -991,6 +994,45 @@ impl Scene {
             ),
         };
         c.push("initial.horizontal_projection", &fmt_value(x), &expected);
+        None
+    }
+
+    /// A line laid by T_h or T_t (`layout`, the value `t`, N): the x_L that lays it, or its
+    /// problem with the range of tensions that lay ([`Scene::check_geometry`]).
+    fn check_tension_layout(&self, c: &mut Checker, layout: Layout, t: f64) -> Option<f64> {
+        let (h, lc, w) = (self.initial.vertical_projection, self.cable_length(), self.cable_weight_per_length());
+        // A cable that does not sink is left to the sinking check.
+        if !(w > 0.0 && w.is_finite()) {
+            return None;
+        }
+        // T_t = w_c (a + h_L), T_h = w_c a.
+        let (field, name, lift) = match layout {
+            Layout::TopTension(_) => ("initial.top_tension", "T_t = w_c (a + h_L)", w * h),
+            _ => ("initial.horizontal_tension", "T_h = w_c a", 0.0),
+        };
+        let e = match self.horizontal_projection() {
+            Ok(x) => return Some(x),
+            Err(e) => e,
+        };
+        let range = match e {
+            CatenaryError::NoLineWithParameter { range: Some((lo, hi)), .. } => format!(
+                "in ({}, {}] N for cable length L_c = {} m, h_L = {} m and w_c = {} N/m",
+                fmt_bound(lo * w + lift, true),
+                fmt_bound(hi * w + lift, false),
+                fmt_value(lc),
+                fmt_value(h),
+                fmt_rounded(w, 3)
+            ),
+            _ => format!(
+                "a tension at which the {} cable elements lay (none does here)",
+                self.cable_element_lengths().len()
+            ),
+        };
+        let why = format!(
+            "{range}: {name} (Eq. 31) of the catenary the elements are laid on; lower, the rigid \
+             elements cannot follow the curve's corner at the touchdown; higher, no cable is left on the seabed"
+        );
+        c.push(field, &fmt_value(t), &why);
         None
     }
 
@@ -1065,7 +1107,7 @@ impl Scene {
 /// Every numeric field of a scene by dotted path (array indices left out) with its unit as the
 /// field's documentation states it: "" for a dimensionless number or a count. Held to the doc
 /// comments of this file and of `design.rs` by `tests/docs_fresh.rs`.
-pub const UNITS: [(&str, &str); 53] = [
+pub const UNITS: [(&str, &str); 54] = [
     ("meta.paper_stopping_time", "s"),
     ("environment.gravity", "m/s²"),
     ("environment.water_density", "kg/m³"),
@@ -1106,6 +1148,7 @@ pub const UNITS: [(&str, &str); 53] = [
     ("ship.hinge_z", "m"),
     ("initial.horizontal_projection", "m"),
     ("initial.horizontal_tension", "N"),
+    ("initial.top_tension", "N"),
     ("initial.vertical_projection", "m"),
     ("initial.ship_speed", "m/s"),
     ("solver.dt", "s"),

@@ -60,7 +60,7 @@ fn not_static(t: f64, r: &StaticResidual) -> (String, String) {
          the likely cause",
         r.line.0, r.line.1, r.top.0, r.top.1
     );
-    let suggestion = "check the initial geometry (initial.horizontal_projection or initial.horizontal_tension, \
+    let suggestion = "check the initial geometry (initial.horizontal_projection, horizontal_tension or top_tension, \
                       initial.vertical_projection, the cable stages, rod.length and ship.hinge_z) and the line's \
                       weights; a smaller step will not help"
         .to_string();

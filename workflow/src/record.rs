@@ -94,13 +94,17 @@ pub struct RunSummary {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub checks_pass: Option<bool>,
     /// x_L of the laid line, m: `initial.horizontal_projection`, or the one that
-    /// `initial.horizontal_tension` lays it at.
+    /// `initial.horizontal_tension` or `initial.top_tension` lays it at.
     #[serde(default)]
     pub initial_horizontal_projection: f64,
     /// T_h of the laid line, N: w_c a of the catenary its elements are laid on (Eq. 31), as
-    /// given by `initial.horizontal_tension` or as x_L lays it.
+    /// given by `initial.horizontal_tension` or as the scene lays the line.
     #[serde(default)]
     pub initial_horizontal_tension: f64,
+    /// T_t of the laid line, its top tension at rest, N: w_c (a + h_L), as given by
+    /// `initial.top_tension` or as the scene lays the line.
+    #[serde(default)]
+    pub initial_top_tension: f64,
     /// The water depth d, m (`Scene::water_depth`).
     #[serde(default)]
     pub water_depth: f64,
@@ -228,7 +232,8 @@ impl RunSummary {
             checks_pass: checks::verdict(&outcomes, &checks::break_exceedances(model, result)),
             checks: outcomes,
             initial_horizontal_projection: model.catenary.horizontal,
-            initial_horizontal_tension: model.catenary.a * model.scene.cable_weight_per_length(),
+            initial_horizontal_tension: model.initial_tensions().0,
+            initial_top_tension: model.initial_tensions().1,
             water_depth: model.water_depth(),
         }
     }

@@ -4,6 +4,7 @@ use std::fmt::Write as _;
 
 use kanestop_runtime::kernel::AnchorDof;
 use kanestop_runtime::model::Model;
+use kanestop_runtime::scene::Layout;
 use kanestop_runtime::simulate::{FailureKind, RunResult, Stop};
 
 use crate::checks::{break_exceedances, break_failure};
@@ -121,10 +122,11 @@ fn scene_lines(out: &mut Lines, model: &Model, result: &RunResult) {
     out.line(
         "initial",
         format!(
-            "x_L = {}, h_L = {} m, T_h = {}, water depth {:.3} m, {:.2} m of cable on the seabed ({:.2} m of the catenary), ship {} m/s",
+            "x_L = {}, h_L = {} m, T_h = {}, T_t = {} at the top, water depth {:.3} m, {:.2} m of cable on the seabed ({:.2} m of the catenary), ship {} m/s",
             fmt_projection(model),
             s.initial.vertical_projection,
-            fmt_tension(model.catenary.a * s.cable_weight_per_length()),
+            fmt_tension(model.initial_tensions().0),
+            fmt_tension(model.initial_tensions().1),
             model.water_depth(),
             // A line laid at the touchdown's end reads a rounding's −0.00.
             model.grounded_cable_length().max(0.0),
@@ -142,15 +144,18 @@ fn scene_lines(out: &mut Lines, model: &Model, result: &RunResult) {
     out.line("catenary", format!("cable ends {:.1e} m from (x_L, h_L){residual}", model.cable_end_error()));
 }
 
-/// x_L as the scene gives it, or as the line's horizontal tension lays it.
+/// x_L as the scene gives it, or as the line's horizontal or top tension lays it.
 fn fmt_projection(model: &Model) -> String {
-    match model.scene.initial.horizontal_projection {
-        Some(x) => format!("{x} m"),
-        None => format!("{:.4} m (laid by initial.horizontal_tension)", model.catenary.horizontal),
+    let by = |field: &str| format!("{:.4} m (laid by initial.{field})", model.catenary.horizontal);
+    match model.scene.initial.layout() {
+        Some(Layout::Tension(_)) => by("horizontal_tension"),
+        Some(Layout::TopTension(_)) => by("top_tension"),
+        Some(Layout::Projection(x)) => format!("{x} m"),
+        None => format!("{} m", model.catenary.horizontal),
     }
 }
 
-/// The horizontal tension T_h (N) to a tenth of a newton below 10 kN, else in kN.
+/// A tension (N) to a tenth of a newton below 10 kN, else in kN.
 fn fmt_tension(t: f64) -> String {
     if t.abs() < 1e4 {
         format!("{t:.1} N")

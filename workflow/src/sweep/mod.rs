@@ -277,6 +277,7 @@ pub fn cells(rows: &[SweepRow]) -> (Vec<String>, Vec<Vec<Cell>>) {
             "initial_horizontal_projection",
             "initial_horizontal_tension",
             "water_depth",
+            "initial_top_tension",
         ]
         .map(String::from),
     );
@@ -325,6 +326,7 @@ pub fn cells(rows: &[SweepRow]) -> (Vec<String>, Vec<Vec<Cell>>) {
                 cells.push(f(&|s| Some(s.initial_horizontal_projection)));
                 cells.push(f(&|s| Some(s.initial_horizontal_tension)));
                 cells.push(f(&|s| Some(s.water_depth)));
+                cells.push(f(&|s| Some(s.initial_top_tension)));
                 cells
             })
             .collect();
