@@ -607,14 +607,25 @@ fn run_json_splits_the_work_by_force() {
         assert!(w(k) < -1e4, "{k} = {} J: case 1 dissipates there", w(k));
     }
     assert_eq!(w("line_friction"), 0.0, "case 1's line slides without friction");
+    // The drift is relative to the largest kinetic energy: the ship's at t = 0 in case 1,
+    // not E_0 (32.2 MJ, mostly the ship's weight above the seabed).
     assert!(v["energy_drift"].as_f64().unwrap() < 1e-6);
+    assert_eq!(v["energy_scale"], v["initial_kinetic_energy"]);
+    assert!(v["initial_energy"].as_f64().unwrap() > 10.0 * v["energy_scale"].as_f64().unwrap());
     let cpu = v["cpu_time"].as_f64().expect("cpu_time, s");
     assert!(cpu > 0.0 && cpu <= v["wall_time"].as_f64().unwrap() * 1.05 + 0.01, "cpu {cpu} s");
 
     let text = kanestop().args(["run", "scenes/paper/case01.toml"]).output().unwrap();
     let text = String::from_utf8_lossy(&text.stdout);
     let energy = text.lines().find(|l| l.starts_with("energy")).expect("energy line");
-    for part in ["anchor friction", "anchor water drag", "line drag", "hull resistance", "of E_0 = "] {
+    for part in [
+        "anchor friction",
+        "anchor water drag",
+        "line drag",
+        "hull resistance",
+        "drift",
+        "of the kinetic energy at t = 0",
+    ] {
         assert!(energy.contains(part), "{energy}");
     }
     // Every share named, those that gave energy back with their sign: they add up to 100 %

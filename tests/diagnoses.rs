@@ -12,7 +12,12 @@ fn case1() -> Model {
 }
 
 fn runaway(t: f64, residual: Option<StaticResidual>) -> Failure {
-    Failure { t, body: 19, kind: FailureKind::EnergyRunaway { drift: 0.056, limit: 0.05 }, initial_residual: residual }
+    Failure {
+        t,
+        body: 19,
+        kind: FailureKind::EnergyRunaway { drift: 0.056, limit: 0.05, scale: 2.25e6 },
+        initial_residual: residual,
+    }
 }
 
 #[test]

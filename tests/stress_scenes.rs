@@ -186,13 +186,30 @@ fn high_friction_anchor_completes() {
     assert_eq!(r.stop, Stop::ShipStopped);
 }
 
+/// Deep water runs cleanly under RK4 at the paper's step. The nearly taut cable's snap does
+/// not: its energy balance drifts past 0.5 % of the ship's kinetic energy at the snap (t ≈
+/// 0.31 s), and the run stops with the diagnostic, as the scene's description allows;
+/// under DP5 it runs cleanly. (Relative to E_0, 14 times the kinetic energy, the same
+/// drift passed: docs/model-choices.md.)
 #[test]
-fn deep_water_and_nearly_taut_cable_run_cleanly() {
-    for name in ["deep_water_50m", "taut_cable"] {
-        let r = run(name, 3.0);
-        check(name, &load(name), &r);
-        assert!(!matches!(r.stop, Stop::Failed(_)), "{name}: {:?}", r.stop);
-    }
+fn deep_water_runs_cleanly_and_the_taut_cable_s_snap_needs_an_adaptive_step() {
+    let r = run("deep_water_50m", 3.0);
+    check("deep_water_50m", &load("deep_water_50m"), &r);
+    assert!(!matches!(r.stop, Stop::Failed(_)), "deep_water_50m: {:?}", r.stop);
+
+    let r = run("taut_cable", 3.0);
+    check("taut_cable", &load("taut_cable"), &r);
+    let Stop::Failed(f) = &r.stop else { panic!("taut cable under RK4 at 2 ms: {:?}", r.stop) };
+    let FailureKind::EnergyRunaway { drift, scale, .. } = f.kind else { panic!("{f}") };
+    assert!((0.2..0.5).contains(&f.t) && drift > 0.005, "{f}");
+    assert!((scale - r.samples[0].energy.kinetic_total()).abs() < 1e-9 * scale, "K is the ship's kinetic energy");
+
+    let mut dp5 = load("taut_cable");
+    dp5.solver.integrator = kanestop_runtime::scene::Method::Dp5;
+    (dp5.solver.dt, dp5.solver.rtol, dp5.solver.atol, dp5.solver.end_time) = (0.02, 1e-5, 1e-7, 3.0);
+    let r = run_scene(&dp5);
+    check("taut_cable (DP5)", &dp5, &r);
+    assert!(!matches!(r.stop, Stop::Failed(_)), "taut_cable under DP5: {:?}", r.stop);
 }
 
 /// A joint force beyond `SPIKE_FACTOR` × the largest break load stops the run, naming the
@@ -306,6 +323,8 @@ fn full_stress_set_completes_with_at_least_one_method() {
     use kanestop_runtime::scene::Method;
     use std::sync::atomic::{AtomicUsize, Ordering};
     const REFUSED_UNDER_RK4: [&str; 2] = ["dt_too_large", "seabed_kz_x1e4"];
+    // Its snap drifts the energy balance past 0.5 % under RK4 at 2 ms (above).
+    const FAILS_UNDER_RK4: [&str; 1] = ["taut_cable"];
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/stress");
     let mut files: Vec<_> = std::fs::read_dir(&dir)
         .unwrap()
@@ -351,8 +370,9 @@ fn full_stress_set_completes_with_at_least_one_method() {
         let completed = matches!(r.stop, Stop::ShipStopped | Stop::EndTime);
         // The refined RK4 step of dt_too_large is back inside the limit.
         let refused = method == Method::Rk4 && i % 4 == 0 && REFUSED_UNDER_RK4.contains(&name.as_str());
+        let fails = method == Method::Rk4 && i % 4 == 0 && FAILS_UNDER_RK4.contains(&name.as_str());
         if i % 2 == 0 {
-            assert_eq!(completed, !refused, "{name} ({method:?}): {:?}", r.stop);
+            assert_eq!(completed, !refused && !fails, "{name} ({method:?}): {:?}", r.stop);
         }
         if refused {
             assert_eq!(r.steps, 0, "{name}: refused before the run");
@@ -377,17 +397,11 @@ fn full_stress_set_completes_with_at_least_one_method() {
     let peak = |r: &RunResult| r.peak_tension().unwrap().1.tension;
     let (coarse, fine) = (peak(dp5_run), peak(dp5_fine_run));
     assert!((coarse - fine).abs() < 0.02 * fine, "DP5 peak {coarse} N, refined {fine} N");
-    // And on the taut cable, DP5's own error estimate is an order below RK4's.
-    let stop_estimate = |slot: usize| {
-        let (a, b) = (result("taut_cable", slot).1, result("taut_cable", slot + 1).1);
-        (a.stopping_time.unwrap() - b.stopping_time.unwrap()).abs()
-    };
-    assert!(
-        stop_estimate(0) > 10.0 * stop_estimate(2),
-        "RK4 {} s against DP5 {} s",
-        stop_estimate(0),
-        stop_estimate(2)
-    );
+    // And on the taut cable, where RK4 at 2 ms stops at the snap with the energy diagnostic,
+    // DP5's own error estimate of the stopping time is below a millisecond.
+    assert!(matches!(taut_rk4.stop, Stop::Failed(_)), "taut cable under RK4: {:?}", taut_rk4.stop);
+    let dp5_stop = (dp5_run.stopping_time.unwrap() - dp5_fine_run.stopping_time.unwrap()).abs();
+    assert!(dp5_stop < 1e-3, "DP5's stopping-time estimate {dp5_stop} s");
     let (light, case1) = (rk4_limit(result("light_rod", 0).1), rk4_limit(result("dt_too_large", 0).1));
     assert!((light - case1).abs() < 1e-3 * case1, "light rod's RK4 limit {light} s against case 1's {case1} s");
     let rows: Vec<String> = runs
@@ -455,4 +469,23 @@ fn refresh_stress_table(rows: &[String]) {
         std::fs::write(&path, &fresh).unwrap();
         panic!("docs/integrators.md's stress table was stale and has been regenerated: review and commit it");
     }
+}
+
+/// The energy drift's scale K is the largest kinetic energy so far: for a ship at rest whose
+/// taut line is released (its vertical rod cannot hold the line's pull), K starts at 0 and
+/// grows with the motion, so the drift is measured against the energy in play and not
+/// divided by zero.
+#[test]
+fn the_drift_of_a_line_released_at_rest_is_measured_against_its_own_motion() {
+    let mut scene = load("taut_cable").with_overrides(&[("initial.top_tension", toml::Value::Float(2e4))]).unwrap();
+    scene.initial.ship_speed = 0.0;
+    scene.solver.stop_when_ship_stops = false;
+    scene.solver.end_time = 1.0;
+    let r = run_scene(&scene);
+    check("released at rest", &scene, &r);
+    assert_eq!(r.stop, Stop::EndTime);
+    assert_eq!(r.samples[0].energy.kinetic_total(), 0.0);
+    let largest = r.samples.iter().map(|s| s.energy.kinetic_total()).fold(0.0, f64::max);
+    assert!(largest > 1e3 && r.energy_scale >= largest, "K {} J, largest sampled {largest} J", r.energy_scale);
+    assert!(r.max_energy_drift > 0.0 && r.max_energy_drift < 1e-3, "drift {:e}", r.max_energy_drift);
 }

@@ -26,6 +26,11 @@ pub struct Energy {
 }
 
 impl Energy {
+    /// E^K + E^A, the kinetic energy of the bodies and of the water they entrain, J.
+    pub fn kinetic_total(&self) -> f64 {
+        self.kinetic + self.added_kinetic
+    }
+
     /// E^K + E^A + E^G − Σ W_i: constant for exact integration (Eq. 63).
     pub fn balance(&self) -> f64 {
         self.kinetic + self.added_kinetic + self.potential - self.work.iter().sum::<f64>()

@@ -366,8 +366,10 @@ pub struct Solver {
     pub output_interval: f64,
     /// End the run when the ship's surge speed first reaches zero.
     pub stop_when_ship_stops: bool,
-    /// Relative energy-balance drift |E − E_0|/E_0 at which a run is stopped as unstable,
-    /// dimensionless.
+    /// Relative energy-balance drift |E − E_0|/K at which a run is stopped as unstable,
+    /// dimensionless; K is the largest kinetic energy so far (the entrained water's included),
+    /// the energy in play (docs/model-choices.md; before 2026-12-06 it was E_0, whose potential
+    /// energy is measured from the seabed).
     pub max_energy_drift: f64,
 }
 

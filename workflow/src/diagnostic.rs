@@ -81,9 +81,11 @@ fn what(kind: &FailureKind) -> String {
         FailureKind::Rhs(e) => e.to_string(),
         FailureKind::Step(e) => e.to_string(),
         FailureKind::NonFiniteState => "non-finite state".to_string(),
-        FailureKind::EnergyRunaway { drift, limit } => {
-            format!("energy runaway: |E − E_0|/E_0 = {drift:.3e} exceeds solver.max_energy_drift = {limit}")
-        }
+        FailureKind::EnergyRunaway { drift, limit, scale } => format!(
+            "energy runaway: |E − E_0|/K = {drift:.3e} exceeds solver.max_energy_drift = {limit} (K = {:.4e} J, \
+             the largest kinetic energy so far)",
+            scale
+        ),
         FailureKind::ForceSpike { joint, force, bound, .. } => format!(
             "constraint-force spike: joint {joint} (B_{} – B_{joint}) carries {force:.3e} N, above {SPIKE_FACTOR} × \
              the line's largest break load ({bound:.3e} N in all)",

@@ -68,8 +68,13 @@ pub struct RunSummary {
     /// added_mass, and the parts of friction and drag: anchor_friction, line_friction
     /// (friction = their sum), anchor_drag, line_drag, hull_resistance (drag = their sum).
     pub work: BTreeMap<String, f64>,
-    /// Largest relative drift |E − E_0|/E_0 of the energy balance.
+    /// Largest relative drift |E − E_0|/K of the energy balance, K the largest kinetic energy
+    /// so far (`energy_scale` at the end); until 2026-12-06 it was relative to E_0.
     pub energy_drift: f64,
+    /// K, the energy drift's scale: the run's largest kinetic energy, the entrained water's
+    /// included, J (for a ship that only slows, `initial_kinetic_energy`).
+    #[serde(default)]
+    pub energy_scale: f64,
     /// Simulated time reached, s.
     pub t_end: f64,
     /// Intervals of `dt` completed.
@@ -218,6 +223,7 @@ impl RunSummary {
                 .map(|s| s.energy.reported_work().iter().map(|(name, work)| (name.to_string(), *work)).collect())
                 .unwrap_or_default(),
             energy_drift: result.max_energy_drift,
+            energy_scale: result.energy_scale,
             t_end: result.t_end,
             steps: result.steps,
             rhs_evaluations: result.rhs_evaluations,

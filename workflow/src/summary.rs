@@ -37,8 +37,8 @@ pub fn summary_with(model: &Model, result: &RunResult, verbose: bool) -> String 
 /// Where the ship's kinetic energy went: each work term as a share of the initial kinetic
 /// energy (negative where the term gave energy back), the kinetic energy left and the
 /// potential energy's change, largest first: they add up to 100 % but for the balance's drift
-/// (shares below 0.05 % are not named). The drift is relative to E_0, the whole initial
-/// energy (its potential energy from the seabed's height), as `solver.max_energy_drift`.
+/// (shares below 0.05 % are not named). The drift is relative to the largest kinetic energy,
+/// as `solver.max_energy_drift`; for a ship that only slows, the one at t = 0.
 ///
 /// The ship's hydrostatic work holds its whole buoyancy times its heave, which its weight's
 /// potential energy all but cancels: the two are named together, as the energy stored in
@@ -80,11 +80,15 @@ fn energy_share_line(out: &mut Lines, model: &Model, result: &RunResult) {
     out.line(
         "energy",
         format!(
-            "of {:.3} MJ kinetic at t = 0: {}; energy balance drift {:.1e} of E_0 = {:.3} MJ",
+            "of {:.3} MJ kinetic at t = 0: {}; energy balance drift {:.1e} of {}",
             k0 / 1e6,
             parts.join(", "),
             result.max_energy_drift,
-            result.energy0 / 1e6
+            if result.energy_scale > k0 {
+                format!("the largest kinetic energy, {:.3} MJ", result.energy_scale / 1e6)
+            } else {
+                "the kinetic energy at t = 0".to_string()
+            }
         ),
     );
 }
@@ -324,13 +328,14 @@ fn final_lines(out: &mut Lines, model: &Model, result: &RunResult) {
     out.line(
         "balance",
         format!(
-            "E_0 = {:.4} MJ; kinetic {:.4}, entrained water {:.4}, potential {:.4} MJ; work done (MJ): {}; max balance drift {:.2e}",
+            "E_0 = {:.4} MJ; kinetic {:.4}, entrained water {:.4}, potential {:.4} MJ; work done (MJ): {}; max balance drift {:.2e} of the largest kinetic energy {:.4} MJ",
             result.energy0 / 1e6,
             e.kinetic / 1e6,
             e.added_kinetic / 1e6,
             e.potential / 1e6,
             works.join(", "),
-            result.max_energy_drift
+            result.max_energy_drift,
+            result.energy_scale / 1e6
         ),
     );
 }

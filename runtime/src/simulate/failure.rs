@@ -58,13 +58,16 @@ pub enum FailureKind {
     /// The state after a step has a NaN or infinite component.
     #[error("non-finite state")]
     NonFiniteState,
-    /// |E − E_0|/E_0 of the energy balance (Eq. 63) exceeds `solver.max_energy_drift`.
+    /// |E − E_0|/K of the energy balance (Eq. 63) exceeds `solver.max_energy_drift`, K the
+    /// largest kinetic energy so far.
     #[error("energy runaway")]
     EnergyRunaway {
         /// The relative drift (possibly not finite).
         drift: f64,
         /// `solver.max_energy_drift`.
         limit: f64,
+        /// K, the drift's scale: the largest kinetic energy so far, J.
+        scale: f64,
     },
     /// A joint force above [`super::SPIKE_FACTOR`] × the line's largest break load.
     #[error("constraint-force spike")]

@@ -138,6 +138,7 @@ pub fn run_cancellable(model: &Model, kernel: Box<dyn Kernel>, cancel: &AtomicBo
     result.steps = stepper.steps();
     result.rhs_evaluations = stepper.rhs_evaluations();
     result.max_energy_drift = stepper.max_energy_drift();
+    result.energy_scale = stepper.energy_scale();
     result.wall_time = start.elapsed();
     result.cpu_time = cpu::since(cpu_start);
     Ok(result)

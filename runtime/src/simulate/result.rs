@@ -82,8 +82,11 @@ pub struct RunResult {
     pub cpu_time: Option<Duration>,
     /// Energy balance at t = 0, J.
     pub energy0: f64,
-    /// Largest relative drift |E − E_0|/E_0 of the balance over the run.
+    /// Largest relative drift |E − E_0|/K of the balance over the run, K the largest kinetic
+    /// energy so far at each check ([`health::energy_drift`](super::health::energy_drift)).
     pub max_energy_drift: f64,
+    /// K at the run's end: its largest kinetic energy (E^K, the entrained water's included), J.
+    pub energy_scale: f64,
     /// Kernel used.
     pub kernel: &'static str,
     /// The generated kernel's form: `unrolled` (built for this N) or `rolled` (any N); none
@@ -197,6 +200,7 @@ impl RunResult {
             cpu_time: None,
             energy0: 0.0,
             max_energy_drift: 0.0,
+            energy_scale: 0.0,
             kernel: stepper.kernel(),
             kernel_form: stepper.kernel_form(),
             load_code: stepper.load_code().map(str::to_string),

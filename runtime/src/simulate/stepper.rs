@@ -166,6 +166,9 @@ pub struct Stepper<'a> {
     interval: Option<Interval>,
     evaluations0: u64,
     energy0: f64,
+    /// The largest kinetic energy so far (E^K, the entrained water's included), J: the energy
+    /// drift's scale.
+    kinetic_max: f64,
     max_energy_drift: f64,
     spike_bound: f64,
     stopping_time: Option<f64>,
@@ -207,6 +210,7 @@ impl<'a> Stepper<'a> {
             interval: None,
             evaluations0: 0,
             energy0: 0.0,
+            kinetic_max: 0.0,
             max_energy_drift: 0.0,
             spike_bound: health::spike_bound(model),
             stopping_time: None,
@@ -236,6 +240,7 @@ impl<'a> Stepper<'a> {
         self.evaluations0 = self.m.dynamics.evaluations();
         let obs = self.m.observe(self.model, &self.y).map_err(|e| self.failure(0.0, e))?;
         self.energy0 = obs.energy.balance();
+        self.kinetic_max = obs.energy.kinetic_total();
         self.obs = Some(obs);
         Ok(())
     }
@@ -320,7 +325,14 @@ impl<'a> Stepper<'a> {
         self.energy0
     }
 
-    /// Largest relative drift |E − E_0|/E_0 over the completed intervals.
+    /// The energy drift's scale K: the largest kinetic energy over the completed intervals
+    /// (E^K, the entrained water's included), J.
+    pub fn energy_scale(&self) -> f64 {
+        self.kinetic_max
+    }
+
+    /// Largest relative drift |E − E_0|/K over the completed intervals, K as it stood at each
+    /// ([`Stepper::energy_scale`]).
     pub fn max_energy_drift(&self) -> f64 {
         self.max_energy_drift
     }
@@ -449,7 +461,8 @@ impl<'a> Stepper<'a> {
     /// The health checks of a completed interval; keeps the largest drift.
     fn check(&mut self, obs: &Observation) -> Result<(), FailureKind> {
         let limit = self.model.scene.solver.max_energy_drift;
-        let checked = health::energy_drift(obs.energy.balance(), self.energy0, limit);
+        self.kinetic_max = self.kinetic_max.max(obs.energy.kinetic_total());
+        let checked = health::energy_drift(obs.energy.balance(), self.energy0, self.kinetic_max, limit);
         // The drift that failed the run is its largest too, as the failure says (when it is
         // finite: the summary's number is a number; a NaN or infinite one is in the failure).
         let drift = match checked {

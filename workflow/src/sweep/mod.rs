@@ -278,6 +278,7 @@ pub fn cells(rows: &[SweepRow]) -> (Vec<String>, Vec<Vec<Cell>>) {
             "initial_horizontal_tension",
             "water_depth",
             "initial_top_tension",
+            "energy_scale",
         ]
         .map(String::from),
     );
@@ -327,6 +328,7 @@ pub fn cells(rows: &[SweepRow]) -> (Vec<String>, Vec<Vec<Cell>>) {
                 cells.push(f(&|s| Some(s.initial_horizontal_tension)));
                 cells.push(f(&|s| Some(s.water_depth)));
                 cells.push(f(&|s| Some(s.initial_top_tension)));
+                cells.push(f(&|s| Some(s.energy_scale)));
                 cells
             })
             .collect();

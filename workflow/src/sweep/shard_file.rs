@@ -64,7 +64,8 @@ pub fn plan_hash(name: &str, plan: &[PlannedRow], kernel: &str) -> String {
     // of the initial kinetic energy (shards of version 1 hold shares of E_0 and are not
     // merged with these); 3 since a row's summary has the laid line's x_L, T_h and water
     // depth and an adaptive method's peak tensions are looked at after each of its steps
-    // (2026-12-06); 4 since it also has the laid line's top tension T_t (2026-12-06).
+    // (2026-12-06); 4 since it also has the laid line's top tension T_t, and the energy
+    // drift is relative to the largest kinetic energy instead of E_0 (2026-12-06).
     field("kanestop sweep plan 4");
     field(name);
     field(kernel);
