@@ -45,8 +45,17 @@ impl RunFiles<'_> {
             output::check_file_target(&units).with_context(|| format!("cannot write {}", units.display()))?;
         }
         if let Some(dir) = self.plot {
-            if self.out.is_some_and(|out| std::path::absolute(out).ok() == std::path::absolute(dir).ok()) {
-                anyhow::bail!("--out and --plot are the same path {}: a file and a folder", dir.display());
+            // The plots' folder at or under a file the run writes could not be made after it.
+            let files = self.out.into_iter().flat_map(|out| [out.to_path_buf(), history::units_path(out)]);
+            for file in files {
+                let (Ok(f), Ok(d)) = (std::path::absolute(&file), std::path::absolute(dir)) else { continue };
+                if d.starts_with(&f) {
+                    anyhow::bail!(
+                        "--plot {} is at or under {}, a file --out writes: a file cannot hold a folder",
+                        dir.display(),
+                        file.display()
+                    );
+                }
             }
             output::check_dir_entries(dir, &plot::FILES)
                 .with_context(|| format!("cannot write plots into {}", dir.display()))?;

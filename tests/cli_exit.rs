@@ -347,9 +347,17 @@ fn exit_2_an_output_that_cannot_be_written_is_found_before_the_work() {
     std::fs::write(&spec, format!("base = {:?}\n[[axis]]\npath = \"ship.mass\"\nvalues = [5e5]\n", scene)).unwrap();
     let s = scene.to_str().unwrap();
     let p = |rel: &str| dir.join(rel).to_str().unwrap().to_string();
-    let cases: [(Vec<String>, &str); 4] = [
+    let cases: [(Vec<String>, &str); 5] = [
         (vec!["run".into(), s.into(), "--out".into(), p("a/h.csv")], "a/h.units.csv"),
-        (vec!["run".into(), s.into(), "--out".into(), p("c/h"), "--plot".into(), p("c/h")], "the same path"),
+        (
+            vec!["run".into(), s.into(), "--out".into(), p("c/h"), "--plot".into(), p("c/h")],
+            "a file cannot hold a folder",
+        ),
+        // Under the file, in a folder the run would create: refused before the run too.
+        (
+            vec!["run".into(), s.into(), "--out".into(), p("new/h.csv"), "--plot".into(), p("new/h.csv/plots")],
+            "is at or under",
+        ),
         (
             vec!["batch".into(), scenes.to_str().unwrap().into(), "--out".into(), p("b")],
             "batch.json exists and is not a regular file",
@@ -366,4 +374,5 @@ fn exit_2_an_output_that_cannot_be_written_is_found_before_the_work() {
         assert!(stderr.contains(message), "{args:?}: {stderr}");
     }
     assert!(!dir.join("a/h.csv").exists() && !dir.join("b/batch.csv").exists() && !dir.join("c/sweep.csv").exists());
+    assert!(!dir.join("new").exists(), "refused before anything is written");
 }

@@ -321,10 +321,12 @@ pub enum Layout {
 impl Initial {
     /// The layout the scene gives, `None` when it gives none or more than one (a scene error).
     pub fn layout(&self) -> Option<Layout> {
-        match (self.horizontal_projection, self.horizontal_tension, self.top_tension) {
-            (Some(x), None, None) => Some(Layout::Projection(x)),
-            (None, Some(t), None) => Some(Layout::Tension(t)),
-            (None, None, Some(t)) => Some(Layout::TopTension(t)),
+        match self.layouts_given()[..] {
+            [(field, v)] => Some(match field {
+                "initial.horizontal_projection" => Layout::Projection(v),
+                "initial.horizontal_tension" => Layout::Tension(v),
+                _ => Layout::TopTension(v),
+            }),
             _ => None,
         }
     }
@@ -927,7 +929,7 @@ impl Scene {
                 "given (x_L, m, as in Table 2), or initial.horizontal_tension (T_h, N) or initial.top_tension \
                  (T_t, N) instead",
             ),
-            [(field, v)] => c.positive(field, v, if field.ends_with("projection") { "m" } else { "N" }),
+            [(field, v)] => c.positive(field, v, unit(field).unwrap_or_default()),
             [(field, v), (other, _), ..] => c.push(
                 field,
                 &fmt_value(v),
@@ -1009,8 +1011,8 @@ impl Scene {
         }
         // T_t = w_c (a + h_L), T_h = w_c a.
         let (field, name, lift) = match layout {
-            Layout::TopTension(_) => ("initial.top_tension", "T_t = w_c (a + h_L)", w * h),
-            _ => ("initial.horizontal_tension", "T_h = w_c a", 0.0),
+            Layout::TopTension(_) => ("initial.top_tension", "T_t = w_c (a + h_L) (Eqs. 31, 33)", w * h),
+            _ => ("initial.horizontal_tension", "T_h = w_c a (Eq. 31)", 0.0),
         };
         let e = match self.horizontal_projection() {
             Ok(x) => return Some(x),
@@ -1031,7 +1033,7 @@ impl Scene {
             ),
         };
         let why = format!(
-            "{range}: {name} (Eq. 31) of the catenary the elements are laid on; lower, the rigid \
+            "{range}: {name} of the catenary the elements are laid on; lower, the rigid \
              elements cannot follow the curve's corner at the touchdown; higher, no cable is left on the seabed"
         );
         c.push(field, &fmt_value(t), &why);

@@ -163,6 +163,7 @@ impl RunSummary {
     pub fn of(model: &Model, result: &RunResult) -> RunSummary {
         let n = model.body_count();
         let ran = result.steps > 0;
+        let (t_h, t_t) = model.initial_tensions();
         let displacement = |body: usize| match (result.samples.first(), result.samples.last()) {
             (Some(a), Some(b)) => b.bodies[body].x - a.bodies[body].x,
             _ => 0.0,
@@ -238,8 +239,8 @@ impl RunSummary {
             checks_pass: checks::verdict(&outcomes, &checks::break_exceedances(model, result)),
             checks: outcomes,
             initial_horizontal_projection: model.catenary.horizontal,
-            initial_horizontal_tension: model.initial_tensions().0,
-            initial_top_tension: model.initial_tensions().1,
+            initial_horizontal_tension: t_h,
+            initial_top_tension: t_t,
             water_depth: model.water_depth(),
         }
     }

@@ -123,14 +123,15 @@ fn scene_lines(out: &mut Lines, model: &Model, result: &RunResult) {
             s.ship.mass / 1e3
         ),
     );
+    let (t_h, t_t) = model.initial_tensions();
     out.line(
         "initial",
         format!(
             "x_L = {}, h_L = {} m, T_h = {}, T_t = {} at the top, water depth {:.3} m, {:.2} m of cable on the seabed ({:.2} m of the catenary), ship {} m/s",
             fmt_projection(model),
             s.initial.vertical_projection,
-            fmt_tension(model.initial_tensions().0),
-            fmt_tension(model.initial_tensions().1),
+            fmt_tension(t_h),
+            fmt_tension(t_t),
             model.water_depth(),
             // A line laid at the touchdown's end reads a rounding's −0.00.
             model.grounded_cable_length().max(0.0),
@@ -328,14 +329,14 @@ fn final_lines(out: &mut Lines, model: &Model, result: &RunResult) {
     out.line(
         "balance",
         format!(
-            "E_0 = {:.4} MJ; kinetic {:.4}, entrained water {:.4}, potential {:.4} MJ; work done (MJ): {}; max balance drift {:.2e} of the largest kinetic energy {:.4} MJ",
+            "E_0 = {:.4} MJ; kinetic {:.4}, entrained water {:.4}, potential {:.4} MJ; work done (MJ): {}; max balance drift {:.2e} of the largest kinetic energy {:.4e} J",
             result.energy0 / 1e6,
             e.kinetic / 1e6,
             e.added_kinetic / 1e6,
             e.potential / 1e6,
             works.join(", "),
             result.max_energy_drift,
-            result.energy_scale / 1e6
+            result.energy_scale
         ),
     );
 }

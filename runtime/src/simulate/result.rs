@@ -83,9 +83,10 @@ pub struct RunResult {
     /// Energy balance at t = 0, J.
     pub energy0: f64,
     /// Largest relative drift |E − E_0|/K of the balance over the run, K the largest kinetic
-    /// energy so far at each check ([`health::energy_drift`](super::health::energy_drift)).
+    /// energy before each check ([`health::energy_drift`](super::health::energy_drift)).
     pub max_energy_drift: f64,
-    /// K at the run's end: its largest kinetic energy (E^K, the entrained water's included), J.
+    /// K at the run's end: the largest kinetic energy of its states that passed the checks (E^K,
+    /// the entrained water's included), J.
     pub energy_scale: f64,
     /// Kernel used.
     pub kernel: &'static str,

@@ -166,8 +166,8 @@ pub struct Stepper<'a> {
     interval: Option<Interval>,
     evaluations0: u64,
     energy0: f64,
-    /// The largest kinetic energy so far (E^K, the entrained water's included), J: the energy
-    /// drift's scale.
+    /// The largest kinetic energy of the checked states so far (E^K, the entrained water's
+    /// included), J: the energy drift's scale.
     kinetic_max: f64,
     max_energy_drift: f64,
     spike_bound: f64,
@@ -325,14 +325,14 @@ impl<'a> Stepper<'a> {
         self.energy0
     }
 
-    /// The energy drift's scale K: the largest kinetic energy over the completed intervals
-    /// (E^K, the entrained water's included), J.
+    /// The energy drift's scale K: the largest kinetic energy of the states that passed the
+    /// checks (E^K, the entrained water's included), J.
     pub fn energy_scale(&self) -> f64 {
         self.kinetic_max
     }
 
-    /// Largest relative drift |E − E_0|/K over the completed intervals, K as it stood at each
-    /// ([`Stepper::energy_scale`]).
+    /// Largest relative drift |E − E_0|/K over the completed intervals, K as it stood before
+    /// each ([`Stepper::energy_scale`]).
     pub fn max_energy_drift(&self) -> f64 {
         self.max_energy_drift
     }
@@ -461,7 +461,6 @@ impl<'a> Stepper<'a> {
     /// The health checks of a completed interval; keeps the largest drift.
     fn check(&mut self, obs: &Observation) -> Result<(), FailureKind> {
         let limit = self.model.scene.solver.max_energy_drift;
-        self.kinetic_max = self.kinetic_max.max(obs.energy.kinetic_total());
         let checked = health::energy_drift(obs.energy.balance(), self.energy0, self.kinetic_max, limit);
         // The drift that failed the run is its largest too, as the failure says (when it is
         // finite: the summary's number is a number; a NaN or infinite one is in the failure).
@@ -473,7 +472,10 @@ impl<'a> Stepper<'a> {
             self.max_energy_drift = drift;
         }
         checked?;
-        health::no_spike(&obs.tensions, self.spike_bound)
+        health::no_spike(&obs.tensions, self.spike_bound)?;
+        // K takes this state in only once it passed: a blow-up does not scale its own drift.
+        self.kinetic_max = self.kinetic_max.max(obs.energy.kinetic_total());
+        Ok(())
     }
 
     /// Locates the ship's first stop inside the completed interval, under the anchor state

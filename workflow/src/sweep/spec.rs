@@ -244,8 +244,8 @@ impl Spec {
                 ));
             }
         }
-        // Two ways to give one quantity (x_L and T_h) in one spec: the row's scene would keep
-        // the one set last.
+        // Two ways to give one quantity (two of x_L, T_h and T_t) in one spec: the row's scene
+        // would keep the one set last.
         inputs.extend(axes.iter().enumerate().map(|(i, a)| (format!("axis[{i}].path"), a.path.clone())));
         inputs.extend(uncertain.iter().enumerate().map(|(i, u)| (format!("uncertain[{i}].path"), u.path.clone())));
         let paths: Vec<&str> = inputs.iter().map(|(_, p)| p.as_str()).collect();
