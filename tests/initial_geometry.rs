@@ -263,15 +263,13 @@ fn a_tension_out_of_range_or_given_with_the_projection_is_refused() {
     let (bottom, top) = laid_range(&s.cable_element_lengths(), 6.0).unwrap();
     let t_at = |x: f64| kanestop_runtime::catenary::lay_elements(&s.cable_element_lengths(), x, 6.0).unwrap().0.a * w;
     let (t_min, t_max) = (t_at(bottom), t_at(top));
-    // The range in N, its bounds to 6 significant digits rounded inwards: "in (lo, hi] N …".
-    let range = p.expected.strip_prefix("in (").and_then(|r| r.split_once("] N")).unwrap().0;
-    let (lo, hi) = range.split_once(", ").unwrap();
-    let (lo, hi): (f64, f64) = (lo.parse().unwrap(), hi.parse().unwrap());
-    assert!(lo >= t_min && lo - t_min <= 1e-5 * t_min, "{lo} against {t_min}");
+    // The range in N, its bounds to 6 significant digits rounded inwards.
+    let (lo, hi) = shown_range(&p.expected);
+    assert!(lo > t_min && lo - t_min <= 1e-5 * t_min, "{lo} against {t_min}");
     assert!(hi <= t_max && t_max - hi <= 1e-5 * t_max, "{hi} against {t_max}");
     assert!(p.expected.contains("Eq. 31"), "{}", p.expected);
-    // Just inside both ends, the line lays.
-    for t in [lo * 1.01, hi * 0.999] {
+    // At both ends shown and just inside them, the line lays.
+    for t in [lo, lo * 1.01, hi * 0.999, hi] {
         s.initial.horizontal_tension = Some(t);
         assert_eq!(problems(&s), [], "T_h = {t} N");
     }
@@ -344,14 +342,12 @@ fn a_top_tension_out_of_range_or_given_with_another_layout_is_refused() {
     let (bottom, top) = laid_range(&s.cable_element_lengths(), 6.0).unwrap();
     let t_at =
         |x: f64| (kanestop_runtime::catenary::lay_elements(&s.cable_element_lengths(), x, 6.0).unwrap().0.a + 6.0) * w;
-    let range = p.expected.strip_prefix("in (").and_then(|r| r.split_once("] N")).unwrap().0;
-    let (lo, hi) = range.split_once(", ").unwrap();
-    let (lo, hi): (f64, f64) = (lo.parse().unwrap(), hi.parse().unwrap());
-    assert!(lo >= t_at(bottom) && lo - t_at(bottom) <= 1e-5 * lo, "{lo} against {}", t_at(bottom));
+    let (lo, hi) = shown_range(&p.expected);
+    assert!(lo > t_at(bottom) && lo - t_at(bottom) <= 1e-5 * lo, "{lo} against {}", t_at(bottom));
     assert!(hi <= t_at(top) && t_at(top) - hi <= 1e-5 * hi, "{hi} against {}", t_at(top));
     assert!(lo > w * 6.0, "above the suspended cable's weight");
     assert!(p.expected.contains("T_t = w_c (a + h_L)"), "{}", p.expected);
-    for t in [lo * 1.001, hi * 0.999] {
+    for t in [lo, lo * 1.001, hi * 0.999, hi] {
         s.initial.top_tension = Some(t);
         assert_eq!(problems(&s), [], "T_t = {t} N");
     }
@@ -401,4 +397,14 @@ fn a_laid_tension_is_a_shape_not_a_tension_the_model_holds_at_the_start() {
     taut.solver.end_time = 0.01;
     let (held, t_t) = top_joint_at_start(&taut);
     assert!(held < 0.02 * t_t, "taut: {held} N against T_t = {t_t} N");
+}
+
+/// The range a tension layout's refusal shows, "in [lo, hi] N …": both bounds rounded inwards
+/// to 6 significant digits, so both are tensions that lay (the exact lower bound, a line with a
+/// sharp corner at its touchdown, does not, and is never shown: it has more digits).
+fn shown_range(expected: &str) -> (f64, f64) {
+    let range =
+        expected.strip_prefix("in [").and_then(|r| r.split_once("] N")).unwrap_or_else(|| panic!("{expected}")).0;
+    let (lo, hi) = range.split_once(", ").unwrap();
+    (lo.parse().unwrap(), hi.parse().unwrap())
 }

@@ -57,7 +57,7 @@ def test_a_line_laid_by_its_tension_follows_the_cable_length(case01: kanestop.Sc
     assert result.stopping_time is not None
     with pytest.raises(kanestop.SceneError, match=r"initial\.horizontal_projection = 148: must be in \[170"):
         case01.with_overrides({"cable.stages[1].element_length": 12.0})
-    with pytest.raises(kanestop.SceneError, match=r"initial\.horizontal_tension = 1000000: must be in \(0\.0000100595, 226722\] N"):
+    with pytest.raises(kanestop.SceneError, match=r"initial\.horizontal_tension = 1000000: must be in \[0\.0000100595, 226722\] N"):
         case01.with_overrides({"initial.horizontal_tension": 1e6})
     # Both in one dict: refused, whatever the dict's order.
     with pytest.raises(kanestop.SceneError, match=r"are both set"):
@@ -75,7 +75,7 @@ def test_a_line_laid_by_its_top_tension(case01: kanestop.Scene) -> None:
     assert w_c == pytest.approx(118.146, rel=1e-5)
     base = kanestop.run(case01).summary
     assert base["initial_top_tension"] == pytest.approx(base["initial_horizontal_tension"] + 6.0 * w_c, rel=1e-12)
-    with pytest.raises(kanestop.SceneError, match=r"initial\.top_tension = 500: must be in \(708\.875, 227431\] N"):
+    with pytest.raises(kanestop.SceneError, match=r"initial\.top_tension = 500: must be in \[708\.875, 227431\] N"):
         case01.with_overrides({"initial.top_tension": 500})
 
 

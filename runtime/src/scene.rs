@@ -280,7 +280,7 @@ pub struct Initial {
     /// x_L has a window of a few metres (see `horizontal_projection`). Must be in the range
     /// of the laid lines, from nearly 0 (the rigid elements cannot follow a sharper corner at
     /// the touchdown) to T_max, where no cable is left on the seabed; the scene is refused
-    /// with the range (case 1: (1.006e-5, 226 722] N; its x_L = 148 m has T_h = 148.0 N, the
+    /// with the range (case 1: [1.006e-5, 226 722] N; its x_L = 148 m has T_h = 148.0 N, the
     /// paper's line hanging nearly vertically from its touchdown).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub horizontal_tension: Option<f64>,
@@ -290,7 +290,7 @@ pub struct Initial {
     /// `horizontal_tension`. Setting it replaces x_L or T_h. Must be in the range of the laid
     /// lines, the T_h range raised by w_c h_L, from just above the suspended cable's weight
     /// w_c h_L (a slack line hanging from its touchdown) to where no cable is left on the
-    /// seabed (case 1: (708.875, 227 431] N; its x_L = 148 m has T_t = 856.8 N). Like T_h, a
+    /// seabed (case 1: [708.875, 227 431] N; its x_L = 148 m has T_t = 856.8 N). Like T_h, a
     /// parameter of the laid shape, not a tension the model holds at t = 0: the paper starts
     /// the auxiliary rod vertical (Section 2.1), and a taut line's rod swings at the start,
     /// the line nearly slack until the ship takes it up (docs/model-choices.md).
@@ -1019,14 +1019,19 @@ impl Scene {
             Err(e) => e,
         };
         let range = match e {
-            CatenaryError::NoLineWithParameter { range: Some((lo, hi)), .. } => format!(
-                "in ({}, {}] N for cable length L_c = {} m, h_L = {} m and w_c = {} N/m",
-                fmt_bound(lo * w + lift, true),
-                fmt_bound(hi * w + lift, false),
-                fmt_value(lc),
-                fmt_value(h),
-                fmt_rounded(w, 3)
-            ),
+            CatenaryError::NoLineWithParameter { range: Some((lo, hi)), .. } => {
+                // Open below (a line touching down at a sharp corner), closed above; a lower
+                // bound rounded up to 6 digits is itself a tension that lays, and shown so.
+                let (lo, lo_in) = fmt_bound(lo * w + lift, true);
+                format!(
+                    "in {}{lo}, {}] N for cable length L_c = {} m, h_L = {} m and w_c = {} N/m",
+                    if lo_in { "[" } else { "(" },
+                    fmt_bound(hi * w + lift, false).0,
+                    fmt_value(lc),
+                    fmt_value(h),
+                    fmt_rounded(w, 3)
+                )
+            }
             _ => format!(
                 "a tension at which the {} cable elements lay (none does here)",
                 self.cable_element_lengths().len()
@@ -1256,14 +1261,16 @@ pub fn fmt_value(v: f64) -> String {
 }
 
 /// A bound of a range the message computed, to 6 significant digits, rounded inwards: up
-/// for a lower bound (`up`), down for an upper one, so that the range shown holds.
-fn fmt_bound(v: f64, up: bool) -> String {
+/// for a lower bound (`up`), down for an upper one, so that the range shown holds. The value
+/// shown and whether it is itself in the range: a rounded bound is, the exact one (its 6
+/// digits already all there is) is not when the range is open there.
+fn fmt_bound(v: f64, up: bool) -> (String, bool) {
     if !(v.is_finite() && v != 0.0) {
-        return fmt_value(v);
+        return (fmt_value(v), false);
     }
     let scale = 10f64.powi(5 - v.abs().log10().floor() as i32);
     let r = if up { (v * scale).ceil() } else { (v * scale).floor() } / scale;
-    fmt_value(r)
+    (fmt_value(r), r != v)
 }
 
 /// A value the message computed (a bound, a depth), rounded to `decimals` places; in
