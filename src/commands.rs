@@ -45,15 +45,24 @@ impl RunFiles<'_> {
             output::check_file_target(&units).with_context(|| format!("cannot write {}", units.display()))?;
         }
         if let Some(dir) = self.plot {
-            // The plots' folder at or under a file the run writes could not be made after it.
+            // The plots' folder at or under a file the run writes could not be made after it,
+            // and a plot written over that file would replace it: both refused, the paths
+            // compared as the file system resolves them.
             let files = self.out.into_iter().flat_map(|out| [out.to_path_buf(), history::units_path(out)]);
             for file in files {
-                let (Ok(f), Ok(d)) = (std::path::absolute(&file), std::path::absolute(dir)) else { continue };
+                let (Ok(f), Ok(d)) = (output::resolved(&file), output::resolved(dir)) else { continue };
                 if d.starts_with(&f) {
                     anyhow::bail!(
                         "--plot {} is at or under {}, a file --out writes: a file cannot hold a folder",
                         dir.display(),
                         file.display()
+                    );
+                }
+                if plot::FILES.iter().any(|name| d.join(name) == f) {
+                    anyhow::bail!(
+                        "--out writes {}, where --plot {} writes a plot of the same name: choose another file or folder",
+                        file.display(),
+                        dir.display()
                     );
                 }
             }

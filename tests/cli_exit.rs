@@ -347,7 +347,7 @@ fn exit_2_an_output_that_cannot_be_written_is_found_before_the_work() {
     std::fs::write(&spec, format!("base = {:?}\n[[axis]]\npath = \"ship.mass\"\nvalues = [5e5]\n", scene)).unwrap();
     let s = scene.to_str().unwrap();
     let p = |rel: &str| dir.join(rel).to_str().unwrap().to_string();
-    let cases: [(Vec<String>, &str); 5] = [
+    let cases: [(Vec<String>, &str); 7] = [
         (vec!["run".into(), s.into(), "--out".into(), p("a/h.csv")], "a/h.units.csv"),
         (
             vec!["run".into(), s.into(), "--out".into(), p("c/h"), "--plot".into(), p("c/h")],
@@ -357,6 +357,15 @@ fn exit_2_an_output_that_cannot_be_written_is_found_before_the_work() {
         (
             vec!["run".into(), s.into(), "--out".into(), p("new/h.csv"), "--plot".into(), p("new/h.csv/plots")],
             "is at or under",
+        ),
+        // The same reached through `..`, and a plot of the history's own name.
+        (
+            vec!["run".into(), s.into(), "--out".into(), p("new/h.csv"), "--plot".into(), p("new/../new/h.csv/p")],
+            "is at or under",
+        ),
+        (
+            vec!["run".into(), s.into(), "--out".into(), p("new/energy.svg"), "--plot".into(), p("new")],
+            "a plot of the same name",
         ),
         (
             vec!["batch".into(), scenes.to_str().unwrap().into(), "--out".into(), p("b")],

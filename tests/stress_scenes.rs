@@ -479,7 +479,7 @@ fn refresh_stress_table(rows: &[String]) {
     }
 }
 
-/// The energy drift's scale K is the largest kinetic energy so far: for a ship at rest whose
+/// The energy drift's scale K is the largest kinetic energy before the step: for a ship at rest whose
 /// taut line is released (its vertical rod cannot hold the line's pull), K starts at 0 and
 /// grows with the motion, so the drift is measured against the energy in play and not
 /// divided by zero.

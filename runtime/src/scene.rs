@@ -369,7 +369,7 @@ pub struct Solver {
     /// End the run when the ship's surge speed first reaches zero.
     pub stop_when_ship_stops: bool,
     /// Relative energy-balance drift |E − E_0|/K at which a run is stopped as unstable,
-    /// dimensionless; K is the largest kinetic energy so far (the entrained water's included),
+    /// dimensionless; K is the largest kinetic energy before the step checked (the entrained water's included),
     /// the energy in play (docs/model-choices.md; before 2026-12-06 it was E_0, whose potential
     /// energy is measured from the seabed).
     pub max_energy_drift: f64,
@@ -1269,7 +1269,13 @@ fn fmt_bound(v: f64, up: bool) -> (String, bool) {
         return (fmt_value(v), false);
     }
     let scale = 10f64.powi(5 - v.abs().log10().floor() as i32);
-    let r = if up { (v * scale).ceil() } else { (v * scale).floor() } / scale;
+    let digits = if up { (v * scale).ceil() } else { (v * scale).floor() };
+    let mut r = digits / scale;
+    // The product and the quotient round: a bound that came back outside its range moves a
+    // digit inwards.
+    if (up && r < v) || (!up && r > v) {
+        r = (digits + if up { 1.0 } else { -1.0 }) / scale;
+    }
     (fmt_value(r), r != v)
 }
 

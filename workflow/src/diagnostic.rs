@@ -28,7 +28,7 @@ pub fn describe(model: &Model, failure: &Failure) -> String {
             };
             let (cause, suggestion) = match failure.initial_residual {
                 Some(r) if r.line.0.max(r.top.0) > NOT_STATIC * model.scene.environment.gravity => {
-                    not_static(model, failure.t, &r)
+                    not_static(model, failure.t, swinging, &r)
                 }
                 _ => advice(model, failure.t, swinging),
             };
@@ -52,25 +52,23 @@ pub fn describe(model: &Model, failure: &Failure) -> String {
 /// line and 12 g beside the rod).
 pub const NOT_STATIC: f64 = 0.5;
 
-/// The cause and suggestion of an early failure from an initial state far from static: the
-/// geometry first; if it is as meant, the start's transient integrated more finely (the nearly
-/// taut cable of `scenes/stress/` fails RK4 at 2 ms at its snap, 0.31 s, and runs at 1 ms).
-fn not_static(model: &Model, t: f64, r: &StaticResidual) -> (String, String) {
+/// The cause and suggestion of an early failure from an initial state far from static, its
+/// fastest mode at body `k`: the geometry is the likely cause and checked first; a geometry
+/// that is as meant (a line laid taut by `initial.top_tension` starts with its vertical rod
+/// swinging, docs/model-choices.md) needs the start's transient integrated more finely, as
+/// [`advice`] says for the scene's method.
+fn not_static(model: &Model, t: f64, k: usize, r: &StaticResidual) -> (String, String) {
     let cause = format!(
         "the initial state is not static: the run failed {t:.3} s after the start, and at rest (t = 0, anchor held) \
-         the line accelerates up to {:.2e} m/s² (B_{}) and {:.2e} m/s² beside the rod (B_{}); the transient \
-         from it was too fast for the integration",
+         the line accelerates up to {:.2e} m/s² (B_{}) and {:.2e} m/s² beside the rod (B_{}); the initial \
+         geometry is the likely cause",
         r.line.0, r.line.1, r.top.0, r.top.1
     );
-    let solver = &model.scene.solver;
-    let finer = match solver.integrator {
-        Method::Rk4 => format!("a smaller solver.dt (now {} s) or integrator = \"dp5\"", solver.dt),
-        Method::Dp5 | Method::Sdirk4 => format!("a tighter solver.rtol (now {})", solver.rtol),
-    };
+    let (_, finer) = advice(model, t, k);
     let suggestion = format!(
         "check the initial geometry (initial.horizontal_projection, horizontal_tension or top_tension, \
          initial.vertical_projection, the cable stages, rod.length and ship.hinge_z) and the line's weights; if \
-         they are as meant, {finer} follows the start's transient"
+         they are as meant, follow the start's transient more finely: {finer}"
     );
     (cause, suggestion)
 }
@@ -91,7 +89,7 @@ fn what(kind: &FailureKind) -> String {
         FailureKind::NonFiniteState => "non-finite state".to_string(),
         FailureKind::EnergyRunaway { drift, limit, scale } => format!(
             "energy runaway: |E − E_0|/K = {drift:.3e} exceeds solver.max_energy_drift = {limit} (K = {:.4e} J, \
-             the largest kinetic energy so far)",
+             the largest kinetic energy before this step)",
             scale
         ),
         FailureKind::ForceSpike { joint, force, bound, .. } => format!(

@@ -1,7 +1,7 @@
 //! Files written whole or not at all.
 
 use std::io::Write as _;
-use std::path::Path;
+use std::path::{Component, Path, PathBuf};
 
 /// Writes `bytes` to a temporary file beside `path`, then renames it into place, so a
 /// reader never sees a partial file and a failed write leaves any old file untouched. A
@@ -21,6 +21,27 @@ pub fn write_atomically(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
         let _ = std::fs::remove_file(&tmp);
     }
     result
+}
+
+/// The path the file system will reach by `path`, which need not exist yet: its deepest
+/// existing ancestor resolved (symbolic links, `..`), the rest appended with `.` dropped and
+/// `..` taken lexically. For comparing two output targets before either is written.
+pub fn resolved(path: &Path) -> std::io::Result<PathBuf> {
+    let path = std::path::absolute(path)?;
+    let (mut real, rest) = path
+        .ancestors()
+        .find_map(|a| Some((std::fs::canonicalize(a).ok()?, path.strip_prefix(a).ok()?)))
+        .unwrap_or((PathBuf::new(), &path));
+    for c in rest.components() {
+        match c {
+            Component::ParentDir => {
+                real.pop();
+            }
+            Component::CurDir => {}
+            c => real.push(c),
+        }
+    }
+    Ok(real)
 }
 
 /// Checks, before any work, that a file can be written at `path`: its folder accepts a new
@@ -114,6 +135,22 @@ impl std::fmt::Display for CsvNumber {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_target_is_resolved_through_dots_and_links_before_it_exists() {
+        let dir = std::env::temp_dir().join(format!("kanestop-resolved-{}", std::process::id()));
+        std::fs::create_dir_all(dir.join("real")).unwrap();
+        let real = std::fs::canonicalize(dir.join("real")).unwrap();
+        // Not yet there, reached through `..` and `.`.
+        assert_eq!(resolved(&dir.join("real/new/.././h.csv")).unwrap(), real.join("h.csv"));
+        assert_eq!(resolved(&dir.join("real/../real/h.csv/plots")).unwrap(), real.join("h.csv/plots"));
+        #[cfg(unix)]
+        {
+            std::os::unix::fs::symlink(&real, dir.join("link")).unwrap();
+            assert_eq!(resolved(&dir.join("link/h.csv")).unwrap(), real.join("h.csv"));
+        }
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
 
     #[test]
     fn csv_numbers_are_shortest_and_zero_has_no_sign() {

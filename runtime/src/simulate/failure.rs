@@ -59,14 +59,14 @@ pub enum FailureKind {
     #[error("non-finite state")]
     NonFiniteState,
     /// |E − E_0|/K of the energy balance (Eq. 63) exceeds `solver.max_energy_drift`, K the
-    /// largest kinetic energy so far.
+    /// largest kinetic energy before the step ([`super::health::drift_scale`]).
     #[error("energy runaway")]
     EnergyRunaway {
         /// The relative drift (possibly not finite).
         drift: f64,
         /// `solver.max_energy_drift`.
         limit: f64,
-        /// K, the drift's scale: the largest kinetic energy so far, J.
+        /// K, the drift's scale: the largest kinetic energy before the step, J.
         scale: f64,
     },
     /// A joint force above [`super::SPIKE_FACTOR`] × the line's largest break load.

@@ -165,11 +165,8 @@ pub struct Stepper<'a> {
     stride: u64,
     interval: Option<Interval>,
     evaluations0: u64,
-    energy0: f64,
-    /// The largest kinetic energy of the checked states so far (E^K, the entrained water's
-    /// included), J: the energy drift's scale.
-    kinetic_max: f64,
-    max_energy_drift: f64,
+    /// E_0, the drift's scale K and the largest drift.
+    drift: health::DriftWatch,
     spike_bound: f64,
     stopping_time: Option<f64>,
     /// The tensions at an adaptive method's sub-step ends inside the current interval
@@ -209,9 +206,7 @@ impl<'a> Stepper<'a> {
             stride: ((solver.output_interval / solver.dt).round() as u64).max(1),
             interval: None,
             evaluations0: 0,
-            energy0: 0.0,
-            kinetic_max: 0.0,
-            max_energy_drift: 0.0,
+            drift: health::DriftWatch::default(),
             spike_bound: health::spike_bound(model),
             stopping_time: None,
             inner: Vec::new(),
@@ -239,8 +234,7 @@ impl<'a> Stepper<'a> {
         }
         self.evaluations0 = self.m.dynamics.evaluations();
         let obs = self.m.observe(self.model, &self.y).map_err(|e| self.failure(0.0, e))?;
-        self.energy0 = obs.energy.balance();
-        self.kinetic_max = obs.energy.kinetic_total();
+        self.drift = health::DriftWatch::new(obs.energy.balance(), obs.energy.kinetic_total());
         self.obs = Some(obs);
         Ok(())
     }
@@ -322,19 +316,19 @@ impl<'a> Stepper<'a> {
 
     /// The energy balance at t = 0, J (0 before a successful start).
     pub fn energy0(&self) -> f64 {
-        self.energy0
+        self.drift.energy0
     }
 
     /// The energy drift's scale K: the largest kinetic energy of the states that passed the
     /// checks (E^K, the entrained water's included), J.
     pub fn energy_scale(&self) -> f64 {
-        self.kinetic_max
+        self.drift.kinetic_max
     }
 
     /// Largest relative drift |E − E_0|/K over the completed intervals, K as it stood before
     /// each ([`Stepper::energy_scale`]).
     pub fn max_energy_drift(&self) -> f64 {
-        self.max_energy_drift
+        self.drift.max_drift
     }
 
     /// First zero of the ship's surge speed, located to round-off, s.
@@ -458,24 +452,12 @@ impl<'a> Stepper<'a> {
         }
     }
 
-    /// The health checks of a completed interval; keeps the largest drift.
+    /// The health checks of a completed interval ([`health::DriftWatch::check`]).
     fn check(&mut self, obs: &Observation) -> Result<(), FailureKind> {
         let limit = self.model.scene.solver.max_energy_drift;
-        let checked = health::energy_drift(obs.energy.balance(), self.energy0, self.kinetic_max, limit);
-        // The drift that failed the run is its largest too, as the failure says (when it is
-        // finite: the summary's number is a number; a NaN or infinite one is in the failure).
-        let drift = match checked {
-            Ok(drift) | Err(FailureKind::EnergyRunaway { drift, .. }) => drift,
-            Err(_) => self.max_energy_drift,
-        };
-        if drift.is_finite() && drift > self.max_energy_drift {
-            self.max_energy_drift = drift;
-        }
-        checked?;
-        health::no_spike(&obs.tensions, self.spike_bound)?;
-        // K takes this state in only once it passed: a blow-up does not scale its own drift.
-        self.kinetic_max = self.kinetic_max.max(obs.energy.kinetic_total());
-        Ok(())
+        let bound = self.spike_bound;
+        self.drift
+            .check(obs.energy.balance(), obs.energy.kinetic_total(), limit, || health::no_spike(&obs.tensions, bound))
     }
 
     /// Locates the ship's first stop inside the completed interval, under the anchor state
