@@ -93,7 +93,7 @@ enum Command {
         /// Validate against Table 3: every paper case's stopping time within this relative
         /// tolerance (e.g. 0.05), same order, energy drift < 0.5 %, no break load exceeded;
         /// exit code 1 otherwise.
-        #[arg(long)]
+        #[arg(long, allow_negative_numbers = true)]
         tolerance: Option<f64>,
         #[arg(long, value_enum, default_value = "generated")]
         kernel: KernelArg,
@@ -166,7 +166,7 @@ enum ReportKind {
         #[arg(long, default_value_t = 3)]
         repeats: usize,
         /// Absolute tolerance of the adaptive runs as a multiple of their rtol (> 0).
-        #[arg(long, default_value_t = kanestop_workflow::accuracy::DEFAULT_ATOL_RATIO)]
+        #[arg(long, allow_negative_numbers = true, default_value_t = kanestop_workflow::accuracy::DEFAULT_ATOL_RATIO)]
         atol_ratio: f64,
         #[arg(long, value_enum, default_value = "generated")]
         kernel: KernelArg,
@@ -443,19 +443,19 @@ struct SolverOverrides {
     #[arg(long, value_enum)]
     integrator: Option<MethodArg>,
     /// Time step or, for adaptive methods, observation interval, s (overrides solver.dt).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     dt: Option<f64>,
     /// Relative tolerance of the adaptive methods (overrides solver.rtol).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     rtol: Option<f64>,
     /// Absolute tolerance of the adaptive methods (overrides solver.atol).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     atol: Option<f64>,
     /// Interval of the recorded samples, s (overrides solver.output_interval).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     output_interval: Option<f64>,
     /// Time at which the run ends if the ship has not stopped, s (overrides solver.end_time).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     end_time: Option<f64>,
 }
 

@@ -9,6 +9,7 @@ use anyhow::{Context, Result};
 use crate::commands::check_dir;
 use crate::{Exit, KernelArg};
 use kanestop_runtime::scene::Scene;
+use kanestop_workflow::batch::Status;
 use kanestop_workflow::kernels::{self, KernelChoice};
 use kanestop_workflow::output::write_atomically;
 use kanestop_workflow::sweep::heatmap;
@@ -159,7 +160,7 @@ pub fn sweep(args: &SweepArgs) -> Result<Exit> {
     let id = SweepId::of(&spec, &plan, args.kernel.0.name());
     match shard {
         Some((s, from)) => run_shard(args, &id, &plan, s, from),
-        None if args.resume => resume_all(args, &id, &plan),
+        None if args.resume => resume_all(args, &id, &plan, &axis_paths(&spec)),
         None => {
             check_dir(&args.out, &sweep::FILES)?;
             let kernel = args.kernel.factory();
@@ -169,7 +170,8 @@ pub fn sweep(args: &SweepArgs) -> Result<Exit> {
                 bar.inc(1);
             })?;
             bar.finish_and_clear();
-            let code = report(&rows, id.sampling, &sweep::scene_files(&plan), &args.out)?;
+            let axes = axis_paths(&spec);
+            let code = report(&rows, id.sampling, Some(&axes), &sweep::scene_files(&plan), &args.out)?;
             for f in heatmap::write(&spec, &rows, &heat_maps, &args.out)? {
                 println!("written   {}", f.display());
             }
@@ -178,9 +180,16 @@ pub fn sweep(args: &SweepArgs) -> Result<Exit> {
     }
 }
 
-/// Prints the table (and, with sampling, the statistics), writes the files, prints the
-/// check summary; the exit code. The same for a local run and a merge.
-fn report(rows: &[SweepRow], sampling: bool, scenes: &[(String, String)], out: &Path) -> Result<Exit> {
+/// Prints the table (and, with sampling, the statistics of each grid point, `axes` the axis
+/// paths when the spec is known), writes the files, prints the check summary; the exit code.
+/// The same for a local run and a merge.
+fn report(
+    rows: &[SweepRow],
+    sampling: bool,
+    axes: Option<&[String]>,
+    scenes: &[(String, String)],
+    out: &Path,
+) -> Result<Exit> {
     print!("{}", sweep::table(rows));
     if sampling {
         let stats: [(&str, Output, f64); 3] = [
@@ -188,10 +197,22 @@ fn report(rows: &[SweepRow], sampling: bool, scenes: &[(String, String)], out: &
             ("stopping distance (m)", &|s| s.stopping_distance, 1.0),
             ("peak tension (kN)", &|s| s.peak_tension.map(|p| p.tension), 1e-3),
         ];
-        for (name, f, scale) in stats {
-            if let Some([mean, sd, p5, p95]) = sweep::statistics(rows, f) {
-                let [mean, sd, p5, p95] = [mean, sd, p5, p95].map(|v| v * scale);
-                println!("{name:<22} mean {mean:.3}  sd {sd:.3}  5 % {p5:.3}  95 % {p95:.3}");
+        let points = sweep::by_grid_point(rows, axes.unwrap_or_default());
+        if axes.is_none() {
+            println!(
+                "statistics over all {} rows (a grid's points pooled: `sweep merge --spec SPEC` gives each point's)",
+                rows.len()
+            );
+        }
+        for (point, group) in &points {
+            if points.len() > 1 {
+                println!("point     {point} ({} samples)", group.len());
+            }
+            for (name, f, scale) in stats {
+                if let Some([mean, sd, p5, p95]) = sweep::statistics(group, f) {
+                    let [mean, sd, p5, p95] = [mean, sd, p5, p95].map(|v| v * scale);
+                    println!("{name:<22} mean {mean:.3}  sd {sd:.3}  5 % {p5:.3}  95 % {p95:.3}");
+                }
             }
         }
     }
@@ -213,6 +234,12 @@ fn exit(rows: &[SweepRow]) -> Exit {
     if check_failed {
         let n = rows.iter().filter(|r| r.checks_pass == Some(false)).count();
         println!("checks    FAIL in {n} of {} rows", rows.len());
+    }
+    // Exit 3's rows, named: the table shows them among the others.
+    let count = |status: Status| rows.iter().filter(|r| r.status == status).count();
+    let (bad, invalid) = (count(Status::Failed), count(Status::Invalid));
+    if bad + invalid > 0 {
+        println!("runs      {bad} failed and {invalid} invalid of {} rows (the table says why)", rows.len());
     }
     if failed {
         Exit::NumericalFailure
@@ -263,7 +290,7 @@ fn run_shard(args: &SweepArgs, id: &SweepId, plan: &[PlannedRow], shard: Shard, 
 
 /// `sweep SPEC --resume` without a shard: completes every shard of the folder (by the shard
 /// count of its files; one shard when it has none), then merges them.
-fn resume_all(args: &SweepArgs, id: &SweepId, plan: &[PlannedRow]) -> Result<Exit> {
+fn resume_all(args: &SweepArgs, id: &SweepId, plan: &[PlannedRow], axes: &[String]) -> Result<Exit> {
     check_dir(&args.out, &sweep::FILES)?;
     let folder = args.out.join("shards");
     let files = if folder.is_dir() { shard_file::files_in(&args.out)? } else { Vec::new() };
@@ -286,7 +313,12 @@ fn resume_all(args: &SweepArgs, id: &SweepId, plan: &[PlannedRow]) -> Result<Exi
     }
     // The rows kept were checked against the plan as each shard resumed (ShardRun::start).
     let merged = merge::merge(std::slice::from_ref(&args.out))?;
-    report(&merged.rows, merged.sampling, &merged.scenes, &args.out)
+    report(&merged.rows, merged.sampling, Some(axes), &merged.scenes, &args.out)
+}
+
+/// The paths of `spec`'s grid axes.
+fn axis_paths(spec: &sweep::Spec) -> Vec<String> {
+    spec.axes.iter().map(|a| a.path.clone()).collect()
 }
 
 /// `sweep merge DIR…`.
@@ -324,7 +356,8 @@ fn merge(m: &MergeArgs) -> Result<Exit> {
         merged.rows.len(),
         merged.plan_hash
     );
-    let code = report(&merged.rows, merged.sampling, &merged.scenes, &out)?;
+    let axes = spec.as_ref().map(axis_paths);
+    let code = report(&merged.rows, merged.sampling, axes.as_deref(), &merged.scenes, &out)?;
     if let Some(spec) = &spec {
         for f in heatmap::write(spec, &merged.rows, &heat_maps, &out)? {
             println!("written   {}", f.display());

@@ -94,6 +94,14 @@ fn exit_2_bad_arguments_scene_and_paths() {
         assert_eq!(out.status.code(), Some(2), "{args:?}: {stdout}{stderr}");
         assert!(!stderr.is_empty() && !stderr.contains("panicked"), "{args:?}: {stderr}");
     }
+    // A negative number is a value of its flag, refused by the scene's range, not an argument
+    // of its own.
+    for (flag, field) in [("--dt", "solver.dt = -1: must be in (0, 1] s"), ("--end-time", "solver.end_time = -1")] {
+        let out = kanestop().args(["run", short.to_str().unwrap(), flag, "-1"]).output().unwrap();
+        let (stdout, stderr) = text(&out);
+        assert_eq!(out.status.code(), Some(2), "{flag}: {stdout}{stderr}");
+        assert!(stderr.contains(field) && !stderr.contains("unexpected argument"), "{flag}: {stderr}");
+    }
     // Output targets are checked before the run: nothing printed, nothing written.
     let file = dir.join("a-file");
     std::fs::write(&file, "").unwrap();

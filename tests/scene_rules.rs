@@ -164,3 +164,41 @@ fn cli_refuses_the_h_l_60_scene_with_exit_2() {
     assert!(err.contains("[95.") && err.contains("135.68"), "{err}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// Every field with a fixed range states it in docs/scenes.md as the refusal does: the range
+/// a user reads is the one the checks apply.
+#[test]
+fn the_scene_reference_states_each_fixed_range_the_checks_apply() {
+    let doc = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/scenes.md")).unwrap();
+    let fields = [
+        ("environment.gravity", 1e9),
+        ("environment.seabed_friction", 1e9),
+        ("environment.line_friction", 1e9),
+        ("environment.current_surface_speed", 1e9),
+        ("environment.current_exponent", 1e9),
+        ("ship.hinge_z", 1e9),
+        ("initial.ship_speed", 1e9),
+        ("solver.dt", 1e9),
+        ("solver.end_time", -1.0),
+        ("solver.max_energy_drift", 1e9),
+        ("solver.rtol", 1e9),
+        ("solver.atol", 1e9),
+    ];
+    for (field, bad) in fields {
+        let scene = case1().with_overrides(&[(field, toml::Value::Float(bad))]);
+        let problems = match scene.map(|s| s.problems()) {
+            Ok(p) => p,
+            Err(SceneError::Invalid { problems, .. }) => problems,
+            Err(e) => panic!("{field}: {e}"),
+        };
+        let p = problems.iter().find(|p| p.field == field).unwrap_or_else(|| panic!("{field}: {problems:?}"));
+        // "in (0, 1] s" → "in (0, 1]": the bounds as the refusal gives them.
+        let end = p.expected.find([']', ')']).unwrap_or_else(|| panic!("{field}: {}", p.expected));
+        let range = &p.expected[..=end];
+        assert!(range.starts_with("in "), "{field}: {}", p.expected);
+        let leaf = field.rsplit('.').next().unwrap();
+        let row = doc.lines().find(|l| l.starts_with(&format!("| `{leaf}` |"))).unwrap_or_else(|| panic!("{leaf}"));
+        let sentence = range.replacen("in ", "In ", 1);
+        assert!(row.contains(range) || row.contains(&sentence), "docs/scenes.md's {leaf} lacks {range:?}: {row}");
+    }
+}

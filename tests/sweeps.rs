@@ -185,6 +185,9 @@ fn a_line_length_and_depth_sweep_lays_every_row_by_its_tension() {
     assert_eq!(o.status.code(), Some(3), "{}", String::from_utf8_lossy(&o.stderr));
     let refused = rows(&dir.join("fixed")).iter().filter(|r| r["status"] == "invalid").count();
     assert!(refused > 0);
+    // The summary names them, as it names the rows failing a check.
+    let line = format!("runs      0 failed and {refused} invalid of 12 rows");
+    assert!(String::from_utf8_lossy(&o.stdout).contains(&line), "{line:?}");
     let doc = std::fs::read_to_string(root().join("docs/sweeps.md"))
         .unwrap()
         .split_whitespace()
@@ -428,4 +431,31 @@ fn refresh_sensitivity_doc(study: &Value) {
         std::fs::write(&path, &text).unwrap();
         panic!("docs/sweeps.md's sensitivity table was stale and has been regenerated: review and commit it");
     }
+}
+
+/// Sampling on top of a grid: the statistics are each grid point's, over its own samples,
+/// labelled by the point; pooled over the grid, two ship masses would blur into one spread.
+#[test]
+fn sampling_on_a_grid_gives_each_point_its_own_statistics() {
+    let dir = temp_dir("grid-stats");
+    let out = dir.join("out");
+    let body = "[[axis]]\npath = \"ship.mass\"\nvalues = [4e5, 6e5]\n\
+                [sampling]\nmethod = \"latin-hypercube\"\nsamples = 4\nseed = 3\n\
+                [[uncertain]]\npath = \"anchor.mass\"\ndistribution = \"uniform\"\nlow = 36000.0\nhigh = 44000.0\n";
+    let o = sweep(&spec(&dir, body), &out);
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert_eq!(o.status.code(), Some(0), "{stdout}{}", String::from_utf8_lossy(&o.stderr));
+    let rows = rows(&out);
+    for mass in [400000.0, 600000.0] {
+        let times: Vec<f64> = rows
+            .iter()
+            .filter(|r| r["inputs"]["ship.mass"].as_f64() == Some(mass))
+            .map(|r| r["summary"]["stopping_time"].as_f64().unwrap())
+            .collect();
+        assert_eq!(times.len(), 4);
+        let mean = times.iter().sum::<f64>() / 4.0;
+        let head = format!("point     ship.mass={mass} (4 samples)\nstopping time (s)      mean {mean:.3}  sd ");
+        assert!(stdout.contains(&head), "{head:?} not in\n{stdout}");
+    }
+    assert!(!stdout.contains("pooled"), "{stdout}");
 }

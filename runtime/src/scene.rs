@@ -84,9 +84,11 @@ pub struct Meta {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Environment {
-    /// g, m/s².
+    /// g, m/s², in (0, 100].
     pub gravity: f64,
-    /// Water on: buoyancy, drag and added mass act (off: the chain hangs in vacuum).
+    /// Water on: buoyancy, drag and added mass act, and the ship floats (its hydrostatics and
+    /// resistance, Eqs. 53–62). Off: the line hangs in vacuum and nothing holds the ship up,
+    /// which falls freely onto the line: a test of the mechanics, not a ship afloat.
     pub water: bool,
     /// ρ, sea-water density, kg/m³.
     pub water_density: f64,
@@ -99,15 +101,17 @@ pub struct Environment {
     /// cable (m', R their `mass_per_length` and `radius`): softer, the foundation cannot carry
     /// them and they would sink whole.
     pub seabed_stiffness: f64,
-    /// μ, anchor–seabed sliding friction coefficient, dimensionless (Eq. 37).
+    /// μ, anchor–seabed sliding friction coefficient, dimensionless (Eq. 37), in [0, 2].
     pub seabed_friction: f64,
     /// μ_l, friction coefficient between chain or cable elements and the seabed, acting on
-    /// the foundation reaction of Eq. 41, dimensionless. The paper's links slide without
-    /// friction (assumption 4): 0 in its cases.
+    /// the foundation reaction of Eq. 41, dimensionless, in [0, 2]. The paper's links slide
+    /// without friction (assumption 4): 0 in its cases.
     pub line_friction: f64,
-    /// U_ST, current speed at the free surface along +x, m/s (Eq. 38).
+    /// U_ST, current speed at the free surface along +x, m/s (Eq. 38), in [-10, 10] m/s
+    /// (negative: toward −x).
     pub current_surface_speed: f64,
-    /// Exponent of the current profile U = U_ST (h/d)^exponent, dimensionless (Eq. 38: 1/7).
+    /// Exponent of the current profile U = U_ST (h/d)^exponent, dimensionless (Eq. 38: 1/7),
+    /// in (0, 1].
     pub current_exponent: f64,
 }
 
@@ -247,10 +251,11 @@ pub struct Ship {
     pub depth: f64,
     /// k_s, hull roughness height, m (Eq. 61).
     pub hull_roughness: f64,
-    /// d_x: the rod hinge's position forward of the water-plane centre, m (negative: aft).
+    /// d_x: the rod hinge's position forward of the water-plane centre, m (negative: aft), on
+    /// the hull: in [−L_N/2, L_N/2] (L_N the ship's `length`).
     pub hinge_x: f64,
-    /// d_z: the rod hinge's height above the water plane, m. At least `rod.length`; sets the
-    /// water depth with h_L (see `ship.mass`, `anchor.height`).
+    /// d_z: the rod hinge's height above the water plane, m, in [-1000, 1000] m. At least
+    /// `rod.length`; sets the water depth with h_L (see `ship.mass`, `anchor.height`).
     pub hinge_z: f64,
 }
 
@@ -302,7 +307,7 @@ pub struct Initial {
     /// height above the seabed (its centreline where the foundation carries its submerged
     /// weight, Eqs. 41, 42: a few mm, from +R on a hard seabed to −R, buried, on a soft one).
     pub vertical_projection: f64,
-    /// The ship's initial surge speed, m/s.
+    /// The ship's initial surge speed, m/s, in [0, 20] m/s.
     pub ship_speed: f64,
 }
 
@@ -354,15 +359,16 @@ pub struct Solver {
     /// Time step of `rk4`, s. For the adaptive methods, the observation interval: events and
     /// stability checks are evaluated every `dt`, and the method takes its own
     /// error-controlled steps (never longer) in between, after each of which the peak
-    /// tensions are looked at. At least `end_time` / 1e7: more
-    /// steps are refused with the time estimate (`MAX_STEPS`).
+    /// tensions are looked at. In (0, 1] s, and at least `end_time` / 1e7: more steps are
+    /// refused with the time estimate (`MAX_STEPS`).
     pub dt: f64,
     /// Relative tolerance of the adaptive methods (`dp5`, `sdirk4`), dimensionless, in
     /// [1e-14, 0.1].
     pub rtol: f64,
-    /// Absolute tolerance of the adaptive methods, in the state's units (rad, m, rad/s, m/s, J).
+    /// Absolute tolerance of the adaptive methods, in the state's units (rad, m, rad/s, m/s, J),
+    /// in (0, 1].
     pub atol: f64,
-    /// Simulated time after which the run ends in any case, s.
+    /// Simulated time after which the run ends in any case, s, in (0, ∞).
     pub end_time: f64,
     /// Interval between recorded samples, s (rounded to a whole number of steps).
     pub output_interval: f64,
@@ -371,7 +377,7 @@ pub struct Solver {
     /// Relative energy-balance drift |E − E_0|/K at which a run is stopped as unstable,
     /// dimensionless; K is the largest kinetic energy before the step checked (the entrained water's included),
     /// the energy in play (docs/model-choices.md; before 2026-12-06 it was E_0, whose potential
-    /// energy is measured from the seabed).
+    /// energy is measured from the seabed). In (0, 10].
     pub max_energy_drift: f64,
 }
 

@@ -147,7 +147,7 @@ fn advice(model: &Model, t: f64, k: usize) -> (String, String) {
          {ratio}:1 with the heaviest body)"
     );
     let kept = format!("the first {:.3} s up to the failure are kept", (t - dt).max(0.0));
-    match solver.integrator {
+    let (cause, suggestion) = match solver.integrator {
         Method::Rk4 => (
             format!("the explicit step dt = {dt} s is beyond the stability limit of {mode}"),
             rk4_suggestion(dt, solver.end_time, &kept),
@@ -160,5 +160,17 @@ fn advice(model: &Model, t: f64, k: usize) -> (String, String) {
             format!("the implicit method's Newton iterations or error control failed on {mode}"),
             format!("tighten solver.rtol (now {}) or reduce solver.dt (now {dt} s); {kept}", solver.rtol),
         ),
+    };
+    if model.scene.environment.water {
+        return (cause, suggestion);
     }
+    // Without water nothing holds the ship up (no hydrostatics, Eqs. 53–58): it falls onto
+    // the line, which is what stiffens it (tests/cli.rs runs such a scene).
+    (
+        format!(
+            "{cause}; without water (environment.water = false) nothing holds the ship up: it falls freely and \
+             drops its weight onto the line"
+        ),
+        format!("{suggestion}; for a ship afloat, environment.water = true"),
+    )
 }

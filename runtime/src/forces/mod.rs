@@ -237,6 +237,9 @@ impl Forces {
         }
         if self.seabed {
             parts.extend(["seabed foundation", "anchor stick–slip friction"]);
+            if self.line_friction > 0.0 {
+                parts.push("line friction on the seabed");
+            }
         }
         parts.join(", ")
     }
@@ -388,6 +391,17 @@ mod tests {
         let mut loads = [Load::default()];
         f.loads(&[state], &mut loads);
         (loads[0], f.power())
+    }
+
+    #[test]
+    fn the_description_names_every_term_the_loads_include() {
+        let body = Body::rod(BodyKind::Cable { stage: 0 }, 2.0, 0.05, 10.0, [0.0, 0.0]);
+        let mut f = Forces::gravity_only(&Chain { bodies: vec![body] }, 9.81);
+        assert_eq!(f.description(), "gravity");
+        f.seabed = true;
+        assert!(!f.description().contains("line friction"), "{}", f.description());
+        f.line_friction = 0.5;
+        assert!(f.description().ends_with("anchor stick–slip friction, line friction on the seabed"));
     }
 
     #[test]

@@ -412,8 +412,24 @@ fn short_label(label: &str) -> String {
     label.split(' ').map(short).collect::<Vec<_>>().join(" ")
 }
 
+/// The rows of each grid point, in spec order, each labelled by its axes' values
+/// (`ship.mass=500000`): with sampling on top of a grid, a point's rows are its samples, whose
+/// statistics are that point's. `axes` are the axis paths; with none, one group of every row.
+pub fn by_grid_point<'a>(rows: &'a [SweepRow], axes: &[String]) -> Vec<(String, Vec<&'a SweepRow>)> {
+    let mut groups: Vec<(String, Vec<&SweepRow>)> = Vec::new();
+    for r in rows {
+        let at: Vec<(String, Value)> = r.inputs.0.iter().filter(|(p, _)| axes.contains(p)).cloned().collect();
+        let key = label(&at);
+        match groups.iter_mut().find(|(k, _)| *k == key) {
+            Some((_, group)) => group.push(r),
+            None => groups.push((key, vec![r])),
+        }
+    }
+    groups
+}
+
 /// Mean, standard deviation, 5 % and 95 % quantiles of an output over the rows that have it.
-pub fn statistics(rows: &[SweepRow], output: impl Fn(&RunSummary) -> Option<f64>) -> Option<[f64; 4]> {
+pub fn statistics(rows: &[&SweepRow], output: impl Fn(&RunSummary) -> Option<f64>) -> Option<[f64; 4]> {
     let mut v: Vec<f64> = rows.iter().filter_map(|r| r.summary.as_ref().and_then(&output)).collect();
     if v.len() < 2 {
         return None;
