@@ -947,10 +947,24 @@ impl Scene {
         let joined = |f: &Problem| {
             f.field.starts_with("cable.") || f.field.starts_with("initial.") || f.field == "chain.elements"
         };
-        if c.problems.iter().any(joined) {
+        // A tension that is not a positive number is refused with the range of tensions that
+        // lay, where the rest of the line lets it be computed ([`Scene::check_tension_layout`]).
+        let tension = match ini.layout() {
+            Some(Layout::Tension(_)) => Some("initial.horizontal_tension"),
+            Some(Layout::TopTension(_)) => Some("initial.top_tension"),
+            _ => None,
+        };
+        let bad_tension = c.problems.iter().position(|p| Some(p.field.as_str()) == tension);
+        if c.problems.iter().enumerate().any(|(i, f)| joined(f) && Some(i) != bad_tension) {
             return None;
         }
-        self.check_geometry(c)
+        let x = self.check_geometry(c);
+        if let Some(i) = bad_tension {
+            if c.problems[i + 1..].iter().any(|p| Some(p.field.as_str()) == tension) {
+                c.problems.remove(i);
+            }
+        }
+        x
     }
 
     /// The initial line exists (Section 3.1, Eqs. 30–35): chain on the seabed, the cable
