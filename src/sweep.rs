@@ -54,7 +54,7 @@ pub struct SweepArgs {
     resume: bool,
     /// A running shard saves its file (the rows done so far, for --resume) every SECONDS
     /// (0 to 1e6).
-    #[arg(long, value_name = "SECONDS", default_value_t = 10.0)]
+    #[arg(long, value_name = "SECONDS", allow_negative_numbers = true, default_value_t = 10.0)]
     checkpoint: f64,
     /// Print a Slurm job script (bash) that submits the sweep as a job array of --shards
     /// shards and a merge job after it; run it with `bash`.
@@ -101,7 +101,7 @@ pub struct SensitivityArgs {
     /// Scene TOML file; omitted: the embedded case 1.
     scene: Option<PathBuf>,
     /// Relative step h of the central differences, p·(1 ± h).
-    #[arg(long, default_value_t = sensitivity::DEFAULT_STEP)]
+    #[arg(long, allow_negative_numbers = true, default_value_t = sensitivity::DEFAULT_STEP)]
     step: f64,
     /// A sweep spec whose `[[uncertain]]` inputs give the parameter uncertainties: prints the
     /// first-order output band (sample it with `kanestop sweep SPEC`).
@@ -160,7 +160,7 @@ pub fn sweep(args: &SweepArgs) -> Result<Exit> {
     let id = SweepId::of(&spec, &plan, args.kernel.0.name());
     match shard {
         Some((s, from)) => run_shard(args, &id, &plan, s, from),
-        None if args.resume => resume_all(args, &id, &plan, &axis_paths(&spec)),
+        None if args.resume => resume_all(args, &id, &plan),
         None => {
             check_dir(&args.out, &sweep::FILES)?;
             let kernel = args.kernel.factory();
@@ -170,8 +170,7 @@ pub fn sweep(args: &SweepArgs) -> Result<Exit> {
                 bar.inc(1);
             })?;
             bar.finish_and_clear();
-            let axes = axis_paths(&spec);
-            let code = report(&rows, id.sampling, Some(&axes), &sweep::scene_files(&plan), &args.out)?;
+            let code = report(&rows, id.sampling, id.samples_per_point, &sweep::scene_files(&plan), &args.out)?;
             for f in heatmap::write(&spec, &rows, &heat_maps, &args.out)? {
                 println!("written   {}", f.display());
             }
@@ -180,13 +179,13 @@ pub fn sweep(args: &SweepArgs) -> Result<Exit> {
     }
 }
 
-/// Prints the table (and, with sampling, the statistics of each grid point, `axes` the axis
-/// paths when the spec is known), writes the files, prints the check summary; the exit code.
-/// The same for a local run and a merge.
+/// Prints the table (and, with sampling, the statistics of each grid point, its rows
+/// `per_point` consecutive ones; 0: not known), writes the files, prints the check summary;
+/// the exit code. The same for a local run and a merge.
 fn report(
     rows: &[SweepRow],
     sampling: bool,
-    axes: Option<&[String]>,
+    per_point: usize,
     scenes: &[(String, String)],
     out: &Path,
 ) -> Result<Exit> {
@@ -197,16 +196,18 @@ fn report(
             ("stopping distance (m)", &|s| s.stopping_distance, 1.0),
             ("peak tension (kN)", &|s| s.peak_tension.map(|p| p.tension), 1e-3),
         ];
-        let points = sweep::by_grid_point(rows, axes.unwrap_or_default());
-        if axes.is_none() {
+        if per_point == 0 {
             println!(
-                "statistics over all {} rows (a grid's points pooled: `sweep merge --spec SPEC` gives each point's)",
+                "statistics over all {} rows (shard files of before 2026-12-06 do not say the grid: if the sweep \
+                 has axes, their points are pooled)",
                 rows.len()
             );
         }
+        let points = sweep::by_grid_point(rows, per_point);
         for (point, group) in &points {
             if points.len() > 1 {
-                println!("point     {point} ({} samples)", group.len());
+                let stopped = group.iter().filter(|r| r.status == Status::Stopped).count();
+                println!("point     {point} ({} samples, {stopped} stopped)", group.len());
             }
             for (name, f, scale) in stats {
                 if let Some([mean, sd, p5, p95]) = sweep::statistics(group, f) {
@@ -290,7 +291,7 @@ fn run_shard(args: &SweepArgs, id: &SweepId, plan: &[PlannedRow], shard: Shard, 
 
 /// `sweep SPEC --resume` without a shard: completes every shard of the folder (by the shard
 /// count of its files; one shard when it has none), then merges them.
-fn resume_all(args: &SweepArgs, id: &SweepId, plan: &[PlannedRow], axes: &[String]) -> Result<Exit> {
+fn resume_all(args: &SweepArgs, id: &SweepId, plan: &[PlannedRow]) -> Result<Exit> {
     check_dir(&args.out, &sweep::FILES)?;
     let folder = args.out.join("shards");
     let files = if folder.is_dir() { shard_file::files_in(&args.out)? } else { Vec::new() };
@@ -313,12 +314,7 @@ fn resume_all(args: &SweepArgs, id: &SweepId, plan: &[PlannedRow], axes: &[Strin
     }
     // The rows kept were checked against the plan as each shard resumed (ShardRun::start).
     let merged = merge::merge(std::slice::from_ref(&args.out))?;
-    report(&merged.rows, merged.sampling, Some(axes), &merged.scenes, &args.out)
-}
-
-/// The paths of `spec`'s grid axes.
-fn axis_paths(spec: &sweep::Spec) -> Vec<String> {
-    spec.axes.iter().map(|a| a.path.clone()).collect()
+    report(&merged.rows, merged.sampling, merged.samples_per_point, &merged.scenes, &args.out)
 }
 
 /// `sweep merge DIR…`.
@@ -356,8 +352,7 @@ fn merge(m: &MergeArgs) -> Result<Exit> {
         merged.rows.len(),
         merged.plan_hash
     );
-    let axes = spec.as_ref().map(axis_paths);
-    let code = report(&merged.rows, merged.sampling, axes.as_deref(), &merged.scenes, &out)?;
+    let code = report(&merged.rows, merged.sampling, merged.samples_per_point, &merged.scenes, &out)?;
     if let Some(spec) = &spec {
         for f in heatmap::write(spec, &merged.rows, &heat_maps, &out)? {
             println!("written   {}", f.display());

@@ -102,6 +102,15 @@ fn exit_2_bad_arguments_scene_and_paths() {
         assert_eq!(out.status.code(), Some(2), "{flag}: {stdout}{stderr}");
         assert!(stderr.contains(field) && !stderr.contains("unexpected argument"), "{flag}: {stderr}");
     }
+    for args in [
+        vec!["report", "sensitivity", "--step", "-0.1"],
+        vec!["sweep", "scenes/sweeps/mass_speed.toml", "--checkpoint", "-1"],
+    ] {
+        let out = kanestop().args(&args).output().unwrap();
+        let (stdout, stderr) = text(&out);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {stdout}{stderr}");
+        assert!(stderr.contains(args[args.len() - 2]) && !stderr.contains("unexpected argument"), "{args:?}: {stderr}");
+    }
     // Output targets are checked before the run: nothing printed, nothing written.
     let file = dir.join("a-file");
     std::fs::write(&file, "").unwrap();

@@ -38,6 +38,13 @@ fn an_early_failure_from_a_state_far_from_static_blames_the_state() {
     let text = describe(&model, &runaway(0.25, Some(good)));
     assert!(text.contains("reduce solver.dt (try 1.3e-4 s)") && !text.contains("not static"), "{text}");
     assert!(!is_early(5.0, 0.002));
+    // Without water the ship's free fall is the residual (1 g beside the rod): the dry ship is
+    // named, not the geometry.
+    let mut dry = case1();
+    dry.scene.environment.water = false;
+    let fall = StaticResidual { line: (0.2, 17), top: (9.81, 44) };
+    let text = describe(&dry, &runaway(0.25, Some(fall)));
+    assert!(text.contains("nothing holds the ship up") && !text.contains("not static"), "{text}");
 }
 
 #[test]

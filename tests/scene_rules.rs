@@ -170,34 +170,40 @@ fn cli_refuses_the_h_l_60_scene_with_exit_2() {
 #[test]
 fn the_scene_reference_states_each_fixed_range_the_checks_apply() {
     let doc = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/scenes.md")).unwrap();
-    let fields = [
-        ("environment.gravity", 1e9),
-        ("environment.seabed_friction", 1e9),
-        ("environment.line_friction", 1e9),
-        ("environment.current_surface_speed", 1e9),
-        ("environment.current_exponent", 1e9),
-        ("ship.hinge_z", 1e9),
-        ("initial.ship_speed", 1e9),
-        ("solver.dt", 1e9),
-        ("solver.end_time", -1.0),
-        ("solver.max_energy_drift", 1e9),
-        ("solver.rtol", 1e9),
-        ("solver.atol", 1e9),
-    ];
-    for (field, bad) in fields {
-        let scene = case1().with_overrides(&[(field, toml::Value::Float(bad))]);
-        let problems = match scene.map(|s| s.problems()) {
-            Ok(p) => p,
-            Err(SceneError::Invalid { problems, .. }) => problems,
-            Err(e) => panic!("{field}: {e}"),
-        };
-        let p = problems.iter().find(|p| p.field == field).unwrap_or_else(|| panic!("{field}: {problems:?}"));
+    // Every field the checks hold to a range (`c.range("…"` in the scene's checks), but those
+    // whose bounds are other fields, which the reference states in words: ship.hinge_x on the
+    // hull, [−L_N/2, L_N/2], and solver.output_interval, at least dt.
+    let source = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/runtime/src/scene.rs")).unwrap();
+    let fields: Vec<&str> = source
+        .split("c.range(\"")
+        .skip(1)
+        .filter_map(|rest| rest.split('"').next())
+        .filter(|f| !["ship.hinge_x", "solver.output_interval"].contains(f))
+        .collect();
+    assert!(fields.len() >= 13, "{fields:?}");
+    for field in fields {
+        // Above the range, or below where it has no upper bound.
+        let refusal = [1e30, -1e30].into_iter().find_map(|bad| {
+            let mut s = case1();
+            let problems = if field == "meta.paper_stopping_time" {
+                s.meta.paper_stopping_time = Some(bad);
+                s.problems()
+            } else {
+                match s.with_overrides(&[(field, toml::Value::Float(bad))]) {
+                    Ok(s) => s.problems(),
+                    Err(SceneError::Invalid { problems, .. }) => problems,
+                    Err(e) => panic!("{field}: {e}"),
+                }
+            };
+            problems.into_iter().find(|p| p.field == field)
+        });
+        let p = refusal.unwrap_or_else(|| panic!("{field}: no value refused"));
         // "in (0, 1] s" → "in (0, 1]": the bounds as the refusal gives them.
         let end = p.expected.find([']', ')']).unwrap_or_else(|| panic!("{field}: {}", p.expected));
         let range = &p.expected[..=end];
         assert!(range.starts_with("in "), "{field}: {}", p.expected);
         let leaf = field.rsplit('.').next().unwrap();
-        let row = doc.lines().find(|l| l.starts_with(&format!("| `{leaf}` |"))).unwrap_or_else(|| panic!("{leaf}"));
+        let row = doc.lines().find(|l| l.starts_with(&format!("| `{leaf}`"))).unwrap_or_else(|| panic!("{leaf}"));
         let sentence = range.replacen("in ", "In ", 1);
         assert!(row.contains(range) || row.contains(&sentence), "docs/scenes.md's {leaf} lacks {range:?}: {row}");
     }

@@ -442,10 +442,12 @@ fn sampling_on_a_grid_gives_each_point_its_own_statistics() {
     let body = "[[axis]]\npath = \"ship.mass\"\nvalues = [4e5, 6e5]\n\
                 [sampling]\nmethod = \"latin-hypercube\"\nsamples = 4\nseed = 3\n\
                 [[uncertain]]\npath = \"anchor.mass\"\ndistribution = \"uniform\"\nlow = 36000.0\nhigh = 44000.0\n";
-    let o = sweep(&spec(&dir, body), &out);
+    let spec = spec(&dir, body);
+    let o = sweep(&spec, &out);
     let stdout = String::from_utf8_lossy(&o.stdout);
     assert_eq!(o.status.code(), Some(0), "{stdout}{}", String::from_utf8_lossy(&o.stderr));
     let rows = rows(&out);
+    let mut heads = Vec::new();
     for mass in [400000.0, 600000.0] {
         let times: Vec<f64> = rows
             .iter()
@@ -454,8 +456,22 @@ fn sampling_on_a_grid_gives_each_point_its_own_statistics() {
             .collect();
         assert_eq!(times.len(), 4);
         let mean = times.iter().sum::<f64>() / 4.0;
-        let head = format!("point     ship.mass={mass} (4 samples)\nstopping time (s)      mean {mean:.3}  sd ");
+        let head =
+            format!("point     ship.mass={mass} (4 samples, 4 stopped)\nstopping time (s)      mean {mean:.3}  sd ");
         assert!(stdout.contains(&head), "{head:?} not in\n{stdout}");
+        heads.push(head);
     }
     assert!(!stdout.contains("pooled"), "{stdout}");
+    // Run in two shards and merged without the spec: the shard files say the grid.
+    let sharded = dir.join("sharded");
+    for k in ["0/2", "1/2"] {
+        let o = kanestop()
+            .args(["sweep", spec.to_str().unwrap(), "--out", sharded.to_str().unwrap(), "--shard", k])
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    }
+    let o = kanestop().args(["sweep", "merge", sharded.to_str().unwrap()]).output().unwrap();
+    let merged = String::from_utf8_lossy(&o.stdout);
+    assert!(heads.iter().all(|h| merged.contains(h.as_str())) && !merged.contains("pooled"), "{merged}");
 }

@@ -74,7 +74,7 @@ pub struct Meta {
     /// One line for humans.
     pub description: String,
     /// The stopping time the paper reports for this scene (Table 3), s, as the paper's scene
-    /// files state it; absent for other scenes. Reports take Table 3's time from the paper's
+    /// files state it, in (0, ∞); absent for other scenes. Reports take Table 3's time from the paper's
     /// cases themselves, for a scene that is one of them (see above).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub paper_stopping_time: Option<f64>,
@@ -370,7 +370,8 @@ pub struct Solver {
     pub atol: f64,
     /// Simulated time after which the run ends in any case, s, in (0, ∞).
     pub end_time: f64,
-    /// Interval between recorded samples, s (rounded to a whole number of steps).
+    /// Interval between recorded samples, s (rounded to a whole number of steps), at least
+    /// `dt`.
     pub output_interval: f64,
     /// End the run when the ship's surge speed first reaches zero.
     pub stop_when_ship_stops: bool,

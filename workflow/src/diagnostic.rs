@@ -26,8 +26,13 @@ pub fn describe(model: &Model, failure: &Failure) -> String {
                 FailureKind::ForceSpike { swinging, .. } => *swinging,
                 _ => failure.body,
             };
+            // Without water the ship falls freely from the start: its residual is that fall,
+            // not a geometry to fix ([`advice`] says so).
             let (cause, suggestion) = match failure.initial_residual {
-                Some(r) if r.line.0.max(r.top.0) > NOT_STATIC * model.scene.environment.gravity => {
+                Some(r)
+                    if model.scene.environment.water
+                        && r.line.0.max(r.top.0) > NOT_STATIC * model.scene.environment.gravity =>
+                {
                     not_static(model, failure.t, swinging, &r)
                 }
                 _ => advice(model, failure.t, swinging),
@@ -168,9 +173,9 @@ fn advice(model: &Model, t: f64, k: usize) -> (String, String) {
     // the line, which is what stiffens it (tests/cli.rs runs such a scene).
     (
         format!(
-            "{cause}; without water (environment.water = false) nothing holds the ship up: it falls freely and \
-             drops its weight onto the line"
+            "without water (environment.water = false) nothing holds the ship up: it falls freely and drops its \
+             weight onto the line; then {cause}"
         ),
-        format!("{suggestion}; for a ship afloat, environment.water = true"),
+        format!("for a ship afloat, environment.water = true; as it is, {suggestion}"),
     )
 }

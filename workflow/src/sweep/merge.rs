@@ -17,6 +17,8 @@ pub struct Merged {
     pub name: String,
     /// Whether it samples uncertain inputs.
     pub sampling: bool,
+    /// Rows per grid point (0: not known, a shard file of before 2026-12-06).
+    pub samples_per_point: usize,
     /// Every row, in spec order.
     pub rows: Vec<SweepRow>,
     /// Every row's scene file (row name, text), for [`super::write()`].
@@ -145,6 +147,7 @@ pub fn merge(paths: &[PathBuf]) -> Result<Merged> {
         plan_hash: first.plan_hash.clone(),
         name: first.sweep.clone(),
         sampling: first.sampling,
+        samples_per_point: first.samples_per_point,
         rows: done.iter().map(|r| r.row.clone()).collect(),
         scenes: done.iter().filter_map(|r| Some((r.row.name.clone(), r.scene.clone()?))).collect(),
         files,

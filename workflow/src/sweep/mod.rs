@@ -412,25 +412,29 @@ fn short_label(label: &str) -> String {
     label.split(' ').map(short).collect::<Vec<_>>().join(" ")
 }
 
-/// The rows of each grid point, in spec order, each labelled by its axes' values
-/// (`ship.mass=500000`): with sampling on top of a grid, a point's rows are its samples, whose
-/// statistics are that point's. `axes` are the axis paths; with none, one group of every row.
-pub fn by_grid_point<'a>(rows: &'a [SweepRow], axes: &[String]) -> Vec<(String, Vec<&'a SweepRow>)> {
-    let mut groups: Vec<(String, Vec<&SweepRow>)> = Vec::new();
-    for r in rows {
-        let at: Vec<(String, Value)> = r.inputs.0.iter().filter(|(p, _)| axes.contains(p)).cloned().collect();
-        let key = label(&at);
-        match groups.iter_mut().find(|(k, _)| *k == key) {
-            Some((_, group)) => group.push(r),
-            None => groups.push((key, vec![r])),
-        }
+/// The rows of each grid point, in spec order: with sampling on top of a grid, the points'
+/// rows are consecutive, `per_point` (the samples) each, and a point's statistics are over its
+/// own samples. Each group is labelled by the inputs all its rows share, the point's axis
+/// values (`ship.mass=500000`). `per_point` 0 (not known) or the row count: one group.
+pub fn by_grid_point(rows: &[SweepRow], per_point: usize) -> Vec<(String, &[SweepRow])> {
+    if per_point == 0 || per_point >= rows.len() {
+        return vec![(String::new(), rows)];
     }
-    groups
+    rows.chunks(per_point)
+        .map(|group| {
+            let shared: Vec<(String, Value)> =
+                group[0].inputs.0.iter().filter(|i| group.iter().all(|r| r.inputs.0.contains(i))).cloned().collect();
+            (label(&shared), group)
+        })
+        .collect()
 }
 
-/// Mean, standard deviation, 5 % and 95 % quantiles of an output over the rows that have it.
-pub fn statistics(rows: &[&SweepRow], output: impl Fn(&RunSummary) -> Option<f64>) -> Option<[f64; 4]> {
-    let mut v: Vec<f64> = rows.iter().filter_map(|r| r.summary.as_ref().and_then(&output)).collect();
+/// Mean, standard deviation, 5 % and 95 % quantiles of an output over the rows that have it
+/// and ran to their end (stopped, or at the end time): a failed run's partial peak is no
+/// sample of the output.
+pub fn statistics(rows: &[SweepRow], output: impl Fn(&RunSummary) -> Option<f64>) -> Option<[f64; 4]> {
+    let ran = rows.iter().filter(|r| matches!(r.status, Status::Stopped | Status::EndTime));
+    let mut v: Vec<f64> = ran.filter_map(|r| r.summary.as_ref().and_then(&output)).collect();
     if v.len() < 2 {
         return None;
     }

@@ -33,6 +33,8 @@ pub struct SweepId {
     pub rows: usize,
     /// Whether it samples uncertain inputs (the summary then gives statistics).
     pub sampling: bool,
+    /// Rows per grid point, consecutive in spec order: the samples (1 without sampling).
+    pub samples_per_point: usize,
     /// The spec file it was planned from (for messages only: not part of the hash).
     pub spec: PathBuf,
 }
@@ -45,6 +47,7 @@ impl SweepId {
             name: spec.name.clone(),
             rows: plan.len(),
             sampling: spec.sampling.is_some(),
+            samples_per_point: spec.sampling.map_or(1, |s| s.1),
             spec: spec.file.clone(),
         }
     }
@@ -111,6 +114,11 @@ pub struct ShardFile {
     pub rows_total: usize,
     /// Whether the sweep samples uncertain inputs.
     pub sampling: bool,
+    /// Rows per grid point, consecutive in spec order (the samples; 1 without sampling), so a
+    /// merge gives each point's statistics without the spec; 0 in a file written before
+    /// 2026-12-06 (its statistics are then over all rows).
+    #[serde(default)]
+    pub samples_per_point: usize,
     /// True once every row of the shard is done; false while it runs (or if it died).
     pub complete: bool,
     /// The indices of every row of the shard (done or not).
@@ -202,6 +210,7 @@ impl ShardRun {
             shard,
             rows_total: id.rows,
             sampling: id.sampling,
+            samples_per_point: id.samples_per_point,
             complete: false,
             row_indices: shard.rows(id.rows),
             rows: Vec::new(),
