@@ -49,8 +49,9 @@ impl RunFiles<'_> {
             // and a plot written over that file would replace it: both refused, the paths
             // compared as the file system resolves them.
             let files = self.out.into_iter().flat_map(|out| [out.to_path_buf(), history::units_path(out)]);
+            let d = output::resolved(dir).with_context(|| format!("cannot resolve --plot {}", dir.display()))?;
             for file in files {
-                let (Ok(f), Ok(d)) = (output::resolved(&file), output::resolved(dir)) else { continue };
+                let Ok(f) = output::resolved(&file) else { continue };
                 if d.starts_with(&f) {
                     anyhow::bail!(
                         "--plot {} is at or under {}, a file --out writes: a file cannot hold a folder",

@@ -74,8 +74,8 @@ pub struct Meta {
     /// One line for humans.
     pub description: String,
     /// The stopping time the paper reports for this scene (Table 3), s, as the paper's scene
-    /// files state it, in (0, ∞); absent for other scenes. Reports take Table 3's time from the paper's
-    /// cases themselves, for a scene that is one of them (see above).
+    /// files state it, in (0, ∞); absent for other scenes. Reports take Table 3's time from the
+    /// paper's cases themselves, for a scene that is one of them (see above).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub paper_stopping_time: Option<f64>,
 }
@@ -376,9 +376,9 @@ pub struct Solver {
     /// End the run when the ship's surge speed first reaches zero.
     pub stop_when_ship_stops: bool,
     /// Relative energy-balance drift |E − E_0|/K at which a run is stopped as unstable,
-    /// dimensionless; K is the largest kinetic energy before the step checked (the entrained water's included),
-    /// the energy in play (docs/model-choices.md; before 2026-12-06 it was E_0, whose potential
-    /// energy is measured from the seabed). In (0, 10].
+    /// dimensionless; K is the largest kinetic energy before the step checked (the entrained
+    /// water's included), the energy in play (docs/model-choices.md; before 2026-12-06 it was
+    /// E_0, whose potential energy is measured from the seabed). In (0, 10].
     pub max_energy_drift: f64,
 }
 

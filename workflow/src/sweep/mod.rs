@@ -415,15 +415,19 @@ fn short_label(label: &str) -> String {
 /// The rows of each grid point, in spec order: with sampling on top of a grid, the points'
 /// rows are consecutive, `per_point` (the samples) each, and a point's statistics are over its
 /// own samples. Each group is labelled by the inputs all its rows share, the point's axis
-/// values (`ship.mass=500000`). `per_point` 0 (not known) or the row count: one group.
+/// values (`ship.mass=500000`; every row lists its inputs in the same order, so they are
+/// compared by position, O(rows)). `per_point` 0 (not known) or the row count: one group.
 pub fn by_grid_point(rows: &[SweepRow], per_point: usize) -> Vec<(String, &[SweepRow])> {
     if per_point == 0 || per_point >= rows.len() {
         return vec![(String::new(), rows)];
     }
     rows.chunks(per_point)
         .map(|group| {
-            let shared: Vec<(String, Value)> =
-                group[0].inputs.0.iter().filter(|i| group.iter().all(|r| r.inputs.0.contains(i))).cloned().collect();
+            let first = &group[0].inputs.0;
+            let shared: Vec<(String, Value)> = (0..first.len())
+                .filter(|&k| group.iter().all(|r| r.inputs.0.get(k) == Some(&first[k])))
+                .map(|k| first[k].clone())
+                .collect();
             (label(&shared), group)
         })
         .collect()
