@@ -2,7 +2,7 @@
 //! still impossible; each rule is refused naming the field and what it must be.
 
 use kanestop_runtime::paper::DEFAULT_SCENE;
-use kanestop_runtime::scene::{Scene, SceneError};
+use kanestop_runtime::scene::{fmt_value, Scene, SceneError};
 
 fn case1() -> Scene {
     Scene::from_toml(DEFAULT_SCENE, "case01.toml").unwrap()
@@ -148,6 +148,37 @@ fn an_output_interval_below_the_step_names_the_step() {
     let mut s = case1();
     s.solver.dt = 0.5;
     assert_refused(&s, "solver.output_interval", "at least solver.dt = 0.5 s: raise it, or take a smaller step");
+}
+
+/// The two ranges bounded by other fields, which docs/scenes.md states in words: the hinge on
+/// the hull, [−L_N/2, L_N/2], both ends allowed, and the output interval at least the step.
+/// The refusal and the reference give the same bounds.
+#[test]
+fn the_ranges_bounded_by_other_fields_are_the_ones_the_reference_states() {
+    let doc = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/scenes.md")).unwrap();
+    let row = |leaf: &str| doc.lines().find(|l| l.starts_with(&format!("| `{leaf}`"))).unwrap().to_string();
+    assert!(row("hinge_x").contains("on the hull: in [−L_N/2, L_N/2]"), "{}", row("hinge_x"));
+    assert!(row("output_interval").contains("at least `dt`"), "{}", row("output_interval"));
+
+    let half = case1().ship.length / 2.0;
+    for at_the_end in [-half, half] {
+        let mut s = case1();
+        s.ship.hinge_x = at_the_end;
+        assert!(!s.problems().iter().any(|p| p.field == "ship.hinge_x"), "hinge_x = {at_the_end}");
+    }
+    let range = format!("in [{}, {}] m (on the hull)", fmt_value(-half), fmt_value(half));
+    for beyond in [-half * (1.0 + 1e-9), half * (1.0 + 1e-9)] {
+        let mut s = case1();
+        s.ship.hinge_x = beyond;
+        assert_refused(&s, "ship.hinge_x", &range);
+    }
+
+    // The interval may equal the step; a hair below it is refused with the step named.
+    let mut s = case1();
+    s.solver.output_interval = s.solver.dt;
+    assert!(!s.problems().iter().any(|p| p.field == "solver.output_interval"));
+    s.solver.output_interval = s.solver.dt * (1.0 - 1e-9);
+    assert_refused(&s, "solver.output_interval", &format!("at least solver.dt = {} s", fmt_value(s.solver.dt)));
 }
 
 /// The command line refuses an impossible geometry with exit 2, naming the field.
