@@ -83,12 +83,23 @@ fn model_choices_figures_are_what_the_code_computes() {
     let residual =
         kanestop_runtime::simulate::static_residual(&model, Box::new(GeneratedKernel::new(&model.chain).unwrap()))
             .unwrap();
+    // The curve the rigid chords are laid on, longer than the cable (L' ≥ L_c).
+    let (laid, _) = kanestop_runtime::catenary::lay_elements(
+        &scene.cable_element_lengths(),
+        scene.initial.horizontal_projection.expect("case 1 gives x_L"),
+        scene.initial.vertical_projection,
+    )
+    .unwrap();
+    let excess = laid.length - scene.cable_length();
     let drifts: Vec<f64> = CASES.iter().map(|c| c.scene().solver.max_energy_drift).collect();
     assert!(drifts.iter().all(|&d| d == drifts[0]), "one energy-drift limit for the paper scenes: {drifts:?}");
     assert_quoted(
         "docs/model-choices.md",
         &[
             format!("for case 1 it is [{lo:.6}, {hi:.6}] m"),
+            format!("L' − L_c is {:.0} mm, {:.2} % of L_c", 1e3 * excess, 100.0 * excess / scene.cable_length()),
+            format!("the {:.0} mm the chords add", 1e3 * excess),
+            format!("radius of curvature a = {:.2} m", laid.a),
             format!(
                 "about {:.0} mm into the seabed for the {} m chain and {:.0} mm for the cable",
                 embedment(scene.chain.radius, scene.chain.mass_per_length),

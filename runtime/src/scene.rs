@@ -188,9 +188,11 @@ pub struct ChainSpec {
     /// Mass per metre of the 2D element, kg/m. With water on, must exceed ρ π R_CE² (the chain
     /// sinks).
     pub mass_per_length: f64,
-    /// Proof load, N (Table 1). At most `break_load`.
+    /// Proof load, N (Table 1: one chain's, checked against the 2D element's tension, which
+    /// is the two chains': conservative by 2, as the paper checks; docs/model-choices.md). At
+    /// most `break_load`.
     pub proof_load: f64,
-    /// Break load, N (Table 1).
+    /// Break load, N (Table 1: one chain's, as for `proof_load`).
     pub break_load: f64,
 }
 
@@ -203,7 +205,8 @@ pub struct Cable {
     /// m_RU-based mass per metre of the 2D element, kg/m. With water on, must exceed ρ π R_RE²
     /// (the cable sinks: w_c > 0 in Eqs. 30–31).
     pub mass_per_length: f64,
-    /// Break load, N.
+    /// Break load, N (the paper's 2520 kN, checked against the 2D element's tension, which is
+    /// the cable's two ends': conservative by 2, as for the chain's loads).
     pub break_load: f64,
     /// The stages from the chain toward the ship (`[[cable.stages]]` tables; at least one:
     /// an absent list is reported by the range check, not the parser; at least 2 elements
