@@ -4,10 +4,12 @@
 
 use std::path::{Path, PathBuf};
 
+use kanestop_chain::BodyKind;
 use kanestop_runtime::forces::WORK_TERMS;
 use kanestop_runtime::model::{LoadLimits, Model};
-use kanestop_runtime::simulate::RunResult;
+use kanestop_runtime::simulate::{RunResult, Sample, Stop};
 use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 use crate::output::write_atomically;
 use crate::{Error, Result};
@@ -45,6 +47,40 @@ fn look(i: usize) -> (RGBColor, Pattern) {
     (PALETTE[i % PALETTE.len()], pattern)
 }
 
+/// Type sizes, px as drawn. A chart is about 1 000 px wide and read at about 16 cm in a
+/// report, so 14 px is about 8 pt there.
+const TITLE_FONT: f64 = 22.0;
+/// A panel's own title.
+const PANEL_TITLE_FONT: f64 = 18.0;
+/// Axis descriptions.
+const AXIS_FONT: f64 = 15.0;
+/// Tick labels and legend entries.
+const TICK_FONT: f64 = 14.0;
+
+/// A sans-serif font drawn at `px`: plotters' SVG backend writes a size s as s / 1.24 px.
+pub(crate) fn sans(px: f64) -> (&'static str, f64) {
+    ("sans-serif", px * 1.24)
+}
+
+/// A point marked on a curve, in the curve's colour.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Mark {
+    /// Where a run failed (its last good state): a cross.
+    Failure,
+    /// The paper's stopping time (Table 3): a triangle on the time axis.
+    Paper,
+}
+
+impl Mark {
+    /// What the mark stands for, as its legend entry says.
+    fn label(self) -> &'static str {
+        match self {
+            Mark::Failure => "run failed here",
+            Mark::Paper => "paper's stopping time (Table 3)",
+        }
+    }
+}
+
 /// One named curve; a non-finite point breaks the line.
 struct Curve {
     label: String,
@@ -56,11 +92,18 @@ struct Curve {
     /// A reference line the axis always takes in (the limits of a utilisation chart);
     /// otherwise one far above the curves is left out of the axis and named in the legend.
     in_view: bool,
+    /// Points marked on the curve.
+    marks: Vec<((f64, f64), Mark)>,
 }
 
 impl Curve {
     fn new(label: impl Into<String>, look: usize, points: Vec<(f64, f64)>) -> Self {
-        Curve { label: label.into(), points, look, reference: false, in_view: false }
+        Curve { label: label.into(), points, look, reference: false, in_view: false, marks: Vec::new() }
+    }
+
+    /// A load limit: thin, dashed, `in_view` as above.
+    fn limit(label: impl Into<String>, look: usize, points: Vec<(f64, f64)>, in_view: bool) -> Self {
+        Curve { reference: true, in_view, ..Curve::new(label, look, points) }
     }
 
     /// The stretches of the curve with finite points inside `y` (a reference line is cut
@@ -77,6 +120,157 @@ impl Curve {
         }
         pieces.retain(|p| !p.is_empty());
         pieces
+    }
+
+    /// How it is drawn: its colour, its pattern (a limit's dashed) and its width.
+    fn stroke(&self) -> (RGBColor, Pattern, u32) {
+        let (color, pattern) = look(self.look);
+        if self.reference {
+            (color, Pattern::Dashed, 1)
+        } else {
+            (color, pattern, 2)
+        }
+    }
+
+    /// Its legend text on the axis `y`: none for a curve with no point to draw; a limit above
+    /// the axis says so.
+    fn legend_label(&self, y: (f64, f64)) -> Option<String> {
+        let finite = self.points.iter().filter(|(a, b)| a.is_finite() && b.is_finite()).count();
+        if finite == 0 || self.label.is_empty() {
+            return None;
+        }
+        let shown: usize = self.pieces(y).iter().map(Vec::len).sum();
+        Some(match (self.reference, shown) {
+            (true, 0) => format!("{} (above the axis)", self.label),
+            (true, s) if s < finite => format!("{} (partly above the axis)", self.label),
+            _ => self.label.clone(),
+        })
+    }
+}
+
+/// What a legend entry shows beside its text.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Swatch {
+    Line(RGBColor, Pattern, u32),
+    Mark(Mark),
+}
+
+/// A legend entry: a swatch and its text (wrapped to lines of [`LEGEND_CHARS`]).
+#[derive(Clone, Debug, PartialEq)]
+struct Entry {
+    label: String,
+    swatch: Swatch,
+}
+
+/// The longest line of a legend entry, characters; a longer text wraps at a space.
+const LEGEND_CHARS: usize = 44;
+/// A legend line's height, px.
+const LEGEND_LINE: u32 = TICK_FONT as u32 + 6;
+
+/// The legend of `curves` drawn on the axis `y`: one entry per label (the first curve's
+/// look), then one per kind of mark.
+fn entries(curves: &[Curve], y: (f64, f64)) -> Vec<Entry> {
+    let mut out: Vec<Entry> = Vec::new();
+    for c in curves {
+        if let Some(label) = c.legend_label(y) {
+            if !out.iter().any(|e| e.label == label) {
+                let (color, pattern, width) = c.stroke();
+                out.push(Entry { label, swatch: Swatch::Line(color, pattern, width) });
+            }
+        }
+    }
+    for mark in [Mark::Failure, Mark::Paper] {
+        if curves.iter().any(|c| c.marks.iter().any(|m| m.1 == mark)) {
+            out.push(Entry { label: mark.label().to_string(), swatch: Swatch::Mark(mark) });
+        }
+    }
+    out
+}
+
+/// `text` in lines of at most [`LEGEND_CHARS`] characters, broken at spaces.
+fn wrap(text: &str) -> Vec<String> {
+    let mut lines: Vec<String> = Vec::new();
+    for word in text.split(' ') {
+        match lines.last_mut() {
+            Some(line) if line.chars().count() + 1 + word.chars().count() <= LEGEND_CHARS => {
+                line.push(' ');
+                line.push_str(word);
+            }
+            _ => lines.push(word.to_string()),
+        }
+    }
+    lines
+}
+
+/// The legend's layout for a column of `height` px: (columns, column width px, rows per
+/// column, in lines). Text width is estimated at 0.6 em a character (sans-serif, generous).
+fn legend_layout(entries: &[Entry], height: u32) -> (usize, u32, usize) {
+    let widest = entries.iter().flat_map(|e| wrap(&e.label)).map(|l| l.chars().count()).max().unwrap_or(0);
+    let width = 48 + (0.6 * TICK_FONT * widest as f64).ceil() as u32;
+    let lines: usize = entries.iter().map(|e| wrap(&e.label).len()).sum();
+    let per_column = ((height.saturating_sub(20)) / LEGEND_LINE).max(1) as usize;
+    (lines.div_ceil(per_column).max(1), width, per_column)
+}
+
+/// The legend's width, px, beside a plot `height` px tall (none without entries).
+fn legend_width(entries: &[Entry], height: u32) -> u32 {
+    if entries.is_empty() {
+        return 0;
+    }
+    let (columns, width, _) = legend_layout(entries, height);
+    columns as u32 * width + 12
+}
+
+/// Draws `entries` in `area`, top down, in as many columns as its height needs.
+fn draw_legend<DB: DrawingBackend>(
+    area: &DrawingArea<DB, plotters::coord::Shift>,
+    entries: &[Entry],
+) -> Result<(), String> {
+    let err = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
+    let (_, height) = area.dim_in_pixel();
+    let (_, width, per_column) = legend_layout(entries, height);
+    let text = sans(TICK_FONT).into_font().color(&BLACK).pos(Pos::new(HPos::Left, VPos::Center));
+    let (mut column, mut row) = (0usize, 0usize);
+    for entry in entries {
+        let lines = wrap(&entry.label);
+        if row > 0 && row + lines.len() > per_column {
+            (column, row) = (column + 1, 0);
+        }
+        let x = 4 + (column as u32 * width) as i32;
+        let y = 20 + (row as u32 * LEGEND_LINE) as i32 + LEGEND_LINE as i32 / 2;
+        match entry.swatch {
+            Swatch::Line(color, pattern, width) => {
+                let style = ShapeStyle { color: color.to_rgba(), filled: false, stroke_width: width };
+                let dashes: &[(i32, i32)] = match pattern {
+                    Pattern::Solid => &[(0, 28)],
+                    Pattern::Dashed => &[(0, 10), (15, 28)],
+                    Pattern::Dotted => &[(0, 3), (8, 11), (16, 19), (24, 27)],
+                };
+                for &(a, b) in dashes {
+                    area.draw(&PathElement::new(vec![(x + a, y), (x + b, y)], style)).map_err(err)?;
+                }
+            }
+            Swatch::Mark(mark) => draw_mark(area, (x + 14, y), mark, RGBColor(70, 70, 70)).map_err(err)?,
+        }
+        for (i, line) in lines.iter().enumerate() {
+            area.draw(&Text::new(line.clone(), (x + 38, y + (i as u32 * LEGEND_LINE) as i32), text.clone()))
+                .map_err(err)?;
+        }
+        row += lines.len();
+    }
+    Ok(())
+}
+
+/// A mark at pixel `at`.
+fn draw_mark<DB: DrawingBackend>(
+    area: &DrawingArea<DB, plotters::coord::Shift>,
+    at: (i32, i32),
+    mark: Mark,
+    color: RGBColor,
+) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+    match mark {
+        Mark::Failure => area.draw(&Cross::new(at, 6, color.stroke_width(3))),
+        Mark::Paper => area.draw(&TriangleMarker::new(at, 7, color.filled())),
     }
 }
 
@@ -132,22 +326,36 @@ fn emptiest_corner(points: &[(f64, f64)], (x0, x1): (f64, f64), (y0, y1): (f64, 
     corners.into_iter().min_by_key(|&(_, r, u)| count(r, u)).map(|c| c.0).unwrap_or(SeriesLabelPosition::UpperRight)
 }
 
-/// Chart size, pixels.
+/// Size of a chart's plot, pixels (its legend is beside it).
 const SIZE: (u32, u32) = (900, 540);
 
-/// A chart of one panel as SVG text.
-fn chart(title: &str, x_label: &str, y_label: &str, curves: &[Curve], from_zero: bool) -> Result<String, String> {
+/// A chart of one panel, its legend beside it, as SVG text; `regions` names stretches of
+/// the x axis (the line's members along a joint axis).
+fn chart(
+    title: &str,
+    x_label: &str,
+    y_label: &str,
+    curves: &[Curve],
+    from_zero: bool,
+    regions: &[(String, f64, f64)],
+) -> Result<String, String> {
+    let (_, y) = bounds(curves, from_zero);
+    let legend = entries(curves, y);
+    let side = legend_width(&legend, SIZE.1);
     let mut svg = String::new();
     {
-        let root = SVGBackend::with_string(&mut svg, SIZE).into_drawing_area();
+        let root = SVGBackend::with_string(&mut svg, (SIZE.0 + side, SIZE.1)).into_drawing_area();
         root.fill(&WHITE).map_err(|e| e.to_string())?;
-        panel(&root, title, x_label, y_label, curves, 22, from_zero)?;
+        let (plot, beside) = root.split_horizontally(SIZE.0);
+        panel(&plot, title, TITLE_FONT, x_label, y_label, curves, from_zero, regions)?;
+        draw_legend(&beside.margin(30, 0, 0, 0), &legend)?;
         root.present().map_err(|e| e.to_string())?;
     }
     Ok(svg)
 }
 
-/// Panels stacked or in a grid, each `(title, curves)`, sharing the axis labels, as SVG.
+/// Panels stacked or in a grid, each `(title, curves)`, sharing the axis labels and one
+/// legend beside them (a label's first look), as SVG.
 fn panels(
     title: &str,
     x_label: &str,
@@ -158,104 +366,104 @@ fn panels(
     let columns = columns.clamp(1, panels.len().max(1));
     let rows = panels.len().div_ceil(columns).max(1);
     let (w, h) = (SIZE.0.max(450 * columns as u32), if rows == 1 { SIZE.1 } else { 300 * rows as u32 + 40 });
+    let mut legend: Vec<Entry> = Vec::new();
+    for (_, curves) in panels {
+        for e in entries(curves, bounds(curves, false).1) {
+            if !legend.iter().any(|l| l.label == e.label) {
+                legend.push(e);
+            }
+        }
+    }
+    // Marks last, as in one panel's legend.
+    legend.sort_by_key(|e| matches!(e.swatch, Swatch::Mark(_)));
+    let side = legend_width(&legend, h.min(SIZE.1 * 2));
     let mut svg = String::new();
     {
-        let root = SVGBackend::with_string(&mut svg, (w, h)).into_drawing_area();
+        let root = SVGBackend::with_string(&mut svg, (w + side, h)).into_drawing_area();
         root.fill(&WHITE).map_err(|e| e.to_string())?;
-        let root = root.titled(title, ("sans-serif", 22)).map_err(|e| e.to_string())?;
-        let areas = root.split_evenly((rows, columns));
+        let root = root.titled(title, sans(TITLE_FONT)).map_err(|e| e.to_string())?;
+        let (grid, beside) = root.split_horizontally(w);
+        let areas = grid.split_evenly((rows, columns));
         for (area, (sub, curves)) in areas.iter().zip(panels) {
-            panel(area, sub, x_label, y_label, curves, 16, false)?;
+            panel(area, sub, PANEL_TITLE_FONT, x_label, y_label, curves, false, &[])?;
         }
+        draw_legend(&beside, &legend)?;
         root.present().map_err(|e| e.to_string())?;
     }
     Ok(svg)
 }
 
-/// Draws one panel: axes with a light grid, the curves, a legend in the upper right.
+/// Draws one panel: axes with a light grid, the regions' bounds and names, the curves and
+/// their marks (the legend is drawn beside the panel, by the caller).
+#[allow(clippy::too_many_arguments)]
 fn panel<DB: DrawingBackend>(
     area: &DrawingArea<DB, plotters::coord::Shift>,
     title: &str,
+    title_size: f64,
     x_label: &str,
     y_label: &str,
     curves: &[Curve],
-    title_size: u32,
     from_zero: bool,
+    regions: &[(String, f64, f64)],
 ) -> Result<(), String> {
     let err = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
     let ((x0, x1), (y0, y1)) = bounds(curves, from_zero);
     let mut c = ChartBuilder::on(area)
-        .caption(title, ("sans-serif", title_size))
+        .caption(title, sans(title_size))
         .margin(12)
-        .x_label_area_size(44)
-        .y_label_area_size(70)
+        .x_label_area_size(50)
+        .y_label_area_size(78)
         .build_cartesian_2d(x0..x1, y0..y1)
         .map_err(err)?;
     c.configure_mesh()
         .x_desc(x_label)
         .y_desc(y_label)
+        .label_style(sans(TICK_FONT))
+        .axis_desc_style(sans(AXIS_FONT))
         .light_line_style(RGBColor(244, 244, 244))
         .bold_line_style(RGBColor(220, 220, 220))
         .x_label_formatter(&|v| tidy(*v))
         .y_label_formatter(&|v| tidy(*v))
         .draw()
         .map_err(err)?;
-    let mut labelled = false;
-    for curve in curves {
-        let (color, pattern) = look(curve.look);
-        let pattern = if curve.reference { Pattern::Dashed } else { pattern };
-        let width = if curve.reference { 1 } else { 2 };
-        let style = ShapeStyle { color: color.to_rgba(), filled: false, stroke_width: width };
-        let pieces = curve.pieces((y0, y1));
-        let shown: usize = pieces.iter().map(Vec::len).sum();
-        let finite = curve.points.iter().filter(|(a, b)| a.is_finite() && b.is_finite()).count();
-        let label = match (curve.reference, shown) {
-            (true, 0) if finite > 0 => format!("{} (above the axis)", curve.label),
-            (true, s) if s < finite => format!("{} (partly above the axis)", curve.label),
-            _ => curve.label.clone(),
-        };
-        if finite == 0 {
-            continue;
+    // The members along the line: a grey bound between two, the name at the top of each
+    // wide enough to hold it.
+    let grey = RGBColor(150, 150, 150);
+    let name = sans(TICK_FONT).into_font().color(&grey).pos(Pos::new(HPos::Center, VPos::Top));
+    for (i, (label, from, to)) in regions.iter().enumerate() {
+        if i > 0 {
+            c.draw_series(DashedLineSeries::new([(*from, y0), (*from, y1)], 4, 4, grey.stroke_width(1)))
+                .map_err(err)?;
         }
-        let mut first = true;
-        for piece in pieces.into_iter().chain(shown.eq(&0).then(Vec::new)) {
-            let series = match pattern {
+        let (a, b) = (c.backend_coord(&(*from, y1)), c.backend_coord(&(*to, y1)));
+        if (b.0 - a.0) as f64 > 0.6 * TICK_FONT * label.chars().count() as f64 + 4.0 {
+            let at = c.backend_coord(&(0.5 * (from + to), y1));
+            area.draw(&Text::new(
+                label.clone(),
+                (at.0 - area.get_base_pixel().0, at.1 - area.get_base_pixel().1 + 4),
+                name.clone(),
+            ))
+            .map_err(err)?;
+        }
+    }
+    for curve in curves {
+        let (color, pattern, width) = curve.stroke();
+        let style = ShapeStyle { color: color.to_rgba(), filled: false, stroke_width: width };
+        for piece in curve.pieces((y0, y1)) {
+            match pattern {
                 Pattern::Solid => c.draw_series(LineSeries::new(piece, style)),
                 Pattern::Dashed => c.draw_series(DashedLineSeries::new(piece, 8, 5, style)),
                 Pattern::Dotted => c.draw_series(DashedLineSeries::new(piece, 2, 4, style)),
             }
             .map_err(err)?;
-            if std::mem::take(&mut first) && !label.is_empty() {
-                labelled = true;
-                series.label(label.clone());
-                match pattern {
-                    Pattern::Solid => series.legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], style)),
-                    Pattern::Dashed => series.legend(move |(x, y)| {
-                        EmptyElement::at((x, y))
-                            + PathElement::new(vec![(0, 0), (8, 0)], style)
-                            + PathElement::new(vec![(12, 0), (20, 0)], style)
-                    }),
-                    Pattern::Dotted => series.legend(move |(x, y)| {
-                        EmptyElement::at((x, y))
-                            + PathElement::new(vec![(0, 0), (3, 0)], style)
-                            + PathElement::new(vec![(8, 0), (11, 0)], style)
-                            + PathElement::new(vec![(16, 0), (19, 0)], style)
-                    }),
-                };
+        }
+        for &(at, mark) in &curve.marks {
+            if at.0.is_finite() && at.1.is_finite() && (x0..=x1).contains(&at.0) && (y0..=y1).contains(&at.1) {
+                let p = c.backend_coord(&at);
+                let base = area.get_base_pixel();
+                draw_mark(area, (p.0 - base.0, p.1 - base.1), mark, color).map_err(err)?;
             }
         }
-    }
-    if labelled {
-        c.configure_series_labels()
-            .position(emptiest_corner(
-                &curves.iter().flat_map(|c| c.points.clone()).collect::<Vec<_>>(),
-                (x0, x1),
-                (y0, y1),
-            ))
-            .background_style(WHITE.mix(0.85))
-            .border_style(RGBColor(180, 180, 180))
-            .draw()
-            .map_err(err)?;
     }
     Ok(())
 }
@@ -267,22 +475,24 @@ pub const FILES: [&str; 5] =
 /// Writes ship-speed.svg, displacement.svg (ship above, anchor below), peak-tension.svg,
 /// utilisation.svg (peak tension over break load along the line) and energy.svg (a panel per
 /// run) for the runs into `dir`, each whole or not at all; every chart is drawn before the
-/// first is written. A run with no samples (refused before its first step) has no curves.
-/// Returns the files written.
+/// first is written. A run with no samples (refused before its first step) has no curves; a
+/// failed run is named so and its end marked, and the paper's stopping time is marked on
+/// the speed chart. Returns the files written.
 pub fn write_plots(runs: &[(&Model, &RunResult)], dir: &Path) -> Result<Vec<PathBuf>> {
     let (ship, anchor) = displacement_curves(runs);
     let energy: Vec<(String, Vec<Curve>)> = runs
         .iter()
         .filter(|(_, r)| !r.samples.is_empty())
-        .map(|(m, r)| (m.scene.meta.name.clone(), energy_curves(r)))
+        .map(|(m, r)| (run_label(m, r), energy_curves(m, r)))
         .collect();
     let energy_title = match runs {
         [(m, _)] => format!("Energy terms, {}", m.scene.meta.name),
         _ => "Energy terms".to_string(),
     };
     let columns = if energy.len() > 1 { 2 } else { 1 };
+    let regions = runs.first().map(|(m, _)| members(m)).unwrap_or_default();
     let charts = [
-        (FILES[0], chart("Ship surge speed", "t (s)", "surge speed (m/s)", &speed_curves(runs), false)),
+        (FILES[0], chart("Ship surge speed", "t (s)", "surge speed (m/s)", &speed_curves(runs), false, &[])),
         (
             FILES[1],
             panels(
@@ -301,6 +511,7 @@ pub fn write_plots(runs: &[(&Model, &RunResult)], dir: &Path) -> Result<Vec<Path
                 "tension (kN)",
                 &tension_curves(runs),
                 true,
+                &regions,
             ),
         ),
         (
@@ -311,6 +522,7 @@ pub fn write_plots(runs: &[(&Model, &RunResult)], dir: &Path) -> Result<Vec<Path
                 "utilisation (%)",
                 &utilisation_curves(runs),
                 true,
+                &regions,
             ),
         ),
         (FILES[4], panels(&energy_title, "t (s)", "energy (MJ)", &energy, columns)),
@@ -329,37 +541,83 @@ pub fn write_plots(runs: &[(&Model, &RunResult)], dir: &Path) -> Result<Vec<Path
     Ok(files)
 }
 
-/// The ship's surge speed of each run.
+/// A run's name in a legend, with how it ended when that is not the ship stopping: "failed
+/// at 0.31 s", or "not stopped by 60 s".
+fn run_label(m: &Model, r: &RunResult) -> String {
+    let name = &m.scene.meta.name;
+    match (&r.stop, r.stopping_time) {
+        (Stop::Failed(_), _) => format!("{name} (failed at {} s)", tidy_time(r.t_end)),
+        (Stop::EndTime, None) => format!("{name} (not stopped by {} s)", tidy_time(r.t_end)),
+        _ => name.clone(),
+    }
+}
+
+/// A time to two decimals, as short as it reads.
+fn tidy_time(t: f64) -> String {
+    tidy((t * 100.0).round() / 100.0)
+}
+
+/// The failure mark at a failed run's last point.
+fn failure_mark(r: &RunResult, points: &[(f64, f64)]) -> Vec<((f64, f64), Mark)> {
+    match (&r.stop, points.last()) {
+        (Stop::Failed(_), Some(&last)) => vec![(last, Mark::Failure)],
+        _ => Vec::new(),
+    }
+}
+
+/// The ship's surge speed of each run, the paper's stopping time marked on the time axis.
 fn speed_curves(runs: &[(&Model, &RunResult)]) -> Vec<Curve> {
     runs.iter()
         .enumerate()
         .map(|(i, (m, r))| {
             let n = m.body_count();
-            Curve::new(m.scene.meta.name.clone(), i, r.samples.iter().map(|s| (s.t, s.bodies[n - 1].vx)).collect())
+            let points: Vec<(f64, f64)> = r.samples.iter().map(|s| (s.t, s.bodies[n - 1].vx)).collect();
+            let mut curve = Curve::new(run_label(m, r), i, points);
+            curve.marks = failure_mark(r, &curve.points);
+            if let Some(t) = m.scene.meta.paper_stopping_time {
+                curve.marks.push(((t, 0.0), Mark::Paper));
+            }
+            curve
         })
         .collect()
 }
 
-/// The ship's and the anchor's displacement of each run that has samples, one colour per run.
+/// The ship's and the anchor's displacement of each run that has samples, one colour per
+/// run, named once in the figure's legend.
 fn displacement_curves(runs: &[(&Model, &RunResult)]) -> (Vec<Curve>, Vec<Curve>) {
     let (mut ship, mut anchor) = (Vec::new(), Vec::new());
     for (i, (m, r)) in runs.iter().enumerate() {
         let Some(first) = r.samples.first() else { continue };
         let n = m.body_count();
         let (s0, a0) = (first.bodies[n - 1].x, first.bodies[0].x);
-        let name = &m.scene.meta.name;
-        ship.push(Curve::new(
-            format!("{name} ship"),
-            i,
-            r.samples.iter().map(|s| (s.t, s.bodies[n - 1].x - s0)).collect(),
-        ));
-        anchor.push(Curve::new(
-            format!("{name} anchor"),
-            i,
-            r.samples.iter().map(|s| (s.t, s.bodies[0].x - a0)).collect(),
-        ));
+        for (curves, body, origin) in [(&mut ship, n - 1, s0), (&mut anchor, 0, a0)] {
+            let points: Vec<(f64, f64)> = r.samples.iter().map(|s| (s.t, s.bodies[body].x - origin)).collect();
+            let mut curve = Curve::new(run_label(m, r), i, points);
+            curve.marks = failure_mark(r, &curve.points);
+            curves.push(curve);
+        }
     }
     (ship, anchor)
+}
+
+/// The line's members along the joint axis: each name with the joints whose upper body is
+/// of it (the rod's with its joint to the ship), as (name, from, to) in joint units (a joint
+/// k spans k ± ½).
+fn members(m: &Model) -> Vec<(String, f64, f64)> {
+    let mut out: Vec<(String, f64, f64)> = Vec::new();
+    for k in 2..=m.body_count() {
+        let name = match m.chain.bodies[k - 1].kind {
+            BodyKind::ChainLink => "chain",
+            BodyKind::Cable { .. } => "cable",
+            // The rod's joint to the ship is the rod's end.
+            BodyKind::Rod | BodyKind::Ship | BodyKind::Anchor => "rod",
+        };
+        match out.last_mut() {
+            Some(last) if last.0 == name => last.2 = k as f64 + 0.5,
+            _ => out.push((name.to_string(), k as f64 - 0.5, k as f64 + 0.5)),
+        }
+    }
+    out
 }
 
 /// A load limit along the line as a step: flat over each joint k (k ± ½), a vertical jump
@@ -375,8 +633,46 @@ fn step(n: usize, value: impl Fn(usize) -> Option<f64>) -> Vec<(f64, f64)> {
     points
 }
 
+/// The member whose limit governs joint k (the weaker of its two bodies'): "chain" or
+/// "cable" (the rod is of the cable), with that limit, N.
+fn governing(m: &Model, k: usize, pick: fn(LoadLimits) -> Option<f64>) -> Option<(&'static str, f64)> {
+    [m.chain.bodies[k - 2].kind, m.chain.bodies[k - 1].kind]
+        .into_iter()
+        .filter_map(|kind| {
+            let name = match kind {
+                BodyKind::ChainLink => "chain",
+                BodyKind::Cable { .. } | BodyKind::Rod => "cable",
+                BodyKind::Anchor | BodyKind::Ship => return None,
+            };
+            pick(m.member_limits(kind)).map(|v| (name, v))
+        })
+        .min_by(|a, b| a.1.total_cmp(&b.1))
+}
+
+/// A limit's legend text: its members and values, "chain proof load 2709 kN", or "break
+/// load: chain 3866, cable 2520 kN" where members differ.
+fn limit_label(m: &Model, what: &str, pick: fn(LoadLimits) -> Option<f64>) -> String {
+    let mut seen: Vec<(&str, f64)> = Vec::new();
+    for k in 2..=m.body_count() {
+        if let Some(g) = governing(m, k, pick) {
+            if !seen.contains(&g) {
+                seen.push(g);
+            }
+        }
+    }
+    match seen.as_slice() {
+        [] => what.to_string(),
+        [(name, v)] => format!("{name} {what} {:.0} kN", v / 1e3),
+        _ => {
+            let parts: Vec<String> = seen.iter().map(|(name, v)| format!("{name} {:.0}", v / 1e3)).collect();
+            format!("{what}: {} kN", parts.join(", "))
+        }
+    }
+}
+
 /// The peak tension along the line of each run (kN), and the first run's proof and break
-/// loads as steps; the axis follows the peaks, a limit above it is named in the legend.
+/// loads as steps named by member; the axis follows the peaks, a limit above it is named in
+/// the legend.
 fn tension_curves(runs: &[(&Model, &RunResult)]) -> Vec<Curve> {
     let mut curves: Vec<Curve> = runs
         .iter()
@@ -384,23 +680,14 @@ fn tension_curves(runs: &[(&Model, &RunResult)]) -> Vec<Curve> {
         .filter(|(_, (_, r))| r.steps > 0)
         .map(|(i, (m, r))| {
             let points = r.peak_tensions.iter().enumerate().map(|(j, p)| ((j + 2) as f64, p.tension / 1e3)).collect();
-            Curve::new(format!("{} peak", m.scene.meta.name), i, points)
+            Curve::new(format!("{} peak", run_label(m, r)), i, points)
         })
         .collect();
     if let Some((m, _)) = runs.first() {
         let n = m.body_count();
-        // The legend says what the limit is (it is often above the axis): its value, or the
-        // range of its values along the line (chain and cable differ).
-        let limit = |label: &str, look: usize, pick: fn(LoadLimits) -> Option<f64>| {
-            let points = step(n, |k| pick(m.joint_limits(k)).map(|v| v / 1e3));
-            let values = points.iter().map(|p| p.1).filter(|v| v.is_finite());
-            let (lo, hi) = values.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)));
-            let label = match (lo.is_finite(), lo == hi) {
-                (false, _) => label.to_string(),
-                (true, true) => format!("{label} {lo:.0} kN"),
-                (true, false) => format!("{label} {lo:.0}–{hi:.0} kN"),
-            };
-            Curve { label, points, look, reference: true, in_view: false }
+        let limit = |what: &str, look: usize, pick: fn(LoadLimits) -> Option<f64>| {
+            let points = step(n, |k| governing(m, k, pick).map(|(_, v)| v / 1e3));
+            Curve::limit(limit_label(m, what, pick), look, points, false)
         };
         curves.push(limit("proof load", 4, |l| l.proof));
         curves.push(limit("break load", 1, |l| l.breaking));
@@ -426,7 +713,7 @@ fn utilisation_curves(runs: &[(&Model, &RunResult)]) -> Vec<Curve> {
                     (k as f64, m.joint_limits(k).breaking.map_or(f64::NAN, |b| 100.0 * p.tension / b))
                 })
                 .collect();
-            Curve::new(m.scene.meta.name.clone(), i, points)
+            Curve::new(run_label(m, r), i, points)
         })
         .collect();
     if let Some((m, _)) = runs.first() {
@@ -437,33 +724,53 @@ fn utilisation_curves(runs: &[(&Model, &RunResult)]) -> Vec<Curve> {
             let l = m.joint_limits(k);
             Some(100.0 * l.proof? / l.breaking?).filter(|&u| u <= 100.0)
         });
-        curves.push(Curve { label: "proof load".into(), points: proof, look: 4, reference: true, in_view: true });
-        curves.push(Curve {
-            label: "break load (100 %)".into(),
-            points: step(n, |_| Some(100.0)),
-            look: 1,
-            reference: true,
-            in_view: true,
-        });
+        curves.push(Curve::limit("chain proof load", 4, proof, true));
+        curves.push(Curve::limit("break load (100 %)", 1, step(n, |_| Some(100.0)), true));
     }
     curves
 }
 
-/// The energy terms of one run (Eq. 63): kinetic, potential change, each work term, and the
-/// balance's drift.
-fn energy_curves(r: &RunResult) -> Vec<Curve> {
+/// The energy terms of one run (Eq. 63), named as the run's summary names them: kinetic
+/// (the entrained water's included), the potential energy change of the line and anchor,
+/// the energy stored in the ship's heave and pitch (its weight's potential less the
+/// hydrostatic work, which all but cancel), each other work term the scene has (a term that
+/// is zero throughout is left out), and the balance's drift. A term keeps its colour in
+/// every panel.
+fn energy_curves(m: &Model, r: &RunResult) -> Vec<Curve> {
     let Some(first) = r.samples.first() else { return Vec::new() };
-    let series = |f: &dyn Fn(&kanestop_runtime::simulate::Sample) -> f64| -> Vec<(f64, f64)> {
-        r.samples.iter().map(|s| (s.t, f(s) / 1e6)).collect()
-    };
+    let n = m.body_count();
+    let ship_weight = m.chain.bodies[n - 1].mass * m.scene.environment.gravity;
+    let ship_potential = |s: &Sample| ship_weight * (s.bodies[n - 1].z - first.bodies[n - 1].z);
+    let series =
+        |f: &dyn Fn(&Sample) -> f64| -> Vec<(f64, f64)> { r.samples.iter().map(|s| (s.t, f(s) / 1e6)).collect() };
+    let hydrostatic = WORK_TERMS.iter().position(|t| *t == "hydrostatic");
     let mut curves = vec![
-        Curve::new("kinetic", 0, series(&|s| s.energy.kinetic + s.energy.added_kinetic)),
-        Curve::new("potential energy change", 1, series(&|s| s.energy.potential - first.energy.potential)),
+        Curve::new("kinetic (with the entrained water)", 0, series(&|s| s.energy.kinetic + s.energy.added_kinetic)),
+        Curve::new(
+            "potential energy change of the line and anchor",
+            6,
+            series(&|s| s.energy.potential - first.energy.potential - ship_potential(s)),
+        ),
+        Curve::new(
+            "ship heave and pitch (stored)",
+            9,
+            series(&|s| ship_potential(s) - hydrostatic.map_or(0.0, |h| s.energy.work[h])),
+        ),
     ];
+    // The other terms' looks, fixed per term (the panels' legend is shared).
+    let looks = [2, 3, 4, 5, 1, 7, 10, 0, 12];
     for (i, term) in WORK_TERMS.iter().enumerate() {
-        curves.push(Curve::new(format!("work: {term}"), 2 + i, series(&|s| s.energy.work[i])));
+        if Some(i) == hydrostatic || r.samples.iter().all(|s| s.energy.work[i] == 0.0) {
+            continue;
+        }
+        let look = looks.get(i).copied().unwrap_or(13 + i);
+        curves.push(Curve::new(
+            format!("work of {}", crate::summary::work_term_words(term)),
+            look,
+            series(&|s| s.energy.work[i]),
+        ));
     }
-    curves.push(Curve::new("balance drift E − E_0", 2 + WORK_TERMS.len(), series(&|s| s.energy.balance() - r.energy0)));
+    curves.push(Curve::new("balance drift E − E_0", 18, series(&|s| s.energy.balance() - r.energy0)));
     curves
 }
 
@@ -516,10 +823,10 @@ fn log_log_svg(
             curves.iter().flat_map(|c| &c.points).map(|&(x, y)| (x.log10(), y.log10())).collect();
         let (lx0, lx1, ly0, ly1) = ((x0 * 0.8).log10(), (x1 * 1.25).log10(), (y0 * 0.5).log10(), (y1 * 2.0).log10());
         let mut c = ChartBuilder::on(&root)
-            .caption(title, ("sans-serif", 22))
+            .caption(title, sans(TITLE_FONT))
             .margin(12)
-            .x_label_area_size(44)
-            .y_label_area_size(80)
+            .x_label_area_size(50)
+            .y_label_area_size(86)
             .build_cartesian_2d((x0 * 0.8..x1 * 1.25).log_scale(), (y0 * 0.5..y1 * 2.0).log_scale())
             .map_err(|e| e.to_string())?;
         // plotters' log axes crowd key points near 1 (a grey band of grid, labels printed
@@ -536,21 +843,27 @@ fn log_log_svg(
                 text
             }
         };
-        let x_text = |v: &f64| once(log_tick(*v, &[1.0, 2.0, 5.0]).map(tidy).unwrap_or_default());
         let y_text = |v: &f64| once(log_tick(*v, &[1.0]).map(|v| format!("{v:.0e}")).unwrap_or_default());
         c.configure_mesh()
             .disable_mesh()
             .x_desc(x_desc)
             .y_desc(y_desc)
-            .x_labels(40)
+            .label_style(sans(TICK_FONT))
+            .axis_desc_style(sans(AXIS_FONT))
+            .x_labels(10)
+            .x_label_formatter(&|_| String::new())
             .y_labels(40)
-            .x_label_formatter(&x_text)
             .y_label_formatter(&y_text)
             .draw()
             .map_err(|e| e.to_string())?;
         let grid = ShapeStyle { color: RGBColor(225, 225, 225).to_rgba(), filled: false, stroke_width: 1 };
+        // The x labels at every 1, 2, 5 × 10^n, under their grid lines (plotters' own key
+        // points skip some: 0.05 went unlabelled).
+        let tick = sans(TICK_FONT).into_font().color(&BLACK).pos(Pos::new(HPos::Center, VPos::Top));
         for x in log_ticks(xr.start, xr.end, &[1.0, 2.0, 5.0]) {
             c.draw_series(LineSeries::new([(x, yr.start), (x, yr.end)], grid)).map_err(|e| e.to_string())?;
+            let (px, py) = c.backend_coord(&(x, yr.start));
+            root.draw(&Text::new(tidy(x), (px, py + 8), tick.clone())).map_err(|e| e.to_string())?;
         }
         for y in log_ticks(yr.start, yr.end, &[1.0]) {
             c.draw_series(LineSeries::new([(xr.start, y), (xr.end, y)], grid)).map_err(|e| e.to_string())?;
@@ -579,6 +892,7 @@ fn log_log_svg(
         }
         c.configure_series_labels()
             .position(emptiest_corner(&logs, (lx0, lx1), (ly0, ly1)))
+            .label_font(sans(TICK_FONT))
             .background_style(WHITE.mix(0.85))
             .border_style(BLACK)
             .draw()
@@ -630,7 +944,7 @@ mod tests {
     use super::*;
 
     fn reference(points: Vec<(f64, f64)>) -> Curve {
-        Curve { label: "limit".into(), points, look: 1, reference: true, in_view: false }
+        Curve::limit("limit", 1, points, false)
     }
 
     #[test]
@@ -678,5 +992,68 @@ mod tests {
         for label in ["0.1", "0.2", "0.5", "1e-4"] {
             assert_eq!(svg.matches(&format!(">\n{label}\n</text>")).count(), 1, "{label} printed once");
         }
+    }
+    /// The x positions of the SVG's text elements whose content is `label`.
+    fn text_x(svg: &str, label: &str) -> Vec<f64> {
+        svg.split("<text ")
+            .skip(1)
+            .filter(|t| t.split('>').nth(1).is_some_and(|c| c.trim().trim_end_matches("</text").trim() == label))
+            .map(|t| t.split("x=\"").nth(1).unwrap().split('"').next().unwrap().parse().unwrap())
+            .collect()
+    }
+
+    #[test]
+    fn the_legend_is_beside_the_plot_not_on_it() {
+        // Regression: the legend sat on the curves (19 runs' over joints 35–46, the energy
+        // panels' over the kinetic energy), and ran off the image with many entries.
+        let curves: Vec<Curve> =
+            (0..19).map(|i| Curve::new(format!("case{i:02}"), i, vec![(0.0, 0.0), (10.0, i as f64)])).collect();
+        let svg = chart("t", "x", "y", &curves, false, &[]).unwrap();
+        for i in 0..19 {
+            let xs = text_x(&svg, &format!("case{i:02}"));
+            assert_eq!(xs.len(), 1, "case{i:02} named once");
+            assert!(xs[0] > SIZE.0 as f64, "case{i:02} at x = {} is on the plot", xs[0]);
+        }
+        // Taller than its plot: a second column, still beside it.
+        let many: Vec<Curve> =
+            (0..40).map(|i| Curve::new(format!("run {i}"), i, vec![(0.0, 0.0), (1.0, 1.0)])).collect();
+        let legend = entries(&many, (0.0, 1.0));
+        assert_eq!(legend_layout(&legend, SIZE.1).0, 2, "two columns");
+        let svg = chart("t", "x", "y", &many, false, &[]).unwrap();
+        let width: f64 = svg.split("width=\"").nth(1).unwrap().split('"').next().unwrap().parse().unwrap();
+        for i in 0..40 {
+            let x = text_x(&svg, &format!("run {i}"))[0];
+            assert!(x > SIZE.0 as f64 && x < width - 40.0, "run {i} at {x} of {width}");
+        }
+        // Panels share one legend, each label once.
+        let panel_curves = || vec![Curve::new("kinetic", 0, vec![(0.0, 1.0), (1.0, 0.0)])];
+        let svg = panels("e", "t", "E", &[("a".into(), panel_curves()), ("b".into(), panel_curves())], 2).unwrap();
+        assert_eq!(text_x(&svg, "kinetic").len(), 1);
+    }
+
+    #[test]
+    fn a_long_legend_text_wraps_at_a_space() {
+        let lines = wrap("break load: chain 3866, cable 2520, rod 2520, something else kN");
+        assert!(lines.len() == 2 && lines.iter().all(|l| l.chars().count() <= LEGEND_CHARS), "{lines:?}");
+        assert_eq!(lines.join(" "), "break load: chain 3866, cable 2520, rod 2520, something else kN");
+        assert_eq!(wrap("case01"), ["case01"]);
+    }
+
+    #[test]
+    fn marks_are_drawn_and_named_once() {
+        let mut failed = Curve::new("taut (failed at 0.31 s)", 0, vec![(0.0, 3.0), (0.31, 2.8)]);
+        failed.marks = vec![((0.31, 2.8), Mark::Failure)];
+        let mut paper = Curve::new("case01", 1, vec![(0.0, 3.0), (19.8, 0.0)]);
+        paper.marks = vec![((20.01, 0.0), Mark::Paper)];
+        let legend = entries(&[failed, paper], (0.0, 3.0));
+        let labels: Vec<&str> = legend.iter().map(|e| e.label.as_str()).collect();
+        assert_eq!(labels, ["taut (failed at 0.31 s)", "case01", Mark::Failure.label(), Mark::Paper.label()]);
+        let (mut failed, mut paper) =
+            (Curve::new("a", 0, vec![(0.0, 3.0), (0.31, 2.8)]), Curve::new("b", 1, vec![(0.0, 3.0), (19.8, 0.0)]));
+        failed.marks = vec![((0.31, 2.8), Mark::Failure)];
+        paper.marks = vec![((20.01, 0.0), Mark::Paper)];
+        let svg = chart("t", "x", "y", &[failed, paper], false, &[]).unwrap();
+        // The triangle is a filled polygon in the run's colour (palette 1, #D62728).
+        assert!(svg.contains("<polygon") && svg.contains("D62728"), "the paper's time is marked");
     }
 }

@@ -50,16 +50,6 @@ fn energy_share_line(out: &mut Lines, model: &Model, result: &RunResult) {
     if k0 <= 0.0 {
         return;
     }
-    let word = |name: &'static str| match name {
-        "anchor_friction" => "anchor friction",
-        "line_friction" => "line friction on the seabed",
-        "anchor_drag" => "anchor water drag",
-        "line_drag" => "line drag",
-        "hull_resistance" => "hull resistance",
-        "seabed" => "seabed contact",
-        "added_mass" => "entrained water",
-        other => other,
-    };
     let n = model.body_count();
     let ship_weight = model.chain.bodies[n - 1].mass * model.scene.environment.gravity;
     let ship_potential = ship_weight * (last.bodies[n - 1].z - first.bodies[n - 1].z);
@@ -68,7 +58,7 @@ fn energy_share_line(out: &mut Lines, model: &Model, result: &RunResult) {
         .work_terms()
         .map(|(name, w)| match name {
             "hydrostatic" => ((ship_potential - w) / k0, "ship heave and pitch (hydrostatics with its weight)".into()),
-            _ => (-w / k0, word(name).to_string()),
+            _ => (-w / k0, work_term_words(name).to_string()),
         })
         .collect();
     shares.push(((last.energy.kinetic + last.energy.added_kinetic) / k0, "still kinetic".into()));
@@ -91,6 +81,20 @@ fn energy_share_line(out: &mut Lines, model: &Model, result: &RunResult) {
             }
         ),
     );
+}
+
+/// A work term of `WORK_TERMS` in the words the summary and the charts use.
+pub(crate) fn work_term_words(name: &str) -> &str {
+    match name {
+        "anchor_friction" => "anchor friction",
+        "line_friction" => "line friction on the seabed",
+        "anchor_drag" => "anchor water drag",
+        "line_drag" => "line drag",
+        "hull_resistance" => "hull resistance",
+        "seabed" => "seabed contact",
+        "added_mass" => "entrained water",
+        other => other,
+    }
 }
 
 /// Labelled lines: the label in a column of ten.

@@ -11,10 +11,12 @@
 use std::path::{Path, PathBuf};
 
 use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
 use toml::Value;
 
 use super::{Spec, SweepRow};
 use crate::output::write_atomically;
+use crate::plot::sans;
 use crate::record::RunSummary;
 use crate::{Error, Result};
 
@@ -164,6 +166,8 @@ fn number(v: &Value) -> Option<f64> {
 #[derive(Clone, Debug, Default, PartialEq)]
 struct Cell {
     value: Option<f64>,
+    /// How many runs gave the value (its mean's samples).
+    runs: usize,
     pass: Option<bool>,
     /// The checks its rows failed, in words.
     failed: Vec<&'static str>,
@@ -207,7 +211,9 @@ fn cells(spec: &Spec, rows: &[SweepRow], output: Output) -> Vec<Vec<Cell>> {
         }
     }
     sums.into_iter()
-        .map(|col| col.into_iter().map(|(s, n, cell)| Cell { value: (n > 0).then(|| s / n as f64), ..cell }).collect())
+        .map(|col| {
+            col.into_iter().map(|(s, n, cell)| Cell { value: (n > 0).then(|| s / n as f64), runs: n, ..cell }).collect()
+        })
         .collect()
 }
 
@@ -236,7 +242,29 @@ fn viridis(t: f64) -> RGBColor {
 
 /// A value for a tick or a cell: up to 4 significant digits, scientific when large or small.
 fn short(v: f64) -> String {
+    short_in(v, 0.0)
+}
+
+/// [`short`] with enough digits to tell values `span` apart, a twentieth of it shown (all
+/// cells of a map over 0.17077–0.17111 read "0.171" with 4 digits; at most 10).
+fn short_in(v: f64, span: f64) -> String {
     let a = v.abs();
+    // The digits from v's first to the resolution's: 0.171 to 1.7e-5 is 5.
+    let needed =
+        if span > 0.0 && a > 0.0 { a.log10().floor() as i32 - (span / 20.0).log10().floor() as i32 + 1 } else { 0 };
+    let sig = needed.clamp(4, 10);
+    if sig > 4 {
+        let e = a.log10().floor() as i32;
+        if (-2..5).contains(&e) {
+            let decimals = (sig - 1 - e).max(0) as usize;
+            let s = format!("{v:.decimals$}");
+            return if s.contains('.') { s.trim_end_matches('0').trim_end_matches('.').to_string() } else { s };
+        }
+        let s = format!("{v:.*e}", (sig - 1) as usize);
+        let (m, e) = s.split_once('e').unwrap_or((&s, "0"));
+        let m = m.trim_end_matches('0').trim_end_matches('.');
+        return format!("{m}e{e}");
+    }
     if v != 0.0 && !(1e-2..1e5).contains(&a) {
         let s = format!("{v:.3e}");
         let (m, e) = s.split_once('e').unwrap_or((&s, "0"));
@@ -261,7 +289,9 @@ fn short(v: f64) -> String {
 }
 
 /// Chart size, pixels.
-const SIZE: (u32, u32) = (1000, 720);
+const SIZE: (u32, u32) = (1000, 740);
+/// The title's type size, px as drawn.
+const TITLE_FONT: f64 = 20.0;
 
 /// The heat map of `output` over the spec's two grid axes, as SVG text (the spec must have
 /// them: see [`unsupported`]).
@@ -280,10 +310,23 @@ pub fn heat_map(spec: &Spec, rows: &[SweepRow], output: Output) -> std::result::
     {
         let root = SVGBackend::with_string(&mut svg, SIZE).into_drawing_area();
         root.fill(&WHITE).map_err(|e| e.to_string())?;
-        let title =
-            format!("{}: {} over {} and {}", spec.name, output.describe(), spec.axes[0].path, spec.axes[1].path);
-        let root = root.titled(&title, ("sans-serif", 22)).map_err(|e| e.to_string())?;
-        let (body, legend) = root.split_vertically(SIZE.1 - 130);
+        // The title on one line when it fits the width (0.55 em a character), else on two.
+        let what = format!("{}: {}", spec.name, output.describe());
+        let over = format!("over {} and {}", spec.axes[0].path, spec.axes[1].path);
+        let one = format!("{what} {over}");
+        let lines = if 0.55 * TITLE_FONT * one.chars().count() as f64 <= SIZE.0 as f64 - 40.0 {
+            vec![one]
+        } else {
+            vec![what, over]
+        };
+        let head = 14 + 28 * lines.len() as u32;
+        let (top, root) = root.split_vertically(head);
+        let font = sans(TITLE_FONT).into_font().color(&BLACK).pos(Pos::new(HPos::Center, VPos::Top));
+        for (k, line) in lines.into_iter().enumerate() {
+            top.draw(&Text::new(line, (SIZE.0 as i32 / 2, 8 + 28 * k as i32), font.clone()))
+                .map_err(|e| e.to_string())?;
+        }
+        let (body, legend) = root.split_vertically(SIZE.1 - head - 130);
         let (main, scale) = body.split_horizontally(SIZE.0 - 170);
         draw_cells(&main, spec, &grid, (lo, hi))?;
         draw_scale(&scale, output, (lo, hi), limit)?;
@@ -324,13 +367,18 @@ fn draw_cells<DB: DrawingBackend>(
         .y_labels(ny.min(12))
         .x_desc(kanestop_runtime::scene::labelled(&ax.path))
         .y_desc(kanestop_runtime::scene::labelled(&ay.path))
-        .label_style(("sans-serif", 15))
-        .axis_desc_style(("sans-serif", 17))
+        .label_style(sans(14.0))
+        .axis_desc_style(sans(15.0))
         .x_label_formatter(&|v| tick(ax, *v))
         .y_label_formatter(&|v| tick(ay, *v))
         .draw()
         .map_err(err)?;
     let annotate = nx * ny <= 225;
+    // A cell's size, px, for fitting its text.
+    let (cell_px, row_px) = {
+        let (a, b) = (c.backend_coord(&(0.0, 0.0)), c.backend_coord(&(1.0, 1.0)));
+        ((b.0 - a.0).abs() as f64, ((a.1 - b.1).abs() as f64).max(1.0))
+    };
     let name_failures = nx <= 8 && ny <= 8;
     for (i, col) in grid.iter().enumerate() {
         for (j, cell) in col.iter().enumerate() {
@@ -347,20 +395,25 @@ fn draw_cells<DB: DrawingBackend>(
                 .map_err(err)?;
             }
             if annotate {
-                let text = cell.value.map(short).unwrap_or_else(|| "—".into());
+                let text = cell.value.map(|v| short_in(v, hi - lo)).unwrap_or_else(|| "—".into());
                 let light = cell.value.is_some_and(|v| (v - lo) / (hi - lo) < 0.6);
                 let colour = if light { WHITE } else { BLACK };
-                let centred = plotters::style::text_anchor::Pos::new(
-                    plotters::style::text_anchor::HPos::Center,
-                    plotters::style::text_anchor::VPos::Center,
-                );
-                let style =
-                    TextStyle::from(("sans-serif", 17, FontStyle::Bold).into_font()).color(&colour).pos(centred);
+                let centred = Pos::new(HPos::Center, VPos::Center);
+                let style = TextStyle::from((sans(15.0).0, sans(15.0).1, FontStyle::Bold).into_font())
+                    .color(&colour)
+                    .pos(centred);
                 c.draw_series(std::iter::once(Text::new(text, (x + 0.5, y + 0.5), style))).map_err(err)?;
                 if name_failures && !cell.failed.is_empty() {
-                    let small = TextStyle::from(("sans-serif", 14).into_font()).color(&colour).pos(centred);
-                    let words = format!("fails: {}", cell.failed.join(", "));
-                    c.draw_series(std::iter::once(Text::new(words, (x + 0.5, y + 0.5 - 0.16), small))).map_err(err)?;
+                    // Below the value, in lines that fit the cell (0.6 em a character).
+                    let small = TextStyle::from(sans(CELL_NOTE_FONT).into_font()).color(&colour).pos(centred);
+                    let fits = ((cell_px / (0.6 * CELL_NOTE_FONT)) as usize).max(8);
+                    let line_h = 1.25 * CELL_NOTE_FONT / row_px;
+                    for (k, line) in
+                        fit_lines(&format!("fails: {}", cell.failed.join(", ")), fits).into_iter().enumerate()
+                    {
+                        let at = (x + 0.5, y + 0.5 - 0.16 - k as f64 * line_h);
+                        c.draw_series(std::iter::once(Text::new(line, at, small.clone()))).map_err(err)?;
+                    }
                 }
             }
         }
@@ -383,6 +436,24 @@ fn draw_cells<DB: DrawingBackend>(
     let red = RGBColor(230, 30, 30);
     c.draw_series(edges.into_iter().map(|e| PathElement::new(e, red.stroke_width(5)))).map_err(err)?;
     Ok(())
+}
+
+/// A cell note's type size, px as drawn.
+const CELL_NOTE_FONT: f64 = 12.0;
+
+/// `text` in lines of at most `width` characters, broken after commas and spaces.
+fn fit_lines(text: &str, width: usize) -> Vec<String> {
+    let mut lines: Vec<String> = Vec::new();
+    for word in text.split(' ') {
+        match lines.last_mut() {
+            Some(line) if line.chars().count() + 1 + word.chars().count() <= width => {
+                line.push(' ');
+                line.push_str(word);
+            }
+            _ => lines.push(word.to_string()),
+        }
+    }
+    lines
 }
 
 /// Diagonal hatching lines of the unit cell at (x, y), in data coordinates.
@@ -420,9 +491,9 @@ fn draw_scale<DB: DrawingBackend>(
     c.configure_mesh().disable_mesh().disable_x_axis().disable_y_axis().draw().map_err(err)?;
     c.configure_secondary_axes()
         .y_desc(output.describe())
-        .label_style(("sans-serif", 14))
-        .axis_desc_style(("sans-serif", 15))
-        .y_label_formatter(&|v| short(*v))
+        .label_style(sans(14.0))
+        .axis_desc_style(sans(15.0))
+        .y_label_formatter(&|v| short_in(*v, hi - lo))
         .draw()
         .map_err(err)?;
     let steps = 100;
@@ -448,7 +519,7 @@ fn draw_legend<DB: DrawingBackend>(
     (lo, hi): (f64, f64),
 ) -> std::result::Result<(), String> {
     let err = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
-    let font = ("sans-serif", 15).into_font().color(&BLACK);
+    let font = sans(14.0).into_font().color(&BLACK);
     let red = RGBColor(230, 30, 30);
     let (x0, y0) = (100, 8);
     // Hatched swatch.
@@ -491,9 +562,21 @@ fn draw_legend<DB: DrawingBackend>(
             "grey, —: no value (the ship did not stop, or the row failed or was invalid); {empty} of {total} cells"
         ),
         (x0 + 36, y2 + 2),
-        font,
+        font.clone(),
     ))
     .map_err(err)?;
+    // Sampled inputs on the grid: a cell is a mean, and says over how many runs.
+    let most = grid.iter().flatten().map(|c| c.runs).max().unwrap_or(0);
+    if most > 1 {
+        let fewest = grid.iter().flatten().map(|c| c.runs).filter(|&n| n > 0).min().unwrap_or(most);
+        let runs = if fewest == most { format!("{most}") } else { format!("{fewest}–{most}") };
+        area.draw(&Text::new(
+            format!("each cell: the mean over its {runs} runs (the sampled inputs at that grid point)"),
+            (x0 + 36, y2 + 30),
+            font,
+        ))
+        .map_err(err)?;
+    }
     Ok(())
 }
 
@@ -549,6 +632,14 @@ mod tests {
         assert_eq!(short(40.0), "40");
         assert_eq!(short(27.004), "27");
         assert_eq!(short(0.171), "0.171");
+        // Regression: every cell of a map over 0.17077–0.17111 read "0.171".
+        assert_eq!(short_in(0.170768, 0.000345), "0.17077");
+        assert_eq!(short_in(0.171113, 0.000345), "0.17111");
+        assert_eq!(short_in(27.004, 10.0), "27", "a wide span keeps 4 digits");
+        assert_eq!(short_in(500123.0, 20.0), "5.00123e5");
+        // Regression: "fails: distance, anchor drag" ran into the next cell.
+        let lines = fit_lines("fails: distance, anchor drag", 20);
+        assert_eq!(lines, ["fails: distance,", "anchor drag"]);
         for o in Output::ALL {
             assert_eq!(Output::parse(o.name()).unwrap(), o);
         }
