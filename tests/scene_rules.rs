@@ -181,6 +181,32 @@ fn the_ranges_bounded_by_other_fields_are_the_ones_the_reference_states() {
     assert_refused(&s, "solver.output_interval", &format!("at least solver.dt = {} s", fmt_value(s.solver.dt)));
 }
 
+#[test]
+fn a_check_is_set_on_a_scene_without_checks() {
+    // Regression: `checks.max_stopping_distance` on case 1 (no [checks]) was "no field
+    // `checks` here"; a check can be added to one run as a sweep's [checks] adds it.
+    let case1 = case1();
+    assert!(case1.checks.is_none());
+    let s = case1.with_overrides(&[("checks.max_stopping_distance", toml::Value::Float(20.0))]).unwrap();
+    let checks = s.checks.expect("[checks] added");
+    assert_eq!(checks.max_stopping_distance, Some(20.0));
+    assert_eq!(checks.safety_factor, None, "only the field set");
+    let e = case1.with_overrides(&[("checks.max_distance", toml::Value::Float(20.0))]).unwrap_err().to_string();
+    assert!(e.contains("no field `checks`"), "a field that is no check is still refused: {e}");
+    // CHECK_FIELDS are DesignChecks' own fields.
+    let all = kanestop_runtime::design::DesignChecks {
+        max_stopping_distance: Some(1.0),
+        max_stopping_time: Some(1.0),
+        max_anchor_drag: Some(1.0),
+        safety_factor: Some(1.0),
+        max_proof_utilisation: Some(1.0),
+    };
+    let keys: Vec<String> = toml::Value::try_from(all).unwrap().as_table().unwrap().keys().cloned().collect();
+    let mut fields: Vec<&str> = kanestop_runtime::design::CHECK_FIELDS.to_vec();
+    fields.sort();
+    assert_eq!(keys, fields);
+}
+
 /// The command line refuses an impossible geometry with exit 2, naming the field.
 #[test]
 fn cli_refuses_the_h_l_60_scene_with_exit_2() {

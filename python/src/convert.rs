@@ -2,7 +2,7 @@
 
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
+use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PySequence, PyString, PyTuple};
 use toml::Value;
 
 /// `obj` as a TOML value; `path` names it in errors (`ship.mass`).
@@ -40,7 +40,17 @@ pub fn to_toml(obj: &Bound<'_, PyAny>, path: &str) -> PyResult<Value> {
         }
         return Ok(Value::Table(table));
     }
-    if obj.is_instance_of::<PyList>() || obj.is_instance_of::<PyTuple>() {
+    // NumPy arrays (`np.linspace(…)`) as the lists they hold, NumPy bools as bools (they
+    // also convert to floats, below).
+    if obj.hasattr("dtype")? {
+        if obj.hasattr("ndim")? && obj.getattr("ndim")?.extract::<usize>().is_ok_and(|n| n > 0) {
+            return to_toml(&obj.call_method0("tolist")?, path);
+        }
+        if obj.getattr("dtype")?.getattr("kind")?.extract::<String>().is_ok_and(|k| k == "b") {
+            return Ok(Value::Boolean(obj.is_truthy()?));
+        }
+    }
+    if obj.is_instance_of::<PyList>() || obj.is_instance_of::<PyTuple>() || obj.downcast::<PySequence>().is_ok() {
         let mut items = Vec::new();
         for (i, v) in obj.try_iter()?.enumerate() {
             items.push(to_toml(&v?, &format!("{path}[{i}]"))?);

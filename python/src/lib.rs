@@ -64,11 +64,19 @@ impl PyScene {
         Ok(PyScene { inner })
     }
 
-    /// A scene from TOML text. Raises SceneError.
+    /// A scene from TOML text; an `extends` is resolved from `base_dir` (default the current
+    /// directory), as `load` resolves it from the file's folder. Raises SceneError.
     #[staticmethod]
-    #[pyo3(signature = (text, name = "<string>"))]
-    pub(crate) fn from_toml(py: Python<'_>, text: &str, name: &str) -> PyResult<Self> {
-        let inner = Scene::from_toml(text, name).map_err(|e| scene_error(py, e))?;
+    #[pyo3(signature = (text, name = "<string>", base_dir = None))]
+    pub(crate) fn from_toml(py: Python<'_>, text: &str, name: &str, base_dir: Option<PathBuf>) -> PyResult<Self> {
+        let extends = text.parse::<toml::Table>().is_ok_and(|t| t.contains_key("extends"));
+        let inner = if extends {
+            let at = base_dir.unwrap_or_default().join(name);
+            py.allow_threads(|| Scene::from_toml_at(text, &at))
+        } else {
+            Scene::from_toml(text, name)
+        }
+        .map_err(|e| scene_error(py, e))?;
         Ok(PyScene { inner })
     }
 
@@ -147,7 +155,7 @@ impl PyScene {
 /// Unpickles a scene (`Scene.__reduce__`).
 #[pyfunction]
 fn _scene_from_toml(py: Python<'_>, text: &str, name: &str) -> PyResult<PyScene> {
-    PyScene::from_toml(py, text, name)
+    PyScene::from_toml(py, text, name, None)
 }
 
 /// The top-level keys of a TOML file, or None when it cannot be read or parsed: tells a
@@ -283,7 +291,8 @@ fn _run(
     let model = Model::new(&scene).map_err(model_error)?;
     let (result, summary, note) = interruptible(py, |cancel| {
         let (k, note) = choice.build(&model);
-        let result = simulate::run_cancellable(&model, k, cancel).ok()?;
+        // As the command line's `run`: the starting state checked, for the same diagnosis.
+        let result = simulate::run_checked_cancellable(&model, k, choice.build(&model).0, cancel).ok()?;
         let summary = RunSummary::of(&model, &result);
         Some((result, summary, note))
     })?;

@@ -141,7 +141,7 @@ impl PySpec {
 /// Unpickles a spec (`Spec.__reduce__`): its fields over its base scene, named by its file.
 #[pyfunction]
 pub fn _spec_from_parts(py: Python<'_>, fields: &str, base: &str, base_name: &str, file: &str) -> PyResult<PySpec> {
-    let scene = PyScene::from_toml(py, base, base_name)?.inner;
+    let scene = PyScene::from_toml(py, base, base_name, None)?.inner;
     let mut table: toml::Table = fields.parse().map_err(|e: toml::de::Error| PyValueError::new_err(e.to_string()))?;
     // The name as it was: `Spec.from_scene` takes a scene's name unchecked, which a spec
     // file's `name` could not be.

@@ -29,6 +29,24 @@ def test_scene_round_trips(case01: kanestop.Scene) -> None:
     assert repr(heavier) == 'Scene("case01": 51 bodies, ship 600 t at 3 m/s, anchor 40 t, chain 20 × 1 m)'
 
 
+def test_toml_text_that_extends_a_file_is_laid_over_it(tmp_path: object) -> None:
+    # Regression: Scene.from_toml refused `extends` ("unknown field") where Scene.load took it.
+    text = 'extends = "case01.toml"\n[ship]\nmass = 6e5\n'
+    folder = ROOT / "scenes" / "paper"
+    from_text = kanestop.Scene.from_toml(text, base_dir=folder)
+    (tmp := tmp_path / "heavy.toml").write_text(text.replace('"case01.toml"', '"' + str(CASE01) + '"'))  # type: ignore[operator]
+    assert from_text.to_dict()["ship"]["mass"] == 6e5
+    assert from_text.to_dict()["chain"] == kanestop.Scene.load(tmp).to_dict()["chain"]
+    with pytest.raises(kanestop.SceneError):
+        kanestop.Scene.from_toml(text, base_dir=tmp_path)  # no case01.toml there
+
+
+def test_a_check_is_added_to_a_scene_without_checks(case01: kanestop.Scene) -> None:
+    # Regression: "no field `checks` here" on a scene with no [checks].
+    checked = case01.with_overrides({"checks.max_stopping_distance": 20.0})
+    assert checked.to_dict()["checks"] == {"max_stopping_distance": 20.0}
+
+
 def test_overrides_set_fields_and_are_checked(case01: kanestop.Scene) -> None:
     s = case01.with_overrides({"ship.mass": 1e6, "cable.stages[2].elements": 12})
     d = s.to_dict()

@@ -44,6 +44,20 @@ def test_a_failure_is_a_result_with_the_cli_diagnostic() -> None:
     assert r.units["ship_x"] == "m"
 
 
+def test_a_failure_in_the_run_has_the_cli_diagnosis_too() -> None:
+    # Regression: a run failing early was diagnosed without the starting state's check (the
+    # step's stability was blamed where the CLI names the initial geometry).
+    path = ROOT / "scenes" / "stress" / "taut_cable.toml"
+    p = run_cli("run", str(path), "--json")
+    assert p.returncode == 3
+    r = kanestop.run(path)
+    assert r.failed and r.diagnostic == json.loads(p.stdout)["failure"]["message"]
+    assert r.diagnostic is not None and "initial geometry" in r.diagnostic
+    # A sweep row over the same scene carries the same diagnosis.
+    rows = kanestop.sweep({"base": str(path), "axis": [{"path": "ship.mass", "values": [500000.0]}]})
+    assert "initial geometry" in str(rows["message"][0])
+
+
 def test_eval_equals_the_cli_eval(case01: kanestop.Scene) -> None:
     cli = cli_json("eval", "--scene", str(CASE01))
     py = kanestop.eval(case01)

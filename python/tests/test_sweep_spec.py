@@ -141,6 +141,20 @@ def test_a_spec_as_dict_or_toml_text_is_the_same_spec(cli_sweep: Dict[str, Any])
     assert without_wall_time(kanestop.sweep(by_path, base_dir=folder, records=True)) == expected
 
 
+def test_numpy_arrays_ranges_and_numpy_bools_are_scene_values(case01: kanestop.Scene) -> None:
+    import numpy as np
+
+    # Regression: an axis of np.linspace(…) or range(…) was "not a scene value", and a NumPy
+    # bool was read as the number 1.0.
+    by_list = kanestop.Spec.from_dict({"base": case01, "axis": [{"path": "ship.mass", "values": [4e5, 5e5, 6e5]}]})
+    by_array = kanestop.Spec.from_dict({"base": case01, "axis": [{"path": "ship.mass", "values": np.linspace(4e5, 6e5, 3)}]})
+    assert by_array.inputs() == by_list.inputs()
+    by_range = kanestop.Spec.from_dict({"base": case01, "axis": [{"path": "chain.elements", "values": range(14, 16)}]})
+    assert [r["chain.elements"] for r in by_range.inputs()] == [14, 15]
+    dry = case01.with_overrides({"environment.water": np.bool_(False)})
+    assert dry.to_dict()["environment"]["water"] is False
+
+
 def test_solver_keywords_are_the_specs_solver(cli_sweep: Dict[str, Any]) -> None:
     df = kanestop.sweep(cli_sweep["spec"], end_time=0.5, jobs=1)
     ran = df[df["status"] != "invalid"]

@@ -4,6 +4,10 @@
 
 use serde::{Deserialize, Serialize};
 
+/// The fields of [`DesignChecks`], as a scene's `[checks]` names them.
+pub const CHECK_FIELDS: [&str; 5] =
+    ["max_stopping_distance", "max_stopping_time", "max_anchor_drag", "safety_factor", "max_proof_utilisation"];
+
 /// `[checks]`: pass/fail limits on a run's results. Every field is optional; a check that
 /// is absent is not made. SI units.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]

@@ -105,6 +105,10 @@ fn steps(path: &str) -> Result<Vec<Step<'_>>, OverrideError> {
 pub const ALTERNATIVES: &[(&str, &[&str])] =
     &[("initial", &["horizontal_projection", "horizontal_tension", "top_tension"])];
 
+/// Optional tables and their fields, which a scene may leave out: setting one by path adds
+/// it (a scene without `[checks]` takes `checks.max_stopping_distance`).
+pub const OPTIONAL: &[(&str, &[&str])] = &[("checks", &crate::design::CHECK_FIELDS)];
+
 /// The group of [`ALTERNATIVES`] that `path` (`table.field`) belongs to.
 fn alternatives_of(path: &str) -> Option<(&'static str, &'static [&'static str], &str)> {
     let (table, key) = path.split_once('.')?;
@@ -129,6 +133,14 @@ pub fn set(root: &mut Value, path: &str, value: Value) -> Result<(), OverrideErr
                 };
                 t.insert(key.to_string(), value);
                 return Ok(());
+            }
+        }
+    }
+    if let (Some((table, key)), Value::Table(top)) = (path.split_once('.'), &mut *root) {
+        if OPTIONAL.iter().any(|(t, keys)| *t == table && keys.contains(&key)) {
+            let t = top.entry(table).or_insert_with(|| Value::Table(toml::Table::new()));
+            if let Value::Table(t) = t {
+                t.entry(key).or_insert(Value::Float(0.0));
             }
         }
     }

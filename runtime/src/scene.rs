@@ -526,18 +526,25 @@ impl Scene {
     /// # Ok::<(), SceneError>(())
     /// ```
     pub fn load(path: &Path) -> Result<Scene, SceneError> {
+        let text =
+            read_scene_file(path).map_err(|source| SceneError::Io { file: path.display().to_string(), source })?;
+        Scene::from_toml_at(&text, path)
+    }
+
+    /// [`Scene::from_toml`] of the text of a file at `path` (which need not exist): an
+    /// `extends` is resolved from `path`'s folder, as [`Scene::load`] resolves it.
+    pub fn from_toml_at(text: &str, path: &Path) -> Result<Scene, SceneError> {
         let file = path.display().to_string();
         fn io(p: &Path) -> impl FnOnce(std::io::Error) -> SceneError {
             let file = p.display().to_string();
             move |source| SceneError::Io { file, source }
         }
-        let text = read_scene_file(path).map_err(io(path))?;
         let top = match text.parse::<toml::Table>() {
             Ok(top) if top.contains_key("extends") => top,
             // A whole file: parsed as text, so that errors point at its lines.
-            _ => return Scene::from_toml(&text, &file),
+            _ => return Scene::from_toml(text, &file),
         };
-        let mut read = |p: &Path| read_scene_file(p).map_err(io(p));
+        let mut read = |p: &Path| if p == path { Ok(text.to_string()) } else { read_scene_file(p).map_err(io(p)) };
         let mut parse = |p: &Path, text: &str| {
             text.parse::<toml::Table>()
                 .map(toml::Value::Table)

@@ -255,7 +255,7 @@ pub fn run_all(
         });
         let row = match model {
             Ok(model) => {
-                let result = simulate::run(&model, kernel(&model));
+                let result = simulate::run_checked(&model, kernel(&model), kernel(&model));
                 let mut row = row(file, &model, &result);
                 if error_estimate {
                     // The refined scene is checked as a scene (its dt/2 may pass the step

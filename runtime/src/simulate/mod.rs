@@ -50,15 +50,27 @@ use crate::stability::StabilityError;
 /// Integrates `model` with `kernel`; `residual_kernel`, when given, first evaluates the
 /// initial configuration's [`StaticResidual`].
 pub fn run_checked(model: &Model, kernel: Box<dyn Kernel>, residual_kernel: Box<dyn Kernel>) -> RunResult {
+    run_checked_cancellable(model, kernel, residual_kernel, &AtomicBool::new(false)).expect("nothing cancels it")
+}
+
+/// [`run_checked`], stopped as [`run_cancellable`] is: the one way every front end (the
+/// command line's `run` and `batch`, sweeps, Python) runs a scene, so a failure's diagnosis
+/// is the same wherever it is read.
+pub fn run_checked_cancellable(
+    model: &Model,
+    kernel: Box<dyn Kernel>,
+    residual_kernel: Box<dyn Kernel>,
+    cancel: &AtomicBool,
+) -> Result<RunResult, Cancelled> {
     let residual = static_residual(model, residual_kernel).ok();
-    let mut result = run(model, kernel);
+    let mut result = run_cancellable(model, kernel, cancel)?;
     result.initial_residual = residual;
     if let Stop::Failed(f) = &mut result.stop {
         if failure::is_early(f.t, model.scene.solver.dt) {
             f.initial_residual = residual;
         }
     }
-    result
+    Ok(result)
 }
 
 /// Integrates `model` with `kernel`.

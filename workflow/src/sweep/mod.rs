@@ -131,7 +131,7 @@ pub fn run_row_cancellable(row: &PlannedRow, kernel: KernelFactory, cancel: &Ato
             return Some(out);
         }
     };
-    let result = simulate::run_cancellable(&model, kernel(&model), cancel).ok()?;
+    let result = simulate::run_checked_cancellable(&model, kernel(&model), kernel(&model), cancel).ok()?;
     let summary = RunSummary::of(&model, &result);
     out.status = summary.status;
     out.checks_pass = summary.checks_pass;

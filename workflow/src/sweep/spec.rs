@@ -158,8 +158,21 @@ impl Spec {
     /// `name`; `sweep` for a label such as `<string>`), `base` is relative to `dir`, and
     /// `scene`, when given, is the base scene instead (the spec then has no `base`).
     pub fn from_toml(text: &str, file: &Path, dir: &Path, scene: Option<Scene>) -> Result<Spec> {
-        let raw: SpecFile = toml::from_str(text)
-            .map_err(|e| bad(file, "(file)", "", kanestop_runtime::scene::plain_types(&e.to_string())))?;
+        let raw: SpecFile = toml::from_str(text).map_err(|e| {
+            // A scene given for a spec: say what a sweep needs, not the TOML error.
+            let tables: Option<toml::Table> = toml::from_str(text).ok();
+            if tables.is_some_and(|t| ["meta", "ship", "chain", "anchor"].iter().any(|k| t.contains_key(*k))) {
+                return bad(
+                    file,
+                    "(file)",
+                    "",
+                    "a spec, not a scene: this is a scene file; a sweep over it is a spec file with \
+                     base = \"<this file>\" and its [[axis]] or [sampling] (docs/sweeps.md); from \
+                     Python, give the scene with rows=[…] instead",
+                );
+            }
+            bad(file, "(file)", "", kanestop_runtime::scene::plain_types(&e.to_string()))
+        })?;
         Spec::from_raw(raw, file, dir, scene)
     }
 
@@ -379,13 +392,20 @@ impl Spec {
             .collect()
     }
 
-    /// The scene of one row: the base with `inputs` set, named `name`, with the spec's
-    /// checks; its Table 3 time that of the paper case it is, if any
+    /// The scene of one row: the base with `inputs` set, named `name` and described by its
+    /// inputs, with the spec's checks; its Table 3 time that of the paper case it is, if any
     /// (`paper::stopping_time`, the rule every report follows), so its scene file says so.
     pub fn scene(&self, name: &str, inputs: &[(String, Value)]) -> std::result::Result<Scene, String> {
         let values: Vec<(&str, Value)> = inputs.iter().map(|(p, v)| (p.as_str(), v.clone())).collect();
         let mut scene = self.base.with_overrides(&values).map_err(|e| e.to_string())?;
         scene.meta.paper_stopping_time = kanestop_runtime::paper::stopping_time(&scene);
+        // The row's own description: the base's would describe a scene it no longer is.
+        let set: Vec<String> = inputs.iter().map(|(p, v)| format!("{p} = {v}")).collect();
+        scene.meta.description = if set.is_empty() {
+            format!("row of sweep {}: {}", self.name, self.base.meta.name)
+        } else {
+            format!("row of sweep {}: {} with {}", self.name, self.base.meta.name, set.join(", "))
+        };
         scene.meta.name = name.to_string();
         if let Some(c) = &self.checks {
             scene.checks = Some(c.clone());
@@ -587,6 +607,9 @@ mod tests {
         let message = |text: &str| {
             Spec::from_toml(text, Path::new("s.toml"), Path::new(""), Some(case01())).unwrap_err().to_string()
         };
+        // A scene given for a spec says what a sweep needs.
+        let e = message("[meta]\nname = \"x\"\n[ship]\nmass = 1.0\n");
+        assert!(e.contains("this is a scene file") && e.contains("rows=[…]"), "{e}");
         let e = message("[[axis]\n");
         assert!(e.starts_with("sweep spec s.toml: TOML parse error at line 1"), "{e}");
         let e = message("[set]\n\"ship.mas\" = 1.0\n");
