@@ -71,6 +71,12 @@ fn vertical_projection_60_is_refused_with_the_range() {
     for part in ["for cable length L_c = 152 m and h_L = 60 m", "135.68", "initial.vertical_projection in (4, "] {
         assert!(p.expected.contains(part), "{:?} lacks {part:?}", p.expected);
     }
+    // A cable length whose stage sum carries rounding (3·2 + 12·10 + 13·2.1 m): the h_L bound
+    // L_c − x_L reads 5.3, not 5.300000000000011.
+    let mut s = case1();
+    s.cable.stages[2].element_length = 2.1;
+    let p = refused(&s, "initial.horizontal_projection");
+    assert!(p.expected.contains("initial.vertical_projection in (5.3, "), "{}", p.expected);
 }
 
 #[test]

@@ -131,3 +131,21 @@ fn extends_errors_name_the_file() {
     let e = Scene::load(&dir.join("e.toml")).unwrap_err();
     assert!(e.to_string().contains("mas"), "{e}");
 }
+
+/// Text laid over a file chain (Python's `Scene.from_toml(text, base_dir=…)`): its `extends`
+/// is resolved from the folder it is named in, and a file there of the text's own name is a
+/// base like any other, not the text itself (no false cycle).
+#[test]
+fn text_that_extends_a_file_of_its_own_name_is_laid_over_it() {
+    let paper = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("scenes/paper");
+    let text = "extends = \"case01.toml\"\n[ship]\nmass = 6e5\n";
+    let scene = Scene::from_toml_at(text, &paper.join("case01.toml")).unwrap_or_else(|e| panic!("{e}"));
+    let base = Scene::load(&paper.join("case01.toml")).unwrap();
+    assert_eq!(scene.ship.mass, 6e5);
+    assert_eq!(scene.chain, base.chain);
+    assert_eq!(scene.meta.name, "case01");
+    assert_eq!(scene.meta.description, "case01.toml with the changes of case01.toml");
+    // A missing base is named.
+    let e = Scene::from_toml_at(text, &paper.join("none/x.toml")).unwrap_err().to_string();
+    assert!(e.contains("case01.toml"), "{e}");
+}

@@ -2,7 +2,7 @@
 
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PySequence, PyString, PyTuple};
+use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
 use toml::Value;
 
 /// `obj` as a TOML value; `path` names it in errors (`ship.mass`).
@@ -43,14 +43,17 @@ pub fn to_toml(obj: &Bound<'_, PyAny>, path: &str) -> PyResult<Value> {
     // NumPy arrays (`np.linspace(…)`) as the lists they hold, NumPy bools as bools (they
     // also convert to floats, below).
     if obj.hasattr("dtype")? {
-        if obj.hasattr("ndim")? && obj.getattr("ndim")?.extract::<usize>().is_ok_and(|n| n > 0) {
+        let ndim = obj.getattr("ndim").ok().and_then(|n| n.extract::<usize>().ok());
+        if ndim.is_some_and(|n| n > 0) && obj.hasattr("tolist")? {
             return to_toml(&obj.call_method0("tolist")?, path);
         }
-        if obj.getattr("dtype")?.getattr("kind")?.extract::<String>().is_ok_and(|k| k == "b") {
+        let kind = obj.getattr("dtype").and_then(|d| d.getattr("kind")).ok().and_then(|k| k.extract::<String>().ok());
+        if kind.as_deref() == Some("b") {
             return Ok(Value::Boolean(obj.is_truthy()?));
         }
     }
-    if obj.is_instance_of::<PyList>() || obj.is_instance_of::<PyTuple>() || obj.downcast::<PySequence>().is_ok() {
+    let is_range = obj.get_type().name().is_ok_and(|n| n == "range");
+    if obj.is_instance_of::<PyList>() || obj.is_instance_of::<PyTuple>() || is_range {
         let mut items = Vec::new();
         for (i, v) in obj.try_iter()?.enumerate() {
             items.push(to_toml(&v?, &format!("{path}[{i}]"))?);

@@ -153,6 +153,10 @@ def test_numpy_arrays_ranges_and_numpy_bools_are_scene_values(case01: kanestop.S
     assert [r["chain.elements"] for r in by_range.inputs()] == [14, 15]
     dry = case01.with_overrides({"environment.water": np.bool_(False)})
     assert dry.to_dict()["environment"]["water"] is False
+    # A 0-d array is its number; bytes are no list of values.
+    assert case01.with_overrides({"ship.mass": np.array(6e5)}).to_dict()["ship"]["mass"] == 6e5
+    with pytest.raises(TypeError, match="not a scene value"):
+        kanestop.Spec.from_dict({"base": case01, "axis": [{"path": "ship.mass", "values": b"ab"}]})
 
 
 def test_solver_keywords_are_the_specs_solver(cli_sweep: Dict[str, Any]) -> None:

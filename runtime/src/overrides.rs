@@ -189,10 +189,16 @@ pub fn conflicting_alternatives(paths: &[&str]) -> Option<(usize, usize)> {
 }
 
 /// The value at `path` of `root`, or for a field of [`ALTERNATIVES`] that `root` does not
-/// have, the value of the one of its group it has: what [`set`] would replace (its type is
+/// have, the value of the one of its group it has, or for a field of [`OPTIONAL`] that it
+/// does not have, a real number (the checks' type): what [`set`] would replace (its type is
 /// the one `path` takes).
 pub fn get_or_alternative<'a>(root: &'a Value, path: &str) -> Option<&'a Value> {
+    static REAL: Value = Value::Float(0.0);
     get(root, path).or_else(|| {
+        let (table, key) = path.split_once('.')?;
+        if OPTIONAL.iter().any(|(t, keys)| *t == table && keys.contains(&key)) {
+            return Some(&REAL);
+        }
         let (table, group, _) = alternatives_of(path)?;
         group.iter().find_map(|k| get(root, &format!("{table}.{k}")))
     })

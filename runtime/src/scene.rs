@@ -526,35 +526,54 @@ impl Scene {
     /// # Ok::<(), SceneError>(())
     /// ```
     pub fn load(path: &Path) -> Result<Scene, SceneError> {
-        let text =
-            read_scene_file(path).map_err(|source| SceneError::Io { file: path.display().to_string(), source })?;
-        Scene::from_toml_at(&text, path)
+        let file = path.display().to_string();
+        let text = read_scene_file(path).map_err(|source| SceneError::Io { file: file.clone(), source })?;
+        let top = match text.parse::<toml::Table>() {
+            Ok(top) if top.contains_key("extends") => top,
+            // A whole file: parsed as text, so that errors point at its lines.
+            _ => return Scene::from_toml(&text, &file),
+        };
+        let value = Scene::resolve_file(path)?;
+        let mut scene = Scene::from_value(value, &file)?;
+        scene.own_meta(path, &top);
+        Ok(scene)
     }
 
-    /// [`Scene::from_toml`] of the text of a file at `path` (which need not exist): an
-    /// `extends` is resolved from `path`'s folder, as [`Scene::load`] resolves it.
+    /// [`Scene::from_toml`] of text named as a file at `path` (which need not exist): an
+    /// `extends` is resolved from `path`'s folder, as [`Scene::load`] resolves a file's, and
+    /// the text is laid over that chain of files (a file there of the text's own name is one
+    /// of them, not the text).
     pub fn from_toml_at(text: &str, path: &Path) -> Result<Scene, SceneError> {
         let file = path.display().to_string();
+        let mut top = match text.parse::<toml::Table>() {
+            Ok(top) if top.contains_key("extends") => top,
+            _ => return Scene::from_toml(text, &file),
+        };
+        let own = top.clone();
+        let Some(base) = top.remove("extends").and_then(|v| v.as_str().map(str::to_string)) else {
+            return Err(SceneError::Override { file, error: OverrideError::ExtendsType });
+        };
+        let mut value = Scene::resolve_file(&path.parent().unwrap_or(Path::new("")).join(base))?;
+        overrides::merge(&mut value, toml::Value::Table(top));
+        let mut scene = Scene::from_value(value, &file)?;
+        scene.own_meta(path, &own);
+        Ok(scene)
+    }
+
+    /// The tables of the scene file at `path` with its `extends` chain laid over each other.
+    fn resolve_file(path: &Path) -> Result<toml::Value, SceneError> {
         fn io(p: &Path) -> impl FnOnce(std::io::Error) -> SceneError {
             let file = p.display().to_string();
             move |source| SceneError::Io { file, source }
         }
-        let top = match text.parse::<toml::Table>() {
-            Ok(top) if top.contains_key("extends") => top,
-            // A whole file: parsed as text, so that errors point at its lines.
-            _ => return Scene::from_toml(text, &file),
-        };
-        let mut read = |p: &Path| if p == path { Ok(text.to_string()) } else { read_scene_file(p).map_err(io(p)) };
+        let mut read = |p: &Path| read_scene_file(p).map_err(io(p));
         let mut parse = |p: &Path, text: &str| {
             text.parse::<toml::Table>()
                 .map(toml::Value::Table)
                 .map_err(|e| SceneError::Parse { file: p.display().to_string(), message: e.to_string() })
         };
         let wrap = |p: &Path, error| SceneError::Override { file: p.display().to_string(), error };
-        let value = overrides::resolve(path, &mut read, &mut parse, &wrap)?;
-        let mut scene = Scene::from_value(value, &file)?;
-        scene.own_meta(path, &top);
-        Ok(scene)
+        overrides::resolve(path, &mut read, &mut parse, &wrap)
     }
 
     /// The `[meta]` of a scene that extends another, where the file does not set it: its name
@@ -1132,7 +1151,12 @@ fn vertical_hint(lc: f64, x: f64) -> String {
             hi = mid;
         }
     }
-    format!("; or, for this x_L, initial.vertical_projection in ({}, {}] m", fmt_value(lc - x), fmt_rounded(lo, 6))
+    // L_c − x_L to 12 digits: the stage lengths' sum carries rounding (5.300000000000011).
+    format!(
+        "; or, for this x_L, initial.vertical_projection in ({}, {}] m",
+        fmt_significant(lc - x, 12),
+        fmt_rounded(lo, 6)
+    )
 }
 
 impl Scene {

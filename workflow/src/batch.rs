@@ -339,7 +339,7 @@ pub fn table(rows: &[BatchRow]) -> String {
         "diff %",
         "peak (kN)",
         "joint",
-        "anchor s",
+        "slides at",
         "drift",
         "cpu (s)",
         "evals",

@@ -69,11 +69,12 @@ pub fn map_jobs<T: Sync, R: Send>(
     Ok(map(items, f))
 }
 
-/// Runs every model with a kernel from `kernel`, in parallel where the feature allows;
-/// `done` is called (from any thread) as each run finishes. Results in input order.
+/// Runs every model with a kernel from `kernel`, its starting state checked as `run` checks
+/// it, in parallel where the feature allows; `done` is called (from any thread) as each run
+/// finishes. Results in input order.
 pub fn run_models(models: &[Model], kernel: KernelFactory, done: &(dyn Fn(&RunResult) + Sync)) -> Vec<RunResult> {
     map(models, |m| {
-        let result = simulate::run(m, kernel(m));
+        let result = simulate::run_checked(m, kernel(m), kernel(m));
         done(&result);
         result
     })

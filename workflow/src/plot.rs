@@ -173,9 +173,11 @@ fn entries(curves: &[Curve], y: (f64, f64)) -> Vec<Entry> {
     let mut out: Vec<Entry> = Vec::new();
     for c in curves {
         if let Some(label) = c.legend_label(y) {
-            if !out.iter().any(|e| e.label == label) {
-                let (color, pattern, width) = c.stroke();
-                out.push(Entry { label, swatch: Swatch::Line(color, pattern, width) });
+            let (color, pattern, width) = c.stroke();
+            let entry = Entry { label, swatch: Swatch::Line(color, pattern, width) };
+            // One entry per label and look (two runs of one name keep two).
+            if !out.contains(&entry) {
+                out.push(entry);
             }
         }
     }
@@ -187,12 +189,13 @@ fn entries(curves: &[Curve], y: (f64, f64)) -> Vec<Entry> {
     out
 }
 
-/// `text` in lines of at most [`LEGEND_CHARS`] characters, broken at spaces.
-fn wrap(text: &str) -> Vec<String> {
+/// `text` in lines of at most `width` characters, broken at spaces (a longer word is a line
+/// of its own).
+pub(crate) fn wrap(text: &str, width: usize) -> Vec<String> {
     let mut lines: Vec<String> = Vec::new();
     for word in text.split(' ') {
         match lines.last_mut() {
-            Some(line) if line.chars().count() + 1 + word.chars().count() <= LEGEND_CHARS => {
+            Some(line) if line.chars().count() + 1 + word.chars().count() <= width => {
                 line.push(' ');
                 line.push_str(word);
             }
@@ -202,45 +205,63 @@ fn wrap(text: &str) -> Vec<String> {
     lines
 }
 
-/// The legend's layout for a column of `height` px: (columns, column width px, rows per
-/// column, in lines). Text width is estimated at 0.6 em a character (sans-serif, generous).
-fn legend_layout(entries: &[Entry], height: u32) -> (usize, u32, usize) {
-    let widest = entries.iter().flat_map(|e| wrap(&e.label)).map(|l| l.chars().count()).max().unwrap_or(0);
-    let width = 48 + (0.6 * TICK_FONT * widest as f64).ceil() as u32;
-    let lines: usize = entries.iter().map(|e| wrap(&e.label).len()).sum();
-    let per_column = ((height.saturating_sub(20)) / LEGEND_LINE).max(1) as usize;
-    (lines.div_ceil(per_column).max(1), width, per_column)
+/// A legend's layout: each entry's column and first line, and a column's width, px. Text
+/// width is estimated at 0.6 em a character (sans-serif, generous).
+struct LegendLayout {
+    /// (column, line) of each entry, in order.
+    places: Vec<(usize, usize)>,
+    columns: usize,
+    column_width: u32,
 }
 
-/// The legend's width, px, beside a plot `height` px tall (none without entries).
+/// The legend's height, px, for `height` px of figure: the plot's, less the space above its
+/// first entry (the title's, at most [`LEGEND_TOP`]).
+const LEGEND_TOP: u32 = 60;
+
+/// Lays `entries` out top down in columns of the lines that `height` px hold (after
+/// [`LEGEND_TOP`]); an entry whose lines do not fit below the last starts the next column.
+fn legend_layout(entries: &[Entry], height: u32) -> LegendLayout {
+    let widest = entries.iter().flat_map(|e| wrap(&e.label, LEGEND_CHARS)).map(|l| l.chars().count()).max();
+    let column_width = 48 + (0.6 * TICK_FONT * widest.unwrap_or(0) as f64).ceil() as u32;
+    let per_column = (height.saturating_sub(LEGEND_TOP) / LEGEND_LINE).max(1) as usize;
+    let (mut column, mut line) = (0usize, 0usize);
+    let mut places = Vec::new();
+    for e in entries {
+        let lines = wrap(&e.label, LEGEND_CHARS).len();
+        if line > 0 && line + lines > per_column {
+            (column, line) = (column + 1, 0);
+        }
+        places.push((column, line));
+        line += lines;
+    }
+    LegendLayout { places, columns: column + 1, column_width }
+}
+
+/// The legend's width, px, beside a figure `height` px tall (none without entries).
 fn legend_width(entries: &[Entry], height: u32) -> u32 {
     if entries.is_empty() {
         return 0;
     }
-    let (columns, width, _) = legend_layout(entries, height);
-    columns as u32 * width + 12
+    let layout = legend_layout(entries, height);
+    layout.columns as u32 * layout.column_width + 12
 }
 
-/// Draws `entries` in `area`, top down, in as many columns as its height needs.
+/// Draws `entries` in `area` (the strip beside a figure `height` px tall, its top level with
+/// the figure's), laid out as [`legend_width`] sized it.
 fn draw_legend<DB: DrawingBackend>(
     area: &DrawingArea<DB, plotters::coord::Shift>,
     entries: &[Entry],
+    height: u32,
 ) -> Result<(), String> {
     let err = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
-    let (_, height) = area.dim_in_pixel();
-    let (_, width, per_column) = legend_layout(entries, height);
+    let layout = legend_layout(entries, height);
     let text = sans(TICK_FONT).into_font().color(&BLACK).pos(Pos::new(HPos::Left, VPos::Center));
-    let (mut column, mut row) = (0usize, 0usize);
-    for entry in entries {
-        let lines = wrap(&entry.label);
-        if row > 0 && row + lines.len() > per_column {
-            (column, row) = (column + 1, 0);
-        }
-        let x = 4 + (column as u32 * width) as i32;
-        let y = 20 + (row as u32 * LEGEND_LINE) as i32 + LEGEND_LINE as i32 / 2;
+    for (entry, &(column, line)) in entries.iter().zip(&layout.places) {
+        let x = 4 + (column as u32 * layout.column_width) as i32;
+        let y = LEGEND_TOP as i32 + (line as u32 * LEGEND_LINE) as i32 + LEGEND_LINE as i32 / 2;
         match entry.swatch {
-            Swatch::Line(color, pattern, width) => {
-                let style = ShapeStyle { color: color.to_rgba(), filled: false, stroke_width: width };
+            Swatch::Line(color, pattern, stroke) => {
+                let style = ShapeStyle { color: color.to_rgba(), filled: false, stroke_width: stroke };
                 let dashes: &[(i32, i32)] = match pattern {
                     Pattern::Solid => &[(0, 28)],
                     Pattern::Dashed => &[(0, 10), (15, 28)],
@@ -252,11 +273,10 @@ fn draw_legend<DB: DrawingBackend>(
             }
             Swatch::Mark(mark) => draw_mark(area, (x + 14, y), mark, RGBColor(70, 70, 70)).map_err(err)?,
         }
-        for (i, line) in lines.iter().enumerate() {
+        for (i, line) in wrap(&entry.label, LEGEND_CHARS).iter().enumerate() {
             area.draw(&Text::new(line.clone(), (x + 38, y + (i as u32 * LEGEND_LINE) as i32), text.clone()))
                 .map_err(err)?;
         }
-        row += lines.len();
     }
     Ok(())
 }
@@ -274,7 +294,7 @@ fn draw_mark<DB: DrawingBackend>(
     }
 }
 
-/// The axes' ranges: x over every curve, y over the data curves and over the reference
+/// The axes' ranges: x over every curve and mark, y over the data curves, their marks and the reference
 /// lines (load limits) that lie within 2.5 × the data's largest value (a limit far above the
 /// data must not flatten it; the legend names it), from zero when `from_zero`, padded by 5 %.
 fn bounds(curves: &[Curve], from_zero: bool) -> ((f64, f64), (f64, f64)) {
@@ -283,7 +303,9 @@ fn bounds(curves: &[Curve], from_zero: bool) -> ((f64, f64), (f64, f64)) {
     let mut x = (f64::INFINITY, f64::NEG_INFINITY);
     let mut y = (if from_zero { 0.0 } else { f64::INFINITY }, if from_zero { 0.0 } else { f64::NEG_INFINITY });
     for c in curves {
-        for (a, b) in finite(c) {
+        // A curve's marks are in view (the paper's stopping time after the run's stop).
+        let marks = c.marks.iter().map(|m| m.0).filter(|(a, b)| a.is_finite() && b.is_finite());
+        for (a, b) in finite(c).into_iter().chain(marks) {
             x = (x.0.min(a), x.1.max(a));
             if !c.reference {
                 y = (y.0.min(b), y.1.max(b));
@@ -348,7 +370,7 @@ fn chart(
         root.fill(&WHITE).map_err(|e| e.to_string())?;
         let (plot, beside) = root.split_horizontally(SIZE.0);
         panel(&plot, title, TITLE_FONT, x_label, y_label, curves, from_zero, regions)?;
-        draw_legend(&beside.margin(30, 0, 0, 0), &legend)?;
+        draw_legend(&beside, &legend, SIZE.1)?;
         root.present().map_err(|e| e.to_string())?;
     }
     Ok(svg)
@@ -369,25 +391,25 @@ fn panels(
     let mut legend: Vec<Entry> = Vec::new();
     for (_, curves) in panels {
         for e in entries(curves, bounds(curves, false).1) {
-            if !legend.iter().any(|l| l.label == e.label) {
+            if !legend.contains(&e) {
                 legend.push(e);
             }
         }
     }
     // Marks last, as in one panel's legend.
     legend.sort_by_key(|e| matches!(e.swatch, Swatch::Mark(_)));
-    let side = legend_width(&legend, h.min(SIZE.1 * 2));
+    let side = legend_width(&legend, h);
     let mut svg = String::new();
     {
         let root = SVGBackend::with_string(&mut svg, (w + side, h)).into_drawing_area();
         root.fill(&WHITE).map_err(|e| e.to_string())?;
-        let root = root.titled(title, sans(TITLE_FONT)).map_err(|e| e.to_string())?;
-        let (grid, beside) = root.split_horizontally(w);
+        let (left, beside) = root.split_horizontally(w);
+        let grid = left.titled(title, sans(TITLE_FONT)).map_err(|e| e.to_string())?;
         let areas = grid.split_evenly((rows, columns));
         for (area, (sub, curves)) in areas.iter().zip(panels) {
             panel(area, sub, PANEL_TITLE_FONT, x_label, y_label, curves, false, &[])?;
         }
-        draw_legend(&beside, &legend)?;
+        draw_legend(&beside, &legend, h)?;
         root.present().map_err(|e| e.to_string())?;
     }
     Ok(svg)
@@ -1018,12 +1040,43 @@ mod tests {
         let many: Vec<Curve> =
             (0..40).map(|i| Curve::new(format!("run {i}"), i, vec![(0.0, 0.0), (1.0, 1.0)])).collect();
         let legend = entries(&many, (0.0, 1.0));
-        assert_eq!(legend_layout(&legend, SIZE.1).0, 2, "two columns");
+        assert_eq!(legend_layout(&legend, SIZE.1).columns, 2, "two columns");
         let svg = chart("t", "x", "y", &many, false, &[]).unwrap();
         let width: f64 = svg.split("width=\"").nth(1).unwrap().split('"').next().unwrap().parse().unwrap();
         for i in 0..40 {
             let x = text_x(&svg, &format!("run {i}"))[0];
             assert!(x > SIZE.0 as f64 && x < width - 40.0, "run {i} at {x} of {width}");
+        }
+        // Every column count the layout gives is the one drawn: each entry's text inside
+        // the image, for 1 to 60 entries, some wrapped.
+        for n in 1..=60 {
+            let curves: Vec<Curve> = (0..n)
+                .map(|i| {
+                    let label = if i % 7 == 3 {
+                        format!("run {i} with a name long enough to wrap in two")
+                    } else {
+                        format!("run {i}")
+                    };
+                    Curve::new(label, i, vec![(0.0, 0.0), (1.0, 1.0)])
+                })
+                .collect();
+            let svg = chart("t", "x", "y", &curves, false, &[]).unwrap();
+            let width: f64 = svg.split("width=\"").nth(1).unwrap().split('"').next().unwrap().parse().unwrap();
+            let height: f64 = svg.split("height=\"").nth(1).unwrap().split('"').next().unwrap().parse().unwrap();
+            let texts: Vec<(f64, f64)> = svg
+                .split("<text ")
+                .skip(1)
+                .map(|t| {
+                    let attr = |a: &str| {
+                        t.split(&format!("{a}=\"")).nth(1).unwrap().split('"').next().unwrap().parse::<f64>().unwrap()
+                    };
+                    (attr("x"), attr("y"))
+                })
+                .collect();
+            assert!(
+                texts.iter().all(|&(x, y)| x < width - 30.0 && y < height - 5.0),
+                "{n} entries: a text outside {width}×{height}"
+            );
         }
         // Panels share one legend, each label once.
         let panel_curves = || vec![Curve::new("kinetic", 0, vec![(0.0, 1.0), (1.0, 0.0)])];
@@ -1033,10 +1086,10 @@ mod tests {
 
     #[test]
     fn a_long_legend_text_wraps_at_a_space() {
-        let lines = wrap("break load: chain 3866, cable 2520, rod 2520, something else kN");
+        let lines = wrap("break load: chain 3866, cable 2520, rod 2520, something else kN", LEGEND_CHARS);
         assert!(lines.len() == 2 && lines.iter().all(|l| l.chars().count() <= LEGEND_CHARS), "{lines:?}");
         assert_eq!(lines.join(" "), "break load: chain 3866, cable 2520, rod 2520, something else kN");
-        assert_eq!(wrap("case01"), ["case01"]);
+        assert_eq!(wrap("case01", LEGEND_CHARS), ["case01"]);
     }
 
     #[test]
@@ -1053,7 +1106,17 @@ mod tests {
         failed.marks = vec![((0.31, 2.8), Mark::Failure)];
         paper.marks = vec![((20.01, 0.0), Mark::Paper)];
         let svg = chart("t", "x", "y", &[failed, paper], false, &[]).unwrap();
-        // The triangle is a filled polygon in the run's colour (palette 1, #D62728).
-        assert!(svg.contains("<polygon") && svg.contains("D62728"), "the paper's time is marked");
+        // The triangle is a polygon filled in the run's colour (palette 1, #D62728) on the
+        // plot, though the paper's time is after the run's stop (the axis takes it in); the
+        // legend's swatch is grey.
+        let triangles: Vec<f64> = svg
+            .split("<polygon ")
+            .skip(1)
+            .map(|p| p.split("/>").next().unwrap())
+            .filter(|p| p.contains("fill=\"#D62728\""))
+            .map(|p| p.split("points=\"").nth(1).unwrap().split(',').next().unwrap().parse().unwrap())
+            .collect();
+        assert_eq!(triangles.len(), 1, "{svg}");
+        assert!(triangles[0] < SIZE.0 as f64, "on the plot: x = {}", triangles[0]);
     }
 }

@@ -168,6 +168,8 @@ struct Cell {
     value: Option<f64>,
     /// How many runs gave the value (its mean's samples).
     runs: usize,
+    /// How many rows the cell has (runs that gave no value included).
+    rows: usize,
     pass: Option<bool>,
     /// The checks its rows failed, in words.
     failed: Vec<&'static str>,
@@ -196,6 +198,7 @@ fn cells(spec: &Spec, rows: &[SweepRow], output: Output) -> Vec<Vec<Cell>> {
         };
         let (Some(i), Some(j)) = (at(ax), at(ay)) else { continue };
         let cell = &mut sums[i][j];
+        cell.2.rows += 1;
         if let Some(v) = r.summary.as_ref().and_then(|s| output.of(s)).filter(|v| v.is_finite()) {
             cell.0 += v;
             cell.1 += 1;
@@ -240,6 +243,15 @@ fn viridis(t: f64) -> RGBColor {
     RGBColor(mix(a.0, b.0), mix(a.1, b.1), mix(a.2, b.2))
 }
 
+/// `v` in scientific notation to `digits` significant digits, without trailing zeros
+/// (`1.6e5`, `2e4`).
+fn scientific_text(v: f64, digits: usize) -> String {
+    let s = format!("{v:.*e}", digits.max(1) - 1);
+    let (m, e) = s.split_once('e').unwrap_or((&s, "0"));
+    let m = if m.contains('.') { m.trim_end_matches('0').trim_end_matches('.') } else { m };
+    format!("{m}e{e}")
+}
+
 /// A value for a tick or a cell: up to 4 significant digits, scientific when large or small.
 fn short(v: f64) -> String {
     short_in(v, 0.0)
@@ -257,19 +269,13 @@ fn short_in(v: f64, span: f64) -> String {
         let e = a.log10().floor() as i32;
         if (-2..5).contains(&e) {
             let decimals = (sig - 1 - e).max(0) as usize;
-            let s = format!("{v:.decimals$}");
-            return if s.contains('.') { s.trim_end_matches('0').trim_end_matches('.').to_string() } else { s };
+            // Every value to the same place (0.17080 beside 0.17077, not 0.1708).
+            return format!("{v:.decimals$}");
         }
-        let s = format!("{v:.*e}", (sig - 1) as usize);
-        let (m, e) = s.split_once('e').unwrap_or((&s, "0"));
-        let m = m.trim_end_matches('0').trim_end_matches('.');
-        return format!("{m}e{e}");
+        return scientific_text(v, sig as usize);
     }
     if v != 0.0 && !(1e-2..1e5).contains(&a) {
-        let s = format!("{v:.3e}");
-        let (m, e) = s.split_once('e').unwrap_or((&s, "0"));
-        let m = m.trim_end_matches('0').trim_end_matches('.');
-        return format!("{m}e{e}");
+        return scientific_text(v, 4);
     }
     let digits = if a >= 1000.0 {
         0
@@ -348,12 +354,20 @@ fn draw_cells<DB: DrawingBackend>(
     // Cell (i, j) spans [i − ½, i + ½] × [j − ½, j + ½]: the ticks fall on whole numbers, the
     // cells' centres, and name the axis values there.
     let (ax, ay) = (&spec.axes[0], &spec.axes[1]);
-    let tick = |a: &super::spec::Axis, v: f64| {
+    // One style per axis: all scientific when any value needs it (not 80000 beside 1.6e5).
+    let scientific =
+        |a: &super::spec::Axis| a.values.iter().filter_map(number).any(|v| v != 0.0 && !(1e-2..1e5).contains(&v.abs()));
+    let (sx, sy) = (scientific(ax), scientific(ay));
+    let tick = |a: &super::spec::Axis, sci: bool, v: f64| {
         let i = v.round();
         if (v - i).abs() > 1e-9 || i < 0.0 {
             return String::new();
         }
-        a.values.get(i as usize).and_then(number).map(short).unwrap_or_default()
+        a.values
+            .get(i as usize)
+            .and_then(number)
+            .map(|v| if sci { scientific_text(v, 4) } else { short(v) })
+            .unwrap_or_default()
     };
     let mut c = ChartBuilder::on(area)
         .margin(12)
@@ -369,8 +383,8 @@ fn draw_cells<DB: DrawingBackend>(
         .y_desc(kanestop_runtime::scene::labelled(&ay.path))
         .label_style(sans(14.0))
         .axis_desc_style(sans(15.0))
-        .x_label_formatter(&|v| tick(ax, *v))
-        .y_label_formatter(&|v| tick(ay, *v))
+        .x_label_formatter(&|v| tick(ax, sx, *v))
+        .y_label_formatter(&|v| tick(ay, sy, *v))
         .draw()
         .map_err(err)?;
     let annotate = nx * ny <= 225;
@@ -395,7 +409,9 @@ fn draw_cells<DB: DrawingBackend>(
                 .map_err(err)?;
             }
             if annotate {
-                let text = cell.value.map(|v| short_in(v, hi - lo)).unwrap_or_else(|| "—".into());
+                // A mean over part of its rows (the others did not stop, or failed) is starred.
+                let star = if cell.value.is_some() && cell.runs < cell.rows { "*" } else { "" };
+                let text = cell.value.map(|v| format!("{}{star}", short_in(v, hi - lo))).unwrap_or_else(|| "—".into());
                 let light = cell.value.is_some_and(|v| (v - lo) / (hi - lo) < 0.6);
                 let colour = if light { WHITE } else { BLACK };
                 let centred = Pos::new(HPos::Center, VPos::Center);
@@ -409,7 +425,7 @@ fn draw_cells<DB: DrawingBackend>(
                     let fits = ((cell_px / (0.6 * CELL_NOTE_FONT)) as usize).max(8);
                     let line_h = 1.25 * CELL_NOTE_FONT / row_px;
                     for (k, line) in
-                        fit_lines(&format!("fails: {}", cell.failed.join(", ")), fits).into_iter().enumerate()
+                        crate::plot::wrap(&format!("fails: {}", cell.failed.join(", ")), fits).into_iter().enumerate()
                     {
                         let at = (x + 0.5, y + 0.5 - 0.16 - k as f64 * line_h);
                         c.draw_series(std::iter::once(Text::new(line, at, small.clone()))).map_err(err)?;
@@ -440,21 +456,6 @@ fn draw_cells<DB: DrawingBackend>(
 
 /// A cell note's type size, px as drawn.
 const CELL_NOTE_FONT: f64 = 12.0;
-
-/// `text` in lines of at most `width` characters, broken after commas and spaces.
-fn fit_lines(text: &str, width: usize) -> Vec<String> {
-    let mut lines: Vec<String> = Vec::new();
-    for word in text.split(' ') {
-        match lines.last_mut() {
-            Some(line) if line.chars().count() + 1 + word.chars().count() <= width => {
-                line.push(' ');
-                line.push_str(word);
-            }
-            _ => lines.push(word.to_string()),
-        }
-    }
-    lines
-}
 
 /// Diagonal hatching lines of the unit cell at (x, y), in data coordinates.
 fn hatch(x: f64, y: f64) -> Vec<Vec<(f64, f64)>> {
@@ -565,13 +566,18 @@ fn draw_legend<DB: DrawingBackend>(
         font.clone(),
     ))
     .map_err(err)?;
-    // Sampled inputs on the grid: a cell is a mean, and says over how many runs.
-    let most = grid.iter().flatten().map(|c| c.runs).max().unwrap_or(0);
-    if most > 1 {
-        let fewest = grid.iter().flatten().map(|c| c.runs).filter(|&n| n > 0).min().unwrap_or(most);
-        let runs = if fewest == most { format!("{most}") } else { format!("{fewest}–{most}") };
+    // Sampled inputs on the grid: a cell is a mean, and says over how many runs; one over
+    // part of its runs is starred.
+    let rows = grid.iter().flatten().map(|c| c.rows).max().unwrap_or(0);
+    let partial = grid.iter().flatten().filter(|c| c.value.is_some() && c.runs < c.rows).count();
+    if rows > 1 {
+        let star = if partial > 0 {
+            format!("; *: over the runs that gave a value, the others did not stop or failed ({partial} cells)")
+        } else {
+            String::new()
+        };
         area.draw(&Text::new(
-            format!("each cell: the mean over its {runs} runs (the sampled inputs at that grid point)"),
+            format!("each cell: the mean over its {rows} runs (the sampled inputs at that grid point){star}"),
             (x0 + 36, y2 + 30),
             font,
         ))
@@ -632,13 +638,16 @@ mod tests {
         assert_eq!(short(40.0), "40");
         assert_eq!(short(27.004), "27");
         assert_eq!(short(0.171), "0.171");
+        assert_eq!(scientific_text(20000.0, 4), "2e4");
+        assert_eq!(scientific_text(160000.0, 4), "1.6e5");
         // Regression: every cell of a map over 0.17077–0.17111 read "0.171".
         assert_eq!(short_in(0.170768, 0.000345), "0.17077");
+        assert_eq!(short_in(0.1708, 0.000345), "0.17080", "to the same place as its neighbours");
         assert_eq!(short_in(0.171113, 0.000345), "0.17111");
         assert_eq!(short_in(27.004, 10.0), "27", "a wide span keeps 4 digits");
         assert_eq!(short_in(500123.0, 20.0), "5.00123e5");
         // Regression: "fails: distance, anchor drag" ran into the next cell.
-        let lines = fit_lines("fails: distance, anchor drag", 20);
+        let lines = crate::plot::wrap("fails: distance, anchor drag", 20);
         assert_eq!(lines, ["fails: distance,", "anchor drag"]);
         for o in Output::ALL {
             assert_eq!(Output::parse(o.name()).unwrap(), o);

@@ -397,19 +397,23 @@ impl Spec {
     /// (`paper::stopping_time`, the rule every report follows), so its scene file says so.
     pub fn scene(&self, name: &str, inputs: &[(String, Value)]) -> std::result::Result<Scene, String> {
         let values: Vec<(&str, Value)> = inputs.iter().map(|(p, v)| (p.as_str(), v.clone())).collect();
-        let mut scene = self.base.with_overrides(&values).map_err(|e| e.to_string())?;
+        // The spec's checks first, so that a row's input may set one of them.
+        let mut base = self.base.clone();
+        if let Some(c) = &self.checks {
+            base.checks = Some(c.clone());
+        }
+        let mut scene = base.with_overrides(&values).map_err(|e| e.to_string())?;
         scene.meta.paper_stopping_time = kanestop_runtime::paper::stopping_time(&scene);
         // The row's own description: the base's would describe a scene it no longer is.
         let set: Vec<String> = inputs.iter().map(|(p, v)| format!("{p} = {v}")).collect();
-        scene.meta.description = if set.is_empty() {
+        scene.meta.description = if inputs.iter().any(|(p, _)| p == "meta.description") {
+            scene.meta.description
+        } else if set.is_empty() {
             format!("row of sweep {}: {}", self.name, self.base.meta.name)
         } else {
             format!("row of sweep {}: {} with {}", self.name, self.base.meta.name, set.join(", "))
         };
         scene.meta.name = name.to_string();
-        if let Some(c) = &self.checks {
-            scene.checks = Some(c.clone());
-        }
         Ok(scene)
     }
 }
@@ -445,10 +449,20 @@ fn axis(file: &Path, base: &Value, i: usize, a: AxisFile) -> Result<Axis> {
                         Scale::Linear => r.from + s * (r.to - r.from),
                         Scale::Log => (r.from.ln() + s * (r.to.ln() - r.from.ln())).exp(),
                     };
-                    // To 12 significant digits: the arithmetic's last bits are noise that
-                    // would print in tables, files and refusals (a log range from 1e4 to 8e4
-                    // computes 20000.00000000002).
-                    let x = format!("{x:.11e}").parse::<f64>().unwrap_or(x);
+                    // To 12 digits of the range's larger end, its own ends exact: the
+                    // arithmetic's last bits are noise that would print in tables, files and
+                    // refusals (a log range from 1e4 to 8e4 computes 20000.00000000002, a
+                    // linear one from -0.1 to 0.5 gives -1.4e-17 for 0).
+                    let x = if k == 0 {
+                        r.from
+                    } else if k + 1 == r.steps {
+                        r.to
+                    } else {
+                        let scale = r.from.abs().max(r.to.abs());
+                        // In f64: a range at zero (scale 0) has log10 = -inf, 300 places.
+                        let decimals = (11.0 - scale.log10().floor()).clamp(0.0, 300.0) as usize;
+                        format!("{x:.decimals$}").parse::<f64>().map_or(x, |v| v + 0.0)
+                    };
                     // For an integer field, a point whole up to the range's rounding is whole
                     // (a log range from 1 to 100 in 3 steps computes 10.000000000000002).
                     let whole = x.round();
@@ -621,6 +635,19 @@ mod tests {
     }
 
     #[test]
+    fn an_axis_may_run_over_a_design_check() {
+        // Regression: an axis on checks.* over a base without [checks] was "not a field of the
+        // scene", and with the spec's own [checks] its values were dropped for the spec's.
+        let text =
+            "[checks]\nsafety_factor = 1.5\n[[axis]]\npath = \"checks.max_stopping_distance\"\nvalues = [20.0, 40.0]\n";
+        let spec = Spec::from_toml(text, Path::new("s.toml"), Path::new(""), Some(case01())).unwrap();
+        let limits: Vec<_> = spec.plan().iter().map(|r| r.scene.as_ref().unwrap().checks.clone().unwrap()).collect();
+        assert_eq!(limits[0].max_stopping_distance, Some(20.0));
+        assert_eq!(limits[1].max_stopping_distance, Some(40.0));
+        assert!(limits.iter().all(|c| c.safety_factor == Some(1.5)), "the spec's own checks kept");
+    }
+
+    #[test]
     fn a_range_s_points_carry_no_rounding_noise() {
         // Regression: a log range from 1e4 to 8e4 gave 20000.00000000002 in the tables,
         // sweep.csv and the refusals.
@@ -633,6 +660,13 @@ mod tests {
         assert_eq!(log, ["10000.0", "20000.0", "40000.0", "80000.0"]);
         let linear = points("environment.seabed_friction", "from = 0.1, to = 0.5, steps = 5");
         assert_eq!(linear, ["0.1", "0.2", "0.3", "0.4", "0.5"]);
+        // Through zero: 0, not -1.4e-17; the ends as given.
+        let through = points("environment.current_surface_speed", "from = -0.1, to = 0.5, steps = 7");
+        assert_eq!(through, ["-0.1", "0.0", "0.1", "0.2", "0.3", "0.4", "0.5"]);
+        let ends = points("anchor.mass", "from = 12345.678901234567, to = 2e4, steps = 3");
+        assert_eq!(ends[0], "12345.678901234567");
+        let zero = points("environment.current_surface_speed", "from = 0.0, to = 0.0, steps = 3");
+        assert_eq!(zero, ["0.0", "0.0", "0.0"]);
     }
 
     #[test]
