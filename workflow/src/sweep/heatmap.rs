@@ -295,7 +295,7 @@ fn short_in(v: f64, span: f64) -> String {
 }
 
 /// Chart size, pixels.
-const SIZE: (u32, u32) = (1000, 740);
+const SIZE: (u32, u32) = (1000, 760);
 /// The title's type size, px as drawn.
 const TITLE_FONT: f64 = 20.0;
 
@@ -332,7 +332,7 @@ pub fn heat_map(spec: &Spec, rows: &[SweepRow], output: Output) -> std::result::
             top.draw(&Text::new(line, (SIZE.0 as i32 / 2, 8 + 28 * k as i32), font.clone()))
                 .map_err(|e| e.to_string())?;
         }
-        let (body, legend) = root.split_vertically(SIZE.1 - head - 130);
+        let (body, legend) = root.split_vertically(SIZE.1 - head - 150);
         let (main, scale) = body.split_horizontally(SIZE.0 - 170);
         draw_cells(&main, spec, &grid, (lo, hi))?;
         draw_scale(&scale, output, (lo, hi), limit)?;
@@ -571,14 +571,17 @@ fn draw_legend<DB: DrawingBackend>(
     let rows = grid.iter().flatten().map(|c| c.rows).max().unwrap_or(0);
     let partial = grid.iter().flatten().filter(|c| c.value.is_some() && c.runs < c.rows).count();
     if rows > 1 {
-        let star = if partial > 0 {
-            format!("; *: over the runs that gave a value, the others did not stop or failed ({partial} cells)")
-        } else {
-            String::new()
-        };
         area.draw(&Text::new(
-            format!("each cell: the mean over its {rows} runs (the sampled inputs at that grid point){star}"),
-            (x0 + 36, y2 + 30),
+            format!("each cell: the mean over its {rows} runs (the sampled inputs at that grid point)"),
+            (x0 + 36, y2 + 28),
+            font.clone(),
+        ))
+        .map_err(err)?;
+    }
+    if partial > 0 {
+        area.draw(&Text::new(
+            format!("*: the mean of the runs that gave a value; the others did not stop or failed ({partial} of {total} cells)"),
+            (x0 + 36, y2 + 56),
             font,
         ))
         .map_err(err)?;
