@@ -30,7 +30,7 @@ mod convert;
 mod errors;
 mod sweep;
 
-use errors::{scene_error, EvalError, ModelError, SceneError, SpecError};
+use errors::{scene_error, workflow_error, EvalError, ModelError, SceneError, SpecError};
 
 /// A checked scene: every field present, finite and in range. Immutable: `with_overrides`
 /// returns a new scene.
@@ -377,6 +377,33 @@ fn interruptible<T: Send>(py: Python<'_>, work: impl FnOnce(&AtomicBool) -> Opti
     })
 }
 
+/// The sensitivity study of `kanestop report sensitivity` (central differences of the
+/// stopping time, distance and peak tension in each continuous parameter's logarithm,
+/// docs/sweeps.md) as its `sensitivity.json` record in JSON text. The runs release the GIL;
+/// Ctrl-C waits for the study to end. A bad step or job count, or a base scene that fails, is
+/// a ValueError (the latter with the command line's message).
+#[pyfunction]
+#[pyo3(signature = (scene, step=0.05, jobs=None))]
+fn _sensitivity(py: Python<'_>, scene: &PyScene, step: f64, jobs: Option<usize>) -> PyResult<String> {
+    use kanestop_workflow::{kernels, parallel, sensitivity};
+    // Named as Python names them (the command line's say --step and --jobs).
+    if sensitivity::check_step(step).is_err() {
+        return Err(PyValueError::new_err(format!("step = {step}: must be in [1e-6, 0.5), e.g. 0.05")));
+    }
+    if let Some(n) = jobs.filter(|n| !(1..=parallel::MAX_JOBS).contains(n)) {
+        let max = parallel::MAX_JOBS;
+        return Err(PyValueError::new_err(format!("jobs = {n}: must be in [1, {max}] (or None for every core)")));
+    }
+    let scene = scene.inner.clone();
+    let study = interruptible(py, move |_| {
+        let probes = sensitivity::probes(&scene, step);
+        let kernel = kernels::factory(kernels::KernelChoice::Generated);
+        Some(sensitivity::study(&scene, step, &probes, &kernel, jobs, &|| {}))
+    })?
+    .map_err(|e| workflow_error(py, e))?;
+    serde_json::to_string(&study).map_err(|e| PyValueError::new_err(e.to_string()))
+}
+
 fn anchor_name(a: AnchorDof) -> &'static str {
     match a {
         AnchorDof::Free => "free",
@@ -435,6 +462,7 @@ fn _kanestop(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyScene>()?;
     m.add_class::<PyHistory>()?;
     m.add_function(wrap_pyfunction!(_scene_from_toml, m)?)?;
+    m.add_function(wrap_pyfunction!(_sensitivity, m)?)?;
     m.add_function(wrap_pyfunction!(_toml_keys, m)?)?;
     m.add_function(wrap_pyfunction!(sweep::_spec_from_parts, m)?)?;
     m.add_function(wrap_pyfunction!(_run, m)?)?;

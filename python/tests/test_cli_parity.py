@@ -6,6 +6,7 @@ import json
 import math
 
 import numpy as np
+import pytest
 
 import kanestop
 from conftest import CASE01, ROOT, cli_json, run_cli, without_wall_time
@@ -56,6 +57,31 @@ def test_a_failure_in_the_run_has_the_cli_diagnosis_too() -> None:
     # A sweep row over the same scene carries the same diagnosis.
     rows = kanestop.sweep({"base": str(path), "axis": [{"path": "ship.mass", "values": [500000.0]}]})
     assert "initial geometry" in str(rows["message"][0])
+
+
+def test_sensitivity_equals_the_cli_report(tmp_path: object) -> None:
+    import csv
+
+    path = ROOT / "scenes" / "paper" / "case03.toml"
+    p = run_cli("report", "sensitivity", str(path), "--out", str(tmp_path))
+    assert p.returncode == 0, p.stderr
+    with open(tmp_path / "sensitivity.csv", newline="") as f:  # type: ignore[operator]
+        cli = list(csv.DictReader(f))
+    df = kanestop.sensitivity(path)
+    assert len(df) == len(cli) > 20 and list(df.columns) == list(cli[0])
+    number = lambda v: float(v) if v != "" else None  # noqa: E731
+    for (_, row), c in zip(df.iterrows(), cli):
+        assert row["parameter"] == c["parameter"] and row["rank"] == int(c["rank"])
+        for k in ("value", "d_stopping_time", "d_stopping_distance", "d_peak_tension", "step"):
+            v = row[k]
+            assert (None if v is None or (isinstance(v, float) and math.isnan(v)) else v) == number(c[k]), (k, row, c)
+        assert (row["difference"] or "") == c["difference"]
+        assert row["message"].replace('"', "'") == c["message"]  # the CSV's quoting
+    assert df.attrs["scene"] == "case03" and df.attrs["runs"] > len(df)
+    study = kanestop.sensitivity(path, records=True)
+    assert study["base"][0] == df.attrs["base"]["stopping_time"]
+    with pytest.raises(ValueError, match="step = 0.7"):
+        kanestop.sensitivity(path, step=0.7)
 
 
 def test_eval_equals_the_cli_eval(case01: kanestop.Scene) -> None:

@@ -235,7 +235,8 @@ pub fn study(
     // The base first: when it fails, no probe is worth running.
     let base_failed = |message: String, refused: bool| crate::Error::BaseRun { message, refused };
     let model = Model::new(scene).map_err(|e| base_failed(e.to_string(), true))?;
-    let result = simulate::run(&model, kernel(&model));
+    // Checked as `run` checks it: a failing base gets the same diagnosis.
+    let result = simulate::run_checked(&model, kernel(&model), kernel(&model));
     let summary = RunSummary::of(&model, &result);
     done();
     if let Some(f) = &summary.failure {

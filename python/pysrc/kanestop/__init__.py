@@ -27,7 +27,7 @@ import numpy as np
 import numpy.typing as npt
 
 from ._kanestop import MAX_JOBS, EvalError, ModelError, Scene, SceneError, Spec, SpecError, __version__
-from ._kanestop import _History, _run, _sweep, _toml_keys
+from ._kanestop import _History, _run, _sensitivity, _sweep, _toml_keys
 from ._kanestop import eval as _eval
 
 __all__ = [
@@ -40,6 +40,7 @@ __all__ = [
     "Result",
     "run",
     "sweep",
+    "sensitivity",
     "eval",
     "flatten",
     "to_frame",
@@ -324,6 +325,54 @@ def eval(
     the wrong length or with a non-finite entry.
     """
     return _eval(_scene(scene), q, u, anchor=anchor, kernel=kernel)
+
+
+def sensitivity(
+    scene: Union[Scene, PathLike, Mapping[str, Any]],
+    *,
+    step: float = 0.05,
+    jobs: Optional[int] = None,
+    records: bool = False,
+) -> Any:
+    """The sensitivity study of ``kanestop report sensitivity SCENE --step STEP``
+    (docs/sweeps.md): the effect of each continuous parameter p on the stopping time (s),
+    the stopping distance (m) and the peak tension (N) as d(output)/d(ln p), by central
+    differences at p·(1 ± step) (one-sided, or at a smaller step, where a perturbed scene
+    is refused), ranked by the stopping time's.
+
+    Returns ``sensitivity.csv``'s table: a DataFrame (pandas installed) with the columns
+    ``rank, parameter, value, d_stopping_time, d_stopping_distance, d_peak_tension,
+    message, difference, step`` and ``df.attrs`` holding ``scene``, the base run's
+    ``base`` outputs and the ``runs`` made; else a list of dicts. With ``records=True``:
+    ``sensitivity.json``'s record as a dict. The runs release the GIL, ``jobs`` at a time
+    (every core when None); Ctrl-C waits for the study to end. A step outside
+    [1e-6, 0.5), a bad ``jobs``, or a base scene that fails raises ``ValueError`` (the
+    last with the command line's diagnosis).
+    """
+    study: Dict[str, Any] = json.loads(_sensitivity(_scene(scene), step, jobs))
+    if records:
+        return study
+    rows = [
+        {
+            "rank": i + 1,
+            "parameter": r["parameter"],
+            "value": r["value"],
+            "d_stopping_time": r["stopping_time"],
+            "d_stopping_distance": r["stopping_distance"],
+            "d_peak_tension": r["peak_tension"],
+            "message": r["message"],
+            "difference": (r["difference"] or "").lower() or None,
+            "step": r["step"],
+        }
+        for i, r in enumerate(study["rows"])
+    ]
+    pd = _pandas()
+    if pd is None:
+        return rows
+    df = pd.DataFrame(rows, columns=list(rows[0]) if rows else None)
+    base = dict(zip(("stopping_time", "stopping_distance", "peak_tension"), study["base"]))
+    df.attrs.update({"scene": study["scene"], "step": study["step"], "base": base, "runs": study["runs"]})
+    return df
 
 
 Rows = Iterable[Mapping[str, Any]]
