@@ -33,7 +33,7 @@ pub fn to_toml(obj: &Bound<'_, PyAny>, path: &str) -> PyResult<Value> {
         let mut table = toml::Table::new();
         for (k, v) in d.iter() {
             let key: String = k.extract().map_err(|_| {
-                PyTypeError::new_err(format!("{}: keys must be strings, not {}", at(path), type_name(&k)))
+                PyTypeError::new_err(format!("{}: keys must be strings, not {}", at(path), a_type_name(&k)))
             })?;
             let sub = if path.is_empty() { key.clone() } else { format!("{path}.{key}") };
             table.insert(key, to_toml(&v, &sub)?);
@@ -72,9 +72,9 @@ pub fn to_toml(obj: &Bound<'_, PyAny>, path: &str) -> PyResult<Value> {
         }
     }
     Err(PyTypeError::new_err(format!(
-        "{}: a {} is not a scene value (give a number, a string, a bool, a list or a dict)",
+        "{}: {} is not a scene value (give a number, a string, a bool, a list or a dict)",
         at(path),
-        type_name(obj)
+        a_type_name(obj)
     )))
 }
 
@@ -106,4 +106,11 @@ pub fn to_py(py: Python<'_>, value: &Value) -> PyResult<PyObject> {
 /// The type's name, for messages.
 pub fn type_name(obj: &Bound<'_, PyAny>) -> String {
     obj.get_type().name().map(|n| n.to_string()).unwrap_or_else(|_| "value".into())
+}
+
+/// The type's name with its article: "a float", "an ellipsis".
+pub fn a_type_name(obj: &Bound<'_, PyAny>) -> String {
+    let name = type_name(obj);
+    let article = if name.starts_with(['a', 'e', 'i', 'o', 'u']) { "an" } else { "a" };
+    format!("{article} {name}")
 }

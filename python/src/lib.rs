@@ -55,8 +55,8 @@ impl PyScene {
     fn from_dict(py: Python<'_>, d: &Bound<'_, PyAny>, name: &str) -> PyResult<Self> {
         if !d.is_instance_of::<PyDict>() {
             return Err(PyTypeError::new_err(format!(
-                "Scene.from_dict takes a dict of the scene's tables, not a {}",
-                convert::type_name(d)
+                "Scene.from_dict takes a dict of the scene's tables, not {}",
+                convert::a_type_name(d)
             )));
         }
         let value = convert::to_toml(d, "")?;
@@ -174,14 +174,14 @@ fn _toml_keys(path: PathBuf) -> Option<Vec<String>> {
 fn override_list(overrides: &Bound<'_, PyAny>) -> PyResult<Vec<(String, Value)>> {
     let d = overrides.downcast::<PyDict>().map_err(|_| {
         PyTypeError::new_err(format!(
-            "overrides must be a dict of dotted paths to values ({{\"ship.mass\": 1e6}}), not a {}",
-            convert::type_name(overrides)
+            "overrides must be a dict of dotted paths to values ({{\"ship.mass\": 1e6}}), not {}",
+            convert::a_type_name(overrides)
         ))
     })?;
     let mut out = Vec::with_capacity(d.len());
     for (k, v) in d.iter() {
         let path: String = k.extract().map_err(|_| {
-            PyTypeError::new_err(format!("override keys must be dotted paths (str), not {}", convert::type_name(&k)))
+            PyTypeError::new_err(format!("override keys must be dotted paths (str), not {}", convert::a_type_name(&k)))
         })?;
         let value = convert::to_toml(&v, &path)?;
         out.push((path, value));

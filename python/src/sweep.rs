@@ -58,8 +58,8 @@ impl PySpec {
     fn from_dict(py: Python<'_>, d: &Bound<'_, PyAny>, base_dir: Option<PathBuf>) -> PyResult<Self> {
         let d = d.downcast::<PyDict>().map_err(|_| {
             PyTypeError::new_err(format!(
-                "Spec.from_dict takes a dict of the spec's fields, not a {}",
-                convert::type_name(d)
+                "Spec.from_dict takes a dict of the spec's fields, not {}",
+                convert::a_type_name(d)
             ))
         })?;
         let d = d.copy()?;

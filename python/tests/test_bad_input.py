@@ -98,3 +98,16 @@ def test_the_state_of_eval_takes_numpy(case01: kanestop.Scene) -> None:
 
 def test_path_objects_and_strings_load(case01: kanestop.Scene) -> None:
     assert kanestop.Scene.load(str(CASE01)) == case01
+
+
+def test_a_bool_is_no_solver_number(case01: kanestop.Scene) -> None:
+    # Regression: run(s, end_time=True) ran for 1 s (a bool is an int to Python).
+    with pytest.raises(TypeError, match="end_time = True: a number of seconds"):
+        kanestop.run(case01, end_time=True)
+    with pytest.raises(TypeError, match="dt = False"):
+        kanestop.sweep(case01, [{}], dt=False)
+
+
+def test_a_type_is_named_with_its_article(case01: kanestop.Scene) -> None:
+    with pytest.raises(TypeError, match="ship.mass: an ellipsis is not a scene value"):
+        case01.with_overrides({"ship.mass": ...})

@@ -265,6 +265,13 @@ class Result:
         )
 
 
+def _no_bools(**solver: Any) -> None:
+    """A bool is an int to Python, and would pass as 1.0 s: refused for the solver's reals."""
+    for name, value in solver.items():
+        if isinstance(value, (bool, np.bool_)):
+            raise TypeError(f"{name} = {value}: a number of seconds (or a tolerance), not a bool")
+
+
 def _scene(scene: Union[Scene, PathLike, Mapping[str, Any]]) -> Scene:
     if isinstance(scene, Scene):
         return scene
@@ -276,7 +283,7 @@ def _scene(scene: Union[Scene, PathLike, Mapping[str, Any]]) -> Scene:
 
 
 def run(
-    scene: Union[Scene, PathLike],
+    scene: Union[Scene, PathLike, Mapping[str, Any]],
     *,
     integrator: Optional[str] = None,
     dt: Optional[float] = None,
@@ -286,7 +293,7 @@ def run(
     output_interval: Optional[float] = None,
     kernel: str = "generated",
 ) -> Result:
-    """Runs a scene (a ``Scene`` or a path) until the ship stops, the end time or a
+    """Runs a scene (a ``Scene``, a path or a dict of its tables) until the ship stops, the end time or a
     numerical failure, with the GIL released; Ctrl-C stops it at its next step (or
     within the start-up stability analysis) and raises KeyboardInterrupt.
 
@@ -295,6 +302,7 @@ def run(
     checked as a scene file would be (``SceneError``). ``kernel`` is ``"generated"`` (the
     default) or ``"reference"``.
     """
+    _no_bools(dt=dt, rtol=rtol, atol=atol, end_time=end_time, output_interval=output_interval)
     summary, history, events, failure, core_time = _run(
         _scene(scene),
         integrator=integrator,
@@ -309,7 +317,7 @@ def run(
 
 
 def eval(
-    scene: Union[Scene, PathLike],
+    scene: Union[Scene, PathLike, Mapping[str, Any]],
     q: Optional[Union[Sequence[float], "npt.NDArray[np.floating[Any]]"]] = None,
     u: Optional[Union[Sequence[float], "npt.NDArray[np.floating[Any]]"]] = None,
     *,
@@ -504,6 +512,7 @@ def sweep(
             if not isinstance(r, Mapping):
                 raise TypeError(f"row {i}: a row is a dict of dotted path -> value, not {type(r).__name__}")
             plan.append(dict(r))
+    _no_bools(dt=dt, rtol=rtol, atol=atol, end_time=end_time, output_interval=output_interval)
     out = _sweep(
         the_spec,
         plan,
