@@ -69,14 +69,9 @@ impl PyScene {
     #[staticmethod]
     #[pyo3(signature = (text, name = "<string>", base_dir = None))]
     pub(crate) fn from_toml(py: Python<'_>, text: &str, name: &str, base_dir: Option<PathBuf>) -> PyResult<Self> {
-        let extends = text.parse::<toml::Table>().is_ok_and(|t| t.contains_key("extends"));
-        let inner = if extends {
-            let at = base_dir.unwrap_or_default().join(name);
-            py.allow_threads(|| Scene::from_toml_at(text, &at))
-        } else {
-            Scene::from_toml(text, name)
-        }
-        .map_err(|e| scene_error(py, e))?;
+        // Without base_dir the text is named `name` itself, as before.
+        let at = base_dir.unwrap_or_default().join(name);
+        let inner = py.allow_threads(|| Scene::from_toml_at(text, &at)).map_err(|e| scene_error(py, e))?;
         Ok(PyScene { inner })
     }
 
@@ -385,15 +380,12 @@ fn interruptible<T: Send>(py: Python<'_>, work: impl FnOnce(&AtomicBool) -> Opti
 #[pyfunction]
 #[pyo3(signature = (scene, step=0.05, jobs=None))]
 fn _sensitivity(py: Python<'_>, scene: &PyScene, step: f64, jobs: Option<usize>) -> PyResult<String> {
-    use kanestop_workflow::{kernels, parallel, sensitivity};
+    use kanestop_workflow::{kernels, sensitivity};
     // Named as Python names them (the command line's say --step and --jobs).
-    if sensitivity::check_step(step).is_err() {
-        return Err(PyValueError::new_err(format!("step = {step}: must be in [1e-6, 0.5), e.g. 0.05")));
+    if let Err(kanestop_workflow::Error::Argument { expected, .. }) = sensitivity::check_step(step) {
+        return Err(PyValueError::new_err(format!("step = {step}: must be {expected}")));
     }
-    if let Some(n) = jobs.filter(|n| !(1..=parallel::MAX_JOBS).contains(n)) {
-        let max = parallel::MAX_JOBS;
-        return Err(PyValueError::new_err(format!("jobs = {n}: must be in [1, {max}] (or None for every core)")));
-    }
+    sweep::check_jobs(jobs)?;
     let scene = scene.inner.clone();
     let study = interruptible(py, move |_| {
         let probes = sensitivity::probes(&scene, step);

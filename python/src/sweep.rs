@@ -196,10 +196,7 @@ pub fn _sweep(
     records: bool,
 ) -> PyResult<PyObject> {
     let choice = kernel_choice(kernel)?;
-    if let Some(n) = jobs.filter(|n| !(1..=kanestop_workflow::parallel::MAX_JOBS).contains(n)) {
-        let max = kanestop_workflow::parallel::MAX_JOBS;
-        return Err(PyValueError::new_err(format!("jobs = {n}: must be in [1, {max}] (or None for every core)")));
-    }
+    check_jobs(jobs)?;
     if let Some(p) = &progress {
         if !p.bind(py).is_callable() {
             return Err(PyTypeError::new_err("progress must be callable as progress(done, total)"));
@@ -318,4 +315,15 @@ fn run_rows(
     }
     let outcomes = outcomes.map_err(|_| PyValueError::new_err("a sweep worker panicked"))?;
     outcomes.into_iter().map(|o| o.ok_or_else(|| PyValueError::new_err("a sweep row was cancelled"))).collect()
+}
+
+/// `jobs` in [1, MAX_JOBS], or None (every core); else a ValueError naming it as Python does.
+pub(crate) fn check_jobs(jobs: Option<usize>) -> PyResult<()> {
+    match jobs.filter(|n| !(1..=kanestop_workflow::parallel::MAX_JOBS).contains(n)) {
+        Some(n) => {
+            let max = kanestop_workflow::parallel::MAX_JOBS;
+            Err(PyValueError::new_err(format!("jobs = {n}: must be in [1, {max}] (or None for every core)")))
+        }
+        None => Ok(()),
+    }
 }

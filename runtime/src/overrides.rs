@@ -109,6 +109,12 @@ pub const ALTERNATIVES: &[(&str, &[&str])] =
 /// it (a scene without `[checks]` takes `checks.max_stopping_distance`).
 pub const OPTIONAL: &[(&str, &[&str])] = &[("checks", &crate::design::CHECK_FIELDS)];
 
+/// `path` (`table.field`) split, when it is a field of [`OPTIONAL`].
+fn optional_of(path: &str) -> Option<(&str, &str)> {
+    let (table, key) = path.split_once('.')?;
+    OPTIONAL.iter().any(|(t, keys)| *t == table && keys.contains(&key)).then_some((table, key))
+}
+
 /// The group of [`ALTERNATIVES`] that `path` (`table.field`) belongs to.
 fn alternatives_of(path: &str) -> Option<(&'static str, &'static [&'static str], &str)> {
     let (table, key) = path.split_once('.')?;
@@ -136,12 +142,10 @@ pub fn set(root: &mut Value, path: &str, value: Value) -> Result<(), OverrideErr
             }
         }
     }
-    if let (Some((table, key)), Value::Table(top)) = (path.split_once('.'), &mut *root) {
-        if OPTIONAL.iter().any(|(t, keys)| *t == table && keys.contains(&key)) {
-            let t = top.entry(table).or_insert_with(|| Value::Table(toml::Table::new()));
-            if let Value::Table(t) = t {
-                t.entry(key).or_insert(Value::Float(0.0));
-            }
+    if let (Some((table, key)), Value::Table(top)) = (optional_of(path), &mut *root) {
+        let t = top.entry(table).or_insert_with(|| Value::Table(toml::Table::new()));
+        if let Value::Table(t) = t {
+            t.entry(key).or_insert(Value::Float(0.0));
         }
     }
     let mut node = root;
@@ -195,8 +199,7 @@ pub fn conflicting_alternatives(paths: &[&str]) -> Option<(usize, usize)> {
 pub fn get_or_alternative<'a>(root: &'a Value, path: &str) -> Option<&'a Value> {
     static REAL: Value = Value::Float(0.0);
     get(root, path).or_else(|| {
-        let (table, key) = path.split_once('.')?;
-        if OPTIONAL.iter().any(|(t, keys)| *t == table && keys.contains(&key)) {
+        if optional_of(path).is_some() {
             return Some(&REAL);
         }
         let (table, group, _) = alternatives_of(path)?;

@@ -448,6 +448,8 @@ fn panel<DB: DrawingBackend>(
         .y_label_formatter(&|v| tidy(*v))
         .draw()
         .map_err(err)?;
+    // Pixels on `area` from the chart's, which are the backend's.
+    let base = area.get_base_pixel();
     // The members along the line: a grey bound between two, the name at the top of each
     // wide enough to hold it.
     let grey = RGBColor(150, 150, 150);
@@ -460,12 +462,7 @@ fn panel<DB: DrawingBackend>(
         let (a, b) = (c.backend_coord(&(*from, y1)), c.backend_coord(&(*to, y1)));
         if (b.0 - a.0) as f64 > 0.6 * TICK_FONT * label.chars().count() as f64 + 4.0 {
             let at = c.backend_coord(&(0.5 * (from + to), y1));
-            area.draw(&Text::new(
-                label.clone(),
-                (at.0 - area.get_base_pixel().0, at.1 - area.get_base_pixel().1 + 4),
-                name.clone(),
-            ))
-            .map_err(err)?;
+            area.draw(&Text::new(label.clone(), (at.0 - base.0, at.1 - base.1 + 4), name.clone())).map_err(err)?;
         }
     }
     for curve in curves {
@@ -482,7 +479,6 @@ fn panel<DB: DrawingBackend>(
         for &(at, mark) in &curve.marks {
             if at.0.is_finite() && at.1.is_finite() && (x0..=x1).contains(&at.0) && (y0..=y1).contains(&at.1) {
                 let p = c.backend_coord(&at);
-                let base = area.get_base_pixel();
                 draw_mark(area, (p.0 - base.0, p.1 - base.1), mark, color).map_err(err)?;
             }
         }
