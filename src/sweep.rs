@@ -60,8 +60,9 @@ pub struct SweepArgs {
     /// shards and a merge job after it; run it with `bash`.
     #[arg(long, conflicts_with = "resume")]
     slurm: bool,
-    /// Heat maps over the two grid axes (a spec with exactly two numeric axes; written by a
-    /// local run), one heatmap-NAME.svg each: stopping_distance, stopping_time,
+    /// Heat maps over the two grid axes (a spec with exactly two numeric axes; drawn by a
+    /// local run and by --resume, refused with a shard: `sweep merge --spec` draws a sharded
+    /// sweep's), one heatmap-NAME.svg each: stopping_distance, stopping_time,
     /// peak_utilisation, peak_tension, anchor_drag_distance, ship_displacement, or none
     /// [default: the first three].
     #[arg(long, value_delimiter = ',')]
@@ -157,10 +158,17 @@ pub fn sweep(args: &SweepArgs) -> Result<Exit> {
             );
         }
     }
+    if let (Some((_, from)), false) = (&shard, args.heatmap.is_empty()) {
+        anyhow::bail!(
+            "--heatmap {} with a shard ({from}): a shard holds some of the rows and draws no heat map; \
+             `kanestop sweep merge OUT --spec SPEC` draws them from the merged rows",
+            args.heatmap.join(",")
+        );
+    }
     let id = SweepId::of(&spec, &plan, args.kernel.0.name());
     match shard {
         Some((s, from)) => run_shard(args, &id, &plan, s, from),
-        None if args.resume => resume_all(args, &id, &plan),
+        None if args.resume => resume_all(args, &spec, &heat_maps, &id, &plan),
         None => {
             check_dir(&args.out, &sweep::FILES)?;
             let kernel = args.kernel.factory();
@@ -170,10 +178,9 @@ pub fn sweep(args: &SweepArgs) -> Result<Exit> {
                 bar.inc(1);
             })?;
             bar.finish_and_clear();
-            let code = report(&rows, id.sampling, id.samples_per_point, &sweep::scene_files(&plan), &args.out)?;
-            for f in heatmap::write(&spec, &rows, &heat_maps, &args.out)? {
-                println!("written   {}", f.display());
-            }
+            let scenes = sweep::scene_files(&plan);
+            let code = report(&rows, id.sampling, id.samples_per_point, &scenes, &args.out)?;
+            finish(Some(&spec), &rows, &heat_maps, &scenes, &args.out)?;
             Ok(code)
         }
     }
@@ -226,6 +233,28 @@ fn report(
         out.join("scenes").display()
     );
     Ok(exit(rows))
+}
+
+/// Draws the heat maps (given the spec) and removes what an earlier sweep wrote into `out`
+/// and this one did not ([`sweep::remove_stale`]), saying so. The same for a local run, a
+/// resume and a merge.
+fn finish(
+    spec: Option<&sweep::Spec>,
+    rows: &[SweepRow],
+    heat_maps: &[heatmap::Output],
+    scenes: &[(String, String)],
+    out: &Path,
+) -> Result<()> {
+    let charts = spec.map(|spec| heatmap::write(spec, rows, heat_maps, out)).transpose()?;
+    for f in charts.iter().flatten() {
+        println!("written   {}", f.display());
+    }
+    let removed = sweep::remove_stale(out, scenes, charts.as_deref())?;
+    if let Some(first) = removed.first() {
+        let more = if removed.len() > 1 { format!(", … ({} in all)", removed.len()) } else { String::new() };
+        println!("removed   an earlier sweep's files this one did not write: {}{more}", first.display());
+    }
+    Ok(())
 }
 
 /// The exit code of finished rows (printing how many failed a check): 3 when a row failed
@@ -291,7 +320,13 @@ fn run_shard(args: &SweepArgs, id: &SweepId, plan: &[PlannedRow], shard: Shard, 
 
 /// `sweep SPEC --resume` without a shard: completes every shard of the folder (by the shard
 /// count of its files; one shard when it has none), then merges them.
-fn resume_all(args: &SweepArgs, id: &SweepId, plan: &[PlannedRow]) -> Result<Exit> {
+fn resume_all(
+    args: &SweepArgs,
+    spec: &sweep::Spec,
+    heat_maps: &[heatmap::Output],
+    id: &SweepId,
+    plan: &[PlannedRow],
+) -> Result<Exit> {
     check_dir(&args.out, &sweep::FILES)?;
     let folder = args.out.join("shards");
     let files = if folder.is_dir() { shard_file::files_in(&args.out)? } else { Vec::new() };
@@ -314,7 +349,9 @@ fn resume_all(args: &SweepArgs, id: &SweepId, plan: &[PlannedRow]) -> Result<Exi
     }
     // The rows kept were checked against the plan as each shard resumed (ShardRun::start).
     let merged = merge::merge(std::slice::from_ref(&args.out))?;
-    report(&merged.rows, merged.sampling, merged.samples_per_point, &merged.scenes, &args.out)
+    let code = report(&merged.rows, merged.sampling, merged.samples_per_point, &merged.scenes, &args.out)?;
+    finish(Some(spec), &merged.rows, heat_maps, &merged.scenes, &args.out)?;
+    Ok(code)
 }
 
 /// `sweep merge DIR…`.
@@ -353,11 +390,7 @@ fn merge(m: &MergeArgs) -> Result<Exit> {
         merged.plan_hash
     );
     let code = report(&merged.rows, merged.sampling, merged.samples_per_point, &merged.scenes, &out)?;
-    if let Some(spec) = &spec {
-        for f in heatmap::write(spec, &merged.rows, &heat_maps, &out)? {
-            println!("written   {}", f.display());
-        }
-    }
+    finish(spec.as_ref(), &merged.rows, &heat_maps, &merged.scenes, &out)?;
     Ok(code)
 }
 
@@ -394,7 +427,13 @@ pub fn sensitivity(args: &SensitivityArgs) -> Result<Exit> {
     };
     let sigmas: Vec<(String, f64)> = match &args.uncertain {
         Some(p) => {
-            sweep::Spec::load(p)?.uncertain.iter().map(|u| (u.path.clone(), u.distribution.sigma_ln())).collect()
+            let spec = sweep::Spec::load(p)?;
+            anyhow::ensure!(
+                !spec.uncertain.is_empty(),
+                "--uncertain {}: no [[uncertain]] input in it; the band needs at least one (path, distribution)",
+                p.display()
+            );
+            spec.uncertain.iter().map(|u| (u.path.clone(), u.distribution.sigma_ln())).collect()
         }
         None => Vec::new(),
     };
@@ -416,13 +455,26 @@ pub fn sensitivity(args: &SensitivityArgs) -> Result<Exit> {
     print!("{}", sensitivity::table(&study));
     if !sigmas.is_empty() {
         let (band, missing) = sensitivity::band(&study, &sigmas);
-        let o = |v: Option<f64>, s: f64| v.map(|v| format!("{:.3}", v * s)).unwrap_or("—".into());
-        println!("first-order band (1 σ) from {} uncertain inputs:", sigmas.len());
-        println!("  stopping time      {} ± {:.3} s", o(study.base[0], 1.0), band[0]);
-        println!("  stopping distance  {} ± {:.3} m", o(study.base[1], 1.0), band[1]);
-        println!("  peak tension       {} ± {:.1} kN", o(study.base[2], 1e-3), band[2] * 1e-3);
+        let used = sigmas.len() - missing.len();
+        if used == 0 {
+            println!(
+                "no first-order band: none of the {} uncertain inputs is a continuous parameter of the scene",
+                sigmas.len()
+            );
+        } else {
+            // An output the base run did not give has no band.
+            let o = |v: Option<f64>, b: f64, s: f64, digits: usize, unit: &str| match v {
+                Some(v) => format!("{:.*} ± {:.*} {unit}", digits, v * s, digits, b * s),
+                None => "— (the base run gave none)".to_string(),
+            };
+            let inputs = if used == 1 { "input" } else { "inputs" };
+            println!("first-order band (1 σ) from {used} uncertain {inputs}:");
+            println!("  stopping time      {}", o(study.base[0], band[0], 1.0, 3, "s"));
+            println!("  stopping distance  {}", o(study.base[1], band[1], 1.0, 3, "m"));
+            println!("  peak tension       {}", o(study.base[2], band[2], 1e-3, 1, "kN"));
+        }
         for m in missing {
-            println!("  note: {m} is not a continuous parameter of the scene; ignored");
+            println!("  note: {m} is not a continuous parameter of the scene (a zero or non-real field); ignored");
         }
     }
     std::fs::create_dir_all(&args.out).with_context(|| format!("cannot create {}", args.out.display()))?;

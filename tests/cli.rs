@@ -760,3 +760,24 @@ fn codegen_says_when_the_loads_are_fused() {
     assert!(terms.iter().all(|t| share(t) <= share("line_drag")), "{text}");
     assert!(row("line_friction").is_none() && row("current").is_none(), "{text}");
 }
+
+/// A ship at rest at the start: `run` says so, and `--json` gives a stop at 0 s after 0 m
+/// with the starting state's peak tension.
+#[test]
+fn run_of_a_ship_at_rest_says_it_stopped_at_the_start() {
+    let dir = temp_dir("at-rest");
+    let path = dir.join("at_rest.toml");
+    let text = kanestop_runtime::paper::DEFAULT_SCENE.replace("ship_speed = 3.0", "ship_speed = 0.0");
+    assert_ne!(text, kanestop_runtime::paper::DEFAULT_SCENE);
+    std::fs::write(&path, text).unwrap();
+    let out = kanestop().arg("run").arg(&path).output().unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{stdout}\n{}", String::from_utf8_lossy(&out.stderr));
+    assert!(stdout.contains("stopped   t = 0 s: the ship was at rest at the start"), "{stdout}");
+    assert!(stdout.contains("tension"), "the start's peak is shown: {stdout}");
+    let out = kanestop().arg("run").arg(&path).arg("--json").output().unwrap();
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(json["status"], "stopped");
+    assert_eq!((json["stopping_time"].as_f64(), json["stopping_distance"].as_f64()), (Some(0.0), Some(0.0)));
+    assert_eq!(json["peak_tension"]["t"].as_f64(), Some(0.0), "{json}");
+}

@@ -145,8 +145,16 @@ fn exit_2_sweep_arguments_refused_before_anything_is_written() {
     let huge = spec("huge", &(axis("anchor.mass") + &axis("ship.mass")));
     let huge4 =
         spec("huge4", &[axis("anchor.mass"), axis("ship.mass"), axis("rod.length"), axis("ship.length")].concat());
+    let two = spec(
+        "two",
+        "[[axis]]\npath = \"anchor.mass\"\nvalues = [4e4, 5e4]\n[[axis]]\npath = \"ship.mass\"\nvalues = [4e5, 5e5]\n",
+    );
     let out = dir.join("out");
-    let cases: [(Vec<&str>, &str); 6] = [
+    let cases: [(Vec<&str>, &str); 7] = [
+        (
+            vec!["sweep", two.to_str().unwrap(), "--shard", "0/1", "--heatmap", "stopping_time"],
+            "--heatmap stopping_time with a shard (--shard): a shard holds some of the rows and draws no heat map",
+        ),
         (vec!["sweep", small.to_str().unwrap(), "--jobs", "0"], "--jobs = 0: in [1, 1024]"),
         (vec!["sweep", small.to_str().unwrap(), "--shard", "0/1", "--jobs", "0"], "--jobs = 0: in [1, 1024]"),
         (vec!["sweep", small.to_str().unwrap(), "--jobs", "100000"], "--jobs = 100000: in [1, 1024]"),

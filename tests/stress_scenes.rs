@@ -497,3 +497,33 @@ fn the_drift_of_a_line_released_at_rest_is_measured_against_its_own_motion() {
     assert!(largest > 1e3 && r.energy_scale >= largest, "K {} J, largest sampled {largest} J", r.energy_scale);
     assert!(r.max_energy_drift > 0.0 && r.max_energy_drift < 1e-3, "drift {:e}", r.max_energy_drift);
 }
+
+/// A ship at rest at the start has stopped at t = 0: with `stop_when_ship_stops` its run ends
+/// there with its starting state as its one sample and its peaks, and without it the run goes
+/// on with the stop kept at 0, not at the first sign change of the round-off around rest that
+/// the line's settling gives (0.115 s in case 1 until 2026-12-06).
+#[test]
+fn a_ship_at_rest_has_stopped_at_the_start() {
+    let mut scene = kanestop_runtime::paper::CASES[0].scene();
+    scene.initial.ship_speed = 0.0;
+    let r = run_scene(&scene);
+    assert_eq!(r.stop, Stop::ShipStopped);
+    assert_eq!((r.stopping_time, r.t_end, r.steps, r.samples.len()), (Some(0.0), 0.0, 0, 1));
+    assert!(r.ran(), "its peaks are the start's");
+    let (_, peak) = r.peak_tension().unwrap();
+    assert!(peak.tension > 0.0 && peak.t == 0.0, "{peak:?}");
+
+    scene.solver.stop_when_ship_stops = false;
+    scene.solver.end_time = 0.5;
+    let r = run_scene(&scene);
+    check("at rest, run on", &scene, &r);
+    assert_eq!((r.stop, r.stopping_time), (Stop::EndTime, Some(0.0)));
+    assert_eq!(r.samples.first().map(|s| s.t), Some(0.0));
+    assert!(r.samples.windows(2).all(|w| w[0].t < w[1].t), "one sample a time");
+
+    // A moving ship's stop is located where its speed crosses zero, as before.
+    scene.initial.ship_speed = 0.5;
+    scene.solver.end_time = 30.0;
+    let r = run_scene(&scene);
+    assert!(r.stopping_time.is_some_and(|t| t > 0.1), "{:?}", r.stopping_time);
+}

@@ -479,3 +479,47 @@ fn merge_with_the_spec_draws_the_local_heat_maps() {
     assert_eq!(local_maps.len(), 3, "the three default heat maps");
     assert_eq!(maps(&sharded), local_maps, "the merge's heat maps, byte for byte");
 }
+
+/// `--resume` without a shard draws the heat maps a local run draws, byte for byte; a sweep
+/// into a folder that held another removes that one's row scenes and heat maps, and says so.
+#[test]
+fn a_resumed_sweep_draws_its_heat_maps_and_a_folder_holds_one_sweep() {
+    let dir = temp_dir("resume-maps");
+    let base = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/paper/case01.toml");
+    let write = |name: &str, axes: &str| {
+        let path = dir.join(format!("{name}.toml"));
+        let text =
+            format!("base = {:?}\nname = \"{name}\"\n[solver]\nend_time = 1.0\n{axes}", base.display().to_string());
+        std::fs::write(&path, text).unwrap();
+        path
+    };
+    let axis = |p: &str, v: &str| format!("[[axis]]\npath = \"{p}\"\nvalues = [{v}]\n");
+    let grid = write("grid", &(axis("anchor.mass", "30000.0, 40000.0") + &axis("ship.mass", "4e5, 5e5")));
+    let (local, resumed) = (dir.join("local"), dir.join("resumed"));
+    assert!(run(&["sweep", s(&grid), "--out", s(&local)], &[]).status.success());
+    let o = run(&["sweep", s(&grid), "--out", s(&resumed), "--resume"], &[]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let maps = |d: &Path| -> Vec<String> {
+        let mut names: Vec<String> = std::fs::read_dir(d)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .filter(|n| n.starts_with("heatmap-"))
+            .collect();
+        names.sort();
+        names
+    };
+    assert_eq!(maps(&resumed).len(), 3, "the default three");
+    assert_eq!(maps(&resumed), maps(&local));
+    for m in maps(&local) {
+        assert_eq!(std::fs::read(resumed.join(&m)).unwrap(), std::fs::read(local.join(&m)).unwrap(), "{m}");
+    }
+    // Another sweep into the local run's folder: one axis, no heat map, two rows.
+    let line = write("line", &axis("anchor.mass", "30000.0, 40000.0"));
+    let o = run(&["sweep", s(&line), "--out", s(&local)], &[]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(stdout.contains("removed   an earlier sweep's files this one did not write:"), "{stdout}");
+    assert!(stdout.contains("(7 in all)"), "4 scenes and 3 maps: {stdout}");
+    assert!(maps(&local).is_empty());
+    assert_eq!(files(&local.join("scenes")).len(), 2, "line-000 and line-001 only");
+}

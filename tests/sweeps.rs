@@ -475,3 +475,49 @@ fn sampling_on_a_grid_gives_each_point_its_own_statistics() {
     let merged = String::from_utf8_lossy(&o.stdout);
     assert!(heads.iter().all(|h| merged.contains(h.as_str())) && !merged.contains("pooled"), "{merged}");
 }
+
+/// A base run that does not stop has no stop to move: the study is ranked by the effect on
+/// the peak tension and says so; a band over inputs that are no parameters of the study is
+/// none, and an `--uncertain` spec without inputs is refused before any run.
+#[test]
+fn sensitivity_of_a_base_that_does_not_stop_ranks_by_the_peak_tension() {
+    let dir = temp_dir("sens-short");
+    let short = dir.join("short.toml");
+    let text = std::fs::read_to_string(root().join("scenes/paper/case01.toml")).unwrap();
+    std::fs::write(&short, text.replace("end_time = 60.0", "end_time = 1.0")).unwrap();
+    // environment.line_friction is 0 in case 1: no parameter of the study.
+    let zero = spec(
+        &dir,
+        "[sampling]\nmethod = \"random\"\nsamples = 3\nseed = 1\n[[uncertain]]\npath = \"environment.line_friction\"\n\
+         distribution = \"uniform\"\nlow = 0.0\nhigh = 0.2\n",
+    );
+    let out = dir.join("out");
+    let study = |uncertain: &Path| {
+        kanestop()
+            .args(["report", "sensitivity", short.to_str().unwrap(), "--uncertain", uncertain.to_str().unwrap()])
+            .arg("--out")
+            .arg(&out)
+            .output()
+            .unwrap()
+    };
+    let o = study(&zero);
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success(), "{stdout}{}", String::from_utf8_lossy(&o.stderr));
+    assert!(stdout.contains("note: the base run did not stop by its end time"), "{stdout}");
+    assert!(stdout.contains("no first-order band: none of the 1 uncertain inputs"), "{stdout}");
+    assert!(stdout.contains("environment.line_friction is not a continuous parameter"), "{stdout}");
+    let csv = std::fs::read_to_string(out.join("sensitivity.csv")).unwrap();
+    let peaks: Vec<f64> = csv
+        .lines()
+        .skip(1)
+        .filter_map(|l| l.split(',').nth(5).and_then(|v| v.parse::<f64>().ok()).map(f64::abs))
+        .collect();
+    assert!(peaks.len() > 10 && peaks.windows(2).all(|w| w[0] >= w[1]), "ranked by |peak effect|: {peaks:?}");
+    // A spec with no [[uncertain]] input: refused before the 70-odd runs.
+    let none = spec(&dir, "[[axis]]\npath = \"ship.mass\"\nvalues = [5e5]\n");
+    std::fs::remove_dir_all(&out).unwrap();
+    let o = study(&none);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("no [[uncertain]] input in it"), "{o:?}");
+    assert!(!out.exists());
+}

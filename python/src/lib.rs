@@ -49,6 +49,29 @@ impl PyScene {
         Ok(PyScene { inner })
     }
 
+    /// Case `number` of the paper's Table 2 (1–19), built in: equal to
+    /// `scenes/paper/caseNN.toml`, with no file needed. Raises ValueError outside 1–19.
+    #[staticmethod]
+    fn paper(number: &Bound<'_, PyAny>) -> PyResult<Self> {
+        let cases = &kanestop_runtime::paper::CASES;
+        let valid = || format!("in 1–{} (the cases of the paper's Table 2)", cases.len());
+        if number.is_instance_of::<pyo3::types::PyBool>() {
+            return Err(PyTypeError::new_err(format!("Scene.paper: number must be an int {}, not a bool", valid())));
+        }
+        let n: i64 = number.extract().map_err(|_| {
+            PyTypeError::new_err(format!(
+                "Scene.paper: number must be an int {}, not {}",
+                valid(),
+                convert::a_type_name(number)
+            ))
+        })?;
+        let case = usize::try_from(n).ok().and_then(|n| n.checked_sub(1)).and_then(|i| cases.get(i));
+        match case {
+            Some(case) => Ok(PyScene { inner: case.scene() }),
+            None => Err(PyValueError::new_err(format!("Scene.paper: number = {n}: {}", valid()))),
+        }
+    }
+
     /// A scene from a dict of its tables (as `to_dict` gives). Raises SceneError.
     #[staticmethod]
     #[pyo3(signature = (d, name = "<dict>"))]

@@ -29,6 +29,19 @@ def test_scene_round_trips(case01: kanestop.Scene) -> None:
     assert repr(heavier) == 'Scene("case01": 51 bodies, ship 600 t at 3 m/s, anchor 40 t, chain 20 × 1 m)'
 
 
+def test_the_paper_cases_are_built_in(case01: kanestop.Scene) -> None:
+    assert kanestop.Scene.paper(1) == case01
+    for n in (8, 19):
+        assert kanestop.Scene.paper(n) == kanestop.Scene.load(ROOT / "scenes" / "paper" / f"case{n:02}.toml")
+    assert kanestop.Scene.paper(np.int64(5)).name == "case05"
+    for bad in (0, 20, -1):
+        with pytest.raises(ValueError, match=f"number = {bad}: in 1–19"):
+            kanestop.Scene.paper(bad)
+    for wrong in (True, 1.0, "1"):
+        with pytest.raises(TypeError, match="must be an int in 1–19"):
+            kanestop.Scene.paper(wrong)  # type: ignore[arg-type]
+
+
 def test_toml_text_that_extends_a_file_is_laid_over_it(tmp_path: object) -> None:
     # Regression: Scene.from_toml refused `extends` ("unknown field") where Scene.load took it.
     text = 'extends = "case01.toml"\n[ship]\nmass = 6e5\n'

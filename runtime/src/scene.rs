@@ -310,7 +310,9 @@ pub struct Initial {
     /// height above the seabed (its centreline where the foundation carries its submerged
     /// weight, Eqs. 41, 42: a few mm, from +R on a hard seabed to −R, buried, on a soft one).
     pub vertical_projection: f64,
-    /// The ship's initial surge speed, m/s, in [0, 20] m/s.
+    /// The ship's initial surge speed, m/s, in [0, 20] m/s. A ship at rest (0) has stopped at
+    /// t = 0: its stopping time and distance are 0, and `solver.stop_when_ship_stops` ends its
+    /// run there.
     pub ship_speed: f64,
 }
 
@@ -376,7 +378,8 @@ pub struct Solver {
     /// Interval between recorded samples, s (rounded to a whole number of steps), at least
     /// `dt`.
     pub output_interval: f64,
-    /// End the run when the ship's surge speed first reaches zero.
+    /// End the run when the ship's surge speed first reaches zero (at t = 0 for a ship at rest
+    /// at the start).
     pub stop_when_ship_stops: bool,
     /// Relative energy-balance drift |E − E_0|/K at which a run is stopped as unstable,
     /// dimensionless; K is the largest kinetic energy before the step checked (the entrained

@@ -137,7 +137,7 @@ pub fn scene_files(dir: &Path) -> std::io::Result<Vec<PathBuf>> {
 pub fn row(file: &Path, model: &Model, result: &RunResult) -> BatchRow {
     let paper = kanestop_runtime::paper::stopping_time(&model.scene);
     // A run refused before its first step has no peak and no drift to report.
-    let ran = result.steps > 0;
+    let ran = result.ran();
     let peak = result.peak_tension().filter(|_| ran);
     let outcomes = model.scene.checks.as_ref().map(|c| checks::evaluate(c, model, result)).unwrap_or_default();
     let failed_checks: Vec<String> = match &model.scene.checks {

@@ -85,7 +85,7 @@ pub fn evaluate(checks: &DesignChecks, model: &Model, result: &RunResult) -> Vec
     let failed = matches!(result.stop, Stop::Failed(_));
     let drag = (!failed).then(|| displacement(0).abs());
     upper("max_anchor_drag", drag, checks.max_anchor_drag, None, 1.0);
-    let ran = result.steps > 0 && !failed;
+    let ran = result.ran() && !failed;
     let worst = |limit: fn(&Model, usize) -> Option<f64>| -> Option<(usize, f64)> {
         result
             .peak_tensions

@@ -695,7 +695,7 @@ fn tension_curves(runs: &[(&Model, &RunResult)]) -> Vec<Curve> {
     let mut curves: Vec<Curve> = runs
         .iter()
         .enumerate()
-        .filter(|(_, (_, r))| r.steps > 0)
+        .filter(|(_, (_, r))| r.ran())
         .map(|(i, (m, r))| {
             let points = r.peak_tensions.iter().enumerate().map(|(j, p)| ((j + 2) as f64, p.tension / 1e3)).collect();
             Curve::new(format!("{} peak", run_label(m, r)), i, points)
@@ -720,7 +720,7 @@ fn utilisation_curves(runs: &[(&Model, &RunResult)]) -> Vec<Curve> {
     let mut curves: Vec<Curve> = runs
         .iter()
         .enumerate()
-        .filter(|(_, (_, r))| r.steps > 0)
+        .filter(|(_, (_, r))| r.ran())
         .map(|(i, (m, r))| {
             let points = r
                 .peak_tensions

@@ -162,7 +162,7 @@ impl RunSummary {
     /// The summary of `result`, a run of `model`.
     pub fn of(model: &Model, result: &RunResult) -> RunSummary {
         let n = model.body_count();
-        let ran = result.steps > 0;
+        let ran = result.ran();
         let (t_h, t_t) = model.initial_tensions();
         let displacement = |body: usize| match (result.samples.first(), result.samples.last()) {
             (Some(a), Some(b)) => b.bodies[body].x - a.bodies[body].x,

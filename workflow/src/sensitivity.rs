@@ -1,7 +1,8 @@
 //! Sensitivity: d(output)/d(ln p) of the stopping time, stopping distance and peak tension
 //! against every continuous physical parameter of a scene (every nonzero real field outside
 //! `[meta]`, `[solver]` and `[checks]`), by central differences p·(1 ± h), the runs in
-//! parallel; ranked by |effect on the stopping time|. With parameter uncertainties (σ of
+//! parallel; ranked by |effect on the stopping time| (on the peak tension when the base run
+//! does not stop: it has no stopping time to move). With parameter uncertainties (σ of
 //! ln p) a first-order output band: σ_out² = Σ (effect · σ_ln p)².
 //!
 //! A parameter at or near the edge of its valid range (the rod's hinge at the ship's stern,
@@ -99,7 +100,8 @@ pub struct Study {
     pub step: f64,
     /// The base run's stopping time, stopping distance and peak tension.
     pub base: [Option<f64>; 3],
-    /// The parameters, ranked by |d(stopping time)/d(ln p)| (largest first).
+    /// The parameters, ranked by |d(stopping time)/d(ln p)| (largest first), or by
+    /// |d(peak tension)/d(ln p)| when the base run did not stop ([`ranked_by`]).
     pub rows: Vec<Sensitivity>,
     /// The runs made: the base and one or two per parameter.
     pub runs: usize,
@@ -293,10 +295,21 @@ pub fn study(
             row
         })
         .collect();
-    rows.sort_by(|a, b| {
-        b.stopping_time.map(f64::abs).unwrap_or(-1.0).total_cmp(&a.stopping_time.map(f64::abs).unwrap_or(-1.0))
-    });
+    let ranked = ranked_by(&base);
+    let key = |r: &Sensitivity| ranked(r).map(f64::abs).unwrap_or(-1.0);
+    rows.sort_by(|a, b| key(b).total_cmp(&key(a)));
     Ok(Study { scene: scene.meta.name.clone(), step, base, rows, runs: 1 + scenes.len() })
+}
+
+/// The effect the rows are ranked by, given the base run's outputs: on the stopping time, or
+/// on the peak tension when the base did not stop (no stopping time to move: every stop
+/// effect is none, and a ranking by them would be the file order).
+pub fn ranked_by(base: &[Option<f64>; 3]) -> fn(&Sensitivity) -> Option<f64> {
+    if base[0].is_some() {
+        |r| r.stopping_time
+    } else {
+        |r| r.peak_tension
+    }
 }
 
 /// The first-order standard deviation of each output, from each parameter's σ of ln p
@@ -327,6 +340,11 @@ pub fn table(study: &Study) -> String {
         "sensitivity of {} (central differences at p·(1 ± {})): d(output)/d(ln p)\n{:<4} {:<42} {:>16} {:>7} {:>12} {:>12} {:>12}\n",
         study.scene, study.step, "rank", "parameter", "value", "step", "stop (s)", "dist (m)", "peak (kN)"
     );
+    if study.base[0].is_none() {
+        out.push_str(
+            "note: the base run did not stop by its end time: no effect on the stop; ranked by the effect on the peak tension\n",
+        );
+    }
     for (i, r) in study.rows.iter().enumerate() {
         let step = r.difference.zip(r.step).map_or_else(|| "—".to_string(), |(d, h)| d.signed_step(h));
         out.push_str(&format!(

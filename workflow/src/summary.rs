@@ -219,6 +219,9 @@ fn outcome_lines(out: &mut Lines, model: &Model, result: &RunResult) {
         _ => 0.0,
     };
     match &result.stop {
+        Stop::ShipStopped if result.stopping_time == Some(0.0) => {
+            out.line("stopped", "t = 0 s: the ship was at rest at the start (initial.ship_speed = 0)".to_string())
+        }
         Stop::ShipStopped => {
             let t = result.stopping_time.unwrap_or(result.t_end);
             out.line(
@@ -229,6 +232,7 @@ fn outcome_lines(out: &mut Lines, model: &Model, result: &RunResult) {
         Stop::EndTime => out.line(
             "ended",
             match result.stopping_time {
+                Some(0.0) => "end time reached; the ship was at rest at the start (initial.ship_speed = 0)".to_string(),
                 Some(t) => format!("end time reached; ship surge speed first zero at t = {t:.3} s{}", paper(t)),
                 None => format!(
                     "end time {:.3} s reached; the ship did not stop (moved {:.2} m)",
@@ -261,7 +265,7 @@ fn outcome_lines(out: &mut Lines, model: &Model, result: &RunResult) {
 
 /// The peak tension with its utilisation and where, and the break-load check.
 fn tension_lines(out: &mut Lines, model: &Model, result: &RunResult) {
-    if result.steps == 0 {
+    if !result.ran() {
         return;
     }
     let Some((k, peak)) = result.peak_tension() else { return };

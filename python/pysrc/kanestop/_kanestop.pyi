@@ -43,6 +43,10 @@ class Scene:
     def load(path: Union[str, "os.PathLike[str]"]) -> "Scene":
         """Reads and checks a scene file (``extends`` resolved). Raises SceneError."""
     @staticmethod
+    def paper(number: int) -> "Scene":
+        """Case ``number`` of the paper's Table 2 (1–19), built in: equal to
+        ``scenes/paper/caseNN.toml``, no file needed. Raises ValueError outside 1–19."""
+    @staticmethod
     def from_dict(d: Mapping[str, Any], name: str = "<dict>") -> "Scene":
         """A scene from a dict of its tables (as ``to_dict`` gives). Raises SceneError."""
     @staticmethod

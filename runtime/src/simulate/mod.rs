@@ -134,7 +134,8 @@ pub fn run_cancellable(model: &Model, kernel: Box<dyn Kernel>, cancel: &AtomicBo
                     result.track_peaks(t, tensions);
                 }
                 result.track_peaks(stepper.t(), stepper.tensions());
-                if stopped != Stopped::Step || stepper.at_output() {
+                // A ship stopped at the start took no interval: its sample is the first.
+                if (stopped != Stopped::Step || stepper.at_output()) && stepper.steps() > 0 {
                     result.samples.extend(stepper.sample());
                 }
                 if stopped != Stopped::Step {

@@ -64,7 +64,8 @@ pub struct RunResult {
     pub stop: Stop,
     /// Simulated time reached (last good state), s.
     pub t_end: f64,
-    /// First zero of the ship's surge speed, located to round-off, s.
+    /// First zero of the ship's surge speed, located to round-off, s: 0 for a ship at rest at
+    /// the start.
     pub stopping_time: Option<f64>,
     /// The anchor's switches, in order.
     pub anchor_events: Vec<AnchorEvent>,
@@ -173,6 +174,13 @@ impl RunResult {
                 *peak = PeakTension { tension, t };
             }
         }
+    }
+
+    /// Whether the run got past its start, so that its peaks and drift mean something: it
+    /// completed an interval, or its ship was at rest at the start and the run stopped there
+    /// (its peaks are the starting state's). A run refused or failed at the start did not.
+    pub fn ran(&self) -> bool {
+        self.steps > 0 || self.stop == Stop::ShipStopped
     }
 
     /// The largest peak tension of the run and its joint k (between B_{k−1} and B_k).

@@ -42,7 +42,9 @@ pub enum Stopped {
     AnchorSwitched(AnchorEvent),
     /// The ship's surge speed reached zero at `t` (s) and the scene stops the run there
     /// (`solver.stop_when_ship_stops`): the stepper is at the located stop. Without that
-    /// setting the run goes on and [`Stepper::stopping_time`] keeps the time.
+    /// setting the run goes on and [`Stepper::stopping_time`] keeps the time. A ship at rest
+    /// at the start (`initial.ship_speed = 0`) has stopped at t = 0: the first call returns
+    /// this with no interval taken.
     ShipStopped {
         /// s.
         t: f64,
@@ -235,6 +237,11 @@ impl<'a> Stepper<'a> {
         self.evaluations0 = self.m.dynamics.evaluations();
         let obs = self.m.observe(self.model, &self.y).map_err(|e| self.failure(0.0, e))?;
         self.drift = health::DriftWatch::new(obs.energy.balance(), obs.energy.kinetic_total());
+        // A ship at rest has stopped before it moved: its first zero is the start, not the
+        // first sign change of the round-off around rest that the line's settling gives.
+        if obs.ship_vx() <= 0.0 {
+            self.stopping_time = Some(0.0);
+        }
         self.obs = Some(obs);
         Ok(())
     }
@@ -245,6 +252,9 @@ impl<'a> Stepper<'a> {
     pub fn step(&mut self) -> Result<Stopped, Failure> {
         if self.steps >= self.max_steps || self.obs.is_none() {
             return Ok(Stopped::EndTime);
+        }
+        if self.steps == 0 && self.stopping_time == Some(0.0) && self.model.scene.solver.stop_when_ship_stops {
+            return Ok(Stopped::ShipStopped { t: 0.0 });
         }
         let mut iv = match self.interval.take() {
             Some(iv) => iv,
@@ -331,7 +341,8 @@ impl<'a> Stepper<'a> {
         self.drift.max_drift
     }
 
-    /// First zero of the ship's surge speed, located to round-off, s.
+    /// First zero of the ship's surge speed, located to round-off, s: 0 for a ship at rest
+    /// at the start.
     pub fn stopping_time(&self) -> Option<f64> {
         self.stopping_time
     }

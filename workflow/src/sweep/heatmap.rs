@@ -105,14 +105,18 @@ impl Output {
     }
 
     /// The limit of the spec's design check on this output, in its unit, with the check's
-    /// name: drawn on the colour scale.
+    /// name: drawn on the colour scale. None where the check is an input of the sweep (its
+    /// limit differs from row to row).
     fn limit(self, spec: &Spec) -> Option<(f64, &'static str)> {
-        let c = spec.checks.as_ref().or(spec.base.checks.as_ref())?;
+        let c = spec.base.checks.as_ref()?;
+        let own = |name: &str, v: Option<f64>| v.filter(|_| !check_is_input(spec, name));
         match self {
-            Output::StoppingDistance => c.max_stopping_distance.map(|v| (v, "max_stopping_distance")),
-            Output::StoppingTime => c.max_stopping_time.map(|v| (v, "max_stopping_time")),
-            Output::PeakUtilisation => c.safety_factor.map(|f| (1.0 / f, "1 / safety_factor")),
-            Output::AnchorDrag => c.max_anchor_drag.map(|v| (v, "max_anchor_drag")),
+            Output::StoppingDistance => {
+                own("max_stopping_distance", c.max_stopping_distance).map(|v| (v, "max_stopping_distance"))
+            }
+            Output::StoppingTime => own("max_stopping_time", c.max_stopping_time).map(|v| (v, "max_stopping_time")),
+            Output::PeakUtilisation => own("safety_factor", c.safety_factor).map(|f| (1.0 / f, "1 / safety_factor")),
+            Output::AnchorDrag => own("max_anchor_drag", c.max_anchor_drag).map(|v| (v, "max_anchor_drag")),
             Output::PeakTension | Output::ShipDisplacement => None,
         }
     }
@@ -305,13 +309,7 @@ pub fn heat_map(spec: &Spec, rows: &[SweepRow], output: Output) -> std::result::
     let grid = cells(spec, rows, output);
     let values: Vec<f64> = grid.iter().flatten().filter_map(|c| c.value).collect();
     let limit = output.limit(spec);
-    let (mut lo, mut hi) = values.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
-    if !lo.is_finite() {
-        (lo, hi) = (0.0, 1.0);
-    }
-    if hi - lo <= 1e-12 * hi.abs().max(1.0) {
-        (lo, hi) = (lo - 0.5 * lo.abs().max(1.0) * 0.1, hi + 0.5 * hi.abs().max(1.0) * 0.1);
-    }
+    let (lo, hi) = scale_range(&values);
     let mut svg = String::new();
     {
         let root = SVGBackend::with_string(&mut svg, SIZE).into_drawing_area();
@@ -340,6 +338,22 @@ pub fn heat_map(spec: &Spec, rows: &[SweepRow], output: Output) -> std::result::
         root.present().map_err(|e| e.to_string())?;
     }
     Ok(svg)
+}
+
+/// The colour scale's ends over the cells' `values`: their least and greatest; around the one
+/// value when all are equal, from 0 for a value ≥ 0 within the margin of 0 (every output but
+/// the ship's displacement is a magnitude, and a scale of those all 0 from −0.05 read as a
+/// negative distance); 0 to 1 without values.
+fn scale_range(values: &[f64]) -> (f64, f64) {
+    let (lo, hi) = values.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
+    if !lo.is_finite() {
+        return (0.0, 1.0);
+    }
+    if hi - lo > 1e-12 * hi.abs().max(1.0) {
+        return (lo, hi);
+    }
+    let margin = 0.05 * lo.abs().max(1.0);
+    (if lo >= 0.0 { (lo - margin).max(0.0) } else { lo - margin }, hi + margin)
 }
 
 // Long by design: one chart's drawing, cell by cell, reads best in one place.
@@ -434,23 +448,8 @@ fn draw_cells<DB: DrawingBackend>(
             }
         }
     }
-    // The check boundary: between a passing and a failing neighbour.
-    let mut edges = Vec::new();
-    for i in 0..nx {
-        for j in 0..ny {
-            let p = grid[i][j].pass;
-            let differs = |q: Option<bool>| p.is_some() && q.is_some() && p != q;
-            let (x, y) = (i as f64 + 0.5, j as f64 + 0.5);
-            if i + 1 < nx && differs(grid[i + 1][j].pass) {
-                edges.push(vec![(x, y - 1.0), (x, y)]);
-            }
-            if j + 1 < ny && differs(grid[i][j + 1].pass) {
-                edges.push(vec![(x - 1.0, y), (x, y)]);
-            }
-        }
-    }
     let red = RGBColor(230, 30, 30);
-    c.draw_series(edges.into_iter().map(|e| PathElement::new(e, red.stroke_width(5)))).map_err(err)?;
+    c.draw_series(boundary(grid).into_iter().map(|e| PathElement::new(e, red.stroke_width(5)))).map_err(err)?;
     Ok(())
 }
 
@@ -529,8 +528,7 @@ fn draw_legend<DB: DrawingBackend>(
         let d = 7 * k;
         area.draw(&PathElement::new(vec![(x0 + d, y0 + 18), (x0 + d + 8, y0)], WHITE.stroke_width(2))).map_err(err)?;
     }
-    let checks = spec.checks.as_ref().or(spec.base.checks.as_ref());
-    let names = checks.map(describe_checks).unwrap_or_else(|| "no [checks] set".into());
+    let names = describe_checks(spec);
     let cells = grid.iter().flatten();
     let (fail, empty, total) = (
         cells.clone().filter(|c| c.pass == Some(false)).count(),
@@ -544,18 +542,18 @@ fn draw_legend<DB: DrawingBackend>(
     ))
     .map_err(err)?;
     let y1 = y0 + 28;
-    area.draw(&PathElement::new(vec![(x0, y1 + 9), (x0 + 26, y1 + 9)], red.stroke_width(5))).map_err(err)?;
     let limit_words = match limit {
         Some((v, name)) if (lo..=hi).contains(&v) => format!("; on the scale: {name} = {}", short(v)),
         Some((v, name)) => format!("; {name} = {} is off the scale", short(v)),
         None => String::new(),
     };
-    area.draw(&Text::new(
-        format!("red line: the design-check boundary, between passing and failing cells{limit_words}"),
-        (x0 + 36, y1 + 2),
-        font.clone(),
-    ))
-    .map_err(err)?;
+    let line = if !boundary(grid).is_empty() {
+        area.draw(&PathElement::new(vec![(x0, y1 + 9), (x0 + 26, y1 + 9)], red.stroke_width(5))).map_err(err)?;
+        format!("red line: the design-check boundary, between passing and failing cells{limit_words}")
+    } else {
+        format!("no design-check boundary: no passing cell beside a failing one{limit_words}")
+    };
+    area.draw(&Text::new(line, (x0 + 36, y1 + 2), font.clone())).map_err(err)?;
     let y2 = y1 + 28;
     area.draw(&Rectangle::new([(x0, y2), (x0 + 26, y2 + 18)], RGBColor(200, 200, 200).filled())).map_err(err)?;
     area.draw(&Text::new(
@@ -589,8 +587,38 @@ fn draw_legend<DB: DrawingBackend>(
     Ok(())
 }
 
-/// The set checks in words, e.g. `max_stopping_distance 40, safety_factor 1.5`.
-fn describe_checks(c: &kanestop_runtime::design::DesignChecks) -> String {
+/// Whether the design check `name` is an input of the sweep (an axis or an uncertain input
+/// on `checks.NAME`): its limit differs from row to row.
+fn check_is_input(spec: &Spec, name: &str) -> bool {
+    let path = format!("checks.{name}");
+    spec.axes.iter().map(|a| &a.path).chain(spec.uncertain.iter().map(|u| &u.path)).any(|p| *p == path)
+}
+
+/// The design-check boundary: the cell edges between a passing and a failing neighbour, in
+/// the cells' coordinates (cell (i, j) spans i − 0.5 … i + 0.5).
+fn boundary(grid: &[Vec<Cell>]) -> Vec<Vec<(f64, f64)>> {
+    let mut edges = Vec::new();
+    let (nx, ny) = (grid.len(), grid.first().map_or(0, Vec::len));
+    for i in 0..nx {
+        for j in 0..ny {
+            let p = grid[i][j].pass;
+            let differs = |q: Option<bool>| p.is_some() && q.is_some() && p != q;
+            let (x, y) = (i as f64 + 0.5, j as f64 + 0.5);
+            if i + 1 < nx && differs(grid[i + 1][j].pass) {
+                edges.push(vec![(x, y - 1.0), (x, y)]);
+            }
+            if j + 1 < ny && differs(grid[i][j + 1].pass) {
+                edges.push(vec![(x - 1.0, y), (x, y)]);
+            }
+        }
+    }
+    edges
+}
+
+/// The rows' design checks in words, e.g. `max_stopping_distance 40, safety_factor 1.5`; a
+/// check that is an input of the sweep is named so (`max_stopping_distance by axis`).
+fn describe_checks(spec: &Spec) -> String {
+    let c = spec.base.checks.clone().unwrap_or_default();
     let parts: Vec<String> = [
         ("max_stopping_distance", c.max_stopping_distance),
         ("max_stopping_time", c.max_stopping_time),
@@ -599,10 +627,14 @@ fn describe_checks(c: &kanestop_runtime::design::DesignChecks) -> String {
         ("max_proof_utilisation", c.max_proof_utilisation),
     ]
     .into_iter()
-    .filter_map(|(n, v)| v.map(|v| format!("{n} {}", short(v))))
+    .filter_map(|(n, v)| match (check_is_input(spec, n), v) {
+        (true, _) => Some(format!("{n} by row")),
+        (false, Some(v)) => Some(format!("{n} {}", short(v))),
+        (false, None) => None,
+    })
     .collect();
     if parts.is_empty() {
-        "no [checks] set".into()
+        "none set but the break loads".into()
     } else {
         parts.join(", ")
     }
@@ -658,6 +690,46 @@ mod tests {
         assert!(Output::parse("speed").unwrap_err().to_string().contains("stopping_distance"));
         assert_eq!(parse_outputs(&[]).unwrap(), DEFAULT_OUTPUTS);
         assert!(parse_outputs(&["none".into()]).unwrap().is_empty());
+    }
+
+    #[test]
+    fn the_scale_of_one_value_stays_on_its_side_of_zero() {
+        assert_eq!(scale_range(&[0.0, 0.0]), (0.0, 0.05), "an all-zero distance is no negative one");
+        assert_eq!(scale_range(&[20.0]), (19.0, 21.0));
+        assert_eq!(scale_range(&[-2.0]), (-2.1, -1.9));
+        assert_eq!(scale_range(&[1.0, 3.0]), (1.0, 3.0));
+        assert_eq!(scale_range(&[]), (0.0, 1.0));
+    }
+
+    #[test]
+    fn a_check_swept_by_an_axis_is_named_so_and_has_no_one_limit() {
+        let case01 =
+            kanestop_runtime::scene::Scene::from_toml(kanestop_runtime::paper::DEFAULT_SCENE, "case01").unwrap();
+        let spec =
+            |text: &str| Spec::from_toml(text, Path::new("s.toml"), Path::new(""), Some(case01.clone())).unwrap();
+        let axes = "[[axis]]\npath = \"ship.mass\"\nvalues = [4e5, 5e5]\n";
+        // Regression: the legend said "(no [checks] set)" of a sweep whose axis set the check.
+        let swept = spec(&format!(
+            "{axes}[[axis]]\npath = \"checks.max_stopping_distance\"\nvalues = [20.0, 40.0]\n[checks]\nsafety_factor = 1.5\n"
+        ));
+        assert_eq!(describe_checks(&swept), "max_stopping_distance by row, safety_factor 1.5");
+        assert_eq!(Output::StoppingDistance.limit(&swept), None, "a limit per row is none on the scale");
+        assert_eq!(Output::PeakUtilisation.limit(&swept), Some((1.0 / 1.5, "1 / safety_factor")));
+        let none = spec(&format!("{axes}[[axis]]\npath = \"anchor.mass\"\nvalues = [3e4, 4e4]\n"));
+        assert_eq!(describe_checks(&none), "none set but the break loads");
+    }
+
+    #[test]
+    fn the_boundary_runs_between_passing_and_failing_cells_only() {
+        let cell = |pass: Option<bool>| Cell { pass, ..Cell::default() };
+        // Regression: the legend showed the red line of a map whose cells all failed.
+        let all_fail = vec![vec![cell(Some(false)); 2]; 2];
+        assert!(boundary(&all_fail).is_empty());
+        assert!(boundary(&[vec![cell(Some(true)), cell(None)]]).is_empty(), "no value is no side");
+        // One passing corner of four: its two inner edges.
+        let mut corner = all_fail;
+        corner[0][0] = cell(Some(true));
+        assert_eq!(boundary(&corner), [vec![(0.5, -0.5), (0.5, 0.5)], vec![(-0.5, 0.5), (0.5, 0.5)]]);
     }
 
     #[test]

@@ -435,7 +435,8 @@ pub fn by_grid_point(rows: &[SweepRow], per_point: usize) -> Vec<(String, &[Swee
 
 /// Mean, standard deviation, 5 % and 95 % quantiles of an output over the rows that have it
 /// and ran to their end (stopped, or at the end time): a failed run's partial peak is no
-/// sample of the output.
+/// sample of the output. The quantiles interpolate linearly between the sorted values at
+/// p·(n − 1) (Hyndman and Fan's type 7: NumPy's, pandas' and spreadsheets' default).
 pub fn statistics(rows: &[SweepRow], output: impl Fn(&RunSummary) -> Option<f64>) -> Option<[f64; 4]> {
     let ran = rows.iter().filter(|r| matches!(r.status, Status::Stopped | Status::EndTime));
     let mut v: Vec<f64> = ran.filter_map(|r| r.summary.as_ref().and_then(&output)).collect();
@@ -446,8 +447,18 @@ pub fn statistics(rows: &[SweepRow], output: impl Fn(&RunSummary) -> Option<f64>
     let n = v.len() as f64;
     let mean = v.iter().sum::<f64>() / n;
     let sd = (v.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1.0)).sqrt();
-    let q = |p: f64| v[((p * (n - 1.0)).round() as usize).min(v.len() - 1)];
-    Some([mean, sd, q(0.05), q(0.95)])
+    Some([mean, sd, quantile(&v, 0.05), quantile(&v, 0.95)])
+}
+
+/// The `p` quantile (0 ≤ p ≤ 1) of `sorted` (ascending, not empty): linear between the values
+/// at p·(n − 1), Hyndman and Fan's type 7.
+fn quantile(sorted: &[f64], p: f64) -> f64 {
+    let at = p * (sorted.len() - 1) as f64;
+    let (i, f) = (at.floor() as usize, at.fract());
+    match sorted.get(i + 1) {
+        Some(next) => sorted[i] + f * (next - sorted[i]),
+        None => sorted[i],
+    }
 }
 
 /// The file `scenes/NAME.toml` of a planned row: its scene, to rerun it alone (none when
@@ -505,9 +516,83 @@ pub fn write(rows: &[SweepRow], scenes: &[(String, String)], dir: &Path) -> Resu
     Ok((c, j))
 }
 
+/// Removes from `dir` what an earlier sweep wrote there and this one did not, so that the
+/// folder holds one sweep: row scene files (`scenes/*.toml` that begin as [`scene_file`]
+/// begins them) not in `scenes`, and, when the heat maps were drawn (`charts`), the
+/// `heatmap-NAME.svg` of the other outputs. Nothing else is touched. Returns what it removed.
+pub fn remove_stale(dir: &Path, scenes: &[(String, String)], charts: Option<&[PathBuf]>) -> Result<Vec<PathBuf>> {
+    let mut stale = Vec::new();
+    let folder = dir.join("scenes");
+    let written: std::collections::HashSet<String> =
+        scenes.iter().map(|(name, _)| format!("{}.toml", file_stem(name))).collect();
+    if let Ok(entries) = std::fs::read_dir(&folder) {
+        for entry in entries.flatten() {
+            let name = entry.file_name().to_string_lossy().into_owned();
+            let path = entry.path();
+            let ours = || {
+                let text = std::fs::read_to_string(&path).unwrap_or_default();
+                text.lines().next().is_some_and(|l| l.starts_with("# Row ") && l.contains(" of a sweep: "))
+            };
+            if name.ends_with(".toml") && !written.contains(&name) && path.is_file() && ours() {
+                stale.push(path);
+            }
+        }
+    }
+    if let Some(charts) = charts {
+        for o in heatmap::Output::ALL {
+            let path = dir.join(format!("heatmap-{}.svg", o.name()));
+            if path.is_file() && !charts.contains(&path) {
+                stale.push(path);
+            }
+        }
+    }
+    stale.sort();
+    for path in &stale {
+        std::fs::remove_file(path).map_err(Error::io("remove", path))?;
+    }
+    Ok(stale)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn quantiles_interpolate_as_numpy_does() {
+        // numpy.percentile([1, 2, 3, 4, 10], [5, 95]) = [1.2, 8.8]; of 1 … 30, 2.45 and 28.55.
+        let v = [1.0, 2.0, 3.0, 4.0, 10.0];
+        assert!((quantile(&v, 0.05) - 1.2).abs() < 1e-12 && (quantile(&v, 0.95) - 8.8).abs() < 1e-12);
+        let thirty: Vec<f64> = (1..=30).map(f64::from).collect();
+        assert!((quantile(&thirty, 0.05) - 2.45).abs() < 1e-12 && (quantile(&thirty, 0.95) - 28.55).abs() < 1e-12);
+        assert_eq!((quantile(&v, 0.0), quantile(&v, 1.0), quantile(&[7.0], 0.95)), (1.0, 10.0, 7.0));
+    }
+
+    #[test]
+    fn an_earlier_sweep_s_files_are_removed_and_nothing_else() {
+        let dir = std::env::temp_dir().join(format!("kanestop-stale-{}", std::process::id()));
+        let scenes = dir.join("scenes");
+        std::fs::create_dir_all(&scenes).unwrap();
+        let ours = "# Row 1 of a sweep: ship.mass=4e5\n[meta]\n";
+        for (name, text) in [("a-000.toml", ours), ("a-001.toml", ours), ("mine.toml", "[meta]\n"), ("a-001.txt", ours)]
+        {
+            std::fs::write(scenes.join(name), text).unwrap();
+        }
+        for name in ["heatmap-stopping_time.svg", "heatmap-stopping_distance.svg", "heatmap-mine.svg"] {
+            std::fs::write(dir.join(name), "<svg/>").unwrap();
+        }
+        let written = [("a-000".to_string(), ours.to_string())];
+        // Without heat maps drawn (a merge without its spec), the maps stay.
+        let removed = remove_stale(&dir, &written, None).unwrap();
+        assert_eq!(removed, [scenes.join("a-001.toml")]);
+        let charts = [dir.join("heatmap-stopping_distance.svg")];
+        let removed = remove_stale(&dir, &written, Some(&charts)).unwrap();
+        assert_eq!(removed, [dir.join("heatmap-stopping_time.svg")]);
+        for kept in [scenes.join("a-000.toml"), scenes.join("mine.toml"), scenes.join("a-001.txt"), charts[0].clone()] {
+            assert!(kept.is_file(), "{} kept", kept.display());
+        }
+        assert!(dir.join("heatmap-mine.svg").is_file(), "not an output's name: kept");
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
 
     #[test]
     fn the_terminal_shows_six_significant_digits_of_an_input() {

@@ -105,7 +105,8 @@ pub struct Spec {
     pub file: PathBuf,
     /// The sweep's name (`name`, or the spec file's stem): rows are `name-000`, ….
     pub name: String,
-    /// The base scene, with `[solver]` and `[set]` applied.
+    /// The base scene, with the spec's `[checks]` (in place of the base's own), `[solver]`
+    /// and `[set]` applied, in that order: a `[set]` path under `checks.` sets one check.
     pub base: Scene,
     /// Grid axes, combined as a Cartesian product (last fastest).
     pub axes: Vec<Axis>,
@@ -113,8 +114,6 @@ pub struct Spec {
     pub sampling: Option<(Method, usize, u64)>,
     /// The uncertain inputs.
     pub uncertain: Vec<Uncertain>,
-    /// Design checks for every row (over the base scene's own `[checks]`).
-    pub checks: Option<DesignChecks>,
 }
 
 /// One row of a sweep before it runs.
@@ -199,7 +198,6 @@ impl Spec {
             axes: Vec::new(),
             sampling: None,
             uncertain: Vec::new(),
-            checks: None,
         }
     }
 
@@ -219,14 +217,29 @@ impl Spec {
             (None, None) => return Err(bad(file, "base", "(missing)", "the base scene, a file relative to the spec")),
         };
         let mut value = original.to_value();
+        // The spec's checks replace the base's, before [set], whose `checks.*` paths then
+        // set one of them (an axis's, in the row's scene, as well).
+        if let Some(c) = &raw.checks {
+            if let Some((field, v, expected)) = c.problems("checks").into_iter().next() {
+                return Err(bad(file, field, v, expected));
+            }
+            if let Value::Table(t) = &mut value {
+                t.insert("checks".into(), Value::try_from(c).expect("design checks are optional numbers"));
+            }
+        }
         let mut set =
             |path: &str, v: Value| overrides::set(&mut value, path, v).map_err(|e| bad(file, path, "", e.to_string()));
         for (k, v) in raw.solver.into_iter().flatten() {
             set(&format!("solver.{k}"), v)?;
         }
-        let mut inputs: Vec<(String, String)> = Vec::new();
+        // Each input's field in the spec, its path and what the field holds (a [set] entry
+        // holds its value, an axis's `path` the path).
+        let mut inputs: Vec<(String, String, String)> = Vec::new();
         for (k, v) in raw.set.into_iter().flatten() {
-            inputs.push((format!("set.\"{k}\""), k.clone()));
+            if k == ROW_NAME.0 {
+                return Err(bad(file, format!("set.\"{k}\""), v, ROW_NAME.1));
+            }
+            inputs.push((format!("set.\"{k}\""), k.clone(), v.to_string()));
             set(&k, v)?;
         }
         let base = Scene::from_value(value, &format!("{} (base with [solver] and [set])", file.display()))?;
@@ -259,12 +272,13 @@ impl Spec {
         }
         // Two ways to give one quantity (two of x_L, T_h and T_t) in one spec: the row's scene
         // would keep the one set last.
-        inputs.extend(axes.iter().enumerate().map(|(i, a)| (format!("axis[{i}].path"), a.path.clone())));
-        inputs.extend(uncertain.iter().enumerate().map(|(i, u)| (format!("uncertain[{i}].path"), u.path.clone())));
-        let paths: Vec<&str> = inputs.iter().map(|(_, p)| p.as_str()).collect();
+        let path_of = |field: String, path: &String| (field, path.clone(), path.clone());
+        inputs.extend(axes.iter().enumerate().map(|(i, a)| path_of(format!("axis[{i}].path"), &a.path)));
+        inputs.extend(uncertain.iter().enumerate().map(|(i, u)| path_of(format!("uncertain[{i}].path"), &u.path)));
+        let paths: Vec<&str> = inputs.iter().map(|(_, p, _)| p.as_str()).collect();
         if let Some((i, j)) = overrides::conflicting_alternatives(&paths) {
             let why = format!("not set with {} ({}): both give one quantity, set one of them", paths[i], inputs[i].0);
-            return Err(bad(file, &inputs[j].0, paths[j], why));
+            return Err(bad(file, &inputs[j].0, &inputs[j].2, why));
         }
         let sampling = match (raw.sampling, uncertain.is_empty()) {
             (Some(s), false) if (1..=MAX_ROWS).contains(&s.samples) => Some((s.method, s.samples, s.seed)),
@@ -284,11 +298,6 @@ impl Spec {
                 format!("at most {MAX_ROWS} rows in all ({what}); split the study into several specs"),
             ));
         }
-        if let Some(c) = &raw.checks {
-            if let Some((field, v, expected)) = c.problems("checks").into_iter().next() {
-                return Err(bad(file, field, v, expected));
-            }
-        }
         let stem = file
             .file_stem()
             .map(|s| s.to_string_lossy().into_owned())
@@ -296,12 +305,12 @@ impl Spec {
             .unwrap_or_else(|| "sweep".into());
         let name = raw.name.unwrap_or(stem);
         check_name(&name).map_err(|expected| bad(file, "name", format!("{name:?}"), expected))?;
-        Ok(Spec { file: file.to_path_buf(), name, base, axes, sampling, uncertain, checks: raw.checks })
+        Ok(Spec { file: file.to_path_buf(), name, base, axes, sampling, uncertain })
     }
 
     /// The spec's own fields as a spec file's table, without `base` (the scene, with
-    /// `[solver]` and `[set]` already applied, is [`Spec::base`]): `name`, every axis as its
-    /// values, `sampling`, `uncertain` and `checks`. `Spec::from_table` of it with the base
+    /// `[checks]`, `[solver]` and `[set]` already applied, is [`Spec::base`]): `name`, every
+    /// axis as its values, `sampling` and `uncertain`. `Spec::from_table` of it with the base
     /// gives the spec back (Python pickles a spec so).
     pub fn to_table(&self) -> toml::Table {
         let mut t = toml::Table::new();
@@ -339,9 +348,6 @@ impl Spec {
             Value::Table(entry)
         });
         t.insert("uncertain".into(), Value::Array(uncertain.collect()));
-        if let Some(checks) = &self.checks {
-            t.insert("checks".into(), Value::try_from(checks).expect("design checks are optional numbers"));
-        }
         t
     }
 
@@ -393,16 +399,11 @@ impl Spec {
     }
 
     /// The scene of one row: the base with `inputs` set, named `name` and described by its
-    /// inputs, with the spec's checks; its Table 3 time that of the paper case it is, if any
+    /// inputs; its Table 3 time that of the paper case it is, if any
     /// (`paper::stopping_time`, the rule every report follows), so its scene file says so.
     pub fn scene(&self, name: &str, inputs: &[(String, Value)]) -> std::result::Result<Scene, String> {
         let values: Vec<(&str, Value)> = inputs.iter().map(|(p, v)| (p.as_str(), v.clone())).collect();
-        // The spec's checks first, so that a row's input may set one of them.
-        let mut base = self.base.clone();
-        if let Some(c) = &self.checks {
-            base.checks = Some(c.clone());
-        }
-        let mut scene = base.with_overrides(&values).map_err(|e| e.to_string())?;
+        let mut scene = self.base.with_overrides(&values).map_err(|e| e.to_string())?;
         scene.meta.paper_stopping_time = kanestop_runtime::paper::stopping_time(&scene);
         // The row's own description: the base's would describe a scene it no longer is.
         let set: Vec<String> = inputs.iter().map(|(p, v)| format!("{p} = {v}")).collect();
@@ -418,12 +419,21 @@ impl Spec {
     }
 }
 
+/// What a row's name replaces: `meta.name` is no input of a sweep.
+const ROW_NAME: (&str, &str) =
+    ("meta.name", "a field other than meta.name, which each row's name takes (NAME-000; the sweep's `name` sets NAME)");
+
 fn axis(file: &Path, base: &Value, i: usize, a: AxisFile) -> Result<Axis> {
     let field = |f: &str| format!("axis[{i}].{f}");
+    if a.path == ROW_NAME.0 {
+        return Err(bad(file, field("path"), &a.path, ROW_NAME.1));
+    }
     let current = overrides::get_or_alternative(base, &a.path).ok_or_else(|| {
         bad(file, field("path"), &a.path, "a field of the scene, e.g. ship.mass or cable.stages[1].elements")
     })?;
     let integer = current.is_integer();
+    // Where the values came from, for a refusal of one of them.
+    let given = if a.range.is_some() { "range" } else { "values" };
     let values: Vec<Value> = match (a.values, a.range) {
         (Some(v), None) if !v.is_empty() => v,
         (Some(_), None) => return Err(bad(file, field("values"), "[]", "at least one value")),
@@ -478,7 +488,17 @@ fn axis(file: &Path, base: &Value, i: usize, a: AxisFile) -> Result<Axis> {
     let typed = values
         .into_iter()
         .map(|v| match (&v, integer, current.is_float()) {
+            (Value::Float(x), _, _) if !x.is_finite() => Err(bad(file, field(given), x, "finite numbers")),
             (Value::Float(x), true, _) if x.fract() == 0.0 && x.abs() < 9e15 => Ok(Value::Integer(*x as i64)),
+            (Value::Float(x), true, _) if given == "range" => Err(bad(
+                file,
+                field(given),
+                format!("a point {x}"),
+                format!(
+                    "whole points: {} is an integer field (from, to and steps with (to − from)/(steps − 1) whole)",
+                    a.path
+                ),
+            )),
             (Value::Float(x), true, _) => {
                 Err(bad(file, field("values"), x, format!("whole numbers: {} is an integer field", a.path)))
             }
@@ -682,10 +702,45 @@ mod tests {
         assert_eq!(elements("from = 1.0, to = 100.0, steps = 3, scale = \"log\""), ["1", "10", "100"]);
         let ten_to_twenty: Vec<String> = (10..=20).map(|n| n.to_string()).collect();
         assert_eq!(elements("from = 10.0, to = 20.0, steps = 11"), ten_to_twenty);
-        // A point that is not whole is still refused, by its value.
+        // A point that is not whole is still refused, by its value, at the range that gave it.
         let e = spec("from = 10.0, to = 20.0, steps = 3, scale = \"log\"").unwrap_err().to_string();
-        assert!(e.contains("axis[0].values = 14.1421356237:"), "{e}");
-        assert!(e.contains("whole numbers: chain.elements is an integer field"), "{e}");
+        assert!(e.contains("axis[0].range = a point 14.1421356237:"), "{e}");
+        assert!(e.contains("whole points: chain.elements is an integer field"), "{e}");
+    }
+
+    #[test]
+    fn a_check_set_in_set_joins_the_spec_s_checks() {
+        // Regression: the spec's [checks] replaced the base's checks after [set], so a check
+        // given in [set] was dropped silently (a 27 m stop passed a 20 m limit).
+        let text = "[set]\n\"checks.max_stopping_distance\" = 20.0\n[checks]\nmax_anchor_drag = 30.0\n";
+        let spec = Spec::from_toml(text, Path::new("s.toml"), Path::new(""), Some(case01())).unwrap();
+        let checks = spec.plan()[0].scene.as_ref().unwrap().checks.clone().unwrap();
+        assert_eq!((checks.max_stopping_distance, checks.max_anchor_drag), (Some(20.0), Some(30.0)));
+        // [set] over the spec's own value of the same check: [set] is applied after.
+        let text = "[set]\n\"checks.max_stopping_distance\" = 20.0\n[checks]\nmax_stopping_distance = 30.0\n";
+        let spec = Spec::from_toml(text, Path::new("s.toml"), Path::new(""), Some(case01())).unwrap();
+        assert_eq!(spec.base.checks.as_ref().unwrap().max_stopping_distance, Some(20.0));
+    }
+
+    #[test]
+    fn inputs_a_row_cannot_take_are_refused_before_any_run() {
+        let message = |text: &str| {
+            Spec::from_toml(text, Path::new("s.toml"), Path::new(""), Some(case01())).unwrap_err().to_string()
+        };
+        // A row's name replaces meta.name.
+        let e = message("[[axis]]\npath = \"meta.name\"\nvalues = [\"a\", \"b\"]\n");
+        assert!(e.contains("axis[0].path = meta.name: a field other than meta.name"), "{e}");
+        let e = message("[set]\n\"meta.name\" = \"a\"\n");
+        assert!(e.contains("set.\"meta.name\" = \"a\": a field other than meta.name"), "{e}");
+        // Not finite: refused with the spec, not row by row.
+        for v in ["nan", "inf", "-inf"] {
+            let e = message(&format!("[[axis]]\npath = \"ship.mass\"\nvalues = [4e5, {v}]\n"));
+            assert!(e.contains("axis[0].values =") && e.ends_with("finite numbers"), "{e}");
+        }
+        // Two ways to lay the line in [set]: the refusal shows the value given.
+        let e = message("[set]\n\"initial.horizontal_tension\" = 150.0\n\"initial.horizontal_projection\" = 148.0\n");
+        assert!(e.contains("= 150.0: not set with") || e.contains("= 148.0: not set with"), "{e}");
+        assert!(!e.contains("\" = initial."), "{e}");
     }
 
     #[test]
