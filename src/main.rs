@@ -502,34 +502,83 @@ impl std::str::FromStr for MethodSpec {
     }
 }
 
+/// The scene with the command line's `[solver]` values laid on its file's before it is
+/// checked (they may mend it), and its model.
 fn load_model_with(scene: Option<&PathBuf>, o: &SolverOverrides) -> Result<Model> {
-    let (mut scene, file) = match scene {
-        Some(path) => (Scene::load(path)?, path.display().to_string()),
-        None => (Scene::from_toml(DEFAULT_SCENE, "embedded case01.toml")?, "embedded case01.toml".to_string()),
+    let over = o.table();
+    let scene = match scene {
+        Some(path) => Scene::load_over(path, over)?,
+        None if over.is_empty() => Scene::from_toml(DEFAULT_SCENE, "embedded case01.toml")?,
+        None => default_over(over)?,
     };
-    o.apply(&mut scene, &file)?;
+    if scene.solver.integrator == Method::Rk4 && (o.rtol.is_some() || o.atol.is_some()) {
+        eprintln!(
+            "note: --rtol and --atol are the adaptive methods' tolerances; rk4 takes a fixed step and ignores them"
+        );
+    }
     Ok(Model::new(&scene)?)
 }
 
 impl SolverOverrides {
-    /// Applies the overrides to `scene` (read from `file`) and checks the result.
-    fn apply(&self, scene: &mut Scene, file: &str) -> Result<(), SceneError> {
-        let s = &mut scene.solver;
-        if let Some(MethodArg(method)) = self.integrator {
-            s.integrator = method;
-        }
-        s.dt = self.dt.unwrap_or(s.dt);
-        s.rtol = self.rtol.unwrap_or(s.rtol);
-        s.atol = self.atol.unwrap_or(s.atol);
-        s.output_interval = self.output_interval.unwrap_or(s.output_interval);
-        s.end_time = self.end_time.unwrap_or(s.end_time);
-        let problems = scene.problems();
-        if problems.is_empty() {
-            Ok(())
-        } else {
-            Err(SceneError::Invalid { file: format!("{file} (with command-line overrides)"), problems })
-        }
+    /// Refuses a value outside its field's own range before anything runs (`batch --dt 0`
+    /// ran every scene as invalid): checked on the embedded case 1 with the flags laid on it,
+    /// where only the fields the flags set count (a range bound by another field of a scene,
+    /// `output_interval` ≥ `dt`, is each scene's to meet).
+    fn check_alone(&self) -> Result<()> {
+        let over = self.table();
+        let Some(solver) = over.get("solver").and_then(toml::Value::as_table) else { return Ok(()) };
+        let Err(SceneError::Invalid { problems, .. }) = default_over(over.clone()) else { return Ok(()) };
+        let flag = |p: &&kanestop_runtime::scene::Problem| {
+            p.field.strip_prefix("solver.").is_some_and(|key| solver.contains_key(key))
+        };
+        let bad: Vec<String> = problems
+            .iter()
+            .filter(flag)
+            .map(|p| {
+                format!("--{} = {}: must be {}", p.field["solver.".len()..].replace('_', "-"), p.value, p.expected)
+            })
+            .collect();
+        anyhow::ensure!(bad.is_empty(), "{}", bad.join("\n"));
+        Ok(())
     }
+
+    /// The overrides as a scene's tables: `{solver = {dt = …, …}}`, empty when none is given.
+    fn table(&self) -> toml::Table {
+        let mut solver = toml::Table::new();
+        if let Some(MethodArg(method)) = self.integrator {
+            solver.insert("integrator".into(), toml::Value::String(method.name().into()));
+        }
+        let reals =
+            [("dt", self.dt), ("rtol", self.rtol), ("atol", self.atol), ("output_interval", self.output_interval)];
+        for (key, v) in reals.into_iter().chain([("end_time", self.end_time)]) {
+            if let Some(v) = v {
+                solver.insert(key.into(), toml::Value::Float(v));
+            }
+        }
+        let mut top = toml::Table::new();
+        if !solver.is_empty() {
+            top.insert("solver".into(), toml::Value::Table(solver));
+        }
+        top
+    }
+
+    /// Lays the overrides on `scene` (read from `file`) and checks the result.
+    fn apply(&self, scene: &mut Scene, file: &str) -> Result<(), SceneError> {
+        *scene = over(scene.to_value(), self.table(), file)?;
+        Ok(())
+    }
+}
+
+/// The scene of `value` with the tables `over` laid on it, checked; `file` names it.
+fn over(mut value: toml::Value, over: toml::Table, file: &str) -> Result<Scene, SceneError> {
+    kanestop_runtime::overrides::merge(&mut value, toml::Value::Table(over));
+    Scene::from_value(value, &format!("{file} (with command-line overrides)"))
+}
+
+/// The embedded case 1 with the tables `o` laid on it, checked.
+fn default_over(o: toml::Table) -> Result<Scene, SceneError> {
+    let value = toml::Value::Table(DEFAULT_SCENE.parse::<toml::Table>().expect("case 1 is TOML"));
+    over(value, o, "embedded case01.toml")
 }
 
 /// A batch configuration that owns its captures.
@@ -665,6 +714,12 @@ fn try_main() -> Result<Exit> {
                 methods.is_empty() || (solver.integrator.is_none() && solver.dt.is_none()),
                 "--methods sets the integrator and its step (method@dt): drop --integrator and --dt"
             );
+            solver.check_alone()?;
+            for m in &methods {
+                SolverOverrides { integrator: Some(MethodArg(m.method)), dt: m.dt, ..Default::default() }
+                    .check_alone()
+                    .with_context(|| format!("--methods {}@{}", m.method.name(), m.dt.unwrap_or_default()))?;
+            }
             let per_method = configurations(&solver, &methods);
             let configures: Vec<kanestop_workflow::batch::Configure> = per_method.iter().map(|c| c.as_ref()).collect();
             Ok(match commands::batch(&dir, &out, &configures, &choice.factory(), error_estimate, tolerance)? {

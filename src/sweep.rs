@@ -263,7 +263,24 @@ fn exit(rows: &[SweepRow]) -> Exit {
     let (failed, check_failed) = sweep::outcome(rows);
     if check_failed {
         let n = rows.iter().filter(|r| r.checks_pass == Some(false)).count();
-        println!("checks    FAIL in {n} of {} rows", rows.len());
+        // Which checks failed, in how many rows each: the break loads and the [checks].
+        let mut counts: Vec<(String, usize)> = Vec::new();
+        for s in rows.iter().filter(|r| r.checks_pass == Some(false)).filter_map(|r| r.summary.as_ref()) {
+            let over = [&s.peak_tension, &s.chain_peak, &s.cable_peak, &s.rod_peak]
+                .into_iter()
+                .flatten()
+                .any(|p| p.break_utilisation.is_some_and(|u| u > 1.0));
+            let names = over.then(|| "break load".to_string()).into_iter();
+            for name in names.chain(s.checks.iter().filter(|c| !c.pass).map(|c| c.name.clone())) {
+                match counts.iter_mut().find(|(n, _)| *n == name) {
+                    Some((_, k)) => *k += 1,
+                    None => counts.push((name, 1)),
+                }
+            }
+        }
+        let which: Vec<String> = counts.iter().map(|(name, k)| format!("{name} in {k}")).collect();
+        let which = if which.is_empty() { String::new() } else { format!(": {}", which.join(", ")) };
+        println!("checks    FAIL in {n} of {} rows{which}", rows.len());
     }
     // Exit 3's rows, named: the table shows them among the others.
     let count = |status: Status| rows.iter().filter(|r| r.status == status).count();

@@ -424,12 +424,18 @@ fn batch_and_run_take_solver_overrides() {
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert!(out.status.success(), "{stdout}");
     assert!(stdout.contains("end time"), "{stdout}");
-    // A bad override makes the scene invalid with the usual clear message.
+    // A bad override is refused before any run (it made every scene invalid, exit 1).
     let out =
         kanestop().args(["batch"]).arg(&scenes).args(["--rtol", "0", "--out"]).arg(dir.join("out2")).output().unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("--rtol = 0: must be in [1e-14, 0.1]"), "{stderr}");
+    // One a scene's own fields make bad (output_interval below the step) is that scene's.
+    let out =
+        kanestop().args(["batch"]).arg(&scenes).args(["--dt", "0.02", "--out"]).arg(dir.join("out3")).output().unwrap();
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert_eq!(out.status.code(), Some(1), "{stdout}");
-    assert!(stdout.contains("invalid") && stdout.contains("solver.rtol = 0"), "{stdout}");
+    assert!(stdout.contains("invalid") && stdout.contains("solver.output_interval = 0.01"), "{stdout}");
     let out =
         kanestop().args(["run"]).arg(short_scene(&dir)).args(["--integrator", "sdirk4", "--atol=-1"]).output().unwrap();
     assert_eq!(out.status.code(), Some(2));
@@ -780,4 +786,22 @@ fn run_of_a_ship_at_rest_says_it_stopped_at_the_start() {
     assert_eq!(json["status"], "stopped");
     assert_eq!((json["stopping_time"].as_f64(), json["stopping_distance"].as_f64()), (Some(0.0), Some(0.0)));
     assert_eq!(json["peak_tension"]["t"].as_f64(), Some(0.0), "{json}");
+}
+
+/// A run refused before its first step has no E_0, drift or work: `run --json` gives them as
+/// null, every work name present (it gave 0 and an empty `work`).
+#[test]
+fn run_json_of_a_refused_run_has_nulls_where_nothing_was_measured() {
+    let scene = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/stress/dt_too_large.toml");
+    let out = kanestop().arg("run").arg(&scene).arg("--json").output().unwrap();
+    assert_eq!(out.status.code(), Some(2), "{}", String::from_utf8_lossy(&out.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["status"], "failed");
+    for field in ["initial_energy", "energy_drift", "energy_scale"] {
+        assert!(v[field].is_null(), "{field}: {}", v[field]);
+    }
+    let work = v["work"].as_object().unwrap();
+    assert_eq!(work.len(), 11, "{work:?}");
+    assert!(work.values().all(serde_json::Value::is_null), "{work:?}");
+    assert_eq!(v["initial_kinetic_energy"], 0.0, "documented as 0 for a run that never started");
 }

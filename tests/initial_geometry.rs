@@ -5,7 +5,7 @@
 
 use std::path::Path;
 
-use kanestop_runtime::catenary::{continuous_range, laid_range, max_horizontal};
+use kanestop_runtime::catenary::{continuous_range, laid_range, lay_elements, max_horizontal};
 use kanestop_runtime::generated::GeneratedKernel;
 use kanestop_runtime::model::Model;
 use kanestop_runtime::paper::DEFAULT_SCENE;
@@ -68,15 +68,36 @@ fn vertical_projection_60_is_refused_with_the_range() {
     assert_eq!(p.value, "148");
     let hi = max_horizontal(152.0, 60.0);
     assert!((hi - 135.68).abs() < 0.01, "{hi}");
-    for part in ["for cable length L_c = 152 m and h_L = 60 m", "135.68", "initial.vertical_projection in (4, "] {
+    for part in [
+        "for cable length L_c = 152 m and h_L = 60 m",
+        "135.68",
+        "initial.vertical_projection in [4.000525, 30.079756] m",
+    ] {
         assert!(p.expected.contains(part), "{:?} lacks {part:?}", p.expected);
     }
-    // A cable length whose stage sum carries rounding (3·2 + 12·10 + 13·2.1 m): the h_L bound
-    // L_c − x_L reads 5.3, not 5.300000000000011.
+}
+
+/// The h_L range a refusal suggests for the scene's x_L is where its rigid elements lay, not
+/// a continuous cable's: two 76 m elements at x_L = 148 m were offered (4, 30.08] m, where
+/// only from 24.33 m lays. Every h_L inside lays, and just outside does not.
+#[test]
+fn the_suggested_vertical_range_is_where_the_elements_lay() {
+    for lengths in [vec![76.0, 76.0], [vec![2.0; 3], vec![10.0; 12], vec![2.1; 13]].concat()] {
+        let x = 148.0;
+        let (lo, hi) = kanestop_runtime::catenary::laid_vertical_range(&lengths, x).unwrap();
+        for k in 0..=20 {
+            let h = lo + (hi - lo) * f64::from(k) / 20.0;
+            assert!(lay_elements(&lengths, x, h).is_ok(), "{lengths:?}: h_L = {h} in [{lo}, {hi}] does not lay");
+        }
+        let margin = 1e-6 * lengths.iter().sum::<f64>();
+        assert!(lay_elements(&lengths, x, lo - margin).is_err() && lay_elements(&lengths, x, hi + margin).is_err());
+    }
+    // The rigid chords raise the lower end above L_c − x_L (5.3 m for 3·2 + 12·10 + 13·2.1).
     let mut s = case1();
     s.cable.stages[2].element_length = 2.1;
+    s.initial.vertical_projection = 60.0;
     let p = refused(&s, "initial.horizontal_projection");
-    assert!(p.expected.contains("initial.vertical_projection in (5.3, "), "{}", p.expected);
+    assert!(p.expected.contains("initial.vertical_projection in [6.046619, 34.728596] m"), "{}", p.expected);
 }
 
 #[test]

@@ -48,7 +48,8 @@ fn anchor_taller_than_the_water() {
 fn the_depth_check_counts_the_cable_s_resting_height() {
     // A soft seabed buries a thick, heavy cable by most of its radius: the water over the
     // laid line is then shallower than h_L + rod.length − hinge_z (0.05 m here) by 0.15 m,
-    // so the exact depth is negative and the anchor (0.01 m tall) stands out of the water.
+    // so the exact depth is negative: no water under the ship, which the hinge's height is
+    // named for (before 2026-12-07 the anchor, 0.01 m tall, was said to stand out of it).
     let mut s = case1();
     s.environment.current_surface_speed = 1.0;
     s.environment.seabed_stiffness = 11000.0;
@@ -62,7 +63,7 @@ fn the_depth_check_counts_the_cable_s_resting_height() {
     s.initial.horizontal_projection = Some(151.95);
     let approximate = s.initial.vertical_projection + s.rod.length - s.ship.hinge_z;
     assert!(s.anchor.height < approximate && s.water_depth() < 0.0, "{approximate}, {}", s.water_depth());
-    assert_refused(&s, "anchor.height", "below the water depth d = h_L + the cable's resting height");
+    assert_refused(&s, "ship.hinge_z", "≤ 1.351 m (h_L + the cable's resting height + rod.length)");
 }
 
 #[test]

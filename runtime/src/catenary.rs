@@ -230,6 +230,49 @@ pub fn laid_range(lengths: &[f64], vertical: f64) -> Option<(f64, f64)> {
     Some((edge(inside, lo), upper))
 }
 
+/// The h_L range, m, in which [`lay_elements`] lays these elements for this x_L: that of a
+/// continuous cable of length L_c = Σ lengths, (L_c − x_L, h_max] with h_max where
+/// [`max_horizontal`] falls to x_L, narrowed to where the rigid chords lay (two 76 m elements
+/// lay at x_L = 148 m only from h_L ≈ 30 m, where the continuous range starts at 4 m). Found
+/// by bisection on the laying itself (to 1e-9 of L_c); `None` when no h_L lays.
+pub fn laid_vertical_range(lengths: &[f64], horizontal: f64) -> Option<(f64, f64)> {
+    let total: f64 = lengths.iter().sum();
+    let x = horizontal;
+    if !(x > 0.0 && x < total) {
+        return None;
+    }
+    // max_horizontal falls as h_L rises: bisect for max_horizontal(L_c, h) = x.
+    let (mut h_lo, mut h_hi) = (1e-9 * total, total * (1.0 - 1e-12));
+    if max_horizontal(total, h_lo) < x {
+        return None;
+    }
+    for _ in 0..200 {
+        let mid = 0.5 * (h_lo + h_hi);
+        if max_horizontal(total, mid) >= x {
+            h_lo = mid;
+        } else {
+            h_hi = mid;
+        }
+    }
+    let (lo, hi) = (total - x, h_lo);
+    let lays = |h: f64| lay_elements(lengths, x, h).is_ok();
+    // A point that lays, scanned across the continuous range.
+    let inside = (1..64).map(|k| lo + (hi - lo) * f64::from(k) / 64.0).find(|&h| lays(h))?;
+    let edge = |mut good: f64, mut bad: f64| {
+        while (good - bad).abs() > 1e-9 * total {
+            let mid = 0.5 * (good + bad);
+            if lays(mid) {
+                good = mid;
+            } else {
+                bad = mid;
+            }
+        }
+        good
+    };
+    let upper = if lays(hi) { hi } else { edge(inside, hi) };
+    Some((edge(inside, lo), upper))
+}
+
 /// The x_L, m, at which [`lay_elements`] lays these elements on a catenary of parameter
 /// `a` = T_h / w_c (Eq. 31), for this h_L: the horizontal projection that gives the laid line
 /// a chosen horizontal tension T_h. The laid curve's a grows with x_L (less slack, more

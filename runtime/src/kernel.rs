@@ -46,6 +46,16 @@ pub enum RhsError {
     },
 }
 
+impl RhsError {
+    /// Whether the failure belongs to the state rather than to the model: a non-finite or
+    /// degenerate solve, which an adaptive method's trial stage far off the solution gives
+    /// (a step too long for a stiff term); the method rejects that step and tries a shorter
+    /// one. Ill-posed friction is the model's at any step.
+    pub fn at_trial_state(&self) -> bool {
+        matches!(self, RhsError::MassNotPositiveDefinite | RhsError::NonFiniteAcceleration)
+    }
+}
+
 /// Whether the anchor's surge is a degree of freedom.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "lowercase")]

@@ -74,7 +74,7 @@ pub struct Meta {
     /// One line for humans.
     pub description: String,
     /// The stopping time the paper reports for this scene (Table 3), s, as the paper's scene
-    /// files state it, in (0, ∞); absent for other scenes. Reports take Table 3's time from the
+    /// files state it, in (0, 1e15]; absent for other scenes. Reports take Table 3's time from the
     /// paper's cases themselves, for a scene that is one of them (see above).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub paper_stopping_time: Option<f64>,
@@ -376,7 +376,7 @@ pub struct Solver {
     /// Simulated time after which the run ends in any case, s, in (0, ∞).
     pub end_time: f64,
     /// Interval between recorded samples, s (rounded to a whole number of steps), at least
-    /// `dt`.
+    /// `dt` and at most 1e15 s.
     pub output_interval: f64,
     /// End the run when the ship's surge speed first reaches zero (at t = 0 for a ship at rest
     /// at the start).
@@ -389,7 +389,7 @@ pub struct Solver {
 }
 
 /// Integration methods a scene can name.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Method {
     /// Classic fourth-order Runge–Kutta with fixed step (the paper's method).
@@ -430,6 +430,24 @@ impl fmt::Display for Method {
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 #[error("{0}: unknown method (valid: rk4, dp5, sdirk4)")]
 pub struct UnknownMethod(pub String);
+
+/// A method by its name; anything else is refused naming the three (`integrator = 0` was
+/// "wanted string or table").
+impl<'de> Deserialize<'de> for Method {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct Name;
+        impl serde::de::Visitor<'_> for Name {
+            type Value = Method;
+            fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                f.write_str("a method's name: \"rk4\", \"dp5\" or \"sdirk4\"")
+            }
+            fn visit_str<E: serde::de::Error>(self, text: &str) -> Result<Method, E> {
+                text.parse().map_err(E::custom)
+            }
+        }
+        d.deserialize_str(Name)
+    }
+}
 
 impl std::str::FromStr for Method {
     type Err = UnknownMethod;
@@ -539,6 +557,30 @@ impl Scene {
         let value = Scene::resolve_file(path)?;
         let mut scene = Scene::from_value(value, &file)?;
         scene.own_meta(path, &top);
+        Ok(scene)
+    }
+
+    /// [`Scene::load`] with the tables `over` laid on the file's (as a file's own tables are
+    /// laid over those it `extends`) before the scene is checked, so that they can mend the
+    /// file: a command line's `--dt` over a file whose own step is refused. Errors name the
+    /// file `FILE (with command-line overrides)`. An empty `over` is [`Scene::load`].
+    pub fn load_over(path: &Path, over: toml::Table) -> Result<Scene, SceneError> {
+        if over.is_empty() {
+            return Scene::load(path);
+        }
+        let file = path.display().to_string();
+        let text = read_scene_file(path).map_err(|source| SceneError::Io { file: file.clone(), source })?;
+        let Ok(top) = text.parse::<toml::Table>() else {
+            // Not TOML: the parse error, with its line.
+            return Scene::from_toml(&text, &file);
+        };
+        let extends = top.contains_key("extends");
+        let mut value = if extends { Scene::resolve_file(path)? } else { toml::Value::Table(top.clone()) };
+        overrides::merge(&mut value, toml::Value::Table(over));
+        let mut scene = Scene::from_value(value, &format!("{file} (with command-line overrides)"))?;
+        if extends {
+            scene.own_meta(path, &top);
+        }
         Ok(scene)
     }
 
@@ -719,7 +761,7 @@ impl Scene {
     pub fn problems(&self) -> Vec<Problem> {
         let mut c = Checker::default();
         if let Some(t) = self.meta.paper_stopping_time {
-            c.range("meta.paper_stopping_time", t, 0.0, f64::MAX, false, "s");
+            c.range("meta.paper_stopping_time", t, 0.0, MAX_MAGNITUDE, false, "s");
         }
         self.check_environment(&mut c);
         self.check_hydrodynamics(&mut c);
@@ -791,6 +833,20 @@ impl Scene {
             c.push("rod.length", &fmt_value(rod.length), &why);
         }
         let depth = self.water_depth();
+        if self.environment.water && depth <= 0.0 {
+            // No water under the ship: the hinge's height is what is off (the paper's is
+            // 1 m), not the anchor or the ship the depth would fail to hold.
+            let room = depth + ship.hinge_z;
+            let why = format!(
+                "≤ {} m (h_L + the cable's resting height + rod.length), so that the water depth d = h_L + the \
+                 cable's resting height + rod.length − ship.hinge_z is positive (it is {} m; or raise \
+                 initial.vertical_projection)",
+                fmt_rounded(room, 3),
+                fmt_rounded(depth, 3)
+            );
+            c.push("ship.hinge_z", &fmt_value(ship.hinge_z), &why);
+            return;
+        }
         let needs = [
             ("anchor.height", self.anchor.height, "the anchor's top"),
             ("ship.mass", self.ship_draught(), "the ship's keel (draught)"),
@@ -921,10 +977,11 @@ impl Scene {
                 "ship.mass",
                 &fmt_value(s.mass),
                 &format!(
-                    "< ρ·L·w·depth = {} kg (the ship would float with a draught of {} m > depth {} m)",
+                    "< ρ·L·w·depth = {} kg, the water a hull of ship.depth = {} m displaces when wholly \
+                     immersed: this mass would need a draught of {} m to float",
                     fmt_value(e.water_density * s.length * s.beam * s.depth),
-                    fmt_rounded(self.ship_draught(), 3),
-                    fmt_value(s.depth)
+                    fmt_value(s.depth),
+                    fmt_rounded(self.ship_draught(), 3)
                 ),
             );
         }
@@ -1042,7 +1099,7 @@ impl Scene {
                 (hi * 1e6).floor() / 1e6,
                 fmt_value(lc),
                 fmt_value(h),
-                vertical_hint(lc, x),
+                vertical_hint(&lengths, x),
             ) + "; or lay the line by its tension instead (initial.horizontal_tension or initial.top_tension, N), which holds as the cable's length and h_L change",
             None => format!(
                 "a value for which the {} cable elements lay on the catenary of Eqs. 30–34 (none does for h_L = {} m)",
@@ -1111,7 +1168,7 @@ impl Scene {
         c.range("solver.end_time", so.end_time, 0.0, f64::MAX, false, "s");
         if so.dt.is_finite() && so.dt > 0.0 {
             let hint = format!("s (at least solver.dt = {} s: raise it, or take a smaller step)", fmt_value(so.dt));
-            c.range("solver.output_interval", so.output_interval, so.dt, f64::MAX, true, &hint);
+            c.range("solver.output_interval", so.output_interval, so.dt, MAX_MAGNITUDE, true, &hint);
             if so.end_time.is_finite() && so.end_time < so.dt {
                 c.push("solver.end_time", &fmt_value(so.end_time), &format!("≥ solver.dt = {} s", fmt_value(so.dt)));
             }
@@ -1135,31 +1192,18 @@ impl Scene {
     }
 }
 
-/// "; or, for this x_L, initial.vertical_projection in (L_c − x_L, h_max] m": the h_L range of
-/// a continuous cable of length `lc` (m) with horizontal projection `x` (m), when there is one.
-fn vertical_hint(lc: f64, x: f64) -> String {
-    if x.is_nan() || x >= lc {
-        return String::new();
+/// "; or, for this x_L, initial.vertical_projection in [lo, hi] m": the h_L range in which
+/// these cable elements lay with horizontal projection `x` (m), when there is one
+/// ([`catenary::laid_vertical_range`]).
+fn vertical_hint(lengths: &[f64], x: f64) -> String {
+    match catenary::laid_vertical_range(lengths, x) {
+        Some((lo, hi)) => format!(
+            "; or, for this x_L, initial.vertical_projection in [{}, {}] m",
+            (lo * 1e6).ceil() / 1e6,
+            (hi * 1e6).floor() / 1e6
+        ),
+        None => String::new(),
     }
-    // max_horizontal falls as h_L rises: bisect for max_horizontal(L_c, h) = x.
-    let (mut lo, mut hi) = (1e-9 * lc, lc * (1.0 - 1e-12));
-    if catenary::max_horizontal(lc, lo) < x {
-        return String::new();
-    }
-    for _ in 0..200 {
-        let mid = 0.5 * (lo + hi);
-        if catenary::max_horizontal(lc, mid) >= x {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    // L_c − x_L to 12 digits: the stage lengths' sum carries rounding (5.300000000000011).
-    format!(
-        "; or, for this x_L, initial.vertical_projection in ({}, {}] m",
-        fmt_significant(lc - x, 12),
-        fmt_rounded(lo, 6)
-    )
 }
 
 impl Scene {

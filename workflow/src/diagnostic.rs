@@ -151,7 +151,11 @@ fn advice(model: &Model, t: f64, k: usize) -> (String, String) {
         "the stiffest mode: a light element swinging between heavy neighbours under high tension (mass ratio \
          {ratio}:1 with the heaviest body)"
     );
-    let kept = format!("the first {:.3} s up to the failure are kept", (t - dt).max(0.0));
+    let kept = if t - dt > 0.0 {
+        format!("the first {:.3} s up to the failure are kept", t - dt)
+    } else {
+        "it failed in the first interval, so only the initial state is kept".to_string()
+    };
     let (cause, suggestion) = match solver.integrator {
         Method::Rk4 => (
             format!("the explicit step dt = {dt} s is beyond the stability limit of {mode}"),

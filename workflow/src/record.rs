@@ -5,6 +5,7 @@
 use std::collections::BTreeMap;
 
 use kanestop_chain::BodyKind;
+use kanestop_runtime::energy::Energy;
 use kanestop_runtime::model::{LoadLimits, Model};
 use kanestop_runtime::scene::Method;
 use kanestop_runtime::simulate::{RunResult, Stop};
@@ -56,8 +57,9 @@ pub struct RunSummary {
     /// The tension at the rod–ship joint (the fairlead): its peak, against the cable's break
     /// load (the rod's).
     pub rod_peak: Option<Peak>,
-    /// Energy balance at t = 0 (Eq. 63), J.
-    pub initial_energy: f64,
+    /// Energy balance at t = 0 (Eq. 63), J; `None` for a run that never started (refused or
+    /// failed before its first state was observed).
+    pub initial_energy: Option<f64>,
     /// Kinetic energy at t = 0, the entrained water's included, J: the energy the system
     /// must absorb to stop the ship, the base of the energy split (0 for a run that never
     /// started).
@@ -67,14 +69,17 @@ pub struct RunSummary {
     /// (negative: dissipated), J, by name: buoyancy, seabed, friction, drag, hydrostatic,
     /// added_mass, and the parts of friction and drag: anchor_friction, line_friction
     /// (friction = their sum), anchor_drag, line_drag, hull_resistance (drag = their sum).
-    pub work: BTreeMap<String, f64>,
+    /// Every name is present; each `None` for a run that never started.
+    pub work: BTreeMap<String, Option<f64>>,
     /// Largest relative drift |E − E_0|/K of the energy balance, K the largest kinetic energy
-    /// so far (`energy_scale` at the end); until 2026-12-06 it was relative to E_0.
-    pub energy_drift: f64,
+    /// so far (`energy_scale` at the end); until 2026-12-06 it was relative to E_0. `None` for
+    /// a run that never started.
+    pub energy_drift: Option<f64>,
     /// K, the energy drift's scale: the run's largest kinetic energy, the entrained water's
-    /// included, J (for a ship that only slows, `initial_kinetic_energy`).
+    /// included, J (for a ship that only slows, `initial_kinetic_energy`); `None` for a run
+    /// that never started.
     #[serde(default)]
-    pub energy_scale: f64,
+    pub energy_scale: Option<f64>,
     /// Simulated time reached, s.
     pub t_end: f64,
     /// Intervals of `dt` completed.
@@ -199,6 +204,8 @@ impl RunSummary {
             }
         };
         let last = result.samples.last();
+        // Its first state observed: E_0, the work and the drift exist.
+        let started = last.is_some();
         let outcomes = model.scene.checks.as_ref().map(|c| checks::evaluate(c, model, result)).unwrap_or_default();
         RunSummary {
             scene: model.scene.meta.name.clone(),
@@ -218,13 +225,16 @@ impl RunSummary {
             chain_peak: peak_in(Segment::Chain),
             cable_peak: peak_in(Segment::Cable),
             rod_peak: peak_in(Segment::Rod),
-            initial_energy: result.energy0,
+            initial_energy: started.then_some(result.energy0),
             initial_kinetic_energy: result.samples.first().map_or(0.0, |s| s.energy.kinetic + s.energy.added_kinetic),
             work: last
-                .map(|s| s.energy.reported_work().iter().map(|(name, work)| (name.to_string(), *work)).collect())
-                .unwrap_or_default(),
-            energy_drift: result.max_energy_drift,
-            energy_scale: result.energy_scale,
+                .map(|s| s.energy.reported_work())
+                .unwrap_or_else(|| Energy::default().reported_work())
+                .iter()
+                .map(|(name, work)| (name.to_string(), started.then_some(*work)))
+                .collect(),
+            energy_drift: started.then_some(result.max_energy_drift),
+            energy_scale: started.then_some(result.energy_scale),
             t_end: result.t_end,
             steps: result.steps,
             rhs_evaluations: result.rhs_evaluations,

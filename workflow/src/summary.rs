@@ -4,7 +4,7 @@ use std::fmt::Write as _;
 
 use kanestop_runtime::kernel::AnchorDof;
 use kanestop_runtime::model::Model;
-use kanestop_runtime::scene::Layout;
+use kanestop_runtime::scene::{Layout, Method};
 use kanestop_runtime::simulate::{FailureKind, RunResult, Stop};
 
 use crate::checks::{break_exceedances, break_failure};
@@ -176,12 +176,18 @@ fn fmt_tension(t: f64) -> String {
 /// How it was integrated and what it cost; `verbose` adds the stability limit.
 fn run_lines(out: &mut Lines, model: &Model, result: &RunResult, verbose: bool) {
     let solver = &model.scene.solver;
+    // An adaptive method's dt is its observation interval, not its step.
+    let (method, intervals) = match solver.integrator {
+        Method::Rk4 => (format!("rk4, dt = {} s", solver.dt), "steps"),
+        m => (
+            format!("{m} (rtol {:e}, atol {:e}), observed every {} s", solver.rtol, solver.atol, solver.dt),
+            "observation intervals",
+        ),
+    };
     out.line(
         "run",
         format!(
-            "{}, dt = {} s, kernel {}{}, loads {}: {:.3} s simulated in {}{:.3} s wall ({} steps, {} right-hand-side evaluations)",
-            solver.integrator,
-            solver.dt,
+            "{method}, kernel {}{}, loads {}: {:.3} s simulated in {}{:.3} s wall ({} {intervals}, {} right-hand-side evaluations)",
             result.kernel,
             result.kernel_form.map(|f| format!(" ({f})")).unwrap_or_default(),
             result.load_code.as_ref().map_or("by the force modules".to_string(), |s| format!("generated ({s})")),
@@ -196,11 +202,17 @@ fn run_lines(out: &mut Lines, model: &Model, result: &RunResult, verbose: bool) 
         out.line(
             "stability",
             format!(
-                "RK4 step limit at t = 0: {:.3e} s (fastest mode {:.3e} ± {:.3e}i 1/s; stiffest hinge B_{})",
+                "RK4 step limit at t = 0: {:.3e} s (fastest mode {:.3e} ± {:.3e}i 1/s; stiffest hinge B_{}){}",
                 l.rk4_dt,
                 l.lambda.re,
                 l.lambda.im.abs(),
-                l.body
+                l.body,
+                if l.settled {
+                    ""
+                } else {
+                    "; an estimate: Arnoldi's method had not settled in the Krylov space a line this long affords, \
+                     so no step is refused by it"
+                }
             ),
         );
     }
@@ -292,26 +304,47 @@ fn tension_lines(out: &mut Lines, model: &Model, result: &RunResult) {
     };
     let worst =
         (2..=model.body_count()).filter_map(|j| utilisation(j).map(|u| (j, u))).max_by(|a, b| a.1.total_cmp(&b.1));
-    match (break_failure(&over), worst) {
-        (Some(failure), _) => out.line("checks", format!("FAIL: {failure}")),
-        (None, Some((j, u))) => out.line(
-            "checks",
-            format!("PASS: no break load exceeded (highest utilisation {:.0} % at joint {j})", 100.0 * u),
-        ),
-        (None, None) => {}
-    }
+    let breaking = match (break_failure(&over), worst) {
+        (Some(failure), _) => Some((false, failure)),
+        (None, Some((j, u))) => {
+            Some((true, format!("no break load exceeded (highest utilisation {:.0} % at joint {j})", 100.0 * u)))
+        }
+        (None, None) => None,
+    };
     // The scene's own `[checks]`, a line each with its value and verdict (exit 4 when one
-    // fails).
-    if let Some(c) = &model.scene.checks {
-        let outcomes = crate::checks::evaluate(c, model, result);
-        if !outcomes.is_empty() {
-            let failed = outcomes.iter().filter(|o| !o.pass).count();
-            let verdict = if failed == 0 { "PASS" } else { "FAIL" };
-            out.line("checks", format!("{verdict} [checks]: {failed} of {} failed", outcomes.len()));
+    // fails), under one verdict with the break loads'.
+    let outcomes = model.scene.checks.as_ref().map(|c| (c, crate::checks::evaluate(c, model, result)));
+    let verdict = |pass: bool| if pass { "PASS" } else { "FAIL" };
+    match (breaking, outcomes.filter(|(_, o)| !o.is_empty())) {
+        (Some((pass, words)), None) => out.line("checks", format!("{}: {words}", verdict(pass))),
+        (breaking, Some((c, outcomes))) => {
+            let failed =
+                outcomes.iter().filter(|o| !o.pass).count() + breaking.as_ref().map_or(0, |b| usize::from(!b.0));
+            let total = outcomes.len() + usize::from(breaking.is_some());
+            out.line("checks", format!("{}: {failed} of {total} failed", verdict(failed == 0)));
+            if let Some((pass, words)) = breaking {
+                out.line("", format!("break loads: {words} ({})", if pass { "pass" } else { "FAIL" }));
+            }
             for o in &outcomes {
                 out.line("", crate::checks::outcome_words(o, c));
             }
         }
+        (None, None) => {}
+    }
+}
+
+/// `v` to `digits` decimals (with its sign when `sign`), a value that rounds to zero as
+/// zero: `+0.000`, not the `-0.000` of a round-off below zero.
+fn fixed(v: f64, digits: usize, sign: bool) -> String {
+    let text = if sign { format!("{v:+.digits$}") } else { format!("{v:.digits$}") };
+    if text.trim_start_matches(['+', '-']).chars().all(|c| c == '0' || c == '.') {
+        if sign {
+            format!("{:+.digits$}", 0.0)
+        } else {
+            format!("{:.digits$}", 0.0)
+        }
+    } else {
+        text
     }
 }
 
@@ -323,17 +356,17 @@ fn final_lines(out: &mut Lines, model: &Model, result: &RunResult) {
     out.line(
         "final",
         format!(
-            "t = {:.3} s: ship moved {:+.3} m (surge {:+.3} m/s, heave {:+.4} m, pitch {:+.5} rad); anchor moved {:+.3} m",
+            "t = {:.3} s: ship moved {} m (surge {} m/s, heave {} m, pitch {} rad); anchor moved {} m",
             last.t,
-            ship.x - first.bodies[n - 1].x,
-            ship.vx,
-            ship.z,
-            ship.theta,
-            last.bodies[0].x - first.bodies[0].x
+            fixed(ship.x - first.bodies[n - 1].x, 3, true),
+            fixed(ship.vx, 3, true),
+            fixed(ship.z, 4, true),
+            fixed(ship.theta, 5, true),
+            fixed(last.bodies[0].x - first.bodies[0].x, 3, true)
         ),
     );
     let e = &last.energy;
-    let works: Vec<String> = e.work_terms().map(|(name, v)| format!("{name} {:.3}", v / 1e6)).collect();
+    let works: Vec<String> = e.work_terms().map(|(name, v)| format!("{name} {}", fixed(v / 1e6, 3, false))).collect();
     out.line(
         "balance",
         format!(
@@ -347,4 +380,19 @@ fn final_lines(out: &mut Lines, model: &Model, result: &RunResult) {
             result.energy_scale
         ),
     );
+}
+
+#[cfg(test)]
+mod tests {
+    use super::fixed;
+
+    #[test]
+    fn a_round_off_below_zero_prints_as_zero() {
+        assert_eq!(fixed(-1e-7, 4, true), "+0.0000");
+        assert_eq!(fixed(-1e-7, 3, false), "0.000");
+        assert_eq!(fixed(-0.0, 3, false), "0.000");
+        assert_eq!(fixed(-0.0021, 3, false), "-0.002");
+        assert_eq!(fixed(2.998, 3, true), "+2.998");
+        assert_eq!(fixed(-2.998, 3, true), "-2.998");
+    }
 }

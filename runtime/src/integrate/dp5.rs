@@ -249,6 +249,8 @@ impl Dp5 {
 }
 
 impl AdaptiveIntegrator for Dp5 {
+    // Long by design: one step's attempts, their error test and the step control read best in
+    // one place, as in Hairer's DOPRI5.
     fn step_adaptive(
         &mut self,
         sys: &mut dyn OdeSystem,
@@ -267,6 +269,12 @@ impl AdaptiveIntegrator for Dp5 {
         let mut h = h_try.min(ctl.h_max);
         let mut rejected = 0u32;
         let (mut last_err, mut last_comp) = (f64::NAN, 0);
+        // The last failure, when a stage's right-hand side failed rather than the error test.
+        let mut trial: Option<RhsError> = None;
+        let why = |rejected: u32, trial: &Option<RhsError>| match trial {
+            Some(e) => format!("{rejected} consecutive failures, the last at a trial stage: {e}"),
+            None => format!("{rejected} consecutive error-test failures"),
+        };
         loop {
             let floor = ctl.floor(t);
             if h < floor && h < h_try {
@@ -276,10 +284,31 @@ impl AdaptiveIntegrator for Dp5 {
                     h_min: floor,
                     error: last_err,
                     component: last_comp,
-                    reason: format!("{rejected} consecutive error-test failures"),
+                    reason: why(rejected, &trial),
                 });
             }
-            self.attempt(sys, t, y, h)?;
+            if let Err(e) = self.attempt(sys, t, y, h) {
+                // A trial stage beyond the model's range: the step was too long.
+                if !e.at_trial_state() {
+                    return Err(e.into());
+                }
+                rejected += 1;
+                self.stats.rejected += 1;
+                (last_err, last_comp, trial) = (f64::INFINITY, 0, Some(e));
+                if rejected > ctl.max_rejections {
+                    let reason = format!("{} (the limit)", why(rejected, &trial));
+                    return Err(StepError::StepSizeCollapse {
+                        t,
+                        h,
+                        h_min: floor,
+                        error: last_err,
+                        component: 0,
+                        reason,
+                    });
+                }
+                h *= ctl.fac_min;
+                continue;
+            }
             let (err, comp) = self.tol.norm(&self.err, y, &self.ynew);
             if err <= 1.0 {
                 let fac =
@@ -298,7 +327,7 @@ impl AdaptiveIntegrator for Dp5 {
             }
             rejected += 1;
             self.stats.rejected += 1;
-            (last_err, last_comp) = (err, comp);
+            (last_err, last_comp, trial) = (err, comp, None);
             if rejected > ctl.max_rejections {
                 return Err(StepError::StepSizeCollapse {
                     t,
@@ -306,7 +335,7 @@ impl AdaptiveIntegrator for Dp5 {
                     h_min: floor,
                     error: err,
                     component: comp,
-                    reason: format!("{rejected} consecutive error-test failures (the limit)"),
+                    reason: format!("{} (the limit)", why(rejected, &trial)),
                 });
             }
             let fac = if err.is_finite() { (ctl.safety * err.powf(-0.2)).max(ctl.fac_min) } else { ctl.fac_min };
@@ -357,6 +386,77 @@ mod tests {
     /// Error at t = 1 of `steps` fixed DP5 steps on ẏ = −y from y = 1.
     fn fixed_error(steps: usize) -> f64 {
         decay_error(&mut Dp5::new(1, 1e-6, 1e-9).expect("tolerances"), steps)
+    }
+
+    /// ẏ = −1e3 (y − 1) from y = 0, whose right-hand side fails beyond |y| = 3 (a state beyond
+    /// a model's range): a long first try overshoots at a trial stage.
+    struct Guarded;
+
+    impl OdeSystem for Guarded {
+        fn dim(&self) -> usize {
+            1
+        }
+        fn rhs(&mut self, _t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), RhsError> {
+            if y[0].abs() > 3.0 {
+                return Err(RhsError::NonFiniteAcceleration);
+            }
+            dy[0] = -1e3 * (y[0] - 1.0);
+            Ok(())
+        }
+    }
+
+    /// Regression: a trial stage beyond the model's range failed the run (case 1 with a drag
+    /// coefficient of 1e9 under dp5); it is a rejected step, tried shorter. Ill-posed friction,
+    /// the model's own at any step, still fails at once.
+    #[test]
+    fn a_trial_stage_beyond_the_model_s_range_rejects_the_step() {
+        let mut dp = Dp5::new(1, 1e-8, 1e-10).expect("tolerances");
+        let mut y = [0.0];
+        let out = dp.step_adaptive(&mut Guarded, 0.0, &mut y, 0.1).expect("a shorter step");
+        assert!(out.rejected >= 1 && out.h < 0.1, "{} rejected, h = {}", out.rejected, out.h);
+        dp.integrate_to(&mut Guarded, out.h, &mut y, 0.05, out.h_next).expect("integrates");
+        assert!((y[0] - (1.0 - (-50.0f64).exp())).abs() < 1e-6, "{}", y[0]);
+
+        struct IllPosed;
+        impl OdeSystem for IllPosed {
+            fn dim(&self) -> usize {
+                1
+            }
+            fn rhs(&mut self, _t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), RhsError> {
+                if y[0] > 0.5 {
+                    return Err(RhsError::IllPosedFriction { factor: -1.0 });
+                }
+                dy[0] = 1.0;
+                Ok(())
+            }
+        }
+        let e = dp.integrate_to(&mut IllPosed, 0.0, &mut [0.0], 1.0, 0.1).unwrap_err();
+        assert!(matches!(e, StepError::Rhs(RhsError::IllPosedFriction { .. })), "{e}");
+    }
+
+    /// Regression: a stiff term resolved step by tiny step made a run seem to hang (SDIRK4 on
+    /// a drag coefficient of 1e15); an interval stops at `MAX_RHS_PER_INTERVAL` right-hand
+    /// sides with a step-size stall.
+    #[test]
+    fn an_interval_stalled_on_tiny_steps_fails_within_its_budget() {
+        struct Stiff;
+        impl OdeSystem for Stiff {
+            fn dim(&self) -> usize {
+                1
+            }
+            fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) -> Result<(), RhsError> {
+                dy[0] = -1e9 * (y[0] - t.cos());
+                Ok(())
+            }
+        }
+        let mut dp = Dp5::new(1, 1e-6, 1e-9).expect("tolerances");
+        let e = dp.integrate_to(&mut Stiff, 0.0, &mut [1.0], 1.0, 1e-3).unwrap_err();
+        let StepError::TooManySteps { t, t1, rhs, h, .. } = e else { panic!("{e}") };
+        assert!(t < 1.0 && t1 == 1.0 && h < 1e-8, "t = {t}, h = {h}");
+        assert!((crate::integrate::adaptive::MAX_RHS_PER_INTERVAL
+            ..crate::integrate::adaptive::MAX_RHS_PER_INTERVAL + 100)
+            .contains(&rhs));
+        assert!(e.to_string().starts_with("step-size stall at t = "), "{e}");
     }
 
     #[test]

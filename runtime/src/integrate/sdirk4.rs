@@ -552,7 +552,15 @@ impl AdaptiveIntegrator for Sdirk4 {
                 continue;
             }
             match self.stages(sys, t, y, h) {
-                Err(NewtonFailure::Rhs(e)) => return Err(e.into()),
+                Err(NewtonFailure::Rhs(e)) if !e.at_trial_state() => return Err(e.into()),
+                Err(NewtonFailure::Rhs(e)) => {
+                    // A Newton iterate beyond the model's range: the step was too long.
+                    rejected += 1;
+                    self.stats.rejected += 1;
+                    (last_err, reason) = (f64::INFINITY, format!("at a trial stage: {e}"));
+                    h *= 0.5;
+                    continue;
+                }
                 Err(NewtonFailure::NoConvergence(why)) => {
                     rejected += 1;
                     self.stats.rejected += 1;

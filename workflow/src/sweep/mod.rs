@@ -138,7 +138,8 @@ pub fn run_row_cancellable(row: &PlannedRow, kernel: KernelFactory, cancel: &Ato
     // Shares of the initial kinetic energy, as `run`'s energy line gives them.
     let k0 = summary.initial_kinetic_energy;
     if k0 > 0.0 {
-        out.energy_split = summary.work.iter().map(|(k, w)| (k.clone(), -w / k0)).collect();
+        // + 0.0: no work is 0, not the -0.0 of its negation.
+        out.energy_split = summary.work.iter().filter_map(|(k, w)| Some((k.clone(), -(*w)? / k0 + 0.0))).collect();
     }
     out.message = summary.failure.as_ref().map(|f| one_line(&f.message)).unwrap_or_default();
     out.summary = Some(summary);
@@ -308,15 +309,15 @@ pub fn cells(rows: &[SweepRow]) -> (Vec<String>, Vec<Vec<Cell>>) {
                     cells.push(number(p.and_then(|p| p.proof_utilisation)));
                     cells.push(number(p.and_then(|p| p.break_utilisation)));
                 }
-                cells.push(f(&|s| Some(s.initial_energy)));
-                cells.extend(works.iter().map(|w| number(s.and_then(|s| s.work.get(w).copied()))));
+                cells.push(f(&|s| s.initial_energy));
+                cells.extend(works.iter().map(|w| number(s.and_then(|s| s.work.get(w).copied().flatten()))));
                 cells.extend(works.iter().map(|w| number(r.energy_split.get(w).copied())));
                 for c in &checks {
                     let outcome = s.and_then(|s| s.checks.iter().find(|x| &x.name == c));
                     cells.push(number(outcome.and_then(|x| x.value)));
                     cells.push(pass(outcome.map(|x| x.pass)));
                 }
-                cells.push(f(&|s| Some(s.energy_drift)));
+                cells.push(f(&|s| s.energy_drift));
                 cells.push(f(&|s| Some(s.t_end)));
                 cells.push(s.map_or(Cell::Empty, |s| Cell::Count(s.steps)));
                 cells.push(s.map_or(Cell::Empty, |s| Cell::Count(s.rhs_evaluations)));
@@ -328,7 +329,7 @@ pub fn cells(rows: &[SweepRow]) -> (Vec<String>, Vec<Vec<Cell>>) {
                 cells.push(f(&|s| Some(s.initial_horizontal_tension)));
                 cells.push(f(&|s| Some(s.water_depth)));
                 cells.push(f(&|s| Some(s.initial_top_tension)));
-                cells.push(f(&|s| Some(s.energy_scale)));
+                cells.push(f(&|s| s.energy_scale));
                 cells
             })
             .collect();
