@@ -437,7 +437,7 @@ fn load_model(scene: Option<&PathBuf>) -> Result<Model> {
 }
 
 /// Command-line overrides of the scene's `[solver]` section.
-#[derive(clap::Args, Default)]
+#[derive(clap::Args, Clone, Default)]
 struct SolverOverrides {
     /// Integration method (overrides solver.integrator).
     #[arg(long, value_enum)]
@@ -521,22 +521,22 @@ fn load_model_with(scene: Option<&PathBuf>, o: &SolverOverrides) -> Result<Model
 
 impl SolverOverrides {
     /// Refuses a value outside its field's own range before anything runs (`batch --dt 0`
-    /// ran every scene as invalid): checked on the embedded case 1 with the flags laid on it,
-    /// where only the fields the flags set count (a range bound by another field of a scene,
-    /// `output_interval` ≥ `dt`, is each scene's to meet).
+    /// ran every scene as invalid): [`kanestop_runtime::scene::Solver::own_problems`] of the
+    /// flags laid on case 1's solver, the flags' fields only (a range bound by another field
+    /// of a scene, `output_interval` ≥ `dt`, is each scene's to meet).
     fn check_alone(&self) -> Result<()> {
-        let over = self.table();
-        let Some(solver) = over.get("solver").and_then(toml::Value::as_table) else { return Ok(()) };
-        let Err(SceneError::Invalid { problems, .. }) = default_over(over.clone()) else { return Ok(()) };
-        let flag = |p: &&kanestop_runtime::scene::Problem| {
-            p.field.strip_prefix("solver.").is_some_and(|key| solver.contains_key(key))
-        };
-        let bad: Vec<String> = problems
+        let case = Scene::from_toml(DEFAULT_SCENE, "embedded case01.toml")?;
+        let mut value = toml::Value::try_from(&case.solver).expect("a solver is a table");
+        let Some(solver) = self.table().remove("solver") else { return Ok(()) };
+        kanestop_runtime::overrides::merge(&mut value, solver.clone());
+        let flags: kanestop_runtime::scene::Solver =
+            kanestop_runtime::scene::from_value_at(value).map_err(|e| anyhow::anyhow!("{e}"))?;
+        let given = |key: &str| solver.as_table().is_some_and(|t| t.contains_key(key));
+        let bad: Vec<String> = flags
+            .own_problems()
             .iter()
-            .filter(flag)
-            .map(|p| {
-                format!("--{} = {}: must be {}", p.field["solver.".len()..].replace('_', "-"), p.value, p.expected)
-            })
+            .filter_map(|p| p.field.strip_prefix("solver.").filter(|key| given(key)).map(|key| (key, p)))
+            .map(|(key, p)| format!("--{} = {}: must be {}", key.replace('_', "-"), p.value, p.expected))
             .collect();
         anyhow::ensure!(bad.is_empty(), "{}", bad.join("\n"));
         Ok(())
@@ -716,7 +716,7 @@ fn try_main() -> Result<Exit> {
             );
             solver.check_alone()?;
             for m in &methods {
-                SolverOverrides { integrator: Some(MethodArg(m.method)), dt: m.dt, ..Default::default() }
+                SolverOverrides { integrator: Some(MethodArg(m.method)), dt: m.dt, ..solver.clone() }
                     .check_alone()
                     .with_context(|| format!("--methods {}@{}", m.method.name(), m.dt.unwrap_or_default()))?;
             }

@@ -158,7 +158,7 @@ pub fn sweep(args: &SweepArgs) -> Result<Exit> {
             );
         }
     }
-    if let (Some((_, from)), false) = (&shard, args.heatmap.is_empty()) {
+    if let (Some((_, from)), false) = (&shard, heat_maps.is_empty() || args.heatmap.is_empty()) {
         anyhow::bail!(
             "--heatmap {} with a shard ({from}): a shard holds some of the rows and draws no heat map; \
              `kanestop sweep merge OUT --spec SPEC` draws them from the merged rows",
@@ -179,8 +179,9 @@ pub fn sweep(args: &SweepArgs) -> Result<Exit> {
             })?;
             bar.finish_and_clear();
             let scenes = sweep::scene_files(&plan);
+            let earlier = sweep::rows_in(&args.out);
             let code = report(&rows, id.sampling, id.samples_per_point, &scenes, &args.out)?;
-            finish(Some(&spec), &rows, &heat_maps, &scenes, &args.out)?;
+            finish(Some(&spec), &rows, &heat_maps, (&earlier, &scenes), &args.out)?;
             Ok(code)
         }
     }
@@ -235,21 +236,22 @@ fn report(
     Ok(exit(rows))
 }
 
-/// Draws the heat maps (given the spec) and removes what an earlier sweep wrote into `out`
-/// and this one did not ([`sweep::remove_stale`]), saying so. The same for a local run, a
+/// Draws the heat maps (given the spec) and removes what an earlier sweep (its rows
+/// `earlier`, read before this one's files replaced its) wrote into `out` and this one did
+/// not ([`sweep::remove_stale`]), saying so. The same for a local run, a
 /// resume and a merge.
 fn finish(
     spec: Option<&sweep::Spec>,
     rows: &[SweepRow],
     heat_maps: &[heatmap::Output],
-    scenes: &[(String, String)],
+    (earlier, scenes): (&[String], &[(String, String)]),
     out: &Path,
 ) -> Result<()> {
     let charts = spec.map(|spec| heatmap::write(spec, rows, heat_maps, out)).transpose()?;
     for f in charts.iter().flatten() {
         println!("written   {}", f.display());
     }
-    let removed = sweep::remove_stale(out, scenes, charts.as_deref())?;
+    let removed = sweep::remove_stale(out, earlier, scenes, charts.as_deref())?;
     if let Some(first) = removed.first() {
         let more = if removed.len() > 1 { format!(", … ({} in all)", removed.len()) } else { String::new() };
         println!("removed   an earlier sweep's files this one did not write: {}{more}", first.display());
@@ -270,8 +272,10 @@ fn exit(rows: &[SweepRow]) -> Exit {
                 .into_iter()
                 .flatten()
                 .any(|p| p.break_utilisation.is_some_and(|u| u > 1.0));
-            let names = over.then(|| "break load".to_string()).into_iter();
-            for name in names.chain(s.checks.iter().filter(|c| !c.pass).map(|c| c.name.clone())) {
+            let failed: Vec<String> = s.checks.iter().filter(|c| !c.pass).map(|c| c.name.clone()).collect();
+            // A failing row none of whose [checks] failed failed on a break load.
+            let names = (over || failed.is_empty()).then(|| "break load".to_string()).into_iter();
+            for name in names.chain(failed) {
                 match counts.iter_mut().find(|(n, _)| *n == name) {
                     Some((_, k)) => *k += 1,
                     None => counts.push((name, 1)),
@@ -366,8 +370,9 @@ fn resume_all(
     }
     // The rows kept were checked against the plan as each shard resumed (ShardRun::start).
     let merged = merge::merge(std::slice::from_ref(&args.out))?;
+    let earlier = sweep::rows_in(&args.out);
     let code = report(&merged.rows, merged.sampling, merged.samples_per_point, &merged.scenes, &args.out)?;
-    finish(Some(spec), &merged.rows, heat_maps, &merged.scenes, &args.out)?;
+    finish(Some(spec), &merged.rows, heat_maps, (&earlier, &merged.scenes), &args.out)?;
     Ok(code)
 }
 
@@ -406,8 +411,9 @@ fn merge(m: &MergeArgs) -> Result<Exit> {
         merged.rows.len(),
         merged.plan_hash
     );
+    let earlier = sweep::rows_in(&out);
     let code = report(&merged.rows, merged.sampling, merged.samples_per_point, &merged.scenes, &out)?;
-    finish(spec.as_ref(), &merged.rows, &heat_maps, &merged.scenes, &out)?;
+    finish(spec.as_ref(), &merged.rows, &heat_maps, (&earlier, &merged.scenes), &out)?;
     Ok(code)
 }
 

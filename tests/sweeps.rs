@@ -503,7 +503,7 @@ fn sensitivity_of_a_base_that_does_not_stop_ranks_by_the_peak_tension() {
     let o = study(&zero);
     let stdout = String::from_utf8_lossy(&o.stdout);
     assert!(o.status.success(), "{stdout}{}", String::from_utf8_lossy(&o.stderr));
-    assert!(stdout.contains("note: the base run did not stop by its end time"), "{stdout}");
+    assert!(stdout.contains("note: the base run has no stop to move (it did not stop by its end time"), "{stdout}");
     assert!(stdout.contains("no first-order band: none of the 1 uncertain inputs"), "{stdout}");
     assert!(stdout.contains("environment.line_friction is not a continuous parameter"), "{stdout}");
     let csv = std::fs::read_to_string(out.join("sensitivity.csv")).unwrap();

@@ -233,7 +233,7 @@ pub fn laid_range(lengths: &[f64], vertical: f64) -> Option<(f64, f64)> {
 /// The h_L range, m, in which [`lay_elements`] lays these elements for this x_L: that of a
 /// continuous cable of length L_c = Σ lengths, (L_c − x_L, h_max] with h_max where
 /// [`max_horizontal`] falls to x_L, narrowed to where the rigid chords lay (two 76 m elements
-/// lay at x_L = 148 m only from h_L ≈ 30 m, where the continuous range starts at 4 m). Found
+/// lay at x_L = 148 m only from h_L = 24.33 m, where the continuous range starts at 4 m). Found
 /// by bisection on the laying itself (to 1e-9 of L_c); `None` when no h_L lays.
 pub fn laid_vertical_range(lengths: &[f64], horizontal: f64) -> Option<(f64, f64)> {
     let total: f64 = lengths.iter().sum();

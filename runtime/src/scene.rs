@@ -311,8 +311,8 @@ pub struct Initial {
     /// weight, Eqs. 41, 42: a few mm, from +R on a hard seabed to −R, buried, on a soft one).
     pub vertical_projection: f64,
     /// The ship's initial surge speed, m/s, in [0, 20] m/s. A ship at rest (0) has stopped at
-    /// t = 0: its stopping time and distance are 0, and `solver.stop_when_ship_stops` ends its
-    /// run there.
+    /// t = 0: its stopping time is 0, and `solver.stop_when_ship_stops` ends its run there
+    /// (stopping distance 0).
     pub ship_speed: f64,
 }
 
@@ -1160,12 +1160,11 @@ impl Scene {
         self.cable.stages.iter().flat_map(|s| std::iter::repeat_n(s.element_length, s.elements)).collect()
     }
 
-    /// `[solver]`: step, end time, output interval and tolerances.
+    /// `[solver]`: step, end time, output interval and tolerances, each in its own range
+    /// ([`Solver::check_fixed`]), and those bounded by each other.
     fn check_solver(&self, c: &mut Checker) {
         let so = &self.solver;
-        c.range("solver.dt", so.dt, 0.0, 1.0, false, "s");
-        // No magnitude cap: the step count's limit below bounds it, and says so.
-        c.range("solver.end_time", so.end_time, 0.0, f64::MAX, false, "s");
+        so.check_fixed(c, false);
         if so.dt.is_finite() && so.dt > 0.0 {
             let hint = format!("s (at least solver.dt = {} s: raise it, or take a smaller step)", fmt_value(so.dt));
             c.range("solver.output_interval", so.output_interval, so.dt, MAX_MAGNITUDE, true, &hint);
@@ -1185,10 +1184,33 @@ impl Scene {
             );
             c.push("solver.dt", &fmt_value(so.dt), &why);
         }
-        c.range("solver.max_energy_drift", so.max_energy_drift, 0.0, 10.0, false, "(relative)");
+    }
+}
+
+impl Solver {
+    /// The fields' problems each on its own, in its fixed range, without the ranges another
+    /// field bounds (output_interval ≥ dt, end_time ≥ dt, the step count), which a whole
+    /// scene's [`Scene::problems`] adds: what a command line's flag can be checked against
+    /// before any scene is read.
+    pub fn own_problems(&self) -> Vec<Problem> {
+        let mut c = Checker::default();
+        self.check_fixed(&mut c, true);
+        c.problems
+    }
+
+    /// The fixed ranges; `output_interval`'s own, (0, 1e15] s, only `with_output_interval`
+    /// (a scene checks it against its dt instead).
+    fn check_fixed(&self, c: &mut Checker, with_output_interval: bool) {
+        c.range("solver.dt", self.dt, 0.0, 1.0, false, "s");
+        // No magnitude cap: the step count's limit bounds it, and says so.
+        c.range("solver.end_time", self.end_time, 0.0, f64::MAX, false, "s");
+        if with_output_interval {
+            c.range("solver.output_interval", self.output_interval, 0.0, MAX_MAGNITUDE, false, "s");
+        }
+        c.range("solver.max_energy_drift", self.max_energy_drift, 0.0, 10.0, false, "(relative)");
         // Below 1e-14 double precision cannot meet it (`integrate::Tolerances`).
-        c.range("solver.rtol", so.rtol, 1e-14, 0.1, true, "(relative tolerance; double precision cannot meet less)");
-        c.range("solver.atol", so.atol, 0.0, 1.0, false, "(absolute tolerance)");
+        c.range("solver.rtol", self.rtol, 1e-14, 0.1, true, "(relative tolerance; double precision cannot meet less)");
+        c.range("solver.atol", self.atol, 0.0, 1.0, false, "(absolute tolerance)");
     }
 }
 
@@ -1197,11 +1219,12 @@ impl Scene {
 /// ([`catenary::laid_vertical_range`]).
 fn vertical_hint(lengths: &[f64], x: f64) -> String {
     match catenary::laid_vertical_range(lengths, x) {
-        Some((lo, hi)) => format!(
-            "; or, for this x_L, initial.vertical_projection in [{}, {}] m",
-            (lo * 1e6).ceil() / 1e6,
-            (hi * 1e6).floor() / 1e6
-        ),
+        // Rounded inwards to 1e-6 m, unless the range is narrower than that.
+        Some((lo, hi)) => {
+            let (a, b) = ((lo * 1e6).ceil() / 1e6, (hi * 1e6).floor() / 1e6);
+            let (a, b) = if a <= b { (fmt_value(a), fmt_value(b)) } else { (fmt_value(lo), fmt_value(hi)) };
+            format!("; or, for this x_L, initial.vertical_projection in [{a}, {b}] m")
+        }
         None => String::new(),
     }
 }

@@ -305,7 +305,8 @@ pub fn study(
 /// on the peak tension when the base did not stop (no stopping time to move: every stop
 /// effect is none, and a ranking by them would be the file order).
 pub fn ranked_by(base: &[Option<f64>; 3]) -> fn(&Sensitivity) -> Option<f64> {
-    if base[0].is_some() {
+    // A ship at rest at the start has stopped at t = 0: nothing moves its stop either.
+    if base[0].is_some_and(|t| t > 0.0) {
         |r| r.stopping_time
     } else {
         |r| r.peak_tension
@@ -340,9 +341,10 @@ pub fn table(study: &Study) -> String {
         "sensitivity of {} (central differences at p·(1 ± {})): d(output)/d(ln p)\n{:<4} {:<42} {:>16} {:>7} {:>12} {:>12} {:>12}\n",
         study.scene, study.step, "rank", "parameter", "value", "step", "stop (s)", "dist (m)", "peak (kN)"
     );
-    if study.base[0].is_none() {
+    if !study.base[0].is_some_and(|t| t > 0.0) {
         out.push_str(
-            "note: the base run did not stop by its end time: no effect on the stop; ranked by the effect on the peak tension\n",
+            "note: the base run has no stop to move (it did not stop by its end time, or its ship was at rest at the \
+             start): ranked by the effect on the peak tension\n",
         );
     }
     for (i, r) in study.rows.iter().enumerate() {

@@ -361,9 +361,10 @@ pub trait AdaptiveIntegrator {
     }
 }
 
-/// The most right-hand sides one call of [`AdaptiveIntegrator::integrate_to`] (an output
-/// interval of a run, at most 1 s) takes before it fails with [`StepError::TooManySteps`]:
-/// some 5–20 s of CPU at N = 46. A drag coefficient of 1e15 made SDIRK4 take 7.9 million
+/// The most right-hand sides one call of [`AdaptiveIntegrator::integrate_to`] (a run's
+/// observation interval `solver.dt`, at most 1 s, or the part of it up to an anchor switch)
+/// takes before it fails with [`StepError::TooManySteps`], the difference Jacobians of
+/// SDIRK4 included (4N each): some 5–20 s of CPU at N = 46. A drag coefficient of 1e15 made SDIRK4 take 7.9 million
 /// for case 1's first 2 ms, and a run of 1 s seem to hang; the dp5 run of case 1 with a
 /// coefficient of 1e9, stiff but completed, takes at most about 60 000 an interval.
 pub const MAX_RHS_PER_INTERVAL: u64 = 2_000_000;

@@ -554,11 +554,16 @@ impl AdaptiveIntegrator for Sdirk4 {
             match self.stages(sys, t, y, h) {
                 Err(NewtonFailure::Rhs(e)) if !e.at_trial_state() => return Err(e.into()),
                 Err(NewtonFailure::Rhs(e)) => {
-                    // A Newton iterate beyond the model's range: the step was too long.
+                    // A Newton iterate beyond the model's range: the step was too long, or J
+                    // is from elsewhere (as for no convergence).
                     rejected += 1;
                     self.stats.rejected += 1;
-                    (last_err, reason) = (f64::INFINITY, format!("at a trial stage: {e}"));
-                    h *= 0.5;
+                    (last_err, last_comp, reason) = (f64::INFINITY, 0, format!("at a trial stage: {e}"));
+                    if self.jac_state == JacobianState::Current {
+                        h *= 0.5;
+                    } else {
+                        self.jac_state = JacobianState::Refresh;
+                    }
                     continue;
                 }
                 Err(NewtonFailure::NoConvergence(why)) => {

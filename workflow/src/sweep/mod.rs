@@ -517,26 +517,35 @@ pub fn write(rows: &[SweepRow], scenes: &[(String, String)], dir: &Path) -> Resu
     Ok((c, j))
 }
 
+/// The row names of the sweep whose `sweep.json` is in `dir` (none when there is none or it
+/// cannot be read): what [`remove_stale`] may remove of it.
+pub fn rows_in(dir: &Path) -> Vec<String> {
+    let Ok(text) = std::fs::read_to_string(dir.join("sweep.json")) else { return Vec::new() };
+    let Ok(serde_json::Value::Array(rows)) = serde_json::from_str::<serde_json::Value>(&text) else {
+        return Vec::new();
+    };
+    rows.iter().filter_map(|r| r["name"].as_str().map(str::to_string)).collect()
+}
+
 /// Removes from `dir` what an earlier sweep wrote there and this one did not, so that the
-/// folder holds one sweep: row scene files (`scenes/*.toml` that begin as [`scene_file`]
-/// begins them) not in `scenes`, and, when the heat maps were drawn (`charts`), the
-/// `heatmap-NAME.svg` of the other outputs. Nothing else is touched. Returns what it removed.
-pub fn remove_stale(dir: &Path, scenes: &[(String, String)], charts: Option<&[PathBuf]>) -> Result<Vec<PathBuf>> {
+/// folder holds one sweep: the scene files of the earlier sweep's rows (`earlier`, from its
+/// `sweep.json`: [`rows_in`], read before this sweep's replaced it) that this sweep's
+/// `scenes` do not name and that still begin as [`scene_file`] begins them, and, when the
+/// heat maps were drawn (`charts`), the `heatmap-NAME.svg` of the other outputs. A file of
+/// another name (a user's copy of a row's scene) is never touched. Returns what it removed.
+pub fn remove_stale(
+    dir: &Path,
+    earlier: &[String],
+    scenes: &[(String, String)],
+    charts: Option<&[PathBuf]>,
+) -> Result<Vec<PathBuf>> {
     let mut stale = Vec::new();
-    let folder = dir.join("scenes");
-    let written: std::collections::HashSet<String> =
-        scenes.iter().map(|(name, _)| format!("{}.toml", file_stem(name))).collect();
-    if let Ok(entries) = std::fs::read_dir(&folder) {
-        for entry in entries.flatten() {
-            let name = entry.file_name().to_string_lossy().into_owned();
-            let path = entry.path();
-            let ours = || {
-                let text = std::fs::read_to_string(&path).unwrap_or_default();
-                text.lines().next().is_some_and(|l| l.starts_with("# Row ") && l.contains(" of a sweep: "))
-            };
-            if name.ends_with(".toml") && !written.contains(&name) && path.is_file() && ours() {
-                stale.push(path);
-            }
+    let written: std::collections::HashSet<String> = scenes.iter().map(|(name, _)| file_stem(name)).collect();
+    for name in earlier.iter().map(|n| file_stem(n)).filter(|n| !written.contains(n)) {
+        let path = dir.join("scenes").join(format!("{name}.toml"));
+        let text = std::fs::read_to_string(&path).unwrap_or_default();
+        if text.lines().next().is_some_and(|l| l.starts_with("# Row ") && l.contains(" of a sweep: ")) {
+            stale.push(path);
         }
     }
     if let Some(charts) = charts {
@@ -548,6 +557,7 @@ pub fn remove_stale(dir: &Path, scenes: &[(String, String)], charts: Option<&[Pa
         }
     }
     stale.sort();
+    stale.dedup();
     for path in &stale {
         std::fs::remove_file(path).map_err(Error::io("remove", path))?;
     }
@@ -574,24 +584,33 @@ mod tests {
         let scenes = dir.join("scenes");
         std::fs::create_dir_all(&scenes).unwrap();
         let ours = "# Row 1 of a sweep: ship.mass=4e5\n[meta]\n";
-        for (name, text) in [("a-000.toml", ours), ("a-001.toml", ours), ("mine.toml", "[meta]\n"), ("a-001.txt", ours)]
+        // a-001-tweaked.toml: a user's copy of a row's scene, its header kept.
+        for (name, text) in
+            [("a-000.toml", ours), ("a-001.toml", ours), ("a-001-tweaked.toml", ours), ("mine.toml", "[meta]\n")]
         {
             std::fs::write(scenes.join(name), text).unwrap();
         }
+        std::fs::write(dir.join("sweep.json"), r#"[{"name": "a-000"}, {"name": "a-001"}, {"name": "mine"}]"#).unwrap();
         for name in ["heatmap-stopping_time.svg", "heatmap-stopping_distance.svg", "heatmap-mine.svg"] {
             std::fs::write(dir.join(name), "<svg/>").unwrap();
         }
+        let earlier = rows_in(&dir);
+        assert_eq!(earlier, ["a-000", "a-001", "mine"]);
         let written = [("a-000".to_string(), ours.to_string())];
-        // Without heat maps drawn (a merge without its spec), the maps stay.
-        let removed = remove_stale(&dir, &written, None).unwrap();
+        // Without heat maps drawn (a merge without its spec), the maps stay; mine.toml is no
+        // row's file (no header), so it stays though its name was a row's.
+        let removed = remove_stale(&dir, &earlier, &written, None).unwrap();
         assert_eq!(removed, [scenes.join("a-001.toml")]);
         let charts = [dir.join("heatmap-stopping_distance.svg")];
-        let removed = remove_stale(&dir, &written, Some(&charts)).unwrap();
+        let removed = remove_stale(&dir, &earlier, &written, Some(&charts)).unwrap();
         assert_eq!(removed, [dir.join("heatmap-stopping_time.svg")]);
-        for kept in [scenes.join("a-000.toml"), scenes.join("mine.toml"), scenes.join("a-001.txt"), charts[0].clone()] {
+        for kept in
+            [scenes.join("a-000.toml"), scenes.join("a-001-tweaked.toml"), scenes.join("mine.toml"), charts[0].clone()]
+        {
             assert!(kept.is_file(), "{} kept", kept.display());
         }
         assert!(dir.join("heatmap-mine.svg").is_file(), "not an output's name: kept");
+        assert!(rows_in(&dir.join("nowhere")).is_empty());
         std::fs::remove_dir_all(&dir).unwrap();
     }
 

@@ -68,8 +68,10 @@ pub fn plan_hash(name: &str, plan: &[PlannedRow], kernel: &str) -> String {
     // merged with these); 3 since a row's summary has the laid line's x_L, T_h and water
     // depth and an adaptive method's peak tensions are looked at after each of its steps
     // (2026-12-06); 4 since it also has the laid line's top tension T_t, and the energy
-    // drift is relative to the largest kinetic energy instead of E_0 (2026-12-06).
-    field("kanestop sweep plan 4");
+    // drift is relative to the largest kinetic energy instead of E_0 (2026-12-06); 5 since a
+    // ship at rest at the start has stopped at t = 0, and a row refused before its first step
+    // has no E_0, drift or work (null, where it read 0) (2026-12-07).
+    field("kanestop sweep plan 5");
     field(name);
     field(kernel);
     field(&plan.len().to_string());
