@@ -551,34 +551,25 @@ impl AdaptiveIntegrator for Sdirk4 {
                 h *= 0.5;
                 continue;
             }
-            match self.stages(sys, t, y, h) {
+            // Newton did not converge, or an iterate lay beyond the model's range: the step
+            // was too long, or J is from elsewhere.
+            let failed = match self.stages(sys, t, y, h) {
                 Err(NewtonFailure::Rhs(e)) if !e.at_trial_state() => return Err(e.into()),
-                Err(NewtonFailure::Rhs(e)) => {
-                    // A Newton iterate beyond the model's range: the step was too long, or J
-                    // is from elsewhere (as for no convergence).
-                    rejected += 1;
-                    self.stats.rejected += 1;
-                    (last_err, last_comp, reason) = (f64::INFINITY, 0, format!("at a trial stage: {e}"));
-                    if self.jac_state == JacobianState::Current {
-                        h *= 0.5;
-                    } else {
-                        self.jac_state = JacobianState::Refresh;
-                    }
-                    continue;
+                Err(NewtonFailure::Rhs(e)) => format!("at a trial stage: {e}"),
+                Err(NewtonFailure::NoConvergence(why)) => why.to_string(),
+                Ok(()) => String::new(),
+            };
+            if !failed.is_empty() {
+                rejected += 1;
+                self.stats.rejected += 1;
+                (last_err, last_comp, reason) = (f64::INFINITY, 0, failed);
+                if self.jac_state == JacobianState::Current {
+                    h *= 0.5;
+                } else {
+                    // A J from elsewhere first: refresh it at this start and retry.
+                    self.jac_state = JacobianState::Refresh;
                 }
-                Err(NewtonFailure::NoConvergence(why)) => {
-                    rejected += 1;
-                    self.stats.rejected += 1;
-                    (last_err, reason) = (f64::INFINITY, why.to_string());
-                    if self.jac_state == JacobianState::Current {
-                        h *= 0.5;
-                    } else {
-                        // A J from elsewhere first: refresh it at this start and retry.
-                        self.jac_state = JacobianState::Refresh;
-                    }
-                    continue;
-                }
-                Ok(()) => {}
+                continue;
             }
             self.error_estimate();
             let y1 = self.ynew(y);
