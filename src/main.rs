@@ -561,12 +561,6 @@ impl SolverOverrides {
         }
         top
     }
-
-    /// Lays the overrides on `scene` (read from `file`) and checks the result.
-    fn apply(&self, scene: &mut Scene, file: &str) -> Result<(), SceneError> {
-        *scene = over(scene.to_value(), self.table(), file)?;
-        Ok(())
-    }
 }
 
 /// The scene of `value` with the tables `over` laid on it, checked; `file` names it.
@@ -582,24 +576,34 @@ fn default_over(o: toml::Table) -> Result<Scene, SceneError> {
 }
 
 /// A batch configuration that owns its captures.
-type BoxedConfigure<'a> = Box<dyn Fn(&mut Scene) -> Result<(), String> + Sync + 'a>;
+type BoxedConfigure<'a> = Box<dyn Fn(&mut toml::Value) + Sync + 'a>;
 
-/// How `batch` adjusts each scene: once with the overrides alone, or once per method of
-/// `--methods` (each with its `@dt`).
+/// How `batch` edits each scene file's tables before they are checked: once with the
+/// overrides alone, or once per method of `--methods` (each with its `@dt`, the file's output
+/// interval raised to it where shorter: the output grid must hold at least one step), the
+/// flags laid on last.
 fn configurations<'a>(solver: &'a SolverOverrides, methods: &[MethodSpec]) -> Vec<BoxedConfigure<'a>> {
-    let apply = move |scene: &mut Scene, method: Option<MethodSpec>| {
-        if let Some(m) = method {
-            scene.solver.integrator = m.method;
-            scene.solver.dt = m.dt.unwrap_or(scene.solver.dt);
-            // The output grid must hold at least one step.
-            scene.solver.output_interval = scene.solver.output_interval.max(scene.solver.dt);
+    let edit = move |value: &mut toml::Value, method: Option<MethodSpec>| {
+        if let (Some(m), Some(top)) = (method, value.as_table_mut()) {
+            let table = top.entry("solver").or_insert_with(|| toml::Value::Table(toml::Table::new()));
+            if let Some(table) = table.as_table_mut() {
+                table.insert("integrator".into(), toml::Value::String(m.method.name().into()));
+                if let Some(dt) = m.dt {
+                    table.insert("dt".into(), toml::Value::Float(dt));
+                    let interval =
+                        table.get("output_interval").and_then(|v| v.as_float().or(v.as_integer().map(|i| i as f64)));
+                    if interval.is_some_and(|i| i < dt) {
+                        table.insert("output_interval".into(), toml::Value::Float(dt));
+                    }
+                }
+            }
         }
-        solver.apply(scene, &scene.meta.name.clone()).map_err(|e| e.to_string())
+        kanestop_runtime::overrides::merge(value, toml::Value::Table(solver.table()));
     };
     if methods.is_empty() {
-        vec![Box::new(move |scene: &mut Scene| apply(scene, None))]
+        vec![Box::new(move |value: &mut toml::Value| edit(value, None))]
     } else {
-        methods.iter().map(|&m| Box::new(move |scene: &mut Scene| apply(scene, Some(m))) as Box<_>).collect()
+        methods.iter().map(|&m| Box::new(move |value: &mut toml::Value| edit(value, Some(m))) as Box<_>).collect()
     }
 }
 

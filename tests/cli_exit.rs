@@ -163,6 +163,24 @@ fn solver_flags_mend_a_scene_and_batch_refuses_bad_ones_up_front() {
         assert!(stderr.contains(message) && stdout.is_empty(), "{flags:?}: {stderr}");
         assert!(!out.exists(), "{flags:?} wrote {}", out.display());
     }
+    // A flag is held to its own field's fixed range only, not to the file's other values, and
+    // laid on each file before it is checked, as `run` lays it: the file's own step (0.05 s,
+    // above its output interval of 0.01 s) is mended, and a step, an output interval and an
+    // end time the file's values would refuse together are taken and run.
+    for flags in [
+        vec!["--dt", "0.0005", "--end-time", "0.002"],
+        vec!["--dt", "0.0005", "--output-interval", "0.001", "--end-time", "0.001"],
+        vec!["--methods", "rk4@0.0005", "--end-time", "0.001"],
+        // The file's output interval (0.01 s) raised to the method's observation interval.
+        vec!["--methods", "dp5@0.05", "--end-time", "0.1"],
+    ] {
+        let o = kanestop().arg("batch").arg(&scenes).arg("--out").arg(&out).args(&flags).output().unwrap();
+        let (stdout, stderr) = text(&o);
+        assert_eq!(o.status.code(), Some(0), "{flags:?}: {stdout}{stderr}");
+        let csv = std::fs::read_to_string(out.join("batch.csv")).unwrap();
+        let row = csv.lines().nth(1).unwrap();
+        assert!(row.contains("coarse.toml,end time,"), "{flags:?}: {row}");
+    }
 }
 
 #[test]

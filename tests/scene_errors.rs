@@ -108,6 +108,10 @@ fn a_count_that_is_not_whole_is_refused_in_words() {
     let e = error(&edited("[chain]\nelements = 15", "[chain]\nelements = 15.5"));
     assert_mentions(&e, &["bad.toml", "15.5", "expected a whole number ≥ 0"]);
     assert!(!e.contains("usize"), "{e}");
+    // A huge number is quoted as written, not as its 301 digits.
+    let e = error(&edited("[chain]\nelements = 15", "[chain]\nelements = 1e300"));
+    assert_mentions(&e, &["floating point `1e300`", "expected a whole number ≥ 0"]);
+    assert!(!e.contains("0000000000"), "{e}");
 }
 
 #[test]

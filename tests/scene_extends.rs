@@ -121,7 +121,12 @@ fn extends_errors_name_the_file() {
     assert!(e.to_string().contains("extends chain loops back to"), "{e}");
     std::fs::write(dir.join("c.toml"), "extends = \"missing.toml\"\n").unwrap();
     let e = Scene::load(&dir.join("c.toml")).unwrap_err();
-    assert!(matches!(&e, SceneError::Io { file, .. } if file.ends_with("missing.toml")), "{e}");
+    assert!(
+        matches!(&e, SceneError::Io { file, extended_by: Some(by), .. }
+        if file.ends_with("missing.toml") && by.ends_with("c.toml")),
+        "{e}"
+    );
+    assert!(e.to_string().contains("the base that `extends` names in"), "{e}");
     std::fs::write(dir.join("d.toml"), "extends = 3\n").unwrap();
     let e = Scene::load(&dir.join("d.toml")).unwrap_err();
     assert!(e.to_string().contains("extends must be a file name"), "{e}");

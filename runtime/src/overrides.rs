@@ -253,18 +253,24 @@ fn merge_tables(base: &mut Value, over: Value) {
     }
 }
 
+/// Reads a file's text: the file at the path, and the file whose `extends` named it (`None`
+/// for the first).
+pub type ReadFile<'a, E> = dyn FnMut(&Path, Option<&Path>) -> Result<String, E> + 'a;
+
 /// Reads a scene file's TOML and resolves its `extends` chain: each file's tables are laid
 /// over the file it extends (a path relative to the extending file). `read` reads a file's
-/// text (the file system, or a test's table); its error is passed through.
+/// text (the file system, or a test's table), given with the file whose `extends` named it
+/// (`None` for `path`); its error is passed through.
 pub fn resolve<E>(
     path: &Path,
-    read: &mut dyn FnMut(&Path) -> Result<String, E>,
+    read: &mut ReadFile<'_, E>,
     parse: &mut dyn FnMut(&Path, &str) -> Result<Value, E>,
     wrap: &dyn Fn(&Path, OverrideError) -> E,
 ) -> Result<Value, E> {
     let mut chain: Vec<(PathBuf, Value)> = Vec::new();
     let mut seen: Vec<PathBuf> = Vec::new();
     let mut next = Some(path.to_path_buf());
+    let mut named_by: Option<PathBuf> = None;
     while let Some(file) = next.take() {
         // Files are read by the path as joined (`../` after a symbolic link goes where the
         // system takes it); a loop is found by the file itself, the same whichever way its
@@ -274,7 +280,7 @@ pub fn resolve<E>(
             return Err(wrap(path, OverrideError::ExtendsCycle(file)));
         }
         seen.push(key);
-        let mut value = parse(&file, &read(&file)?)?;
+        let mut value = parse(&file, &read(&file, named_by.as_deref())?)?;
         if let Some(table) = value.as_table_mut() {
             if let Some(base) = table.remove("extends") {
                 let base = base.as_str().ok_or_else(|| wrap(&file, OverrideError::ExtendsType))?;
@@ -282,6 +288,7 @@ pub fn resolve<E>(
                 next = Some(dir.join(base));
             }
         }
+        named_by = Some(file.clone());
         chain.push((file, value));
     }
     let (_, mut merged) = chain.pop().expect("at least the file itself");
@@ -393,9 +400,10 @@ mod tests {
             ("dir/loop2.toml", "extends = \"loop1.toml\"\n"),
             ("dir/loop3.toml", "extends = \"../dir/./loop3.toml\"\n"),
         ];
-        let mut read = |p: &Path| -> Result<String, String> {
+        let mut read = |p: &Path, by: Option<&Path>| -> Result<String, String> {
             let key = p.to_string_lossy().replace('\\', "/");
-            files.iter().find(|(n, _)| *n == key).map(|(_, t)| t.to_string()).ok_or(format!("no {key}"))
+            let by = by.map(|b| format!(" (named by {})", b.display())).unwrap_or_default();
+            files.iter().find(|(n, _)| *n == key).map(|(_, t)| t.to_string()).ok_or(format!("no {key}{by}"))
         };
         let mut parse = |_: &Path, t: &str| -> Result<Value, String> { Ok(value(t)) };
         let wrap = |p: &Path, e: OverrideError| format!("{}: {e}", p.display());
@@ -410,5 +418,13 @@ mod tests {
         }
         let e = resolve(Path::new("dir/missing.toml"), &mut read, &mut parse, &wrap).unwrap_err();
         assert_eq!(e, "no dir/missing.toml");
+        let files = [("dir/d.toml", "extends = \"gone.toml\"\n")];
+        let mut read = |p: &Path, by: Option<&Path>| -> Result<String, String> {
+            let key = p.to_string_lossy().replace('\\', "/");
+            let by = by.map(|b| format!(" (named by {})", b.display())).unwrap_or_default();
+            files.iter().find(|(n, _)| *n == key).map(|(_, t)| t.to_string()).ok_or(format!("no {key}{by}"))
+        };
+        let e = resolve(Path::new("dir/d.toml"), &mut read, &mut parse, &wrap).unwrap_err();
+        assert_eq!(e, "no dir/gone.toml (named by dir/d.toml)");
     }
 }

@@ -464,6 +464,8 @@ pub enum SceneError {
     Io {
         /// The path as given.
         file: String,
+        /// The file whose `extends` named it, for a base of a scene.
+        extended_by: Option<String>,
         /// The I/O error.
         source: std::io::Error,
     },
@@ -510,7 +512,10 @@ impl fmt::Display for Problem {
 impl fmt::Display for SceneError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            SceneError::Io { file, source } => write!(f, "cannot read scene {file}: {source}"),
+            SceneError::Io { file, extended_by: None, source } => write!(f, "cannot read scene {file}: {source}"),
+            SceneError::Io { file, extended_by: Some(by), source } => {
+                write!(f, "cannot read scene {file}, the base that `extends` names in {by}: {source}")
+            }
             SceneError::Parse { file, message } => {
                 write!(f, "scene {file} is not valid: {}", plain_types(message.trim_end()))
             }
@@ -548,7 +553,8 @@ impl Scene {
     /// ```
     pub fn load(path: &Path) -> Result<Scene, SceneError> {
         let file = path.display().to_string();
-        let text = read_scene_file(path).map_err(|source| SceneError::Io { file: file.clone(), source })?;
+        let text =
+            read_scene_file(path).map_err(|source| SceneError::Io { file: file.clone(), extended_by: None, source })?;
         let top = match text.parse::<toml::Table>() {
             Ok(top) if top.contains_key("extends") => top,
             // A whole file: parsed as text, so that errors point at its lines.
@@ -565,18 +571,31 @@ impl Scene {
     /// file: a command line's `--dt` over a file whose own step is refused. Errors name the
     /// file `FILE (with command-line overrides)`. An empty `over` is [`Scene::load`].
     pub fn load_over(path: &Path, over: toml::Table) -> Result<Scene, SceneError> {
-        if over.is_empty() {
-            return Scene::load(path);
-        }
+        let over = toml::Value::Table(over);
+        Scene::load_edited(path, &|value| overrides::merge(value, over.clone()))
+    }
+
+    /// [`Scene::load`] with `edit` applied to the file's tables (its `extends` chain laid
+    /// over each other) before the scene is checked: the general form of
+    /// [`Scene::load_over`], for edits that read the file's values (`batch --methods dp5@0.05`
+    /// raises an output interval below its step). Errors name the file `FILE (with
+    /// command-line overrides)` where `edit` changed something; an edit that changes nothing
+    /// is [`Scene::load`].
+    pub fn load_edited(path: &Path, edit: &dyn Fn(&mut toml::Value)) -> Result<Scene, SceneError> {
         let file = path.display().to_string();
-        let text = read_scene_file(path).map_err(|source| SceneError::Io { file: file.clone(), source })?;
+        let text =
+            read_scene_file(path).map_err(|source| SceneError::Io { file: file.clone(), extended_by: None, source })?;
         let Ok(top) = text.parse::<toml::Table>() else {
             // Not TOML: the parse error, with its line.
             return Scene::from_toml(&text, &file);
         };
         let extends = top.contains_key("extends");
         let mut value = if extends { Scene::resolve_file(path)? } else { toml::Value::Table(top.clone()) };
-        overrides::merge(&mut value, toml::Value::Table(over));
+        let before = value.clone();
+        edit(&mut value);
+        if value == before {
+            return Scene::load(path);
+        }
         let mut scene = Scene::from_value(value, &format!("{file} (with command-line overrides)"))?;
         if extends {
             scene.own_meta(path, &top);
@@ -607,11 +626,11 @@ impl Scene {
 
     /// The tables of the scene file at `path` with its `extends` chain laid over each other.
     fn resolve_file(path: &Path) -> Result<toml::Value, SceneError> {
-        fn io(p: &Path) -> impl FnOnce(std::io::Error) -> SceneError {
-            let file = p.display().to_string();
-            move |source| SceneError::Io { file, source }
+        fn io(p: &Path, by: Option<&Path>) -> impl FnOnce(std::io::Error) -> SceneError {
+            let (file, extended_by) = (p.display().to_string(), by.map(|b| b.display().to_string()));
+            move |source| SceneError::Io { file, extended_by, source }
         }
-        let mut read = |p: &Path| read_scene_file(p).map_err(io(p));
+        let mut read = |p: &Path, by: Option<&Path>| read_scene_file(p).map_err(io(p, by));
         let mut parse = |p: &Path, text: &str| {
             text.parse::<toml::Table>()
                 .map(toml::Value::Table)
@@ -1357,9 +1376,20 @@ pub fn from_value_at<T: serde::de::DeserializeOwned>(value: toml::Value) -> Resu
 }
 
 /// A TOML reader's message with Rust's type names in words: `expected usize` → `expected a
-/// whole number ≥ 0`, `expected f64` → `expected a number`.
+/// whole number ≥ 0`, `expected f64` → `expected a number`; and the number it quotes as the
+/// file would write it (`1e300` for a whole number field, not 301 digits).
 pub fn plain_types(message: &str) -> String {
-    let mut out = message.to_string();
+    const QUOTED: &str = "floating point `";
+    let mut out = match message.split_once(QUOTED) {
+        Some((before, rest)) => match rest.split_once('`') {
+            Some((number, after)) => match number.parse::<f64>() {
+                Ok(v) => format!("{before}{QUOTED}{}`{after}", fmt_value(v)),
+                Err(_) => message.to_string(),
+            },
+            None => message.to_string(),
+        },
+        None => message.to_string(),
+    };
     for (rust, words) in [
         ("usize", "a whole number ≥ 0"),
         ("u64", "a whole number ≥ 0"),

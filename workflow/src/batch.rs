@@ -136,7 +136,8 @@ pub fn scene_files(dir: &Path) -> std::io::Result<Vec<PathBuf>> {
 /// The row of one finished run.
 pub fn row(file: &Path, model: &Model, result: &RunResult) -> BatchRow {
     let paper = kanestop_runtime::paper::stopping_time(&model.scene);
-    // A run refused before its first step has no peak and no drift to report.
+    // A run that did not get past its start has no peak to report; one refused before its
+    // first step no drift either (as `run --json`).
     let ran = result.ran();
     let peak = result.peak_tension().filter(|_| ran);
     let outcomes = model.scene.checks.as_ref().map(|c| checks::evaluate(c, model, result)).unwrap_or_default();
@@ -168,7 +169,7 @@ pub fn row(file: &Path, model: &Model, result: &RunResult) -> BatchRow {
         peak_time: peak.map(|p| p.1.t),
         break_exceedances: over.len(),
         anchor_start: result.anchor_start(),
-        energy_drift: ran.then_some(result.max_energy_drift),
+        energy_drift: result.observed().then_some(result.max_energy_drift),
         wall_time: result.wall_time.as_secs_f64(),
         cpu_time: result.cpu_time.map(|d| d.as_secs_f64()),
         rhs_evaluations: Some(result.rhs_evaluations),
@@ -234,9 +235,10 @@ fn append(message: &mut String, note: &str) {
     message.push_str(note);
 }
 
-/// Adjusts a loaded scene before it runs (e.g. command-line solver overrides); an error
-/// marks the scene invalid.
-pub type Configure<'a> = &'a (dyn Fn(&mut Scene) -> std::result::Result<(), String> + Sync);
+/// Edits a scene file's tables before the scene is checked (command-line solver overrides,
+/// laid on the file so that they can mend it, as `run` lays them: [`Scene::load_edited`]);
+/// an error of the edited scene marks it invalid.
+pub type Configure<'a> = &'a (dyn Fn(&mut toml::Value) + Sync);
 
 /// Runs every file in parallel; `configure` adjusts each scene, `kernel` builds each run's
 /// kernel and `done` is called (from any thread) as each run finishes; with `error_estimate`
@@ -249,10 +251,9 @@ pub fn run_all(
     done: &(dyn Fn(&BatchRow) + Sync),
 ) -> Vec<BatchRow> {
     parallel::map(files, |file| {
-        let model = Scene::load(file).map_err(|e| e.to_string()).and_then(|mut s| {
-            configure(&mut s)?;
-            Model::new(&s).map_err(|e| e.to_string())
-        });
+        let model = Scene::load_edited(file, configure)
+            .map_err(|e| e.to_string())
+            .and_then(|s| Model::new(&s).map_err(|e| e.to_string()));
         let row = match model {
             Ok(model) => {
                 let result = simulate::run_checked(&model, kernel(&model), kernel(&model));

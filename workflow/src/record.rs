@@ -204,8 +204,7 @@ impl RunSummary {
             }
         };
         let last = result.samples.last();
-        // Its first state observed: E_0, the work and the drift exist.
-        let started = last.is_some();
+        let started = result.observed();
         let outcomes = model.scene.checks.as_ref().map(|c| checks::evaluate(c, model, result)).unwrap_or_default();
         RunSummary {
             scene: model.scene.meta.name.clone(),
@@ -252,6 +251,45 @@ impl RunSummary {
             initial_horizontal_tension: t_h,
             initial_top_tension: t_t,
             water_depth: model.water_depth(),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::path::Path;
+
+    use kanestop_runtime::generated::GeneratedKernel;
+    use kanestop_runtime::paper::DEFAULT_SCENE;
+    use kanestop_runtime::scene::Scene;
+    use kanestop_runtime::simulate;
+
+    use super::*;
+    use crate::batch;
+
+    /// A run that observed its start but completed no interval (as one that fails in its
+    /// first): no peak, but its drift, in `run --json` and in a batch row alike; refused
+    /// before its first step, neither.
+    #[test]
+    fn a_batch_row_reports_peak_and_drift_as_the_run_summary_does() {
+        let mut scene = Scene::from_toml(DEFAULT_SCENE, "case01.toml").unwrap();
+        scene.solver.end_time = 0.01;
+        let model = Model::new(&scene).unwrap();
+        let full = simulate::run(&model, Box::new(GeneratedKernel::new(&model.chain).unwrap()));
+        let mut start = full.clone();
+        (start.steps, start.max_energy_drift) = (0, 0.0);
+        start.samples.truncate(1);
+        let mut refused = start.clone();
+        refused.samples.clear();
+        for (name, result, peak, drift) in [
+            ("full", &full, true, Some(full.max_energy_drift)),
+            ("start", &start, false, Some(0.0)),
+            ("refused", &refused, false, None),
+        ] {
+            let (row, summary) = (batch::row(Path::new("case01.toml"), &model, result), RunSummary::of(&model, result));
+            assert_eq!((row.peak_tension.is_some(), row.energy_drift), (peak, drift), "{name}");
+            assert_eq!(summary.peak_tension.is_some(), peak, "{name}");
+            assert_eq!(summary.energy_drift, drift, "{name}");
         }
     }
 }

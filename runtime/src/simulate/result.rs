@@ -183,6 +183,13 @@ impl RunResult {
         self.steps > 0 || self.stop == Stop::ShipStopped
     }
 
+    /// Whether the run observed its starting state, so that E_0, the work and the energy
+    /// drift exist (a run that failed in its first interval has them; one refused before its
+    /// first step does not).
+    pub fn observed(&self) -> bool {
+        !self.samples.is_empty()
+    }
+
     /// The largest peak tension of the run and its joint k (between B_{k−1} and B_k).
     pub fn peak_tension(&self) -> Option<(usize, PeakTension)> {
         self.peak_tensions
