@@ -592,7 +592,8 @@ fn configurations<'a>(solver: &'a SolverOverrides, methods: &[MethodSpec]) -> Ve
                     table.insert("dt".into(), toml::Value::Float(dt));
                     let interval =
                         table.get("output_interval").and_then(|v| v.as_float().or(v.as_integer().map(|i| i as f64)));
-                    if interval.is_some_and(|i| i < dt) {
+                    // A value out of its own range (0, a negative) is the check's to refuse.
+                    if interval.is_some_and(|i| i > 0.0 && i < dt) {
                         table.insert("output_interval".into(), toml::Value::Float(dt));
                     }
                 }

@@ -181,6 +181,19 @@ fn solver_flags_mend_a_scene_and_batch_refuses_bad_ones_up_front() {
         let row = csv.lines().nth(1).unwrap();
         assert!(row.contains("coarse.toml,end time,"), "{flags:?}: {row}");
     }
+    // A method's step raises a shorter output interval, not one out of its own range: a file's
+    // `output_interval = 0` stays refused.
+    let zero = dir.join("zero");
+    std::fs::create_dir_all(&zero).unwrap();
+    std::fs::write(
+        zero.join("zero.toml"),
+        std::fs::read_to_string(&coarse).unwrap().replace("output_interval = 0.01", "output_interval = 0.0"),
+    )
+    .unwrap();
+    let o = kanestop().arg("batch").arg(&zero).arg("--out").arg(&out).args(["--methods", "dp5@0.05"]).output().unwrap();
+    let (stdout, stderr) = text(&o);
+    assert_eq!(o.status.code(), Some(1), "{stdout}{stderr}");
+    assert!(stdout.contains("invalid") && stdout.contains("solver.output_interval = 0"), "{stdout}");
 }
 
 #[test]

@@ -112,6 +112,9 @@ fn a_count_that_is_not_whole_is_refused_in_words() {
     let e = error(&edited("[chain]\nelements = 15", "[chain]\nelements = 1e300"));
     assert_mentions(&e, &["floating point `1e300`", "expected a whole number ≥ 0"]);
     assert!(!e.contains("0000000000"), "{e}");
+    // An ordinary number as the reader wrote it: `15.0`, not a whole-looking `15`.
+    let e = error(&edited("[chain]\nelements = 15", "[chain]\nelements = 15.0"));
+    assert_mentions(&e, &["floating point `15.0`", "expected a whole number ≥ 0"]);
 }
 
 #[test]

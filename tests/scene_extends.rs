@@ -153,4 +153,21 @@ fn text_that_extends_a_file_of_its_own_name_is_laid_over_it() {
     // A missing base is named.
     let e = Scene::from_toml_at(text, &paper.join("none/x.toml")).unwrap_err().to_string();
     assert!(e.contains("case01.toml"), "{e}");
+    assert!(e.contains("the base that `extends` names in") && e.contains("x.toml"), "{e}");
+}
+
+/// An edit that changes nothing (a batch without flags) is a plain load: errors name the
+/// file alone and point at its lines, a `nan` in it (not equal to itself by `==`) included;
+/// an edit that changes a value names the overrides.
+#[test]
+fn an_edit_that_changes_nothing_is_a_plain_load() {
+    let dir = temp_dir("edit");
+    let path = dir.join("nan.toml");
+    std::fs::write(&path, base_text().replace("[anchor]\nmass = 40000.0", "[anchor]\nmass = nan")).unwrap();
+    let e = Scene::load_edited(&path, &|_| {}).unwrap_err().to_string();
+    assert!(e.contains("anchor.mass = nan") && !e.contains("command-line"), "{e}");
+    let e = Scene::load_edited(&path, &|v| v["solver"]["dt"] = toml::Value::Float(0.001)).unwrap_err().to_string();
+    assert!(e.contains("anchor.mass = nan") && e.contains("(with command-line overrides)"), "{e}");
+    let e = Scene::load_over(&path, toml::Table::new()).unwrap_err().to_string();
+    assert!(!e.contains("command-line"), "{e}");
 }

@@ -260,9 +260,10 @@ pub type ReadFile<'a, E> = dyn FnMut(&Path, Option<&Path>) -> Result<String, E> 
 /// Reads a scene file's TOML and resolves its `extends` chain: each file's tables are laid
 /// over the file it extends (a path relative to the extending file). `read` reads a file's
 /// text (the file system, or a test's table), given with the file whose `extends` named it
-/// (`None` for `path`); its error is passed through.
+/// (`named_by` for `path`: `None`, or the text that extends it); its error is passed through.
 pub fn resolve<E>(
     path: &Path,
+    named_by: Option<&Path>,
     read: &mut ReadFile<'_, E>,
     parse: &mut dyn FnMut(&Path, &str) -> Result<Value, E>,
     wrap: &dyn Fn(&Path, OverrideError) -> E,
@@ -270,7 +271,7 @@ pub fn resolve<E>(
     let mut chain: Vec<(PathBuf, Value)> = Vec::new();
     let mut seen: Vec<PathBuf> = Vec::new();
     let mut next = Some(path.to_path_buf());
-    let mut named_by: Option<PathBuf> = None;
+    let mut named_by: Option<PathBuf> = named_by.map(Path::to_path_buf);
     while let Some(file) = next.take() {
         // Files are read by the path as joined (`../` after a symbolic link goes where the
         // system takes it); a loop is found by the file itself, the same whichever way its
@@ -296,6 +297,20 @@ pub fn resolve<E>(
         merge(&mut merged, over);
     }
     Ok(merged)
+}
+
+/// Whether two tables hold the same values, a float by its bits (so that a `nan` equals
+/// itself and `-0.0` differs from `0.0`, where `==` says otherwise): whether an edit changed
+/// a scene.
+pub fn same(a: &Value, b: &Value) -> bool {
+    match (a, b) {
+        (Value::Float(x), Value::Float(y)) => x.to_bits() == y.to_bits(),
+        (Value::Table(x), Value::Table(y)) => {
+            x.len() == y.len() && x.iter().all(|(k, v)| y.get(k).is_some_and(|w| same(v, w)))
+        }
+        (Value::Array(x), Value::Array(y)) => x.len() == y.len() && x.iter().zip(y).all(|(v, w)| same(v, w)),
+        _ => a == b,
+    }
 }
 
 /// `path` with its `.` components dropped and each `..` taking the folder before it away
@@ -391,6 +406,16 @@ mod tests {
     }
 
     #[test]
+    fn same_takes_floats_by_their_bits() {
+        let a = value("x = nan\n[t]\ny = [1.0, -0.0]\nz = 1\n");
+        assert!(same(&a, &a.clone()), "nan is the same nan");
+        assert!(!same(&a, &value("x = nan\n[t]\ny = [1.0, 0.0]\nz = 1\n")), "-0.0 is not 0.0");
+        assert!(!same(&a, &value("x = nan\n[t]\ny = [1.0, -0.0]\nz = 1.0\n")), "1 is not 1.0");
+        assert!(!same(&a, &value("x = nan\n[t]\ny = [1.0, -0.0]\n")));
+        assert!(!same(&a, &value("x = 1.0\n[t]\ny = [1.0, -0.0]\nz = 1\n")));
+    }
+
+    #[test]
     fn extends_chains_resolve_and_loops_are_refused() {
         let files = [
             ("dir/c.toml", "extends = \"b.toml\"\n[ship]\nmass = 3.0\n"),
@@ -407,16 +432,16 @@ mod tests {
         };
         let mut parse = |_: &Path, t: &str| -> Result<Value, String> { Ok(value(t)) };
         let wrap = |p: &Path, e: OverrideError| format!("{}: {e}", p.display());
-        let v = resolve(Path::new("dir/c.toml"), &mut read, &mut parse, &wrap).unwrap();
+        let v = resolve(Path::new("dir/c.toml"), None, &mut read, &mut parse, &wrap).unwrap();
         assert_eq!(v, value("[ship]\nmass = 3.0\nlength = 9.0\nwidth = 4.0\n"));
-        let e = resolve(Path::new("dir/loop1.toml"), &mut read, &mut parse, &wrap).unwrap_err();
+        let e = resolve(Path::new("dir/loop1.toml"), None, &mut read, &mut parse, &wrap).unwrap_err();
         assert!(e.contains("loops back to dir/loop1.toml"), "{e}");
-        let e = resolve(Path::new("dir/loop3.toml"), &mut read, &mut parse, &wrap).unwrap_err();
+        let e = resolve(Path::new("dir/loop3.toml"), None, &mut read, &mut parse, &wrap).unwrap_err();
         assert!(e.contains("loops back to dir/../dir/./loop3.toml"), "{e}");
         for (path, normal) in [("a/../b/./c", "b/c"), ("../a/../../b", "../../b"), ("/../a", "/a"), ("a/b/..", "a")] {
             assert_eq!(lexically_normal(Path::new(path)), Path::new(normal), "{path}");
         }
-        let e = resolve(Path::new("dir/missing.toml"), &mut read, &mut parse, &wrap).unwrap_err();
+        let e = resolve(Path::new("dir/missing.toml"), None, &mut read, &mut parse, &wrap).unwrap_err();
         assert_eq!(e, "no dir/missing.toml");
         let files = [("dir/d.toml", "extends = \"gone.toml\"\n")];
         let mut read = |p: &Path, by: Option<&Path>| -> Result<String, String> {
@@ -424,7 +449,7 @@ mod tests {
             let by = by.map(|b| format!(" (named by {})", b.display())).unwrap_or_default();
             files.iter().find(|(n, _)| *n == key).map(|(_, t)| t.to_string()).ok_or(format!("no {key}{by}"))
         };
-        let e = resolve(Path::new("dir/d.toml"), &mut read, &mut parse, &wrap).unwrap_err();
+        let e = resolve(Path::new("dir/d.toml"), None, &mut read, &mut parse, &wrap).unwrap_err();
         assert_eq!(e, "no dir/gone.toml (named by dir/d.toml)");
     }
 }

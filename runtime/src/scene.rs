@@ -552,18 +552,7 @@ impl Scene {
     /// # Ok::<(), SceneError>(())
     /// ```
     pub fn load(path: &Path) -> Result<Scene, SceneError> {
-        let file = path.display().to_string();
-        let text =
-            read_scene_file(path).map_err(|source| SceneError::Io { file: file.clone(), extended_by: None, source })?;
-        let top = match text.parse::<toml::Table>() {
-            Ok(top) if top.contains_key("extends") => top,
-            // A whole file: parsed as text, so that errors point at its lines.
-            _ => return Scene::from_toml(&text, &file),
-        };
-        let value = Scene::resolve_file(path)?;
-        let mut scene = Scene::from_value(value, &file)?;
-        scene.own_meta(path, &top);
-        Ok(scene)
+        Scene::load_edited(path, &|_| {})
     }
 
     /// [`Scene::load`] with the tables `over` laid on the file's (as a file's own tables are
@@ -571,6 +560,9 @@ impl Scene {
     /// file: a command line's `--dt` over a file whose own step is refused. Errors name the
     /// file `FILE (with command-line overrides)`. An empty `over` is [`Scene::load`].
     pub fn load_over(path: &Path, over: toml::Table) -> Result<Scene, SceneError> {
+        if over.is_empty() {
+            return Scene::load(path);
+        }
         let over = toml::Value::Table(over);
         Scene::load_edited(path, &|value| overrides::merge(value, over.clone()))
     }
@@ -579,8 +571,8 @@ impl Scene {
     /// over each other) before the scene is checked: the general form of
     /// [`Scene::load_over`], for edits that read the file's values (`batch --methods dp5@0.05`
     /// raises an output interval below its step). Errors name the file `FILE (with
-    /// command-line overrides)` where `edit` changed something; an edit that changes nothing
-    /// is [`Scene::load`].
+    /// command-line overrides)` where `edit` changed something ([`overrides::same`]); an edit
+    /// that changes nothing is [`Scene::load`], whose errors point at the file's lines.
     pub fn load_edited(path: &Path, edit: &dyn Fn(&mut toml::Value)) -> Result<Scene, SceneError> {
         let file = path.display().to_string();
         let text =
@@ -590,13 +582,15 @@ impl Scene {
             return Scene::from_toml(&text, &file);
         };
         let extends = top.contains_key("extends");
-        let mut value = if extends { Scene::resolve_file(path)? } else { toml::Value::Table(top.clone()) };
+        let mut value = if extends { Scene::resolve_file(path, None)? } else { toml::Value::Table(top.clone()) };
         let before = value.clone();
         edit(&mut value);
-        if value == before {
-            return Scene::load(path);
-        }
-        let mut scene = Scene::from_value(value, &format!("{file} (with command-line overrides)"))?;
+        let mut scene = match (overrides::same(&value, &before), extends) {
+            // A whole file as it is: parsed as text, so that errors point at its lines.
+            (true, false) => return Scene::from_toml(&text, &file),
+            (true, true) => Scene::from_value(value, &file)?,
+            (false, _) => Scene::from_value(value, &format!("{file} (with command-line overrides)"))?,
+        };
         if extends {
             scene.own_meta(path, &top);
         }
@@ -617,15 +611,16 @@ impl Scene {
         let Some(base) = top.remove("extends").and_then(|v| v.as_str().map(str::to_string)) else {
             return Err(SceneError::Override { file, error: OverrideError::ExtendsType });
         };
-        let mut value = Scene::resolve_file(&path.parent().unwrap_or(Path::new("")).join(base))?;
+        let mut value = Scene::resolve_file(&path.parent().unwrap_or(Path::new("")).join(base), Some(path))?;
         overrides::merge(&mut value, toml::Value::Table(top));
         let mut scene = Scene::from_value(value, &file)?;
         scene.own_meta(path, &own);
         Ok(scene)
     }
 
-    /// The tables of the scene file at `path` with its `extends` chain laid over each other.
-    fn resolve_file(path: &Path) -> Result<toml::Value, SceneError> {
+    /// The tables of the scene file at `path` with its `extends` chain laid over each other;
+    /// `named_by` is the file (or text) whose `extends` named `path`, if any.
+    fn resolve_file(path: &Path, named_by: Option<&Path>) -> Result<toml::Value, SceneError> {
         fn io(p: &Path, by: Option<&Path>) -> impl FnOnce(std::io::Error) -> SceneError {
             let (file, extended_by) = (p.display().to_string(), by.map(|b| b.display().to_string()));
             move |source| SceneError::Io { file, extended_by, source }
@@ -637,7 +632,7 @@ impl Scene {
                 .map_err(|e| SceneError::Parse { file: p.display().to_string(), message: e.to_string() })
         };
         let wrap = |p: &Path, error| SceneError::Override { file: p.display().to_string(), error };
-        overrides::resolve(path, &mut read, &mut parse, &wrap)
+        overrides::resolve(path, named_by, &mut read, &mut parse, &wrap)
     }
 
     /// The `[meta]` of a scene that extends another, where the file does not set it: its name
@@ -1383,8 +1378,8 @@ pub fn plain_types(message: &str) -> String {
     let mut out = match message.split_once(QUOTED) {
         Some((before, rest)) => match rest.split_once('`') {
             Some((number, after)) => match number.parse::<f64>() {
-                Ok(v) => format!("{before}{QUOTED}{}`{after}", fmt_value(v)),
-                Err(_) => message.to_string(),
+                Ok(v) if extreme(v) => format!("{before}{QUOTED}{}`{after}", fmt_value(v)),
+                _ => message.to_string(),
             },
             None => message.to_string(),
         },

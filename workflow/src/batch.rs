@@ -240,9 +240,10 @@ fn append(message: &mut String, note: &str) {
 /// an error of the edited scene marks it invalid.
 pub type Configure<'a> = &'a (dyn Fn(&mut toml::Value) + Sync);
 
-/// Runs every file in parallel; `configure` adjusts each scene, `kernel` builds each run's
-/// kernel and `done` is called (from any thread) as each run finishes; with `error_estimate`
-/// each run is repeated [`refined`] to estimate its error. Rows come back in file order.
+/// Runs every file in parallel; `configure` edits each file's tables before its scene is
+/// checked, `kernel` builds each run's kernel and `done` is called (from any thread) as each
+/// run finishes; with `error_estimate` each run is repeated [`refined`] to estimate its
+/// error. Rows come back in file order.
 pub fn run_all(
     files: &[PathBuf],
     configure: Configure,
