@@ -789,7 +789,7 @@ fn run_of_a_ship_at_rest_says_it_stopped_at_the_start() {
 }
 
 /// A run refused before its first step has no E_0, drift or work: `run --json` gives them as
-/// null, every work name present (it gave 0 and an empty `work`).
+/// null, every work name present (it gave 0 and an empty `work`), and no `checks_pass`.
 #[test]
 fn run_json_of_a_refused_run_has_nulls_where_nothing_was_measured() {
     let scene = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/stress/dt_too_large.toml");
@@ -804,4 +804,6 @@ fn run_json_of_a_refused_run_has_nulls_where_nothing_was_measured() {
     assert_eq!(work.len(), 11, "{work:?}");
     assert!(work.values().all(serde_json::Value::is_null), "{work:?}");
     assert_eq!(v["initial_kinetic_energy"], 0.0, "documented as 0 for a run that never started");
+    // No check was made: not even the break loads' (a run that took a step has that one).
+    assert!(v.get("checks_pass").is_none(), "{v}");
 }

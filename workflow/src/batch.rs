@@ -173,7 +173,7 @@ pub fn row(file: &Path, model: &Model, result: &RunResult) -> BatchRow {
         wall_time: result.wall_time.as_secs_f64(),
         cpu_time: result.cpu_time.map(|d| d.as_secs_f64()),
         rhs_evaluations: Some(result.rhs_evaluations),
-        checks_pass: checks::verdict(&outcomes, &over),
+        checks_pass: checks::verdict(&outcomes, &over, checks::break_loads_held(model, result)),
         stop_error_estimate: None,
         trajectory_error_estimate: None,
         peak_error_estimate: None,
@@ -469,8 +469,8 @@ mod tests {
         let model = Model::new(&scene).unwrap();
         let coarse = simulate::run(&model, Box::new(GeneratedKernel::new(&model.chain).unwrap()));
         let mut row = row(Path::new("case01.toml"), &model, &coarse);
-        // No [checks] and no break load exceeded: no verdict, taken as a pass.
-        assert_eq!(row.checks_pass, None);
+        // No [checks]: the break loads' check, which every scene has, passed.
+        assert_eq!(row.checks_pass, Some(true));
         // The refined run's peak at the fairlead above the cable's break load (2 520 kN).
         let mut fine = coarse.clone();
         let last = fine.peak_tensions.len() - 1;

@@ -156,17 +156,25 @@ fn shown(v: f64, limit: f64, decimals: usize) -> String {
 /// and its break loads.
 pub fn verdict_of(model: &Model, result: &RunResult) -> Option<bool> {
     let outcomes = model.scene.checks.as_ref().map(|c| evaluate(c, model, result)).unwrap_or_default();
-    verdict(&outcomes, &break_exceedances(model, result))
+    verdict(&outcomes, &break_exceedances(model, result), break_loads_held(model, result))
 }
 
-/// The design checks' verdict: false when a break load was exceeded (`exceedances`, a check
-/// every scene has) or an outcome of `[checks]` failed, true when `[checks]` gave outcomes
-/// and all passed, none when the scene has no `[checks]` and no break load was exceeded.
-pub fn verdict(outcomes: &[CheckOutcome], exceedances: &[Exceedance]) -> Option<bool> {
+/// Whether the run `result` of `model` was held to its break loads: it took a step and some
+/// joint has one (the paper's every joint). The break-load check is then a check of the run,
+/// passed or failed, as `run`'s summary says it, whether the scene has `[checks]` or not.
+pub fn break_loads_held(model: &Model, result: &RunResult) -> bool {
+    result.ran() && (2..=model.body_count()).any(|k| model.joint_limits(k).breaking.is_some())
+}
+
+/// The design checks' verdict: false when a break load was exceeded (`exceedances`) or an
+/// outcome of `[checks]` failed; true when nothing failed and some check was made (the
+/// break loads, `held`, or `[checks]`); none when no check was made (a run refused before
+/// its first step with no `[checks]`, a scene whose joints have no break load).
+pub fn verdict(outcomes: &[CheckOutcome], exceedances: &[Exceedance], held: bool) -> Option<bool> {
     if !exceedances.is_empty() {
         return Some(false);
     }
-    (!outcomes.is_empty()).then(|| outcomes.iter().all(|o| o.pass))
+    (held || !outcomes.is_empty()).then(|| outcomes.iter().all(|o| o.pass))
 }
 
 #[cfg(test)]
@@ -175,6 +183,24 @@ mod tests {
 
     fn outcome(name: &str, value: Option<f64>, limit: f64, joint: Option<usize>, pass: bool) -> CheckOutcome {
         CheckOutcome { name: name.into(), value, limit, joint, pass }
+    }
+
+    /// One verdict over the break loads and `[checks]`: false on an exceeded break load
+    /// whatever `[checks]` say, true when nothing failed and some check was made (the break
+    /// loads of a run that took a step count, `[checks]` or not), none when none was made.
+    #[test]
+    fn the_verdict_counts_the_break_loads_as_a_check() {
+        let over = [Exceedance { joint: 46, peak: 3.0e6, limit: 2.52e6 }];
+        let (pass, fail) =
+            (outcome("max_anchor_drag", Some(1.0), 100.0, None, true), outcome("x", None, 1.0, None, false));
+        assert_eq!(verdict(&[], &over, true), Some(false));
+        assert_eq!(verdict(std::slice::from_ref(&pass), &over, true), Some(false));
+        assert_eq!(verdict(&[], &[], true), Some(true));
+        assert_eq!(verdict(std::slice::from_ref(&pass), &[], true), Some(true));
+        assert_eq!(verdict(&[pass.clone(), fail.clone()], &[], true), Some(false));
+        assert_eq!(verdict(&[], &[], false), None);
+        assert_eq!(verdict(&[pass], &[], false), Some(true));
+        assert_eq!(verdict(&[fail], &[], false), Some(false));
     }
 
     /// The safety factor is said as the factor the run achieved (break load over peak

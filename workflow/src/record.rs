@@ -99,8 +99,8 @@ pub struct RunSummary {
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub checks: Vec<CheckOutcome>,
     /// Whether every design check passed: false when a break load was exceeded or a limit of
-    /// `[checks]` failed (absent when the scene has no `[checks]` and no break load was
-    /// exceeded).
+    /// `[checks]` failed, true when nothing failed and a check was made (the break loads of a
+    /// run that took a step, or `[checks]`), absent when none was made ([`checks::verdict`]).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub checks_pass: Option<bool>,
     /// x_L of the laid line, m: `initial.horizontal_projection`, or the one that
@@ -245,7 +245,11 @@ impl RunSummary {
                 }
                 Stop::ShipStopped | Stop::EndTime => None,
             },
-            checks_pass: checks::verdict(&outcomes, &checks::break_exceedances(model, result)),
+            checks_pass: checks::verdict(
+                &outcomes,
+                &checks::break_exceedances(model, result),
+                checks::break_loads_held(model, result),
+            ),
             checks: outcomes,
             initial_horizontal_projection: model.catenary.horizontal,
             initial_horizontal_tension: t_h,
