@@ -1,5 +1,8 @@
 //! The command-line contract: `run`, `eval` and their JSON and CSV outputs.
 
+mod scratch;
+use scratch::Scratch;
+
 use std::process::Command;
 
 use kanestop_runtime::eval::EvalOutput;
@@ -8,10 +11,9 @@ fn kanestop() -> Command {
     Command::new(env!("CARGO_BIN_EXE_kanestop"))
 }
 
-fn temp_dir(name: &str) -> std::path::PathBuf {
-    let dir = std::env::temp_dir().join(format!("kanestop-test-{name}-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+/// The test's scratch folder, removed when it passes (tests/scratch).
+fn temp_dir(name: &str) -> Scratch {
+    Scratch::new(&format!("test-{name}"))
 }
 
 /// A short, stable scene: case 1 with a smaller step, ended at 0.05 s.
@@ -727,7 +729,6 @@ fn codegen_fold_writes_the_scene_s_folded_kernel() {
         std::fs::read_dir(&dir).unwrap().flatten().map(|e| e.file_name().to_string_lossy().into_owned()).collect();
     names.sort();
     assert_eq!(names, ["a-file", "elsewhere", "folded_case01.rs"], "nothing else written");
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 /// `codegen` says how a scene's loads run: a chain in vacuum (water and seabed off) with its

@@ -1,6 +1,9 @@
 //! Every exit code of `kanestop --help`, and where the words go (standard output for
 //! summaries, standard error for errors and diagnostics), and which files a run writes.
 
+mod scratch;
+use scratch::Scratch;
+
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
@@ -8,11 +11,9 @@ fn kanestop() -> Command {
     Command::new(env!("CARGO_BIN_EXE_kanestop"))
 }
 
-fn temp_dir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("kanestop-exit-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+/// The test's scratch folder, removed when it passes (tests/scratch).
+fn temp_dir(name: &str) -> Scratch {
+    Scratch::new(&format!("exit-{name}"))
 }
 
 /// Case 1 with a smaller step, ended at 0.05 s, with `edit` applied to its text.

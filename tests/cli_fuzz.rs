@@ -1,6 +1,9 @@
 //! No panic on any command line: random subcommands, flags and values (a fixed seed) each end
 //! with a documented exit code (0–4) and, when not 0, a message on standard error.
 
+mod scratch;
+use scratch::Scratch;
+
 use std::process::Command;
 
 use rand::rngs::StdRng;
@@ -9,8 +12,7 @@ use rand::{Rng, SeedableRng};
 
 #[test]
 fn random_command_lines_end_cleanly() {
-    let dir = std::env::temp_dir().join(format!("kanestop-fuzz-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = Scratch::new("fuzz");
     let short = dir.join("short.toml");
     std::fs::write(&short, kanestop_runtime::paper::DEFAULT_SCENE.replace("end_time = 60.0", "end_time = 0.02"))
         .unwrap();

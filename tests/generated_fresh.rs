@@ -6,6 +6,9 @@
 //! rewritten (as `kanestop codegen --write` would), so a second run passes and the diff is
 //! there to review.
 
+mod scratch;
+use scratch::Scratch;
+
 use std::path::Path;
 
 #[test]
@@ -40,7 +43,7 @@ fn checked_in_kernels_are_fresh() {
 #[test]
 fn checked_in_folded_kernel_is_fresh() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let dir = std::env::temp_dir().join(format!("kanestop-test-folded-{}", std::process::id()));
+    let dir = Scratch::new("test-folded");
     let out = std::process::Command::new(env!("CARGO_BIN_EXE_kanestop"))
         .args(["codegen", "--scene", "scenes/paper/case01.toml", "--fold"])
         .arg(&dir)
@@ -50,7 +53,6 @@ fn checked_in_folded_kernel_is_fresh() {
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let name = format!("{}.rs", kanestop_codegen::CHECKED_IN_FOLDED);
     let text = std::fs::read_to_string(dir.join(&name)).unwrap();
-    std::fs::remove_dir_all(&dir).unwrap();
     let path = root.join("generated/src").join(&name);
     if std::fs::read_to_string(&path).ok().as_deref() != Some(text.as_str()) {
         std::fs::write(&path, &text).unwrap();

@@ -2,6 +2,9 @@
 //! against it in `generated_run.rs` and `generated_vs_reference.rs`). The same check is
 //! `cargo run --release -- batch scenes/paper --tolerance 0.05`.
 
+mod scratch;
+use scratch::Scratch;
+
 use kanestop_runtime::generated::GeneratedKernel;
 use kanestop_runtime::model::Model;
 use kanestop_runtime::paper::CASES;
@@ -193,7 +196,7 @@ fn accuracy_study_compares_methods_with_a_tight_reference() {
     assert!(s.rows.iter().any(|r| r.best));
     let (base, _) = accuracy::matched(&s, Method::Rk4, 0.002).expect("the RK4 2 ms row");
     assert_eq!(base.setting, 0.002);
-    let dir = std::env::temp_dir().join(format!("kanestop-accuracy-{}", std::process::id()));
+    let dir = Scratch::new("accuracy");
     let files = accuracy::write(&s, &dir).unwrap();
     assert_eq!(files.len(), 3);
     let svg = std::fs::read_to_string(&files[2]).unwrap();

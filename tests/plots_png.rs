@@ -7,6 +7,9 @@
 //! the curves' coloured pixels, so the test passes on a machine with no fonts at all.
 //! The PNGs are kept in `target/chart-png/` for a person to look at.
 
+mod scratch;
+use scratch::Scratch;
+
 use std::path::{Path, PathBuf};
 
 use kanestop_runtime::model::Model;
@@ -79,7 +82,7 @@ fn paper_run(case: &str) -> (Model, RunResult) {
 fn every_chart_of_plot_and_run_plot_renders() {
     let runs: Vec<(Model, RunResult)> = ["case01", "case15"].into_iter().map(paper_run).collect();
     let refs: Vec<(&Model, &RunResult)> = runs.iter().map(|(m, r)| (m, r)).collect();
-    let dir = std::env::temp_dir().join(format!("kanestop-png-{}", std::process::id()));
+    let dir = Scratch::new("png");
     // `plot` (two runs overlaid) and `run --plot` (one run).
     for (tag, set) in [("plot", &refs[..]), ("run", &refs[..1])] {
         let files = plot::write_plots(set, &dir.join(tag)).unwrap();
@@ -145,8 +148,7 @@ fn the_sweep_heat_maps_render_with_the_check_boundary() {
     let plan = spec.plan();
     let rows = sweep::run(&plan, &kernels::factory(KernelChoice::Generated), None, &|_| {}).unwrap();
     assert!(rows.iter().any(|r| r.checks_pass == Some(false)) && rows.iter().any(|r| r.checks_pass == Some(true)));
-    let dir = std::env::temp_dir().join(format!("kanestop-heatmap-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = Scratch::new("heatmap");
     let files = heatmap::write(&spec, &rows, &heatmap::Output::ALL, &dir).unwrap();
     assert_eq!(files.len(), heatmap::Output::ALL.len());
     for f in &files {

@@ -1,5 +1,8 @@
 //! Bad scenes get a clear error naming the file, the field, the value and the valid range.
 
+mod scratch;
+use scratch::Scratch;
+
 use kanestop_runtime::model::Model;
 use kanestop_runtime::paper::DEFAULT_SCENE;
 use kanestop_runtime::scene::{Scene, SceneError};
@@ -219,8 +222,7 @@ fn a_paper_time_that_is_not_a_time_is_refused() {
 #[test]
 fn a_scene_path_that_is_no_file_is_refused_without_reading_it() {
     // Regression: `extends = "/dev/zero"` read without end.
-    let dir = std::env::temp_dir().join(format!("kanestop-devzero-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = Scratch::new("devzero");
     let file = dir.join("z.toml");
     std::fs::write(&file, "extends = \"/dev/zero\"\n").unwrap();
     let e = Scene::load(&file).unwrap_err().to_string();

@@ -1,6 +1,9 @@
 //! Scenes from scenes: `extends` with overrides, and dotted-path overrides, give exactly the
 //! scene (and the run) of the full file they stand for.
 
+mod scratch;
+use scratch::Scratch;
+
 use std::path::PathBuf;
 
 use kanestop_runtime::generated::GeneratedKernel;
@@ -9,10 +12,9 @@ use kanestop_runtime::paper::DEFAULT_SCENE;
 use kanestop_runtime::scene::{Scene, SceneError};
 use kanestop_runtime::simulate;
 
-fn temp_dir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("kanestop-extends-{name}-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+/// The test's scratch folder, removed when it passes (tests/scratch).
+fn temp_dir(name: &str) -> Scratch {
+    Scratch::new(&format!("extends-{name}"))
 }
 
 /// Case 1 as a file, cut to 2 s of simulated time.

@@ -1,6 +1,9 @@
 //! Rules between fields (issue 15, item 2): each value may be valid alone and the scene
 //! still impossible; each rule is refused naming the field and what it must be.
 
+mod scratch;
+use scratch::Scratch;
+
 use kanestop_runtime::paper::DEFAULT_SCENE;
 use kanestop_runtime::scene::{fmt_value, Scene, SceneError};
 
@@ -211,8 +214,7 @@ fn a_check_is_set_on_a_scene_without_checks() {
 /// The command line refuses an impossible geometry with exit 2, naming the field.
 #[test]
 fn cli_refuses_the_h_l_60_scene_with_exit_2() {
-    let dir = std::env::temp_dir().join(format!("kanestop-rules-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = Scratch::new("rules");
     let path = dir.join("bad60.toml");
     std::fs::write(&path, DEFAULT_SCENE.replace("vertical_projection = 6.0", "vertical_projection = 60.0")).unwrap();
     let out = std::process::Command::new(env!("CARGO_BIN_EXE_kanestop")).arg("run").arg(&path).output().unwrap();
@@ -220,7 +222,6 @@ fn cli_refuses_the_h_l_60_scene_with_exit_2() {
     assert_eq!(out.status.code(), Some(2), "{err}");
     assert!(err.contains("bad60.toml") && err.contains("initial.horizontal_projection = 148"), "{err}");
     assert!(err.contains("[95.") && err.contains("135.68"), "{err}");
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 /// Every field with a fixed range states it in docs/scenes.md as the refusal does: the range

@@ -3,6 +3,9 @@
 //! count neither 3 nor 7 divides); a merge refuses shards of another sweep, a missing shard
 //! and a row held twice; a shard killed halfway and resumed gives the same result.
 
+mod scratch;
+use scratch::Scratch;
+
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
 use std::sync::OnceLock;
@@ -14,11 +17,9 @@ fn kanestop() -> Command {
     Command::new(env!("CARGO_BIN_EXE_kanestop"))
 }
 
-fn temp_dir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("kanestop-shards-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+/// The test's scratch folder, removed when it passes (tests/scratch).
+fn temp_dir(name: &str) -> Scratch {
+    Scratch::new(&format!("shards-{name}"))
 }
 
 /// A spec of 11 short rows over case 1: ten anchor masses and one invalid (negative) one;
@@ -61,11 +62,14 @@ fn table(o: &Output) -> String {
     String::from_utf8_lossy(&o.stdout).lines().filter(|l| !l.starts_with("written")).collect::<Vec<_>>().join("\n")
 }
 
-/// The local run of the 11-row spec: (folder, its output), made once.
+/// The local run of the 11-row spec: (folder, its output), made once, in cargo's folder for
+/// the tests' files (shared by the tests, it outlives each of them).
 fn local() -> &'static (PathBuf, Output) {
     static LOCAL: OnceLock<(PathBuf, Output)> = OnceLock::new();
     LOCAL.get_or_init(|| {
-        let dir = temp_dir("local");
+        let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("shards-local");
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
         let out = dir.join("out");
         let o = run(&["sweep", s(&spec(&dir, 3.0)), "--out", s(&out)], &[]);
         assert_eq!(o.status.code(), Some(3), "an invalid row: exit 3; {}", stderr(&o));
@@ -427,7 +431,8 @@ fn the_plan_hash_depends_on_the_plan_and_kernel_not_on_where_or_how_it_runs() {
         let v: Value = serde_json::from_slice(&std::fs::read(out.join("shards/shard-0-of-11.json")).unwrap()).unwrap();
         v["plan_hash"].as_str().unwrap().to_string()
     };
-    let (a, b, c) = (temp_dir("hash-a"), temp_dir("hash-b").join("deeper"), temp_dir("hash-c"));
+    let (a, b_root, c) = (temp_dir("hash-a"), temp_dir("hash-b"), temp_dir("hash-c"));
+    let b = b_root.join("deeper");
     std::fs::create_dir_all(&b).unwrap();
     spec(&a, 3.0);
     spec(&b, 3.0);

@@ -1,6 +1,9 @@
 //! `kanestop sweep` and `report sensitivity`: rows in spec order with their inputs, a row
 //! equal to its scene run alone, Latin-hypercube strata, design checks and exit codes.
 
+mod scratch;
+use scratch::Scratch;
+
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
@@ -15,11 +18,9 @@ fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
 }
 
-fn temp_dir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("kanestop-sweep-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+/// The test's scratch folder, removed when it passes (tests/scratch).
+fn temp_dir(name: &str) -> Scratch {
+    Scratch::new(&format!("sweep-{name}"))
 }
 
 /// A spec in `dir` over the paper's case 1.
@@ -195,7 +196,6 @@ fn a_line_length_and_depth_sweep_lays_every_row_by_its_tension() {
         .join(" ");
     let quoted = format!("{refused} of the 12 are refused");
     assert!(doc.contains(&quoted), "docs/sweeps.md should say of scenes/sweeps/line_depth.toml: {quoted}");
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 #[test]

@@ -187,5 +187,6 @@ mod tests {
         assert!(check_file_target(&dir.join("out/sweep.json")).is_err());
         std::fs::remove_dir_all(dir.join("out")).unwrap();
         assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 1, "no probe left behind");
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 }
