@@ -178,8 +178,8 @@ pub fn batch(
     rows.sort_by(|a, b| a.file.cmp(&b.file));
     bar.finish_and_clear();
     print!("{}", batch::table(&rows));
-    let (csv, json) = batch::write(&rows, out)?;
-    println!("written   {} and {}", csv.display(), json.display());
+    let [csv, json, units] = batch::write(&rows, out)?;
+    println!("written   {}, {} and {} (the columns' units)", csv.display(), json.display(), units.display());
     let mut ok = !rows.iter().any(|r| r.status.is_problem());
     if let Some(tol) = tolerance {
         let v = validation::validate(&rows, tol);

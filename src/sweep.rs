@@ -11,7 +11,6 @@ use crate::{Exit, KernelArg};
 use kanestop_runtime::scene::Scene;
 use kanestop_workflow::batch::Status;
 use kanestop_workflow::kernels::{self, KernelChoice};
-use kanestop_workflow::output::write_atomically;
 use kanestop_workflow::sweep::heatmap;
 use kanestop_workflow::sweep::shard::{self, Shard};
 use kanestop_workflow::sweep::shard_file::{self, ShardFile, ShardRun, SweepId};
@@ -500,12 +499,7 @@ pub fn sensitivity(args: &SensitivityArgs) -> Result<Exit> {
             println!("  note: {m} is not a continuous parameter of the scene (a zero or non-real field); ignored");
         }
     }
-    std::fs::create_dir_all(&args.out).with_context(|| format!("cannot create {}", args.out.display()))?;
-    let (c, j) = (args.out.join(sensitivity::FILES[0]), args.out.join(sensitivity::FILES[1]));
-    write_atomically(&c, sensitivity::csv(&study).as_bytes())
-        .with_context(|| format!("cannot write {}", c.display()))?;
-    write_atomically(&j, serde_json::to_string_pretty(&study)?.as_bytes())
-        .with_context(|| format!("cannot write {}", j.display()))?;
-    println!("written   {} and {}", c.display(), j.display());
+    let [c, j, u] = sensitivity::write(&study, &args.out)?;
+    println!("written   {}, {} and {} (the columns' units)", c.display(), j.display(), u.display());
     Ok(Exit::Done)
 }

@@ -400,6 +400,11 @@ fn exit_4_a_batch_row_fails_its_checks() {
     let col = head.iter().position(|h| *h == "checks").expect("checks column");
     let cells: Vec<&str> = csv.lines().skip(1).map(|l| l.split(',').nth(col).unwrap()).collect();
     assert_eq!(cells, ["pass", "fail", "pass"]);
+    // Beside it, every column's unit and meaning, in the CSV's order.
+    let units = std::fs::read_to_string(out_dir.join("batch.units.csv")).unwrap();
+    let listed: Vec<&str> = units.lines().skip(1).map(|l| l.split(',').next().unwrap()).collect();
+    assert_eq!(listed, head);
+    assert!(units.starts_with("column,unit,description\n") && units.contains("\npeak_tension,N,"), "{units}");
 
     // `run` of the failing scene names each [checks] limit with its value in the summary,
     // beside the break-load line, and exits 4.

@@ -198,9 +198,14 @@ fn accuracy_study_compares_methods_with_a_tight_reference() {
     assert_eq!(base.setting, 0.002);
     let dir = Scratch::new("accuracy");
     let files = accuracy::write(&s, &dir).unwrap();
-    assert_eq!(files.len(), 3);
+    assert_eq!(files.len(), 4);
     let svg = std::fs::read_to_string(&files[2]).unwrap();
     assert!(svg.starts_with("<svg") && svg.contains("Error against run time"));
+    // accuracy.units.csv names the CSV's columns in order, each with its unit.
+    let (csv, units) = (std::fs::read_to_string(&files[0]).unwrap(), std::fs::read_to_string(&files[3]).unwrap());
+    let listed: Vec<&str> = units.lines().skip(1).map(|l| l.split(',').next().unwrap()).collect();
+    assert_eq!(listed, csv.lines().next().unwrap().split(',').collect::<Vec<_>>());
+    assert!(units.contains("\nstopping_time_error,s,") && units.contains("\ntrajectory_error,m,"), "{units}");
 }
 
 /// A setting refused before its first step (RK4 above the stability limit) is a row of its

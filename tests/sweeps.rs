@@ -101,6 +101,17 @@ fn a_3x3_grid_runs_in_spec_order_with_inputs_as_columns_and_checks() {
     ] {
         assert!(head.contains(&col), "{col} in {head:?}");
     }
+    // Beside it, every column's unit and meaning, in the CSV's order (none left undescribed).
+    let units = std::fs::read_to_string(out.join("sweep.units.csv")).unwrap();
+    let lines: Vec<Vec<&str>> = units.lines().skip(1).map(|l| l.splitn(3, ',').collect()).collect();
+    assert_eq!(lines.iter().map(|l| l[0]).collect::<Vec<_>>(), head);
+    assert!(lines.iter().all(|l| l[2].len() > 2), "{units}");
+    let unit = |c: &str| lines.iter().find(|l| l[0] == c).map(|l| l[1]);
+    assert_eq!(
+        ["ship.mass", "initial.ship_speed", "chain_peak_tension", "work_friction", "check_max_stopping_distance_value"]
+            .map(unit),
+        [Some("kg"), Some("m/s"), Some("N"), Some("J"), Some("m")]
+    );
     // The energy split: the parts sum to the lumped terms in every row.
     for r in &rows {
         let split = &r["energy_split"];
@@ -507,6 +518,11 @@ fn sensitivity_of_a_base_that_does_not_stop_ranks_by_the_peak_tension() {
     assert!(stdout.contains("no first-order band: none of the 1 uncertain inputs"), "{stdout}");
     assert!(stdout.contains("environment.line_friction is not a continuous parameter"), "{stdout}");
     let csv = std::fs::read_to_string(out.join("sensitivity.csv")).unwrap();
+    // sensitivity.units.csv names its columns in order, each with its unit.
+    let units = std::fs::read_to_string(out.join("sensitivity.units.csv")).unwrap();
+    let listed: Vec<&str> = units.lines().skip(1).map(|l| l.split(',').next().unwrap()).collect();
+    assert_eq!(listed, csv.lines().next().unwrap().split(',').collect::<Vec<_>>());
+    assert!(units.contains("\nd_peak_tension,N,"), "{units}");
     let peaks: Vec<f64> = csv
         .lines()
         .skip(1)

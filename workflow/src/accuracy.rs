@@ -381,14 +381,31 @@ pub fn table(s: &AccuracyStudy) -> String {
 }
 
 /// The files the study writes into its folder.
-pub const FILES: [&str; 3] = ["accuracy.csv", "accuracy.json", "accuracy.svg"];
+pub const FILES: [&str; 4] = ["accuracy.csv", "accuracy.json", "accuracy.svg", "accuracy.units.csv"];
 
-/// Writes accuracy.csv, accuracy.json and accuracy.svg (stopping-time error against CPU
-/// time, log–log, one curve per method) into `dir`.
+/// The columns of `accuracy.csv` in order, each with its unit and what it holds (the header
+/// and `accuracy.units.csv`); the errors are against the reference run's (docs/integrators.md).
+pub const COLUMNS: [(&str, &str, &str); 11] = [
+    ("method", "", "integrator: rk4, dp5, sdirk4"),
+    ("setting", "s or 1", "dt in s (rk4), or rtol, dimensionless (dp5, sdirk4)"),
+    ("status", "", "stopped, or why not"),
+    ("stopping_time_error", "s", "|stopping time - the reference's|"),
+    ("ship_displacement_error", "m", "|ship displacement at the stop - the reference's|"),
+    ("anchor_displacement_error", "m", "|anchor displacement at the stop - the reference's|"),
+    ("peak_tension_error", "", "|peak tension - the reference's| / the reference's"),
+    ("trajectory_error", "m", "largest |centroid position - the reference's| of any body at the common output times"),
+    ("wall_time", "s", "median wall time of the run"),
+    ("rhs_evaluations", "", "right-hand-side evaluations"),
+    ("cpu_time", "s", "median CPU time of the run's thread"),
+];
+
+/// Writes accuracy.csv, accuracy.json, accuracy.svg (stopping-time error against CPU time,
+/// log–log, one curve per method) and accuracy.units.csv (the CSV's units) into `dir`.
 pub fn write(s: &AccuracyStudy, dir: &Path) -> Result<Vec<PathBuf>> {
     std::fs::create_dir_all(dir).map_err(Error::io("create", dir))?;
     let o = |v: Option<f64>| v.map(|v| format!("{v:e}")).unwrap_or_default();
-    let mut csv = String::from("method,setting,status,stopping_time_error,ship_displacement_error,anchor_displacement_error,peak_tension_error,trajectory_error,wall_time,rhs_evaluations,cpu_time\n");
+    let mut csv = COLUMNS.map(|c| c.0).join(",");
+    csv.push('\n');
     for r in &s.rows {
         csv.push_str(&format!(
             "{},{:e},{},{},{},{},{},{},{},{},{}\n",
@@ -412,6 +429,7 @@ pub fn write(s: &AccuracyStudy, dir: &Path) -> Result<Vec<PathBuf>> {
     w(&files[0], csv.as_bytes())?;
     w(&files[1], serde_json::to_string_pretty(s).expect("a study serialises: numbers and names").as_bytes())?;
     w(&files[2], chart.as_bytes())?;
+    w(&files[3], crate::output::units_csv(COLUMNS).as_bytes())?;
     Ok(files.to_vec())
 }
 

@@ -12,7 +12,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::checks::{self, break_exceedances};
 use crate::kernels::KernelFactory;
-use crate::output::{write_atomically, CsvNumber};
+use crate::output::{self, write_atomically, CsvNumber};
 use crate::{diagnostic, parallel, Error, Result};
 
 /// How a row's run ended.
@@ -105,8 +105,10 @@ pub struct BatchRow {
     /// Right-hand-side evaluations of the run (none for a scene that did not load).
     #[serde(default)]
     pub rhs_evaluations: Option<u64>,
-    /// Whether every design check of the scene's `[checks]` passed (none when the scene has
-    /// none, or did not load); a failed check is named in `message`.
+    /// Whether every design check passed: the break loads, which every run that took a step
+    /// is held to, and the scene's `[checks]` ([`checks::verdict`]; none when no check was
+    /// made: a scene that did not load, a run refused before its first step with no
+    /// `[checks]`); a failed check is named in `message`.
     #[serde(default)]
     pub checks_pass: Option<bool>,
     /// |t_stop − t_stop,refined|, s: the stopping time's error estimate (with
@@ -388,11 +390,37 @@ pub fn table(rows: &[BatchRow]) -> String {
     out
 }
 
-/// The rows as CSV.
+/// The columns of `batch.csv` in order, each with its unit ("" for a number without one, a
+/// count or text) and what it holds: the header and the units sidecar, `batch.units.csv`.
+pub const COLUMNS: [(&str, &str, &str); 22] = [
+    ("case", "", "scene name (meta.name), or the file name when the scene did not load"),
+    ("file", "", "the scene file"),
+    ("status", "", "how the run ended: stopped, end time, failed, invalid"),
+    ("bodies", "", "number of bodies N"),
+    ("stopping_time", "s", "first zero of the ship's surge speed"),
+    ("paper_stopping_time", "s", "Table 3's stopping time (paper cases)"),
+    ("relative_difference", "", "(stopping_time - paper_stopping_time) / paper_stopping_time"),
+    ("peak_tension", "N", "largest joint tension"),
+    ("peak_joint", "", "the joint k (between bodies k-1 and k) of the largest tension"),
+    ("peak_time", "s", "when the largest tension occurred"),
+    ("break_exceedances", "", "joints whose peak tension exceeded their break load"),
+    ("anchor_start", "s", "when the anchor first slid"),
+    ("energy_drift", "", "largest energy-balance drift relative to the largest kinetic energy so far"),
+    ("wall_time", "s", "wall-clock time of the run"),
+    ("message", "", "error, diagnostic or failed check"),
+    ("method", "", "integrator: rk4, dp5, sdirk4"),
+    ("stop_error_estimate", "s", "|stopping time - the refined run's| (--error-estimate)"),
+    ("trajectory_error_estimate", "m", "largest centroid position difference from the refined run (--error-estimate)"),
+    ("checks", "", "design checks (break loads and [checks]): pass, fail, empty when none was made"),
+    ("cpu_time", "s", "CPU time of the run on its own thread"),
+    ("rhs_evaluations", "", "right-hand-side evaluations"),
+    ("peak_error_estimate", "N", "|peak tension - the refined run's| (--error-estimate)"),
+];
+
+/// The rows as CSV, the columns of [`COLUMNS`].
 pub fn csv(rows: &[BatchRow]) -> String {
-    let mut out = String::from(
-        "case,file,status,bodies,stopping_time,paper_stopping_time,relative_difference,peak_tension,peak_joint,peak_time,break_exceedances,anchor_start,energy_drift,wall_time,message,method,stop_error_estimate,trajectory_error_estimate,checks,cpu_time,rhs_evaluations,peak_error_estimate\n",
-    );
+    let mut out = COLUMNS.map(|c| c.0).join(",");
+    out.push('\n');
     let o = |v: Option<f64>| v.map(|v| CsvNumber(v).to_string()).unwrap_or_default();
     for r in rows {
         out.push_str(&format!(
@@ -425,16 +453,18 @@ pub fn csv(rows: &[BatchRow]) -> String {
 }
 
 /// The files [`write()`] writes into its folder.
-pub const FILES: [&str; 2] = ["batch.csv", "batch.json"];
+pub const FILES: [&str; 3] = ["batch.csv", "batch.json", "batch.units.csv"];
 
-/// Writes `batch.csv` and `batch.json` into `dir` (created if needed), each whole or not at all.
-pub fn write(rows: &[BatchRow], dir: &Path) -> Result<(PathBuf, PathBuf)> {
+/// Writes `batch.csv`, `batch.json` and `batch.units.csv` into `dir` (created if needed), each
+/// whole or not at all. Returns the three files.
+pub fn write(rows: &[BatchRow], dir: &Path) -> Result<[PathBuf; 3]> {
     std::fs::create_dir_all(dir).map_err(Error::io("create", dir))?;
-    let (c, j) = (dir.join(FILES[0]), dir.join(FILES[1]));
-    write_atomically(&c, csv(rows).as_bytes()).map_err(Error::io("write", &c))?;
+    let files = FILES.map(|f| dir.join(f));
     let json = serde_json::to_string_pretty(rows).expect("rows serialise: plain numbers and strings");
-    write_atomically(&j, json.as_bytes()).map_err(Error::io("write", &j))?;
-    Ok((c, j))
+    for (path, text) in files.iter().zip([csv(rows), json, output::units_csv(COLUMNS)]) {
+        write_atomically(path, text.as_bytes()).map_err(Error::io("write", path))?;
+    }
+    Ok(files)
 }
 
 /// A row's method as its name, or "" when the scene did not load (the JSON contract).

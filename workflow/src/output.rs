@@ -113,6 +113,25 @@ fn check_writable_dir(dir: &Path) -> std::io::Result<()> {
     Ok(())
 }
 
+/// The units sidecar of a table's CSV (`batch.units.csv`, `sweep.units.csv`, …):
+/// `column,unit,description`, one line per (column, unit, description) in the CSV's column
+/// order; the unit "" for a number without one, a count or text. A name or description with
+/// a comma or quote is quoted (a quote inside becomes `'`).
+pub fn units_csv<'a>(columns: impl IntoIterator<Item = (&'a str, &'a str, &'a str)>) -> String {
+    let quoted = |s: &str| {
+        if s.contains([',', '"', '\n']) {
+            format!("\"{}\"", s.replace('"', "'"))
+        } else {
+            s.to_string()
+        }
+    };
+    let mut out = String::from("column,unit,description\n");
+    for (name, unit, description) in columns {
+        out.push_str(&format!("{},{unit},{}\n", quoted(name), quoted(description)));
+    }
+    out
+}
+
 /// A number as every CSV file writes it (history, batch, sweep): its shortest form that reads back to the same f64,
 /// positional for ordinary magnitudes (`3`, `1669.9795856262342`), with an exponent for the
 /// very small and very large (`-7.531752999057062e-12`), as spreadsheets and pandas read both;

@@ -19,15 +19,30 @@ use serde::Serialize;
 use toml::Value;
 
 use crate::kernels::KernelFactory;
-use crate::output::CsvNumber;
+use crate::output::{self, write_atomically, CsvNumber};
 use crate::record::RunSummary;
-use crate::{parallel, Result};
+use crate::{parallel, Error, Result};
 
 /// The default relative step h: p·(1 ± 0.05).
 pub const DEFAULT_STEP: f64 = 0.05;
 
 /// The files `report sensitivity` writes into its folder.
-pub const FILES: [&str; 2] = ["sensitivity.csv", "sensitivity.json"];
+pub const FILES: [&str; 3] = ["sensitivity.csv", "sensitivity.json", "sensitivity.units.csv"];
+
+/// The columns of `sensitivity.csv` in order, each with its unit and what it holds (the
+/// header and `sensitivity.units.csv`): the effects are d(output)/d(ln p), in the output's
+/// unit (the change for a 100 % change of the parameter, to first order).
+pub const COLUMNS: [(&str, &str, &str); 9] = [
+    ("rank", "", "rank by |d_stopping_time| (by |d_peak_tension| when the base run did not stop)"),
+    ("parameter", "", "the scene field's dotted path"),
+    ("value", "the parameter's", "its value in the scene, in its field's unit (docs/scenes.md)"),
+    ("d_stopping_time", "s", "d(stopping time)/d(ln p)"),
+    ("d_stopping_distance", "m", "d(stopping distance)/d(ln p)"),
+    ("d_peak_tension", "N", "d(peak tension)/d(ln p)"),
+    ("message", "", "why a perturbed run gave nothing, or why the step was cut or one-sided"),
+    ("difference", "", "how the effects were differenced: central, forward, backward"),
+    ("step", "", "the relative step h of the differences"),
+];
 
 /// Where a side at p·(1 ± h) is refused, the step is cut to h / this.
 pub const RETRY_DIVISOR: f64 = 5.0;
@@ -385,9 +400,8 @@ fn value_with_unit(path: &str, v: f64) -> String {
 /// first release).
 pub fn csv(study: &Study) -> String {
     let o = |v: Option<f64>| v.map(|v| CsvNumber(v).to_string()).unwrap_or_default();
-    let mut out = String::from(
-        "rank,parameter,value,d_stopping_time,d_stopping_distance,d_peak_tension,message,difference,step\n",
-    );
+    let mut out = COLUMNS.map(|c| c.0).join(",");
+    out.push('\n');
     for (i, r) in study.rows.iter().enumerate() {
         let difference = match r.difference {
             Some(Difference::Central) => "central",
@@ -409,6 +423,18 @@ pub fn csv(study: &Study) -> String {
         ));
     }
     out
+}
+
+/// Writes `sensitivity.csv`, `sensitivity.json` and `sensitivity.units.csv` (the CSV's
+/// units) into `dir` (created if needed), each whole or not at all. Returns the three files.
+pub fn write(study: &Study, dir: &std::path::Path) -> Result<[std::path::PathBuf; 3]> {
+    std::fs::create_dir_all(dir).map_err(Error::io("create", dir))?;
+    let files = FILES.map(|f| dir.join(f));
+    let json = serde_json::to_string_pretty(study).expect("a study serialises: numbers and names");
+    for (path, text) in files.iter().zip([csv(study), json, output::units_csv(COLUMNS)]) {
+        write_atomically(path, text.as_bytes()).map_err(Error::io("write", path))?;
+    }
+    Ok(files)
 }
 
 #[cfg(test)]

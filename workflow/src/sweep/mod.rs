@@ -14,6 +14,7 @@ pub mod shard;
 pub mod shard_file;
 pub mod slurm;
 pub mod spec;
+pub mod units;
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -226,12 +227,7 @@ type PeakOf<'a> = &'a dyn Fn(&RunSummary) -> Option<Peak>;
 /// name, the inputs (one column per path, in spec order; rows that set different paths get
 /// the union, in order of appearance), status, checks, then the outputs (docs/sweeps.md).
 pub fn cells(rows: &[SweepRow]) -> (Vec<String>, Vec<Vec<Cell>>) {
-    let mut paths: Vec<&str> = Vec::new();
-    for (k, _) in rows.iter().flat_map(|r| r.inputs.0.iter()) {
-        if !paths.contains(&k.as_str()) {
-            paths.push(k);
-        }
-    }
+    let paths = input_paths(rows);
     let works: Vec<String> =
         rows.iter().find_map(|r| r.summary.as_ref()).map(|s| s.work.keys().cloned().collect()).unwrap_or_default();
     let checks: Vec<String> = rows
@@ -334,6 +330,22 @@ pub fn cells(rows: &[SweepRow]) -> (Vec<String>, Vec<Vec<Cell>>) {
             })
             .collect();
     (head, body)
+}
+
+/// The input columns of [`cells`]: one per path a row sets, in order of appearance.
+fn input_paths(rows: &[SweepRow]) -> Vec<&str> {
+    let mut paths: Vec<&str> = Vec::new();
+    for (k, _) in rows.iter().flat_map(|r| r.inputs.0.iter()) {
+        if !paths.contains(&k.as_str()) {
+            paths.push(k);
+        }
+    }
+    paths
+}
+
+/// `sweep.units.csv`: the unit and meaning of each column of [`csv`] ([`units::column`]).
+pub fn units_csv(rows: &[SweepRow]) -> String {
+    units::csv(&cells(rows).0, &input_paths(rows))
 }
 
 /// The rows as CSV: [`cells`], a header line and one line per row.
@@ -485,16 +497,16 @@ pub fn file_stem(name: &str) -> String {
 
 /// The files and folders (ending in `/`) [`write()`] writes into its folder; the heat maps'
 /// `heatmap-NAME.svg` beside them.
-pub const FILES: [&str; 4] = ["sweep.csv", "sweep.json", "sweep.parquet", "scenes/"];
+pub const FILES: [&str; 5] = ["sweep.csv", "sweep.json", "sweep.units.csv", "sweep.parquet", "scenes/"];
 
 /// Every row's scene file: (row name, text), for [`write()`].
 pub fn scene_files(plan: &[PlannedRow]) -> Vec<(String, String)> {
     plan.iter().filter_map(|row| Some((row.name.clone(), scene_file(row)?))).collect()
 }
 
-/// Writes `sweep.csv`, `sweep.json` and each row's scene (`scenes/NAME.toml` from `scenes`,
-/// (row name, text) as [`scene_files`] gives them, to rerun one alone) into `dir`, each file
-/// whole or not at all. Returns the CSV and JSON paths.
+/// Writes `sweep.csv`, `sweep.json`, `sweep.units.csv` (the columns' units) and each row's
+/// scene (`scenes/NAME.toml` from `scenes`, (row name, text) as [`scene_files`] gives them, to
+/// rerun one alone) into `dir`, each file whole or not at all. Returns the CSV and JSON paths.
 pub fn write(rows: &[SweepRow], scenes: &[(String, String)], dir: &Path) -> Result<(PathBuf, PathBuf)> {
     let folder = dir.join("scenes");
     std::fs::create_dir_all(&folder).map_err(Error::io("create", &folder))?;
@@ -514,6 +526,8 @@ pub fn write(rows: &[SweepRow], scenes: &[(String, String)], dir: &Path) -> Resu
     write_atomically(&c, csv(rows).as_bytes()).map_err(Error::io("write", &c))?;
     let json = serde_json::to_string_pretty(rows).expect("rows serialise: plain numbers and strings");
     write_atomically(&j, json.as_bytes()).map_err(Error::io("write", &j))?;
+    let u = dir.join("sweep.units.csv");
+    write_atomically(&u, units_csv(rows).as_bytes()).map_err(Error::io("write", &u))?;
     Ok((c, j))
 }
 
