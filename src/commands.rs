@@ -151,7 +151,7 @@ pub fn eval(model: &Model, kernel: KernelFactory, state: Option<&Path>) -> Resul
 }
 
 /// `batch DIR`: runs every scene once per configuration (one per method compared), prints
-/// the table, writes batch.csv and batch.json; with `error_estimate`, each run is repeated
+/// the table, writes batch.csv, batch.json and batch.units.csv; with `error_estimate`, each run is repeated
 /// refined; with a `tolerance`, validates against Table 3. Returns how it went for the exit
 /// code.
 pub fn batch(

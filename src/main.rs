@@ -83,11 +83,11 @@ enum Command {
     },
     /// Run every scene of a folder in parallel: a table of stopping times (against Table 3
     /// where the scene names one), peak tensions, anchor start and energy drift, also
-    /// written as batch.csv and batch.json.
+    /// written as batch.csv and batch.json, with the columns' units in batch.units.csv.
     Batch {
         /// Folder of scene TOML files, e.g. scenes/paper.
         dir: PathBuf,
-        /// Folder for batch.csv and batch.json.
+        /// Folder for batch.csv, batch.json and batch.units.csv.
         #[arg(long, default_value = "out")]
         out: PathBuf,
         /// Validate against Table 3: every paper case's stopping time within this relative
@@ -122,7 +122,8 @@ enum Command {
         kernel: KernelArg,
     },
     /// Run one scene over grid axes and sampled uncertain inputs (docs/sweeps.md): one row
-    /// per run with its inputs, outputs and design checks, as sweep.csv and sweep.json; in
+    /// per run with its inputs, outputs and design checks, as sweep.csv (its units in
+    /// sweep.units.csv) and sweep.json; in
     /// shards over a job array (--shard, --slurm) merged by `sweep merge`.
     Sweep(sweep::SweepArgs),
     /// Show what the generator makes of a scene: its signature, the kernel chosen (unrolled or
@@ -154,12 +155,12 @@ enum Command {
 #[derive(Subcommand)]
 enum ReportKind {
     /// Error against run time: a work–precision study of RK4 (over dt), DP5 and SDIRK4
-    /// (over tolerances) against a tight reference run; table, accuracy.csv/json and a
-    /// log–log plot (accuracy.svg).
+    /// (over tolerances) against a tight reference run; table, accuracy.csv/json (the CSV's
+    /// units in accuracy.units.csv) and a log–log plot (accuracy.svg).
     Accuracy {
         /// Scene TOML file; omitted: the embedded case 1.
         scene: Option<PathBuf>,
-        /// Folder for accuracy.csv, accuracy.json and accuracy.svg.
+        /// Folder for accuracy.csv, accuracy.json, accuracy.svg and accuracy.units.csv.
         #[arg(long, default_value = "out/accuracy")]
         out: PathBuf,
         /// Runs per setting; the median CPU time (and the median wall time beside it) is reported.

@@ -26,7 +26,8 @@ pub struct SweepArgs {
     /// Sweep spec (TOML, docs/sweeps.md): base scene, axes, uncertain inputs, checks.
     #[arg(required = true)]
     spec: Option<PathBuf>,
-    /// Folder for sweep.csv, sweep.json and scenes/ (each row's scene, to rerun it alone);
+    /// Folder for sweep.csv, sweep.units.csv, sweep.json and scenes/ (each row's scene, to
+    /// rerun it alone);
     /// a shard writes shards/shard-K-of-N.json there.
     #[arg(long, default_value = "out/sweep")]
     out: PathBuf,
@@ -71,7 +72,7 @@ pub struct SweepArgs {
 /// `sweep merge`.
 #[derive(clap::Subcommand)]
 enum SweepCommand {
-    /// Merge a sweep's shard files into sweep.csv, sweep.json and scenes/, as a local run
+    /// Merge a sweep's shard files into sweep.csv, sweep.units.csv, sweep.json and scenes/, as a local run
     /// writes them; refused when shards are of different sweeps, a row is missing or twice.
     Merge(MergeArgs),
 }
@@ -82,7 +83,8 @@ struct MergeArgs {
     /// Sweep folders (their shards/shard-K-of-N.json files) or shard files.
     #[arg(required = true, value_name = "DIR")]
     dirs: Vec<PathBuf>,
-    /// Folder for sweep.csv, sweep.json and scenes/ (default: the first folder given).
+    /// Folder for sweep.csv, sweep.units.csv, sweep.json and scenes/ (default: the first
+    /// folder given).
     #[arg(long)]
     out: Option<PathBuf>,
     /// The sweep's spec: checked against the shards' plan hash and every row against its
@@ -107,7 +109,7 @@ pub struct SensitivityArgs {
     /// first-order output band (sample it with `kanestop sweep SPEC`).
     #[arg(long)]
     uncertain: Option<PathBuf>,
-    /// Folder for sensitivity.csv and sensitivity.json.
+    /// Folder for sensitivity.csv, sensitivity.json and sensitivity.units.csv.
     #[arg(long, default_value = "out/sensitivity")]
     out: PathBuf,
     /// Runs at once (default: one per core).
@@ -226,7 +228,7 @@ fn report(
     }
     let (csv, json) = sweep::write(rows, scenes, out)?;
     println!(
-        "written   {} and {} ({} rows; scenes in {})",
+        "written   {} and {} ({} rows; the columns' units in sweep.units.csv; scenes in {})",
         csv.display(),
         json.display(),
         rows.len(),
@@ -267,10 +269,7 @@ fn exit(rows: &[SweepRow]) -> Exit {
         // Which checks failed, in how many rows each: the break loads and the [checks].
         let mut counts: Vec<(String, usize)> = Vec::new();
         for s in rows.iter().filter(|r| r.checks_pass == Some(false)).filter_map(|r| r.summary.as_ref()) {
-            let over = [&s.peak_tension, &s.chain_peak, &s.cable_peak, &s.rod_peak]
-                .into_iter()
-                .flatten()
-                .any(|p| p.break_utilisation.is_some_and(|u| u > 1.0));
+            let over = s.break_load_exceeded();
             let failed: Vec<String> = s.checks.iter().filter(|c| !c.pass).map(|c| c.name.clone()).collect();
             // A failing row none of whose [checks] failed failed on a break load.
             let names = (over || failed.is_empty()).then(|| "break load".to_string()).into_iter();

@@ -313,6 +313,34 @@ fn exit_3_numerical_failure() {
     assert!(csv.exists(), "the history up to the failure is kept");
 }
 
+/// A run that failed passed no check: with no break load exceeded before the failure it has
+/// no verdict (`run` prints no checks line, `run --json` no `checks_pass`, batch an empty
+/// cell), as its `[checks]` of the tensions would have none.
+#[test]
+fn exit_3_a_failed_run_passes_no_check() {
+    let dir = temp_dir("failed-unchecked");
+    let scene_text = kanestop_runtime::paper::DEFAULT_SCENE
+        .replace("max_energy_drift = 0.05", "max_energy_drift = 1e-9")
+        .replace("end_time = 60.0", "end_time = 1.0");
+    let scenes = dir.join("scenes");
+    std::fs::create_dir_all(&scenes).unwrap();
+    let path = scenes.join("tight.toml");
+    std::fs::write(&path, scene_text).unwrap();
+    let out = kanestop().arg("run").arg(&path).output().unwrap();
+    let (stdout, stderr) = text(&out);
+    assert_eq!(out.status.code(), Some(3), "{stdout}{stderr}");
+    assert!(stdout.contains("exceeds solver.max_energy_drift = 1e-9 ("), "{stdout}");
+    assert!(stdout.contains("\ntension   peak") && !stdout.contains("\nchecks"), "{stdout}");
+    let out = kanestop().arg("run").arg(&path).arg("--json").output().unwrap();
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!((v["status"].as_str(), v.get("checks_pass")), (Some("failed"), None), "{v}");
+    let out = kanestop().arg("batch").arg(&scenes).arg("--out").arg(dir.join("out")).output().unwrap();
+    assert_eq!(out.status.code(), Some(1), "{:?}", text(&out));
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("out/batch.json")).unwrap()).unwrap();
+    assert_eq!(json[0]["checks_pass"], serde_json::Value::Null, "{json}");
+}
+
 #[test]
 fn exit_4_a_design_check_failed() {
     let dir = temp_dir("check");
@@ -444,6 +472,7 @@ fn exit_2_an_output_that_cannot_be_written_is_found_before_the_work() {
     std::fs::create_dir_all(dir.join("b/batch.json")).unwrap();
     std::fs::create_dir_all(dir.join("c")).unwrap();
     std::fs::write(dir.join("c/scenes"), "a file where the sweep's folder goes").unwrap();
+    std::fs::create_dir_all(dir.join("d/sweep.units.csv")).unwrap();
     let scenes = dir.join("scenes");
     std::fs::create_dir_all(&scenes).unwrap();
     std::fs::copy(&scene, scenes.join("s.toml")).unwrap();
@@ -451,7 +480,7 @@ fn exit_2_an_output_that_cannot_be_written_is_found_before_the_work() {
     std::fs::write(&spec, format!("base = {:?}\n[[axis]]\npath = \"ship.mass\"\nvalues = [5e5]\n", scene)).unwrap();
     let s = scene.to_str().unwrap();
     let p = |rel: &str| dir.join(rel).to_str().unwrap().to_string();
-    let cases: [(Vec<String>, &str); 7] = [
+    let cases: [(Vec<String>, &str); 8] = [
         (vec!["run".into(), s.into(), "--out".into(), p("a/h.csv")], "a/h.units.csv"),
         (
             vec!["run".into(), s.into(), "--out".into(), p("c/h"), "--plot".into(), p("c/h")],
@@ -479,6 +508,10 @@ fn exit_2_an_output_that_cannot_be_written_is_found_before_the_work() {
             vec!["sweep".into(), spec.to_str().unwrap().into(), "--out".into(), p("c")],
             "scenes exists and is not a folder",
         ),
+        (
+            vec!["sweep".into(), spec.to_str().unwrap().into(), "--out".into(), p("d")],
+            "sweep.units.csv exists and is not a regular file",
+        ),
     ];
     for (args, message) in cases {
         let out = kanestop().args(&args).output().unwrap();
@@ -487,5 +520,6 @@ fn exit_2_an_output_that_cannot_be_written_is_found_before_the_work() {
         assert!(stderr.contains(message), "{args:?}: {stderr}");
     }
     assert!(!dir.join("a/h.csv").exists() && !dir.join("b/batch.csv").exists() && !dir.join("c/sweep.csv").exists());
+    assert!(!dir.join("d/sweep.csv").exists());
     assert!(!dir.join("new").exists(), "refused before anything is written");
 }

@@ -67,7 +67,7 @@ fn table(o: &Output) -> String {
 fn local() -> &'static (PathBuf, Output) {
     static LOCAL: OnceLock<(PathBuf, Output)> = OnceLock::new();
     LOCAL.get_or_init(|| {
-        let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("shards-local");
+        let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("shards-local-{}", std::process::id()));
         let _ = std::fs::remove_dir_all(&dir);
         std::fs::create_dir_all(&dir).unwrap();
         let out = dir.join("out");

@@ -175,8 +175,8 @@ fn cell(py: Python<'_>, c: &Cell) -> PyResult<PyObject> {
 /// Runs a spec: every planned row (or one row per dict of `rows`, for a spec without axes
 /// and sampling), on `jobs` threads (every core when None), with the solver keywords set
 /// on the base scene as `[solver]` would; `progress(done, total)` is called as rows finish.
-/// Returns `(columns, rows of cells)`, `sweep.csv`'s table, or with `records` the
-/// `sweep.json` text.
+/// Returns `(columns, rows of cells, units)`, `sweep.csv`'s table with each column's unit
+/// (`sweep.units.csv`'s), or with `records` the `sweep.json` text.
 #[pyfunction]
 #[pyo3(signature = (spec, rows=None, *, jobs=None, progress=None, integrator=None, dt=None, rtol=None, atol=None, end_time=None, output_interval=None, kernel="generated", records=false))]
 #[allow(clippy::too_many_arguments)]
@@ -228,7 +228,8 @@ pub fn _sweep(
         let cells: Vec<PyObject> = row.iter().map(|c| cell(py, c)).collect::<PyResult<_>>()?;
         table.append(PyList::new(py, cells)?)?;
     }
-    Ok((head, table).into_pyobject(py)?.into_any().unbind())
+    let units: Vec<&str> = sweep::column_units(&done).into_iter().map(|(_, unit, _)| unit).collect();
+    Ok((head, table, units).into_pyobject(py)?.into_any().unbind())
 }
 
 /// The rows' overrides, each a dict of dotted path to value; the row's index in errors.

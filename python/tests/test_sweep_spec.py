@@ -63,7 +63,9 @@ def cli_sweep(tmp_path_factory: pytest.TempPathFactory) -> Dict[str, Any]:
     assert p.returncode == 3, p.stderr  # some row invalid
     with open(out / "sweep.csv", newline="") as f:
         table = list(csv.reader(f))
-    return {"spec": spec, "csv": table, "json": json.loads((out / "sweep.json").read_text())}
+    with open(out / "sweep.units.csv", newline="") as f:
+        units = {row[0]: row[1] for row in list(csv.reader(f))[1:]}
+    return {"spec": spec, "csv": table, "units": units, "json": json.loads((out / "sweep.json").read_text())}
 
 
 def same_cell(text: str, value: Any) -> bool:
@@ -102,6 +104,9 @@ def test_a_spec_file_gives_the_rows_of_sweep_csv(cli_sweep: Dict[str, Any]) -> N
     assert list(df["status"]).count("invalid") == 4 and set(df["checks"].dropna()) == {"fail"}
     assert "ship.mass = -1" in df[df["status"] == "invalid"]["message"].iloc[0]
     assert list(df["name"]) == [f"parity-{i:03}" for i in range(8)]
+    # Each column's unit, as sweep.units.csv beside the CLI's sweep.csv has it.
+    assert df.attrs["units"] == cli_sweep["units"]
+    assert (df.attrs["units"]["ship.mass"], df.attrs["units"]["peak_tension"]) == ("kg", "N")
 
 
 def test_records_are_the_rows_of_sweep_json(cli_sweep: Dict[str, Any]) -> None:

@@ -387,12 +387,12 @@ pub const FILES: [&str; 4] = ["accuracy.csv", "accuracy.json", "accuracy.svg", "
 /// and `accuracy.units.csv`); the errors are against the reference run's (docs/integrators.md).
 pub const COLUMNS: [(&str, &str, &str); 11] = [
     ("method", "", "integrator: rk4, dp5, sdirk4"),
-    ("setting", "s or 1", "dt in s (rk4), or rtol, dimensionless (dp5, sdirk4)"),
+    ("setting", "", "dt in s for rk4; rtol, dimensionless, for dp5 and sdirk4"),
     ("status", "", "stopped, or why not"),
     ("stopping_time_error", "s", "|stopping time - the reference's|"),
     ("ship_displacement_error", "m", "|ship displacement at the stop - the reference's|"),
     ("anchor_displacement_error", "m", "|anchor displacement at the stop - the reference's|"),
-    ("peak_tension_error", "", "|peak tension - the reference's| / the reference's"),
+    ("peak_tension_error", "", "|peak tension - the reference's| / the reference's (a fraction)"),
     ("trajectory_error", "m", "largest |centroid position - the reference's| of any body at the common output times"),
     ("wall_time", "s", "median wall time of the run"),
     ("rhs_evaluations", "", "right-hand-side evaluations"),

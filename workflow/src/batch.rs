@@ -12,8 +12,8 @@ use serde::{Deserialize, Serialize};
 
 use crate::checks::{self, break_exceedances};
 use crate::kernels::KernelFactory;
-use crate::output::{self, write_atomically, CsvNumber};
-use crate::{diagnostic, parallel, Error, Result};
+use crate::output::{self, CsvNumber};
+use crate::{diagnostic, parallel, Result};
 
 /// How a row's run ended.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -106,9 +106,9 @@ pub struct BatchRow {
     #[serde(default)]
     pub rhs_evaluations: Option<u64>,
     /// Whether every design check passed: the break loads, which every run that took a step
-    /// is held to, and the scene's `[checks]` ([`checks::verdict`]; none when no check was
-    /// made: a scene that did not load, a run refused before its first step with no
-    /// `[checks]`); a failed check is named in `message`.
+    /// and did not fail is held to, and the scene's `[checks]` ([`checks::verdict`]; none when
+    /// no check was made: no `[checks]`, and a scene that did not load or a run refused or
+    /// failed with no break load exceeded); a failed check is named in `message`.
     #[serde(default)]
     pub checks_pass: Option<bool>,
     /// |t_stop − t_stop,refined|, s: the stopping time's error estimate (with
@@ -399,13 +399,13 @@ pub const COLUMNS: [(&str, &str, &str); 22] = [
     ("bodies", "", "number of bodies N"),
     ("stopping_time", "s", "first zero of the ship's surge speed"),
     ("paper_stopping_time", "s", "Table 3's stopping time (paper cases)"),
-    ("relative_difference", "", "(stopping_time - paper_stopping_time) / paper_stopping_time"),
+    ("relative_difference", "", "(stopping_time - paper_stopping_time) / paper_stopping_time (a fraction)"),
     ("peak_tension", "N", "largest joint tension"),
     ("peak_joint", "", "the joint k (between bodies k-1 and k) of the largest tension"),
     ("peak_time", "s", "when the largest tension occurred"),
     ("break_exceedances", "", "joints whose peak tension exceeded their break load"),
     ("anchor_start", "s", "when the anchor first slid"),
-    ("energy_drift", "", "largest energy-balance drift relative to the largest kinetic energy so far"),
+    ("energy_drift", "", "largest energy-balance drift, relative to the largest kinetic energy so far (a fraction)"),
     ("wall_time", "s", "wall-clock time of the run"),
     ("message", "", "error, diagnostic or failed check"),
     ("method", "", "integrator: rk4, dp5, sdirk4"),
@@ -458,13 +458,8 @@ pub const FILES: [&str; 3] = ["batch.csv", "batch.json", "batch.units.csv"];
 /// Writes `batch.csv`, `batch.json` and `batch.units.csv` into `dir` (created if needed), each
 /// whole or not at all. Returns the three files.
 pub fn write(rows: &[BatchRow], dir: &Path) -> Result<[PathBuf; 3]> {
-    std::fs::create_dir_all(dir).map_err(Error::io("create", dir))?;
-    let files = FILES.map(|f| dir.join(f));
     let json = serde_json::to_string_pretty(rows).expect("rows serialise: plain numbers and strings");
-    for (path, text) in files.iter().zip([csv(rows), json, output::units_csv(COLUMNS)]) {
-        write_atomically(path, text.as_bytes()).map_err(Error::io("write", path))?;
-    }
-    Ok(files)
+    output::write_into(dir, FILES, [csv(rows), json, output::units_csv(COLUMNS)])
 }
 
 /// A row's method as its name, or "" when the scene did not load (the JSON contract).

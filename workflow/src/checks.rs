@@ -159,17 +159,21 @@ pub fn verdict_of(model: &Model, result: &RunResult) -> Option<bool> {
     verdict(&outcomes, &break_exceedances(model, result), break_loads_held(model, result))
 }
 
-/// Whether the run `result` of `model` was held to its break loads: it took a step and some
-/// joint has one (the paper's every joint). The break-load check is then a check of the run,
-/// passed or failed, as `run`'s summary says it, whether the scene has `[checks]` or not.
+/// Whether the run `result` of `model` was held to its break loads: it took a step, did not
+/// fail, and some joint has one (the paper's every joint). The break-load check is then a
+/// check of the run, passed or failed, as `run`'s summary says it, whether the scene has
+/// `[checks]` or not. A failed run has passed nothing (as [`evaluate`]'s tension checks); a
+/// break load it exceeded before its failure fails it all the same ([`verdict`]).
 pub fn break_loads_held(model: &Model, result: &RunResult) -> bool {
-    result.ran() && (2..=model.body_count()).any(|k| model.joint_limits(k).breaking.is_some())
+    result.ran()
+        && !matches!(result.stop, Stop::Failed(_))
+        && (2..=model.body_count()).any(|k| model.joint_limits(k).breaking.is_some())
 }
 
 /// The design checks' verdict: false when a break load was exceeded (`exceedances`) or an
 /// outcome of `[checks]` failed; true when nothing failed and some check was made (the
-/// break loads, `held`, or `[checks]`); none when no check was made (a run refused before
-/// its first step with no `[checks]`, a scene whose joints have no break load).
+/// break loads, `held`, or `[checks]`); none when no check was made (no `[checks]`, and a
+/// run that failed or was refused with no break load exceeded).
 pub fn verdict(outcomes: &[CheckOutcome], exceedances: &[Exceedance], held: bool) -> Option<bool> {
     if !exceedances.is_empty() {
         return Some(false);

@@ -93,8 +93,10 @@ fn what(kind: &FailureKind) -> String {
         FailureKind::Step(e) => e.to_string(),
         FailureKind::NonFiniteState => "non-finite state".to_string(),
         FailureKind::EnergyRunaway { drift, limit, scale } => format!(
-            "energy runaway: |E − E_0|/K = {drift:.3e} exceeds solver.max_energy_drift = {limit} (K = {:.4e} J, \
+            "energy runaway: |E − E_0|/K = {drift:.3e} exceeds solver.max_energy_drift = {} (K = {:.4e} J, \
              the largest kinetic energy before this step)",
+            // As a scene writes it: 0.005, 1e-9 (not 0.000000001).
+            if *limit >= 1e-3 { format!("{limit}") } else { format!("{limit:e}") },
             scale
         ),
         FailureKind::ForceSpike { joint, force, bound, .. } => format!(

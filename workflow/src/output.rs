@@ -113,21 +113,35 @@ fn check_writable_dir(dir: &Path) -> std::io::Result<()> {
     Ok(())
 }
 
+/// Writes the texts `texts` into the folder `dir` (created if needed) under the names
+/// `names`, each file whole or not at all ([`write_atomically`]), in order. Returns the paths.
+pub fn write_into<const N: usize>(dir: &Path, names: [&str; N], texts: [String; N]) -> crate::Result<[PathBuf; N]> {
+    std::fs::create_dir_all(dir).map_err(crate::Error::io("create", dir))?;
+    let files = names.map(|f| dir.join(f));
+    for (path, text) in files.iter().zip(texts) {
+        write_atomically(path, text.as_bytes()).map_err(crate::Error::io("write", path))?;
+    }
+    Ok(files)
+}
+
+/// A text as one CSV field (RFC 4180): quoted when it holds a comma, a quote or a line
+/// break, a quote inside doubled.
+pub fn csv_field(s: &str) -> String {
+    if s.contains([',', '"', '\n', '\r']) {
+        format!("\"{}\"", s.replace('"', "\"\""))
+    } else {
+        s.to_string()
+    }
+}
+
 /// The units sidecar of a table's CSV (`batch.units.csv`, `sweep.units.csv`, …):
 /// `column,unit,description`, one line per (column, unit, description) in the CSV's column
-/// order; the unit "" for a number without one, a count or text. A name or description with
-/// a comma or quote is quoted (a quote inside becomes `'`).
+/// order ([`csv_field`]s); the unit "" for a number without one (a fraction, a ratio), a
+/// count or text.
 pub fn units_csv<'a>(columns: impl IntoIterator<Item = (&'a str, &'a str, &'a str)>) -> String {
-    let quoted = |s: &str| {
-        if s.contains([',', '"', '\n']) {
-            format!("\"{}\"", s.replace('"', "'"))
-        } else {
-            s.to_string()
-        }
-    };
     let mut out = String::from("column,unit,description\n");
     for (name, unit, description) in columns {
-        out.push_str(&format!("{},{unit},{}\n", quoted(name), quoted(description)));
+        out.push_str(&format!("{},{},{}\n", csv_field(name), csv_field(unit), csv_field(description)));
     }
     out
 }

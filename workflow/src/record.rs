@@ -100,7 +100,8 @@ pub struct RunSummary {
     pub checks: Vec<CheckOutcome>,
     /// Whether every design check passed: false when a break load was exceeded or a limit of
     /// `[checks]` failed, true when nothing failed and a check was made (the break loads of a
-    /// run that took a step, or `[checks]`), absent when none was made ([`checks::verdict`]).
+    /// run that took a step and did not fail, or `[checks]`), absent when none was made
+    /// ([`checks::verdict`]).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub checks_pass: Option<bool>,
     /// x_L of the laid line, m: `initial.horizontal_projection`, or the one that
@@ -164,6 +165,15 @@ fn segment(model: &Model, k: usize) -> Segment {
 }
 
 impl RunSummary {
+    /// Whether a break load was exceeded: some peak (over the whole line, or a member's
+    /// over its joints) above its break load.
+    pub fn break_load_exceeded(&self) -> bool {
+        [&self.peak_tension, &self.chain_peak, &self.cable_peak, &self.rod_peak]
+            .into_iter()
+            .flatten()
+            .any(|p| p.break_utilisation.is_some_and(|u| u > 1.0))
+    }
+
     /// The summary of `result`, a run of `model`.
     pub fn of(model: &Model, result: &RunResult) -> RunSummary {
         let n = model.body_count();

@@ -19,9 +19,9 @@ use serde::Serialize;
 use toml::Value;
 
 use crate::kernels::KernelFactory;
-use crate::output::{self, write_atomically, CsvNumber};
+use crate::output::{self, CsvNumber};
 use crate::record::RunSummary;
-use crate::{parallel, Error, Result};
+use crate::{parallel, Result};
 
 /// The default relative step h: p·(1 ± 0.05).
 pub const DEFAULT_STEP: f64 = 0.05;
@@ -35,7 +35,7 @@ pub const FILES: [&str; 3] = ["sensitivity.csv", "sensitivity.json", "sensitivit
 pub const COLUMNS: [(&str, &str, &str); 9] = [
     ("rank", "", "rank by |d_stopping_time| (by |d_peak_tension| when the base run did not stop)"),
     ("parameter", "", "the scene field's dotted path"),
-    ("value", "the parameter's", "its value in the scene, in its field's unit (docs/scenes.md)"),
+    ("value", "", "the parameter's value in the scene, in its field's unit, which differs by row (docs/scenes.md)"),
     ("d_stopping_time", "s", "d(stopping time)/d(ln p)"),
     ("d_stopping_distance", "m", "d(stopping distance)/d(ln p)"),
     ("d_peak_tension", "N", "d(peak tension)/d(ln p)"),
@@ -428,13 +428,8 @@ pub fn csv(study: &Study) -> String {
 /// Writes `sensitivity.csv`, `sensitivity.json` and `sensitivity.units.csv` (the CSV's
 /// units) into `dir` (created if needed), each whole or not at all. Returns the three files.
 pub fn write(study: &Study, dir: &std::path::Path) -> Result<[std::path::PathBuf; 3]> {
-    std::fs::create_dir_all(dir).map_err(Error::io("create", dir))?;
-    let files = FILES.map(|f| dir.join(f));
     let json = serde_json::to_string_pretty(study).expect("a study serialises: numbers and names");
-    for (path, text) in files.iter().zip([csv(study), json, output::units_csv(COLUMNS)]) {
-        write_atomically(path, text.as_bytes()).map_err(Error::io("write", path))?;
-    }
-    Ok(files)
+    output::write_into(dir, FILES, [csv(study), json, output::units_csv(COLUMNS)])
 }
 
 #[cfg(test)]

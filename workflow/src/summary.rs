@@ -306,10 +306,11 @@ fn tension_lines(out: &mut Lines, model: &Model, result: &RunResult) {
         (2..=model.body_count()).filter_map(|j| utilisation(j).map(|u| (j, u))).max_by(|a, b| a.1.total_cmp(&b.1));
     let breaking = match (break_failure(&over), worst) {
         (Some(failure), _) => Some((false, failure)),
-        (None, Some((j, u))) => {
+        // A failed run has passed no check: its peak is the failure's, not the run's.
+        (None, Some((j, u))) if crate::checks::break_loads_held(model, result) => {
             Some((true, format!("no break load exceeded (highest utilisation {:.0} % at joint {j})", 100.0 * u)))
         }
-        (None, None) => None,
+        (None, _) => None,
     };
     // The scene's own `[checks]`, a line each with its value and verdict (exit 4 when one
     // fails), under one verdict with the break loads'.

@@ -496,7 +496,8 @@ def sweep(
     ``status`` (``invalid``: the inputs give no valid scene; the reason is in ``message``),
     ``checks``, then the outputs (``stopping_time``, ``peak_tension``, ``work_drag``,
     ``dissipated_drag``, ``check_<name>_pass``, …, ``message``), the same numbers as the
-    command line's. With ``records=True``, the rows of ``sweep.json`` instead: a list of
+    command line's; the DataFrame's ``attrs["units"]`` maps each column to its unit, as
+    ``sweep.units.csv`` has it ("" for a number without one, a count or text). With ``records=True``, the rows of ``sweep.json`` instead: a list of
     dicts ``{index, name, label, inputs, status, checks_pass, energy_split, summary,
     message}`` whose ``summary`` is the row's ``run --json`` record.
     """
@@ -532,10 +533,11 @@ def sweep(
         rows_json: List[Dict[str, Any]] = json.loads(out)
         return rows_json
     assert isinstance(out, tuple)
-    columns, table = out
+    columns, table, units = out
     pd = _pandas()
     if pd is not None:
         frame = pd.DataFrame.from_records(table, columns=columns)
+        frame.attrs["units"] = dict(zip(columns, units))
         # Every column but the words is numeric: float64 with NaN for the empty cells, even
         # where every row is empty (an output no row has).
         words = {"name", "status", "checks", "message"}

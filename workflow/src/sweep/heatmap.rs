@@ -210,8 +210,12 @@ fn cells(spec: &Spec, rows: &[SweepRow], output: Output) -> Vec<Vec<Cell>> {
         if let Some(p) = r.checks_pass {
             cell.2.pass = Some(cell.2.pass.unwrap_or(true) && p);
         }
-        for c in r.summary.iter().flat_map(|s| &s.checks).filter(|c| !c.pass) {
-            let word = check_word(&c.name);
+        let Some(s) = r.summary.as_ref().filter(|_| r.checks_pass == Some(false)) else { continue };
+        // A failing row none of whose [checks] failed failed on a break load (as the sweep's
+        // summary counts it).
+        let failed: Vec<&str> = s.checks.iter().filter(|c| !c.pass).map(|c| check_word(&c.name)).collect();
+        let broke = (s.break_load_exceeded() || failed.is_empty()).then_some("break load");
+        for word in broke.into_iter().chain(failed) {
             if !cell.2.failed.contains(&word) {
                 cell.2.failed.push(word);
             }
@@ -302,6 +306,8 @@ fn short_in(v: f64, span: f64) -> String {
 const SIZE: (u32, u32) = (1000, 760);
 /// The title's type size, px as drawn.
 const TITLE_FONT: f64 = 20.0;
+/// The legend's height below the chart, px: five rows, the first on two lines.
+const LEGEND_HEIGHT: u32 = 170;
 
 /// The heat map of `output` over the spec's two grid axes, as SVG text (the spec must have
 /// them: see [`unsupported`]).
@@ -330,7 +336,7 @@ pub fn heat_map(spec: &Spec, rows: &[SweepRow], output: Output) -> std::result::
             top.draw(&Text::new(line, (SIZE.0 as i32 / 2, 8 + 28 * k as i32), font.clone()))
                 .map_err(|e| e.to_string())?;
         }
-        let (body, legend) = root.split_vertically(SIZE.1 - head - 150);
+        let (body, legend) = root.split_vertically(SIZE.1 - head - LEGEND_HEIGHT);
         let (main, scale) = body.split_horizontally(SIZE.0 - 170);
         draw_cells(&main, spec, &grid, (lo, hi))?;
         draw_scale(&scale, output, (lo, hi), limit)?;
@@ -535,13 +541,13 @@ fn draw_legend<DB: DrawingBackend>(
         cells.clone().filter(|c| c.value.is_none()).count(),
         cells.count(),
     );
-    area.draw(&Text::new(
-        format!("hatched: fails a design check ({names}); {fail} of {total} cells"),
-        (x0 + 36, y0 + 2),
-        font.clone(),
-    ))
-    .map_err(err)?;
-    let y1 = y0 + 28;
+    // On as many lines as the checks' names need (0.55 em a character), 18 px apart.
+    let fits = ((SIZE.0 as f64 - f64::from(x0) - 46.0) / (0.55 * 14.0)) as usize;
+    let hatched = crate::plot::wrap(&format!("hatched: fails a design check ({names}); {fail} of {total} cells"), fits);
+    for (k, line) in hatched.iter().enumerate() {
+        area.draw(&Text::new(line.clone(), (x0 + 36, y0 + 2 + 18 * k as i32), font.clone())).map_err(err)?;
+    }
+    let y1 = y0 + 28 + 18 * (hatched.len() as i32 - 1);
     let limit_words = match limit {
         Some((v, name)) if (lo..=hi).contains(&v) => format!("; on the scale: {name} = {}", short(v)),
         Some((v, name)) => format!("; {name} = {} is off the scale", short(v)),
@@ -636,7 +642,7 @@ fn describe_checks(spec: &Spec) -> String {
     if parts.is_empty() {
         "none set but the break loads".into()
     } else {
-        parts.join(", ")
+        format!("{} and the break loads", parts.join(", "))
     }
 }
 
@@ -712,7 +718,7 @@ mod tests {
         let swept = spec(&format!(
             "{axes}[[axis]]\npath = \"checks.max_stopping_distance\"\nvalues = [20.0, 40.0]\n[checks]\nsafety_factor = 1.5\n"
         ));
-        assert_eq!(describe_checks(&swept), "max_stopping_distance by row, safety_factor 1.5");
+        assert_eq!(describe_checks(&swept), "max_stopping_distance by row, safety_factor 1.5 and the break loads");
         assert_eq!(Output::StoppingDistance.limit(&swept), None, "a limit per row is none on the scale");
         assert_eq!(Output::PeakUtilisation.limit(&swept), Some((1.0 / 1.5, "1 / safety_factor")));
         let none = spec(&format!("{axes}[[axis]]\npath = \"anchor.mass\"\nvalues = [3e4, 4e4]\n"));

@@ -31,7 +31,7 @@ pub use spec::{PlannedRow, Spec};
 
 use crate::batch::Status;
 use crate::kernels::KernelFactory;
-use crate::output::{write_atomically, CsvNumber};
+use crate::output::{csv_field, write_atomically, CsvNumber};
 use crate::record::{Peak, RunSummary};
 use crate::{parallel, Error, Result};
 
@@ -83,7 +83,9 @@ pub struct SweepRow {
     pub inputs: Inputs,
     /// How the run ended (`invalid`: the inputs give no valid scene or model).
     pub status: Status,
-    /// Whether every design check passed; none when no check is set or the row has no run.
+    /// Whether every design check passed (the break loads and `[checks]`, the run's
+    /// `checks_pass`); none when no check was made: no `[checks]`, and an invalid row or a run
+    /// refused or failed with no break load exceeded.
     pub checks_pass: Option<bool>,
     /// Energy taken by each term over the initial kinetic energy (−work / K_0), by name
     /// (negative where the term gave energy back).
@@ -172,14 +174,6 @@ pub fn outcome(rows: &[SweepRow]) -> (bool, bool) {
     (rows.iter().any(|r| r.status.is_problem()), rows.iter().any(|r| r.checks_pass == Some(false)))
 }
 
-fn quote(s: &str) -> String {
-    if s.contains([',', '"', '\n']) {
-        format!("\"{}\"", s.replace('"', "\"\""))
-    } else {
-        s.to_string()
-    }
-}
-
 /// One cell of the sweep table ([`cells`]): what `sweep.csv` writes and the Python package
 /// hands over as a typed value.
 #[derive(Clone, Debug, PartialEq)]
@@ -202,8 +196,8 @@ impl Cell {
             Cell::Empty => String::new(),
             Cell::Number(v) => CsvNumber(*v).to_string(),
             Cell::Count(n) => n.to_string(),
-            Cell::Text(s) => quote(s),
-            Cell::Input(v) => quote(&fmt_value(v)),
+            Cell::Text(s) => csv_field(s),
+            Cell::Input(v) => csv_field(&fmt_value(v)),
         }
     }
 }
@@ -343,15 +337,21 @@ fn input_paths(rows: &[SweepRow]) -> Vec<&str> {
     paths
 }
 
-/// `sweep.units.csv`: the unit and meaning of each column of [`csv`] ([`units::column`]).
+/// Each column of [`cells`] with its unit and meaning ([`units::column`]), in order.
+pub fn column_units(rows: &[SweepRow]) -> Vec<(String, &'static str, String)> {
+    units::described(&cells(rows).0, &input_paths(rows))
+}
+
+/// `sweep.units.csv`: the unit and meaning of each column of [`csv`] ([`column_units`]).
 pub fn units_csv(rows: &[SweepRow]) -> String {
-    units::csv(&cells(rows).0, &input_paths(rows))
+    let described = column_units(rows);
+    crate::output::units_csv(described.iter().map(|(n, u, w)| (n.as_str(), *u, w.as_str())))
 }
 
 /// The rows as CSV: [`cells`], a header line and one line per row.
 pub fn csv(rows: &[SweepRow]) -> String {
     let (head, body) = cells(rows);
-    let mut out = head.iter().map(|h| quote(h)).collect::<Vec<_>>().join(",");
+    let mut out = head.iter().map(|h| csv_field(h)).collect::<Vec<_>>().join(",");
     out.push('\n');
     for row in body {
         out.push_str(&row.iter().map(Cell::csv).collect::<Vec<_>>().join(","));

@@ -70,8 +70,10 @@ pub fn plan_hash(name: &str, plan: &[PlannedRow], kernel: &str) -> String {
     // (2026-12-06); 4 since it also has the laid line's top tension T_t, and the energy
     // drift is relative to the largest kinetic energy instead of E_0 (2026-12-06); 5 since a
     // ship at rest at the start has stopped at t = 0, and a row refused before its first step
-    // has no E_0, drift or work (null, where it read 0) (2026-12-07).
-    field("kanestop sweep plan 5");
+    // has no E_0, drift or work (null, where it read 0) (2026-12-07); 6 since the break loads
+    // are a design check of every run that took a step and did not fail, so a row without
+    // `[checks]` has a verdict (`checks_pass`, where it had none) (2026-12-07).
+    field("kanestop sweep plan 6");
     field(name);
     field(kernel);
     field(&plan.len().to_string());

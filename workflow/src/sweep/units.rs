@@ -1,5 +1,5 @@
-//! `sweep.units.csv`: the unit and meaning of every column of `sweep.csv`, in its order, as
-//! the run's history has `history.units.csv` beside it (docs/sweeps.md says the same in words).
+//! `sweep.units.csv`: the unit and meaning of every column of `sweep.csv`, in its order, like
+//! `history.units.csv` beside a run's history (docs/sweeps.md says the same in words).
 
 use kanestop_runtime::scene;
 
@@ -31,22 +31,23 @@ pub fn column(name: &str, inputs: &[&str]) -> Option<(&'static str, String)> {
             return Some(("", format!("[checks] {c}: pass, fail")));
         }
     }
-    for (segment, joints) in [
-        ("peak", "any joint"),
-        ("chain_peak", "the chain's joints"),
-        ("cable_peak", "the cable's joints"),
-        ("rod_peak", "the rod's joints"),
+    // The peaks (`record::RunSummary`): over the whole line against the weaker member's
+    // loads at its joint; a member's against that member's own loads.
+    for (segment, joints, loads) in [
+        ("peak", "the largest tension at any joint", "its joint's (the weaker member's there)"),
+        ("chain_peak", "the largest tension at a joint of the chain", "the chain's"),
+        ("cable_peak", "the largest tension at a joint of the cable (the rod's foot included)", "the cable's"),
+        ("rod_peak", "the peak tension at the rod-ship joint (the fairlead)", "the cable's"),
     ] {
         let Some(field) = name.strip_prefix(segment).and_then(|f| f.strip_prefix('_')) else { continue };
-        let (unit, what) = match field {
-            "tension" => ("N", "largest tension"),
-            "joint" => ("", "joint k (between bodies k-1 and k) of the largest tension"),
-            "t" => ("s", "when the largest tension occurred"),
-            "proof_utilisation" => ("", "the largest tension over its joint's proof load"),
-            "break_utilisation" => ("", "the largest tension over its joint's break load"),
+        return Some(match field {
+            "tension" => ("N", joints.to_string()),
+            "joint" => ("", format!("{joints}: its joint k (between bodies k-1 and k)")),
+            "t" => ("s", format!("{joints}: when")),
+            "proof_utilisation" => ("", format!("{joints} over {loads} proof load")),
+            "break_utilisation" => ("", format!("{joints} over {loads} break load")),
             _ => continue,
-        };
-        return Some((unit, format!("{what}, over {joints}")));
+        });
     }
     match name {
         "index" => fixed("", "row number in spec order"),
@@ -62,7 +63,7 @@ pub fn column(name: &str, inputs: &[&str]) -> Option<(&'static str, String)> {
         "initial_energy" => fixed("J", "E_0: the energy balance at t = 0 (Eq. 63)"),
         "energy_drift" => fixed("", "largest energy-balance drift, relative to energy_scale"),
         "t_end" => fixed("s", "time the run ended"),
-        "steps" => fixed("", "integrator steps"),
+        "steps" => fixed("", "intervals of solver.dt completed (the adaptive methods' observation intervals)"),
         "rhs_evaluations" => fixed("", "right-hand-side evaluations"),
         "wall_time" => fixed("s", "wall-clock time of the run"),
         "message" => fixed("", "error, diagnostic or failed check"),
@@ -77,15 +78,13 @@ pub fn column(name: &str, inputs: &[&str]) -> Option<(&'static str, String)> {
     }
 }
 
-/// `sweep.units.csv` ([`crate::output::units_csv`]) of the columns `head` ([`super::cells`]'s
-/// header, whose input columns are `inputs`).
-pub fn csv(head: &[String], inputs: &[&str]) -> String {
-    let described: Vec<(&str, &str, String)> = head
-        .iter()
+/// Each column of `head` ([`super::cells`]'s header, whose input columns are `inputs`) with
+/// its unit and meaning ([`column()`]).
+pub fn described(head: &[String], inputs: &[&str]) -> Vec<(String, &'static str, String)> {
+    head.iter()
         .map(|name| {
             let (unit, what) = column(name, inputs).unwrap_or(("", String::new()));
-            (name.as_str(), unit, what)
+            (name.clone(), unit, what)
         })
-        .collect();
-    crate::output::units_csv(described.iter().map(|(n, u, w)| (*n, *u, w.as_str())))
+        .collect()
 }
