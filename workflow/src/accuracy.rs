@@ -23,7 +23,7 @@ use kanestop_runtime::simulate::{self, FailureKind, RunResult, Stop};
 use serde::{Deserialize, Serialize};
 
 use crate::output::write_atomically;
-use crate::plot::{log_log, LogCurve};
+use crate::plot::{log_log, LogCurve, LogPanel};
 use crate::{Error, Result};
 
 /// One run of the study.
@@ -433,33 +433,36 @@ pub fn write(s: &AccuracyStudy, dir: &Path) -> Result<Vec<PathBuf>> {
     Ok(files.to_vec())
 }
 
-/// The work–precision chart: stopping-time error (and trajectory error, thin) against CPU
-/// time (wall time where a run has none), log–log, one colour per method.
+/// The work–precision chart: the stopping-time error (s) and, beside it, the trajectory
+/// error (m) against CPU time (wall time where a run has none), log–log, one colour per
+/// method.
 pub fn work_precision(s: &AccuracyStudy) -> Result<String> {
     let cpu = by_cpu_time(s);
-    let mut curves = Vec::new();
-    for (color, method) in Method::ALL.into_iter().enumerate() {
-        for (thin, pick) in [
-            (false, (|r: &AccuracyRow| r.stopping_time_error) as fn(&AccuracyRow) -> Option<f64>),
-            (true, |r: &AccuracyRow| r.trajectory_error),
-        ] {
-            let mut points: Vec<(f64, f64)> = s
-                .rows
-                .iter()
-                .filter(|r| r.method == method)
-                .filter_map(|r| pick(r).filter(|e| *e > 0.0).map(|e| (r.cost(), e)))
-                .collect();
-            points.sort_by(|a, b| a.0.total_cmp(&b.0));
-            let label = (!thin).then(|| method.to_string());
-            curves.push(LogCurve { label, color, thin, points });
-        }
-    }
+    // The methods' colours named once, in the first panel's legend.
+    let panel = |y_desc, legend: bool, pick: fn(&AccuracyRow) -> Option<f64>| {
+        let curves = Method::ALL
+            .into_iter()
+            .enumerate()
+            .map(|(color, method)| {
+                let mut points: Vec<(f64, f64)> = s
+                    .rows
+                    .iter()
+                    .filter(|r| r.method == method)
+                    .filter_map(|r| pick(r).filter(|e| *e > 0.0).map(|e| (r.cost(), e)))
+                    .collect();
+                points.sort_by(|a, b| a.0.total_cmp(&b.0));
+                LogCurve { label: legend.then(|| method.to_string()), color, points }
+            })
+            .collect();
+        LogPanel { y_desc, curves }
+    };
     log_log(
         &format!("Error against run time, {}", s.scene),
         if cpu { "CPU time (s)" } else { "wall time (s)" },
-        "error: stopping time (s), trajectory (m, thin)",
-        &curves,
-        Some(("stopping-time error (s)", "trajectory error (m)")),
+        &[
+            panel("stopping-time error (s)", true, |r| r.stopping_time_error),
+            panel("trajectory error (m)", false, |r| r.trajectory_error),
+        ],
     )
 }
 
@@ -508,7 +511,7 @@ mod tests {
         assert_eq!(runs.len(), 1, "{runs:?}");
         assert_eq!((runs[0].run.method, runs[0].run.setting), (Method::Dp5, 1e-6));
         assert!((runs[0].speedup - 1.5).abs() < 1e-12);
-        // The chart's legend says what a thick and a thin line are.
+        // Each error on an axis of its own unit.
         let svg = work_precision(&s).unwrap();
         assert!(svg.contains("stopping-time error (s)") && svg.contains("trajectory error (m)"));
     }

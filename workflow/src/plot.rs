@@ -793,121 +793,120 @@ fn energy_curves(m: &Model, r: &RunResult) -> Vec<Curve> {
 }
 
 /// One curve of a [`log_log`] chart.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug)]
 pub struct LogCurve {
     /// The legend entry; `None` draws the curve without one.
     pub label: Option<String>,
     /// Its colour, as an index into the palette.
     pub color: usize,
-    /// Thin (a secondary quantity) or thick.
-    pub thin: bool,
     /// The points, positive in both coordinates, in drawing order.
     pub points: Vec<(f64, f64)>,
 }
 
-/// A log–log chart of `curves` (lines with a marker at each point) as SVG text, the legend in
-/// the corner with the fewest points; `widths` names what a thick and a thin line stand for, as two more
-/// legend entries in grey.
-pub fn log_log(
-    title: &str,
-    x_desc: &str,
-    y_desc: &str,
-    curves: &[LogCurve],
-    widths: Option<(&str, &str)>,
-) -> Result<String> {
-    log_log_svg(title, x_desc, y_desc, curves, widths)
-        .map_err(|message| Error::Plot { chart: title.to_string(), message })
+/// One panel of a [`log_log`] chart: its y axis's description and its curves.
+pub struct LogPanel<'a> {
+    /// The y axis's description, with its unit.
+    pub y_desc: &'a str,
+    /// The curves (lines with a marker at each point).
+    pub curves: Vec<LogCurve>,
 }
 
-fn log_log_svg(
-    title: &str,
-    x_desc: &str,
-    y_desc: &str,
-    curves: &[LogCurve],
-    widths: Option<(&str, &str)>,
-) -> Result<String, String> {
+/// A log–log chart of `panels` side by side over one x axis description, as SVG text: each
+/// quantity on an axis of its own unit; a panel's legend (its labelled curves) in its corner
+/// with the fewest points.
+pub fn log_log(title: &str, x_desc: &str, panels: &[LogPanel]) -> Result<String> {
+    log_log_svg(title, x_desc, panels).map_err(|message| Error::Plot { chart: title.to_string(), message })
+}
+
+fn log_log_svg(title: &str, x_desc: &str, panels: &[LogPanel]) -> Result<String, String> {
     let mut svg = String::new();
     {
-        let root = SVGBackend::with_string(&mut svg, (900, 540)).into_drawing_area();
+        let width = if panels.len() > 1 { 620 * panels.len() as u32 } else { 900 };
+        let root = SVGBackend::with_string(&mut svg, (width, 560)).into_drawing_area();
         root.fill(&WHITE).map_err(|e| e.to_string())?;
-        let (mut x0, mut x1, mut y0, mut y1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
-        for &(x, y) in curves.iter().flat_map(|c| &c.points) {
-            (x0, x1, y0, y1) = (x0.min(x), x1.max(x), y0.min(y), y1.max(y));
+        let area = root.titled(title, sans(TITLE_FONT)).map_err(|e| e.to_string())?;
+        for (area, panel) in area.split_evenly((1, panels.len().max(1))).iter().zip(panels) {
+            log_panel(area, x_desc, panel)?;
         }
-        if curves.iter().all(|c| c.points.is_empty()) {
-            (x0, x1, y0, y1) = (1e-3, 1.0, 1e-9, 1.0);
+        root.present().map_err(|e| e.to_string())?;
+    }
+    Ok(svg)
+}
+
+/// One panel of [`log_log`] drawn on `root`.
+fn log_panel<DB: DrawingBackend>(
+    root: &DrawingArea<DB, plotters::coord::Shift>,
+    x_desc: &str,
+    panel: &LogPanel,
+) -> Result<(), String> {
+    let curves = &panel.curves;
+    let (mut x0, mut x1, mut y0, mut y1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
+    for &(x, y) in curves.iter().flat_map(|c| &c.points) {
+        (x0, x1, y0, y1) = (x0.min(x), x1.max(x), y0.min(y), y1.max(y));
+    }
+    if curves.iter().all(|c| c.points.is_empty()) {
+        (x0, x1, y0, y1) = (1e-3, 1.0, 1e-9, 1.0);
+    }
+    let logs: Vec<(f64, f64)> = curves.iter().flat_map(|c| &c.points).map(|&(x, y)| (x.log10(), y.log10())).collect();
+    let (lx0, lx1, ly0, ly1) = ((x0 * 0.8).log10(), (x1 * 1.25).log10(), (y0 * 0.5).log10(), (y1 * 2.0).log10());
+    let mut c = ChartBuilder::on(root)
+        .margin(12)
+        .x_label_area_size(50)
+        .y_label_area_size(86)
+        .build_cartesian_2d((x0 * 0.8..x1 * 1.25).log_scale(), (y0 * 0.5..y1 * 2.0).log_scale())
+        .map_err(|e| e.to_string())?;
+    // plotters' log axes crowd key points near 1 (a grey band of grid, labels printed
+    // over each other): no grid of its own, labels only at 1, 2, 5 × 10^n (x) and at
+    // decades (y), each once; the grid is drawn below at those values.
+    let (xr, yr) = (c.x_range(), c.y_range());
+    let seen = std::cell::RefCell::new(Vec::<String>::new());
+    let once = |text: String| {
+        let mut seen = seen.borrow_mut();
+        if text.is_empty() || seen.contains(&text) {
+            String::new()
+        } else {
+            seen.push(text.clone());
+            text
         }
-        let logs: Vec<(f64, f64)> =
-            curves.iter().flat_map(|c| &c.points).map(|&(x, y)| (x.log10(), y.log10())).collect();
-        let (lx0, lx1, ly0, ly1) = ((x0 * 0.8).log10(), (x1 * 1.25).log10(), (y0 * 0.5).log10(), (y1 * 2.0).log10());
-        let mut c = ChartBuilder::on(&root)
-            .caption(title, sans(TITLE_FONT))
-            .margin(12)
-            .x_label_area_size(50)
-            .y_label_area_size(86)
-            .build_cartesian_2d((x0 * 0.8..x1 * 1.25).log_scale(), (y0 * 0.5..y1 * 2.0).log_scale())
-            .map_err(|e| e.to_string())?;
-        // plotters' log axes crowd key points near 1 (a grey band of grid, labels printed
-        // over each other): no grid of its own, labels only at 1, 2, 5 × 10^n (x) and at
-        // decades (y), each once; the grid is drawn below at those values.
-        let (xr, yr) = (c.x_range(), c.y_range());
-        let seen = std::cell::RefCell::new(Vec::<String>::new());
-        let once = |text: String| {
-            let mut seen = seen.borrow_mut();
-            if text.is_empty() || seen.contains(&text) {
-                String::new()
-            } else {
-                seen.push(text.clone());
-                text
-            }
-        };
-        let y_text = |v: &f64| once(log_tick(*v, &[1.0]).map(|v| format!("{v:.0e}")).unwrap_or_default());
-        c.configure_mesh()
-            .disable_mesh()
-            .x_desc(x_desc)
-            .y_desc(y_desc)
-            .label_style(sans(TICK_FONT))
-            .axis_desc_style(sans(AXIS_FONT))
-            .x_labels(10)
-            .x_label_formatter(&|_| String::new())
-            .y_labels(40)
-            .y_label_formatter(&y_text)
-            .draw()
-            .map_err(|e| e.to_string())?;
-        let grid = ShapeStyle { color: RGBColor(225, 225, 225).to_rgba(), filled: false, stroke_width: 1 };
-        // The x labels at every 1, 2, 5 × 10^n, under their grid lines (plotters' own key
-        // points skip some: 0.05 went unlabelled).
-        let tick = sans(TICK_FONT).into_font().color(&BLACK).pos(Pos::new(HPos::Center, VPos::Top));
-        for x in log_ticks(xr.start, xr.end, &[1.0, 2.0, 5.0]) {
-            c.draw_series(LineSeries::new([(x, yr.start), (x, yr.end)], grid)).map_err(|e| e.to_string())?;
-            let (px, py) = c.backend_coord(&(x, yr.start));
-            root.draw(&Text::new(tidy(x), (px, py + 8), tick.clone())).map_err(|e| e.to_string())?;
+    };
+    let y_text = |v: &f64| once(log_tick(*v, &[1.0]).map(|v| format!("{v:.0e}")).unwrap_or_default());
+    c.configure_mesh()
+        .disable_mesh()
+        .x_desc(x_desc)
+        .y_desc(panel.y_desc)
+        .label_style(sans(TICK_FONT))
+        .axis_desc_style(sans(AXIS_FONT))
+        .x_labels(10)
+        .x_label_formatter(&|_| String::new())
+        .y_labels(40)
+        .y_label_formatter(&y_text)
+        .draw()
+        .map_err(|e| e.to_string())?;
+    let grid = ShapeStyle { color: RGBColor(225, 225, 225).to_rgba(), filled: false, stroke_width: 1 };
+    // The x labels at every 1, 2, 5 × 10^n, under their grid lines (plotters' own key
+    // points skip some: 0.05 went unlabelled).
+    let tick = sans(TICK_FONT).into_font().color(&BLACK).pos(Pos::new(HPos::Center, VPos::Top));
+    for x in log_ticks(xr.start, xr.end, &[1.0, 2.0, 5.0]) {
+        c.draw_series(LineSeries::new([(x, yr.start), (x, yr.end)], grid)).map_err(|e| e.to_string())?;
+        // The backend's pixel, as the panel's own (it may sit right of and below others).
+        let ((px, py), (bx, by)) = (c.backend_coord(&(x, yr.start)), root.get_base_pixel());
+        root.draw(&Text::new(tidy(x), (px - bx, py - by + 8), tick.clone())).map_err(|e| e.to_string())?;
+    }
+    for y in log_ticks(yr.start, yr.end, &[1.0]) {
+        c.draw_series(LineSeries::new([(xr.start, y), (xr.end, y)], grid)).map_err(|e| e.to_string())?;
+    }
+    for curve in curves.iter().filter(|c| !c.points.is_empty()) {
+        let color = PALETTE[curve.color % PALETTE.len()];
+        let series =
+            c.draw_series(LineSeries::new(curve.points.clone(), color.stroke_width(2))).map_err(|e| e.to_string())?;
+        if let Some(label) = &curve.label {
+            series
+                .label(label.clone())
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], color.stroke_width(2)));
         }
-        for y in log_ticks(yr.start, yr.end, &[1.0]) {
-            c.draw_series(LineSeries::new([(xr.start, y), (xr.end, y)], grid)).map_err(|e| e.to_string())?;
-        }
-        for curve in curves.iter().filter(|c| !c.points.is_empty()) {
-            let color = PALETTE[curve.color % PALETTE.len()];
-            let style =
-                ShapeStyle { color: color.to_rgba(), filled: false, stroke_width: if curve.thin { 1 } else { 2 } };
-            let series = c.draw_series(LineSeries::new(curve.points.clone(), style)).map_err(|e| e.to_string())?;
-            if let Some(label) = &curve.label {
-                series
-                    .label(label.clone())
-                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], color.stroke_width(2)));
-            }
-            c.draw_series(curve.points.iter().map(|&p| Circle::new(p, 3, color.filled())))
-                .map_err(|e| e.to_string())?;
-        }
-        if let Some((thick, thin)) = widths {
-            for (label, width) in [(thick, 2), (thin, 1)] {
-                let grey = RGBColor(110, 110, 110);
-                c.draw_series(LineSeries::new(std::iter::empty::<(f64, f64)>(), grey.stroke_width(width)))
-                    .map_err(|e| e.to_string())?
-                    .label(label)
-                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], grey.stroke_width(width)));
-            }
-        }
+        c.draw_series(curve.points.iter().map(|&p| Circle::new(p, 3, color.filled()))).map_err(|e| e.to_string())?;
+    }
+    if curves.iter().any(|c| c.label.is_some() && !c.points.is_empty()) {
         c.configure_series_labels()
             .position(emptiest_corner(&logs, (lx0, lx1), (ly0, ly1)))
             .label_font(sans(TICK_FONT))
@@ -915,9 +914,8 @@ fn log_log_svg(
             .border_style(BLACK)
             .draw()
             .map_err(|e| e.to_string())?;
-        root.present().map_err(|e| e.to_string())?;
     }
-    Ok(svg)
+    Ok(())
 }
 
 /// `v` when it is m × 10^n for an m of `mantissas` (to 0.1 %), rounded to that value.
@@ -1004,9 +1002,8 @@ mod tests {
         assert_eq!(log_tick(0.3, &[1.0, 2.0, 5.0]), None);
         assert_eq!(log_tick(1e-4 * 1.0000001, &[1.0]), Some(1e-4));
         assert_eq!(log_ticks(0.08, 3.0, &[1.0, 2.0, 5.0]).len(), 5, "0.1 0.2 0.5 1 2");
-        let curve =
-            LogCurve { label: Some("rk4".into()), color: 0, thin: false, points: vec![(0.1, 1e-2), (0.9, 1e-8)] };
-        let svg = log_log("t", "wall time (s)", "error", &[curve], None).unwrap();
+        let curve = LogCurve { label: Some("rk4".into()), color: 0, points: vec![(0.1, 1e-2), (0.9, 1e-8)] };
+        let svg = log_log("t", "wall time (s)", &[LogPanel { y_desc: "error", curves: vec![curve] }]).unwrap();
         for label in ["0.1", "0.2", "0.5", "1e-4"] {
             assert_eq!(svg.matches(&format!(">\n{label}\n</text>")).count(), 1, "{label} printed once");
         }
