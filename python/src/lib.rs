@@ -419,6 +419,12 @@ fn _sensitivity(py: Python<'_>, scene: &PyScene, step: f64, jobs: Option<usize>)
     serde_json::to_string(&study).map_err(|e| PyValueError::new_err(e.to_string()))
 }
 
+/// The unit of each column of `sensitivity.csv` (`sensitivity.units.csv`'s), by name.
+#[pyfunction]
+fn _sensitivity_units() -> Vec<(&'static str, &'static str)> {
+    kanestop_workflow::sensitivity::COLUMNS.iter().map(|&(name, unit, _)| (name, unit)).collect()
+}
+
 fn anchor_name(a: AnchorDof) -> &'static str {
     match a {
         AnchorDof::Free => "free",
@@ -478,6 +484,7 @@ fn _kanestop(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyHistory>()?;
     m.add_function(wrap_pyfunction!(_scene_from_toml, m)?)?;
     m.add_function(wrap_pyfunction!(_sensitivity, m)?)?;
+    m.add_function(wrap_pyfunction!(_sensitivity_units, m)?)?;
     m.add_function(wrap_pyfunction!(_toml_keys, m)?)?;
     m.add_function(wrap_pyfunction!(sweep::_spec_from_parts, m)?)?;
     m.add_function(wrap_pyfunction!(_run, m)?)?;

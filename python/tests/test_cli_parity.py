@@ -78,6 +78,9 @@ def test_sensitivity_equals_the_cli_report(tmp_path: object) -> None:
         assert (row["difference"] or "") == c["difference"]
         assert row["message"].replace('"', "'") == c["message"]  # the CSV's quoting
     assert df.attrs["scene"] == "case03" and df.attrs["runs"] > len(df)
+    with open(tmp_path / "sensitivity.units.csv", newline="") as f:  # type: ignore[operator]
+        assert df.attrs["units"] == {r["column"]: r["unit"] for r in csv.DictReader(f)}
+    assert df.attrs["units"]["d_peak_tension"] == "N"
     study = kanestop.sensitivity(path, records=True)
     assert study["base"][0] == df.attrs["base"]["stopping_time"]
     with pytest.raises(ValueError, match="step = 0.7"):

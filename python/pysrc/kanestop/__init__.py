@@ -27,7 +27,7 @@ import numpy as np
 import numpy.typing as npt
 
 from ._kanestop import MAX_JOBS, EvalError, ModelError, Scene, SceneError, Spec, SpecError, __version__
-from ._kanestop import _History, _run, _sensitivity, _sweep, _toml_keys
+from ._kanestop import _History, _run, _sensitivity, _sensitivity_units, _sweep, _toml_keys
 from ._kanestop import eval as _eval
 
 __all__ = [
@@ -351,7 +351,9 @@ def sensitivity(
     Returns ``sensitivity.csv``'s table: a DataFrame (pandas installed) with the columns
     ``rank, parameter, value, d_stopping_time, d_stopping_distance, d_peak_tension,
     message, difference, step`` and ``df.attrs`` holding ``scene``, the base run's
-    ``base`` outputs and the ``runs`` made; else a list of dicts. With ``records=True``:
+    ``base`` outputs, the ``runs`` made and each column's ``units`` (as
+    ``sensitivity.units.csv``; ``value`` is in its parameter's own unit); else a list of
+    dicts. With ``records=True``:
     ``sensitivity.json``'s record as a dict. The runs release the GIL, ``jobs`` at a time
     (every core when None); Ctrl-C waits for the study to end. A step outside
     [1e-6, 0.5), a bad ``jobs``, or a base scene that fails raises ``ValueError`` (the
@@ -380,6 +382,7 @@ def sensitivity(
     df = pd.DataFrame(rows, columns=list(rows[0]) if rows else None)
     base = dict(zip(("stopping_time", "stopping_distance", "peak_tension"), study["base"]))
     df.attrs.update({"scene": study["scene"], "step": study["step"], "base": base, "runs": study["runs"]})
+    df.attrs["units"] = dict(_sensitivity_units())
     return df
 
 

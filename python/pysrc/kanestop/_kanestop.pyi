@@ -129,6 +129,8 @@ def eval(
     kernel: str = "generated",
 ) -> Dict[str, Any]:
     """The equations of motion as a dict with NumPy ``M``, ``f``, ``qdd``, ``q``, ``u``."""
+def _sensitivity_units() -> List[Tuple[str, str]]:
+    """The unit of each column of ``sensitivity.csv``, by name."""
 def _sensitivity(scene: Scene, step: float = 0.05, jobs: Optional[int] = None) -> str:
     """The sensitivity study's ``sensitivity.json`` record as JSON text."""
 def _sweep(
