@@ -22,7 +22,7 @@ use kanestop_runtime::scene::{Method, Scene};
 use kanestop_runtime::simulate::{self, FailureKind, RunResult, Stop};
 use serde::{Deserialize, Serialize};
 
-use crate::output::write_atomically;
+use crate::output::units_csv;
 use crate::plot::{log_log, LogCurve, LogPanel};
 use crate::{Error, Result};
 
@@ -401,8 +401,7 @@ pub const COLUMNS: [(&str, &str, &str); 11] = [
 
 /// Writes accuracy.csv, accuracy.json, accuracy.svg (stopping-time error against CPU time,
 /// log–log, one curve per method) and accuracy.units.csv (the CSV's units) into `dir`.
-pub fn write(s: &AccuracyStudy, dir: &Path) -> Result<Vec<PathBuf>> {
-    std::fs::create_dir_all(dir).map_err(Error::io("create", dir))?;
+pub fn write(s: &AccuracyStudy, dir: &Path) -> Result<[PathBuf; 4]> {
     let o = |v: Option<f64>| v.map(|v| format!("{v:e}")).unwrap_or_default();
     let mut csv = COLUMNS.map(|c| c.0).join(",");
     csv.push('\n');
@@ -422,15 +421,10 @@ pub fn write(s: &AccuracyStudy, dir: &Path) -> Result<Vec<PathBuf>> {
             o(r.cpu_time)
         ));
     }
-    let files = FILES.map(|f| dir.join(f));
-    let w = |p: &Path, b: &[u8]| write_atomically(p, b).map_err(Error::io("write", p));
     // Charts first: a chart that cannot be drawn leaves no file of the study behind.
     let chart = work_precision(s)?;
-    w(&files[0], csv.as_bytes())?;
-    w(&files[1], serde_json::to_string_pretty(s).expect("a study serialises: numbers and names").as_bytes())?;
-    w(&files[2], chart.as_bytes())?;
-    w(&files[3], crate::output::units_csv(COLUMNS).as_bytes())?;
-    Ok(files.to_vec())
+    let json = serde_json::to_string_pretty(s).expect("a study serialises: numbers and names");
+    crate::output::write_into(dir, FILES, [csv, json, chart, units_csv(COLUMNS)])
 }
 
 /// The work–precision chart: the stopping-time error (s) and, beside it, the trajectory

@@ -31,7 +31,7 @@ pub use spec::{PlannedRow, Spec};
 
 use crate::batch::Status;
 use crate::kernels::KernelFactory;
-use crate::output::{csv_field, write_atomically, CsvNumber};
+use crate::output::{self, csv_field, write_atomically, CsvNumber};
 use crate::record::{Peak, RunSummary};
 use crate::{parallel, Error, Result};
 
@@ -221,58 +221,7 @@ type PeakOf<'a> = &'a dyn Fn(&RunSummary) -> Option<Peak>;
 /// name, the inputs (one column per path, in spec order; rows that set different paths get
 /// the union, in order of appearance), status, checks, then the outputs (docs/sweeps.md).
 pub fn cells(rows: &[SweepRow]) -> (Vec<String>, Vec<Vec<Cell>>) {
-    let paths = input_paths(rows);
-    let works: Vec<String> =
-        rows.iter().find_map(|r| r.summary.as_ref()).map(|s| s.work.keys().cloned().collect()).unwrap_or_default();
-    let checks: Vec<String> = rows
-        .iter()
-        .find_map(|r| r.summary.as_ref().filter(|s| !s.checks.is_empty()))
-        .map(|s| s.checks.iter().map(|c| c.name.clone()).collect())
-        .unwrap_or_default();
-    let mut head: Vec<String> = vec!["index".into(), "name".into()];
-    head.extend(paths.iter().map(|p| p.to_string()));
-    head.extend(["status", "checks"].map(String::from));
-    head.extend(
-        [
-            "stopping_time",
-            "paper_stopping_time",
-            "stopping_distance",
-            "ship_displacement",
-            "anchor_drag_distance",
-            "anchor_start",
-        ]
-        .map(String::from),
-    );
-    for seg in ["peak", "chain_peak", "cable_peak", "rod_peak"] {
-        for f in ["tension", "joint", "t", "proof_utilisation", "break_utilisation"] {
-            head.push(format!("{seg}_{f}"));
-        }
-    }
-    head.push("initial_energy".into());
-    head.extend(works.iter().map(|w| format!("work_{w}")));
-    head.extend(works.iter().map(|w| format!("dissipated_{w}")));
-    for c in &checks {
-        head.push(format!("check_{c}_value"));
-        head.push(format!("check_{c}_pass"));
-    }
-    head.extend(
-        [
-            "energy_drift",
-            "t_end",
-            "steps",
-            "rhs_evaluations",
-            "wall_time",
-            "message",
-            "cpu_time",
-            "initial_kinetic_energy",
-            "initial_horizontal_projection",
-            "initial_horizontal_tension",
-            "water_depth",
-            "initial_top_tension",
-            "energy_scale",
-        ]
-        .map(String::from),
-    );
+    let Layout { paths, works, checks, head } = layout(rows);
     let body =
         rows.iter()
             .map(|r| {
@@ -326,6 +275,71 @@ pub fn cells(rows: &[SweepRow]) -> (Vec<String>, Vec<Vec<Cell>>) {
     (head, body)
 }
 
+/// The columns of [`cells`]: the input paths, the work terms and the checks the rows have,
+/// and the header they give.
+struct Layout<'a> {
+    paths: Vec<&'a str>,
+    works: Vec<String>,
+    checks: Vec<String>,
+    head: Vec<String>,
+}
+
+fn layout(rows: &[SweepRow]) -> Layout<'_> {
+    let paths = input_paths(rows);
+    let works: Vec<String> =
+        rows.iter().find_map(|r| r.summary.as_ref()).map(|s| s.work.keys().cloned().collect()).unwrap_or_default();
+    let checks: Vec<String> = rows
+        .iter()
+        .find_map(|r| r.summary.as_ref().filter(|s| !s.checks.is_empty()))
+        .map(|s| s.checks.iter().map(|c| c.name.clone()).collect())
+        .unwrap_or_default();
+    let mut head: Vec<String> = vec!["index".into(), "name".into()];
+    head.extend(paths.iter().map(|p| p.to_string()));
+    head.extend(["status", "checks"].map(String::from));
+    head.extend(
+        [
+            "stopping_time",
+            "paper_stopping_time",
+            "stopping_distance",
+            "ship_displacement",
+            "anchor_drag_distance",
+            "anchor_start",
+        ]
+        .map(String::from),
+    );
+    for seg in ["peak", "chain_peak", "cable_peak", "rod_peak"] {
+        for f in ["tension", "joint", "t", "proof_utilisation", "break_utilisation"] {
+            head.push(format!("{seg}_{f}"));
+        }
+    }
+    head.push("initial_energy".into());
+    head.extend(works.iter().map(|w| format!("work_{w}")));
+    head.extend(works.iter().map(|w| format!("dissipated_{w}")));
+    for c in &checks {
+        head.push(format!("check_{c}_value"));
+        head.push(format!("check_{c}_pass"));
+    }
+    head.extend(
+        [
+            "energy_drift",
+            "t_end",
+            "steps",
+            "rhs_evaluations",
+            "wall_time",
+            "message",
+            "cpu_time",
+            "initial_kinetic_energy",
+            "initial_horizontal_projection",
+            "initial_horizontal_tension",
+            "water_depth",
+            "initial_top_tension",
+            "energy_scale",
+        ]
+        .map(String::from),
+    );
+    Layout { paths, works, checks, head }
+}
+
 /// The input columns of [`cells`]: one per path a row sets, in order of appearance.
 fn input_paths(rows: &[SweepRow]) -> Vec<&str> {
     let mut paths: Vec<&str> = Vec::new();
@@ -339,7 +353,8 @@ fn input_paths(rows: &[SweepRow]) -> Vec<&str> {
 
 /// Each column of [`cells`] with its unit and meaning ([`units::column`]), in order.
 pub fn column_units(rows: &[SweepRow]) -> Vec<(String, &'static str, String)> {
-    units::described(&cells(rows).0, &input_paths(rows))
+    let Layout { paths, head, .. } = layout(rows);
+    units::described(&head, &paths)
 }
 
 /// `sweep.units.csv`: the unit and meaning of each column of [`csv`] ([`column_units`]).
@@ -514,7 +529,6 @@ pub fn write(rows: &[SweepRow], scenes: &[(String, String)], dir: &Path) -> Resu
         let path = folder.join(format!("{}.toml", file_stem(name)));
         write_atomically(&path, text.as_bytes()).map_err(Error::io("write", &path))?;
     }
-    let (c, j) = (dir.join("sweep.csv"), dir.join("sweep.json"));
     #[cfg(feature = "parquet")]
     {
         let (head, cells) = columns(rows);
@@ -523,11 +537,8 @@ pub fn write(rows: &[SweepRow], scenes: &[(String, String)], dir: &Path) -> Resu
         let p = dir.join("sweep.parquet");
         write_atomically(&p, &bytes).map_err(Error::io("write", &p))?;
     }
-    write_atomically(&c, csv(rows).as_bytes()).map_err(Error::io("write", &c))?;
     let json = serde_json::to_string_pretty(rows).expect("rows serialise: plain numbers and strings");
-    write_atomically(&j, json.as_bytes()).map_err(Error::io("write", &j))?;
-    let u = dir.join("sweep.units.csv");
-    write_atomically(&u, units_csv(rows).as_bytes()).map_err(Error::io("write", &u))?;
+    let [c, j, _] = output::write_into(dir, [FILES[0], FILES[1], FILES[2]], [csv(rows), json, units_csv(rows)])?;
     Ok((c, j))
 }
 
