@@ -217,6 +217,11 @@ fn codegen(scene: Option<&PathBuf>, write: bool, fold: Option<&Path>, root: &Pat
             Ok((dir.join(format!("{name}.rs")), name))
         })
         .transpose()?;
+    // --write's folder, checked before any work.
+    let write_dir = write.then(|| root.join("generated/src"));
+    if let Some(dir) = &write_dir {
+        anyhow::ensure!(dir.is_dir(), "{} is not a directory: pass --root <repository>", dir.display());
+    }
     let model = load_model(scene)?;
     let n = model.body_count();
     let variant = variant_of(&model);
@@ -311,9 +316,7 @@ fn codegen(scene: Option<&PathBuf>, write: bool, fold: Option<&Path>, root: &Pat
             dir.display()
         );
     }
-    if write {
-        let dir = root.join("generated/src");
-        anyhow::ensure!(dir.is_dir(), "{} is not a directory: pass --root <repository>", dir.display());
+    if let Some(dir) = write_dir {
         let mut files = kanestop_codegen::checked_in_files(&kanestop_runtime::paper::body_counts());
         files.push(checked_in_folded(&root.join("scenes/paper/case01.toml"))?);
         for (name, text) in files {

@@ -729,6 +729,13 @@ fn codegen_fold_writes_the_scene_s_folded_kernel() {
         std::fs::read_dir(&dir).unwrap().flatten().map(|e| e.file_name().to_string_lossy().into_owned()).collect();
     names.sort();
     assert_eq!(names, ["a-file", "elsewhere", "folded_case01.rs"], "nothing else written");
+
+    // --write outside a checkout: refused before the report (it used to print it all first).
+    let out = kanestop().args(["codegen", "--write", "--root"]).arg(&dir).output().unwrap();
+    assert_eq!(out.status.code(), Some(2), "bad input");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("generated/src is not a directory: pass --root <repository>"), "{err}");
+    assert!(out.stdout.is_empty(), "refused before any work: {}", String::from_utf8_lossy(&out.stdout));
 }
 
 /// `codegen` says how a scene's loads run: a chain in vacuum (water and seabed off) with its

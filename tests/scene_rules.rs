@@ -133,9 +133,14 @@ fn steps_beyond_the_limit_are_refused_with_the_estimate() {
         s.solver.output_interval = 0.01;
         assert_refused(&s, "solver.dt", "steps exceed the limit of 1e7");
     }
-    // An end time no step up to 1 s can reach in 1e7 steps: the message offers the end time's bound.
+    // An end time no step up to 1 s can reach in 1e7 steps: the end time is the field to
+    // change (it used to ask for a step of 1e293 s, out of solver.dt's own range).
     let mut s = case1();
     s.solver.end_time = 1e300;
+    assert_refused(&s, "solver.end_time", "≤ solver.dt × 1e7 = 20000 s");
+    assert!(!refused_fields(&s).iter().any(|(f, _)| f == "solver.dt"), "solver.dt is not to blame");
+    // One a longer step can reach names the step, and offers the end time's bound too.
+    s.solver.end_time = 1e5;
     assert_refused(&s, "solver.dt", "or solver.end_time ≤ 20000 s");
     // A bound below 0.1 s keeps its digits (it once read "≤ 0.0 s").
     s.solver.dt = 1e-9;
@@ -254,7 +259,8 @@ fn the_scene_reference_states_each_fixed_range_the_checks_apply() {
                     Err(e) => panic!("{field}: {e}"),
                 }
             };
-            problems.into_iter().find(|p| p.field == field)
+            // Its fixed range's refusal (a huge end time is also refused against the step).
+            problems.into_iter().find(|p| p.field == field && p.expected.starts_with("in "))
         });
         let p = refusal.unwrap_or_else(|| panic!("{field}: no value refused"));
         // "in (0, 1] s" → "in (0, 1]": the bounds as the refusal gives them.

@@ -91,6 +91,32 @@ fn very_stiff_seabed_is_refused_under_rk4_at_the_papers_step() {
     assert!(f.t == 0.0 && suggestion.contains("solver.dt") && suggestion.contains("sdirk4"), "{text}");
 }
 
+/// Below its limit at t = 0 (1.69 ms), RK4 at 1 ms on the k_z × 1e4 scene is at the edge of
+/// a contact mode that stiffens as the line is pulled into the seabed: its tensions chatter
+/// from step to step after about 2 s, and it used to complete with a peak of 1 933 kN
+/// (433 kN at 0.5 ms and under DP5), the checks passed, exit 0. It now stops with the chatter
+/// diagnostic, naming the joint; at 0.5 ms it completes with the right peak.
+#[test]
+fn rk4_inside_the_start_limit_whose_tensions_chatter_stops_with_the_diagnostic() {
+    let mut scene = load("seabed_kz_x1e4");
+    (scene.solver.dt, scene.solver.end_time) = (1e-3, 5.0);
+    let r = run_scene(&scene);
+    check("seabed_kz_x1e4 at 1 ms", &scene, &r);
+    let Stop::Failed(f) = &r.stop else { panic!("expected the chatter, got {:?}", r.stop) };
+    let FailureKind::TensionChatter { joint, rough, window, .. } = f.kind else { panic!("{f}") };
+    assert!((2.0..4.0).contains(&f.t) && f.body == joint && rough * 5 >= window, "{f}");
+    let text = diagnostic(&scene, &r);
+    assert!(text.contains(&format!("tension chatter: the tension at joint {joint}")), "{text}");
+    assert!(text.contains("reduce solver.dt") && text.contains("dp5"), "{text}");
+    // At half the step the tensions are smooth: 433 kN at the fairlead by 1.6 s.
+    scene.solver.dt = 5e-4;
+    scene.solver.end_time = 5.0;
+    let fine = run_scene(&scene);
+    assert!(matches!(fine.stop, Stop::EndTime), "{:?}", fine.stop);
+    let peak = fine.peak_tension().unwrap().1.tension;
+    assert!((430e3..436e3).contains(&peak), "peak {peak} N");
+}
+
 /// SDIRK4 on the k_z × 1e4 scene over its first 0.5 s, with an evaluation budget (counts,
 /// not timings). A right-hand side that jumps where the seabed's volume formulas meet (the
 /// closed-form seabed's 8-point branch differed from the closed form by 5e-6 of a resting

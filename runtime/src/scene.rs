@@ -24,6 +24,9 @@ pub const MAX_BODIES: usize = 4000;
 /// steps are refused with the estimate.
 pub const MAX_STEPS: f64 = 1e7;
 
+/// The longest step a scene may ask for (`solver.dt`), s.
+pub const MAX_DT: f64 = 1.0;
+
 /// Wall time per body and right-hand-side evaluation of the generated kernels, measured for
 /// case 1 (0.354 s for 40 243 evaluations at N = 46), s: the basis of the time estimates.
 pub const SECONDS_PER_BODY_EVALUATION: f64 = 1.9e-7;
@@ -94,7 +97,9 @@ pub struct Environment {
     pub water_density: f64,
     /// ϑ, kinematic viscosity of sea water, m²/s.
     pub kinematic_viscosity: f64,
-    /// Seabed on: foundation reaction (Eq. 41) and anchor friction act.
+    /// Seabed on: foundation reaction (Eq. 41) and anchor friction act. Off, the anchor
+    /// still only surges at its seabed height (the model gives it no heave or pitch, Eq. 1):
+    /// the line hangs from it and sinks below that height where nothing holds it up.
     pub seabed: bool,
     /// k_z, normal counter-force coefficient of the seabed foundation, N/m³ (Eq. 41). With
     /// water and seabed on, must exceed ρ g + (m' − ρ π R²) g/(π R²) for the chain and the
@@ -149,13 +154,13 @@ impl Environment {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Hydrodynamics {
-    /// C_M, added-mass coefficient of the rods, dimensionless.
+    /// C_M, added-mass coefficient of the rods, dimensionless, ≥ 0 (the paper's 1.0).
     pub added_mass_coefficient: f64,
-    /// C_D, normal drag coefficient of the rods, dimensionless.
+    /// C_D, normal drag coefficient of the rods, dimensionless, ≥ 0 (the paper's 1.21).
     pub normal_drag_coefficient: f64,
-    /// C_F, tangential drag coefficient of the rods, dimensionless.
+    /// C_F, tangential drag coefficient of the rods, dimensionless, ≥ 0 (the paper's 0.062).
     pub tangential_drag_coefficient: f64,
-    /// C_1^D, drag coefficient of the anchor, dimensionless (Eq. 39).
+    /// C_1^D, drag coefficient of the anchor, dimensionless, ≥ 0 (Eq. 39; the paper's 1.05).
     pub anchor_drag_coefficient: f64,
 }
 
@@ -373,7 +378,8 @@ pub struct Solver {
     /// Absolute tolerance of the adaptive methods, in the state's units (rad, m, rad/s, m/s, J),
     /// in (0, 1].
     pub atol: f64,
-    /// Simulated time after which the run ends in any case, s, in (0, ∞).
+    /// Simulated time after which the run ends in any case, s, in (0, ∞), and at most
+    /// `dt` × 1e7 (`MAX_STEPS`: 20 000 s at the paper's 2 ms).
     pub end_time: f64,
     /// Interval between recorded samples, s (rounded to a whole number of steps), at least
     /// `dt` and at most 1e15 s.
@@ -1196,7 +1202,17 @@ impl Scene {
                 self.body_count(),
                 fmt_significant(so.dt * MAX_STEPS, 3)
             );
-            c.push("solver.dt", &fmt_value(so.dt), &why);
+            // Beyond the longest step (1 s) only a shorter end time helps: that is the field to name.
+            if so.end_time / MAX_STEPS > MAX_DT {
+                let why = format!(
+                    "≤ solver.dt × {MAX_STEPS:e} = {} s: {steps:.3e} steps exceed the limit of {MAX_STEPS:e}, and no \
+                     step above solver.dt's {MAX_DT} s could make up for it",
+                    fmt_significant(so.dt * MAX_STEPS, 3)
+                );
+                c.push("solver.end_time", &fmt_value(so.end_time), &why);
+            } else {
+                c.push("solver.dt", &fmt_value(so.dt), &why);
+            }
         }
     }
 }
@@ -1215,7 +1231,7 @@ impl Solver {
     /// The fixed ranges; `output_interval`'s own, (0, 1e15] s, only `with_output_interval`
     /// (a scene checks it against its dt instead).
     fn check_fixed(&self, c: &mut Checker, with_output_interval: bool) {
-        c.range("solver.dt", self.dt, 0.0, 1.0, false, "s");
+        c.range("solver.dt", self.dt, 0.0, MAX_DT, false, "s");
         // No magnitude cap: the step count's limit bounds it, and says so.
         c.range("solver.end_time", self.end_time, 0.0, f64::MAX, false, "s");
         if with_output_interval {

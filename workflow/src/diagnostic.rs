@@ -21,6 +21,10 @@ pub fn describe(model: &Model, failure: &Failure) -> String {
     let refused = matches!(failure.kind, FailureKind::StepAboveLimit { .. });
     let (what, cause, suggestion) = match &failure.kind {
         FailureKind::StepAboveLimit { dt, limit } => refusal(*dt, limit),
+        kind @ FailureKind::TensionChatter { .. } => {
+            let (cause, suggestion) = chatter(model, failure.t);
+            (what(kind), cause, suggestion)
+        }
         kind => {
             let swinging = match kind {
                 FailureKind::ForceSpike { swinging, .. } => *swinging,
@@ -104,6 +108,12 @@ fn what(kind: &FailureKind) -> String {
              the line's largest break load ({bound:.3e} N in all)",
             joint - 1
         ),
+        FailureKind::TensionChatter { joint, ratio, rough, window } => format!(
+            "tension chatter: the tension at joint {joint} (B_{} – B_{joint}) jumps from step to step (second \
+             difference {ratio:.2} of its size), and the line's tensions did so at {rough} of the last {window} \
+             steps: the step no longer resolves them, so they and their peaks would be noise",
+            joint - 1
+        ),
     }
 }
 
@@ -111,7 +121,7 @@ fn what(kind: &FailureKind) -> String {
 fn refusal(dt: f64, limit: &StabilityLimit) -> (String, String, String) {
     let (re, im) = (limit.lambda.re, limit.lambda.im.abs());
     let what = format!(
-        "solver.dt = {dt} s is above this scene's RK4 stability limit of {:.3e} s: valid range 0 < dt ≤ {:.3e} s",
+        "solver.dt = {dt} s is above this scene's RK4 stability limit at t = 0 of {:.3e} s: valid range 0 < dt ≤ {:.3e} s",
         limit.rk4_dt, limit.rk4_dt
     );
     let cause = format!(
@@ -120,10 +130,27 @@ fn refusal(dt: f64, limit: &StabilityLimit) -> (String, String, String) {
         if im > 0.0 { 2.0 * std::f64::consts::PI / im } else { f64::INFINITY }
     );
     let suggestion = format!(
-        "set solver.dt ≤ {:.1e} s, or integrator = \"dp5\" (adapts its step) or \"sdirk4\" (stiff)",
+        "set solver.dt ≤ {:.1e} s, or integrator = \"dp5\" (adapts its step) or \"sdirk4\" (stiff); the limit is \
+         the start's: a line that tightens or presses into the seabed may need a smaller step later, which the \
+         run's checks report",
         0.9 * limit.rk4_dt
     );
     (what, cause, suggestion)
+}
+
+/// The cause and suggestion of RK4's tensions chattering at `t` (s): a mode faster than the
+/// linearised equations had at t = 0 (the limit RK4's step was checked against), as the
+/// line presses into the seabed or tightens.
+fn chatter(model: &Model, t: f64) -> (String, String) {
+    let solver = &model.scene.solver;
+    let cause = format!(
+        "the explicit step dt = {} s is at the edge of a mode faster than any at t = 0, where its stability limit \
+         was checked: the seabed's contact stiffens as the line is pressed into it, and a tightening line's \
+         modes quicken with its tension",
+        solver.dt
+    );
+    let kept = format!("the first {:.3} s up to the failure are kept", (t - solver.dt).max(0.0));
+    (cause, rk4_suggestion(solver.dt, solver.end_time, &kept))
 }
 
 /// Reduce the step 16-fold, never below the smallest step a scene may ask for

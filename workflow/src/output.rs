@@ -56,6 +56,10 @@ pub fn check_file_target(path: &Path) -> std::io::Result<()> {
         return Err(std::io::Error::other("exists and is not a regular file"));
     }
     let dir = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    if dir.exists() && !dir.is_dir() {
+        // The message names the one that is in the way, not the file to be written.
+        return Err(std::io::Error::other(format!("{} exists and is not a folder", dir.display())));
+    }
     check_dir_target(dir)
 }
 
@@ -206,7 +210,7 @@ mod tests {
         assert!(check_file_target(&dir.join("missing/a.csv")).is_ok(), "its folder is created by the write");
         std::fs::write(dir.join("plain"), "x").unwrap();
         let e = check_file_target(&dir.join("plain/a.csv")).unwrap_err();
-        assert!(e.to_string().contains("not a folder"), "{e}");
+        assert!(e.to_string().ends_with("plain exists and is not a folder"), "{e}");
         std::fs::remove_file(dir.join("plain")).unwrap();
         assert!(check_file_target(&dir).is_err(), "a folder is not a file");
         assert!(check_dir_target(&dir.join("new/deeper")).is_ok(), "created later");

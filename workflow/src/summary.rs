@@ -265,9 +265,10 @@ fn outcome_lines(out: &mut Lines, model: &Model, result: &RunResult) {
     }
     let anchor = match (model.anchor, result.anchor_start()) {
         (_, Some(t)) => format!(
-            "started to slide at t = {t:.3} s; dragged {:.2} m ({} stick–slip switches)",
+            "started to slide at t = {t:.3} s; dragged {:.2} m ({} stick–slip switch{})",
             moved(0),
-            result.anchor_events.len()
+            result.anchor_events.len(),
+            if result.anchor_events.len() == 1 { "" } else { "es" }
         ),
         (AnchorDof::Stuck, None) => "held by friction throughout".to_string(),
         (AnchorDof::Free, None) => format!("free (no seabed friction); moved {:.2} m", moved(0)),

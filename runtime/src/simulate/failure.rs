@@ -13,7 +13,7 @@ pub struct Failure {
     /// Time of the first bad step (the end of the interval that failed), s; 0 for a run
     /// refused before it started.
     pub t: f64,
-    /// The body most involved (1-based, B_k): the outer body of a spiking joint, the
+    /// The body most involved (1-based, B_k): the outer body of a spiking or chattering joint, the
     /// stiffest hinge of a refused step, otherwise the body turning fastest relative to its
     /// neighbour at the last good state (where an unstable mode lives).
     pub body: usize,
@@ -82,6 +82,21 @@ pub enum FailureKind {
         /// lives (1-based).
         swinging: usize,
     },
+    /// RK4's joint tensions chatter: rough (second difference over three steps above
+    /// [`super::health::CHATTER_RATIO`] of their size) at `rough` of the last `window` steps,
+    /// [`super::health::ChatterWatch`]. The step no longer resolves a mode that stiffened
+    /// after t = 0; the tensions and their peaks are noise.
+    #[error("tension chatter")]
+    TensionChatter {
+        /// The joint k (between B_{k−1} and B_k), 2 … N, roughest at the failing step.
+        joint: usize,
+        /// Its second difference over its scale at that step.
+        ratio: f64,
+        /// Rough steps among the last `window`.
+        rough: u32,
+        /// The steps counted.
+        window: u32,
+    },
 }
 
 impl std::fmt::Display for Failure {
@@ -100,6 +115,7 @@ impl Failure {
                 (joint, FailureKind::ForceSpike { joint, force, bound, swinging })
             }
             FailureKind::StepAboveLimit { limit, .. } => (limit.body, kind),
+            FailureKind::TensionChatter { joint, .. } => (joint, kind),
             other => (swinging, other),
         };
         Failure { t, body, kind, initial_residual: None }

@@ -170,6 +170,9 @@ pub struct Stepper<'a> {
     /// E_0, the drift's scale K and the largest drift.
     drift: health::DriftWatch,
     spike_bound: f64,
+    /// RK4's watch over its tensions from step to step; none under the adaptive methods,
+    /// whose observations are `solver.dt` apart, not their steps.
+    chatter: Option<health::ChatterWatch>,
     stopping_time: Option<f64>,
     /// The tensions at an adaptive method's sub-step ends inside the current interval
     /// (time, s; |F^H_k|, N), before any anchor switch or ship stop in it.
@@ -210,6 +213,7 @@ impl<'a> Stepper<'a> {
             evaluations0: 0,
             drift: health::DriftWatch::default(),
             spike_bound: health::spike_bound(model),
+            chatter: (solver.integrator == Method::Rk4).then(|| health::ChatterWatch::for_model(model)),
             stopping_time: None,
             inner: Vec::new(),
         }
@@ -469,8 +473,11 @@ impl<'a> Stepper<'a> {
     fn check(&mut self, obs: &Observation) -> Result<(), FailureKind> {
         let limit = self.model.scene.solver.max_energy_drift;
         let bound = self.spike_bound;
-        self.drift
-            .check(obs.energy.balance(), obs.energy.kinetic_total(), limit, || health::no_spike(&obs.tensions, bound))
+        let chatter = &mut self.chatter;
+        self.drift.check(obs.energy.balance(), obs.energy.kinetic_total(), limit, || {
+            health::no_spike(&obs.tensions, bound)?;
+            chatter.as_mut().map_or(Ok(()), |c| c.check(&obs.tensions))
+        })
     }
 
     /// Locates the ship's first stop inside the completed interval, under the anchor state

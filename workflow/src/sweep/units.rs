@@ -14,9 +14,17 @@ pub fn column(name: &str, inputs: &[&str]) -> Option<(&'static str, String)> {
         return Some(("J", format!("work done on the system by {term} by the end of the run (negative: taken out)")));
     }
     if let Some(term) = name.strip_prefix("dissipated_") {
+        let share = format!("share of initial_kinetic_energy that {term} took (-work_{term} / initial_kinetic_energy)");
         return Some((
             "",
-            format!("share of initial_kinetic_energy that {term} took (-work_{term} / initial_kinetic_energy)"),
+            match term {
+                // `run`'s energy line nets it with the ship's weight (summary.rs).
+                "hydrostatic" => format!(
+                    "{share}: the ship's buoyancy times its heave, which its weight's potential energy (no column) \
+                     all but cancels; run's energy line shows the two netted, as ship heave and pitch"
+                ),
+                _ => share,
+            },
         ));
     }
     if let Some(check) = name.strip_prefix("check_") {
