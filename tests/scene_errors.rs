@@ -249,3 +249,13 @@ fn geometry_refusals_name_the_field_that_is_off() {
     );
     assert!(!e.contains("would float with"), "{e}");
 }
+
+#[test]
+fn a_table_of_the_wrong_type_is_called_a_table_not_a_rust_type() {
+    // Cable stages that are numbers, not tables: the message says what the file needs.
+    let scene = Scene::from_toml(DEFAULT_SCENE, "case01.toml").unwrap();
+    let stages = toml::Value::Array(vec![toml::Value::Integer(5)]);
+    let e = scene.with_overrides(&[("cable.stages", stages)]).unwrap_err().to_string();
+    assert_mentions(&e, &["expected a table"]);
+    assert!(!e.contains("struct"), "{e:?}");
+}

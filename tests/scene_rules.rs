@@ -201,7 +201,11 @@ fn a_check_is_set_on_a_scene_without_checks() {
     assert_eq!(checks.max_stopping_distance, Some(20.0));
     assert_eq!(checks.safety_factor, None, "only the field set");
     let e = case1.with_overrides(&[("checks.max_distance", toml::Value::Float(20.0))]).unwrap_err().to_string();
-    assert!(e.contains("no field `checks`"), "a field that is no check is still refused: {e}");
+    // (named as the unknown field, with the checks there are: it was "no field `checks`").
+    assert!(
+        e.contains("no field `max_distance` here (valid: max_stopping_distance, "),
+        "a field that is no check is still refused: {e}"
+    );
     // CHECK_FIELDS are DesignChecks' own fields.
     let all = kanestop_runtime::design::DesignChecks {
         max_stopping_distance: Some(1.0),

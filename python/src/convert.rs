@@ -18,9 +18,12 @@ pub fn to_toml(obj: &Bound<'_, PyAny>, path: &str) -> PyResult<Value> {
         return Ok(Value::Boolean(b.is_true()));
     }
     if obj.is_instance_of::<PyInt>() {
-        return match obj.extract::<i64>() {
-            Ok(i) => Ok(Value::Integer(i)),
-            Err(_) => Err(PyValueError::new_err(format!("{}: integer {obj} does not fit in 64 bits", at(path)))),
+        // An integer beyond 64 bits as the real it is, for the scene's range check to refuse
+        // by name (ship.mass = 1e30: must be in (0, 1e15] kg).
+        return match (obj.extract::<i64>(), obj.extract::<f64>()) {
+            (Ok(i), _) => Ok(Value::Integer(i)),
+            (Err(_), Ok(x)) => Ok(Value::Float(x)),
+            (Err(_), Err(_)) => Err(PyValueError::new_err(format!("{}: integer {obj} is beyond any real", at(path)))),
         };
     }
     if obj.is_instance_of::<PyFloat>() {
@@ -28,6 +31,13 @@ pub fn to_toml(obj: &Bound<'_, PyAny>, path: &str) -> PyResult<Value> {
     }
     if let Ok(s) = obj.downcast::<PyString>() {
         return Ok(Value::String(s.extract::<String>()?));
+    }
+    // A path (pathlib.Path, any os.PathLike) where a string goes: a spec's base, extends.
+    if obj.hasattr("__fspath__")? {
+        let text = obj.py().import("os")?.call_method1("fspath", (obj,))?;
+        if let Ok(s) = text.downcast::<PyString>() {
+            return Ok(Value::String(s.extract::<String>()?));
+        }
     }
     if let Ok(d) = obj.downcast::<PyDict>() {
         let mut table = toml::Table::new();

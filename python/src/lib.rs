@@ -58,6 +58,9 @@ impl PyScene {
         if number.is_instance_of::<pyo3::types::PyBool>() {
             return Err(PyTypeError::new_err(format!("Scene.paper: number must be an int {}, not a bool", valid())));
         }
+        if number.is_instance_of::<pyo3::types::PyInt>() && number.extract::<i64>().is_err() {
+            return Err(PyValueError::new_err(format!("Scene.paper: number = {number}: {}", valid())));
+        }
         let n: i64 = number.extract().map_err(|_| {
             PyTypeError::new_err(format!(
                 "Scene.paper: number must be an int {}, not {}",

@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 from typing import Any, Callable
 
+import numpy as np
 import pytest
 
 import kanestop
@@ -31,7 +32,7 @@ NAN = float("nan")
         (lambda s: s.with_overrides({"ship.mass": NAN}), kanestop.SceneError),
         (lambda s: s.with_overrides({"ship.mass": math.inf}), kanestop.SceneError),
         (lambda s: s.with_overrides({"ship.mass": object()}), TypeError),
-        (lambda s: s.with_overrides({"ship.mass": 10**30}), ValueError),
+        (lambda s: s.with_overrides({"ship.mass": 10**30}), kanestop.SceneError),
         (lambda s: s.with_overrides({"chain.elements": 2.5}), kanestop.SceneError),
         (lambda s: s.with_overrides({"cable.stages[9].elements": 2}), kanestop.SceneError),
         (lambda s: s.with_overrides({"ship": None}), TypeError),
@@ -79,9 +80,40 @@ def test_bad_input_raises(case01: kanestop.Scene, call: Callable[[kanestop.Scene
 
 
 def test_jobs_errors_name_the_argument_and_its_range(case01: kanestop.Scene) -> None:
-    for jobs in (0, -1, 2**70):
-        with pytest.raises(ValueError, match=rf"jobs = {jobs}: must be in \[1, {kanestop.MAX_JOBS}\]"):
-            kanestop.sweep(case01, [{}], jobs=jobs)
+    for study in (lambda jobs: kanestop.sweep(case01, [{}], jobs=jobs), lambda jobs: kanestop.sensitivity(case01, jobs=jobs)):
+        for jobs in (0, -1, 2**70):
+            with pytest.raises(ValueError, match=rf"jobs = {jobs}: must be in \[1, {kanestop.MAX_JOBS}\]"):
+                study(jobs)
+        for bad in (True, 2.0, "2"):
+            with pytest.raises(TypeError, match="jobs must be a whole number"):
+                study(bad)
+    with pytest.raises(TypeError, match="step = True: a relative step"):
+        kanestop.sensitivity(case01, step=True)
+
+
+def test_a_numpy_integer_is_a_number_of_jobs(case01: kanestop.Scene) -> None:
+    rows = kanestop.sweep(case01, [{}], jobs=np.int64(1), end_time=0.02, records=True)
+    assert len(rows) == 1 and rows[0]["status"] != "invalid", rows
+
+
+def test_a_huge_integer_is_refused_by_its_range_and_a_path_is_text(case01: kanestop.Scene) -> None:
+    with pytest.raises(kanestop.SceneError, match="ship.mass"):
+        case01.with_overrides({"ship.mass": 10**30})
+    with pytest.raises(ValueError, match=r"Scene.paper: number = 1180591620717411303424: in 1–19"):
+        kanestop.Scene.paper(2**70)
+    spec = kanestop.Spec.from_dict({"base": CASE01, "axis": [{"path": "ship.mass", "values": [4e5]}]})
+    assert spec == kanestop.Spec.from_dict({"base": str(CASE01), "axis": [{"path": "ship.mass", "values": [4e5]}]})
+
+
+def test_empty_text_cells_are_none_and_empty_numbers_nan(case01: kanestop.Scene) -> None:
+    pd = pytest.importorskip("pandas")
+    df = kanestop.sweep(case01, [{"ship.mass": 4e5}, {"ship.mass": -1}], end_time=0.1)
+    assert df["message"].iloc[0] is None and isinstance(df["message"].iloc[1], str)
+    assert df["checks"].iloc[1] is None and df["checks"].iloc[0] == "pass"
+    assert df["stopping_time"].dtype == np.float64 and pd.isna(df["stopping_time"]).all()
+    sens = kanestop.sensitivity(case01.with_overrides({"solver.end_time": 0.1}), jobs=1)
+    assert sens["d_stopping_time"].dtype == np.float64
+    assert all(m is None or (isinstance(m, str) and m) for m in sens["message"])
 
 
 def test_a_bad_sweep_row_is_a_row_not_an_exception(case01: kanestop.Scene) -> None:

@@ -76,7 +76,7 @@ def test_sensitivity_equals_the_cli_report(tmp_path: object) -> None:
             v = row[k]
             assert (None if v is None or (isinstance(v, float) and math.isnan(v)) else v) == number(c[k]), (k, row, c)
         assert (row["difference"] or "") == c["difference"]
-        assert row["message"].replace('"', "'") == c["message"]  # the CSV's quoting
+        assert (row["message"] or "").replace('"', "'") == c["message"]  # the CSV's quoting; None where empty
     assert df.attrs["scene"] == "case03" and df.attrs["runs"] > len(df)
     with open(tmp_path / "sensitivity.units.csv", newline="") as f:  # type: ignore[operator]
         assert df.attrs["units"] == {r["column"]: r["unit"] for r in csv.DictReader(f)}

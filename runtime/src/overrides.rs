@@ -39,13 +39,16 @@ pub enum OverrideError {
         /// The array's length.
         len: usize,
     },
-    /// A part of the path indexes into a value that is not a table or an array.
-    #[error("{path}: `{part}` is a value, not a table or an array")]
+    /// A part of the path goes into what cannot take it: a plain value (`ship.mass.x`), an
+    /// array by name (`cable.stages.elements`) or a table by index.
+    #[error("{path}: `{part}` is {what}")]
     NotAContainer {
         /// The path as given.
         path: String,
-        /// The part that is a plain value.
+        /// The part the path goes on from.
         part: String,
+        /// What it is, and what the path would need.
+        what: String,
     },
     /// Two fields of one group of [`ALTERNATIVES`] set together: which one lays the scene
     /// would depend on their order.
@@ -148,11 +151,25 @@ pub fn set(root: &mut Value, path: &str, value: Value) -> Result<(), OverrideErr
             t.entry(key).or_insert(Value::Float(0.0));
         }
     }
+    // A whole optional table (`checks = {…}`) on a scene without it.
+    if let (Some(table), Value::Table(top)) = (OPTIONAL.iter().find(|(t, _)| *t == path), &mut *root) {
+        top.entry(table.0).or_insert_with(|| Value::Table(toml::Table::new()));
+    }
+    // A field an optional table does not have, on a scene without it: that field is unknown.
+    if let [Step::Key(table), Step::Key(key), ..] = steps.as_slice() {
+        if let Some((_, fields)) = OPTIONAL.iter().find(|(t, _)| t == table) {
+            if root.get(*table).is_none() && !fields.contains(key) {
+                let valid = fields.join(", ");
+                return Err(OverrideError::NoSuchField { path: path.to_string(), part: key.to_string(), valid });
+            }
+        }
+    }
     let mut node = root;
-    for step in &steps {
+    let mut at = String::new();
+    for (depth, step) in steps.iter().enumerate() {
         node = match (step, node) {
             (Step::Key(k), Value::Table(t)) => {
-                let valid = t.keys().cloned().collect::<Vec<_>>().join(", ");
+                let valid = valid_keys(t, depth, &at);
                 t.get_mut(*k).ok_or_else(|| OverrideError::NoSuchField {
                     path: path.to_string(),
                     part: k.to_string(),
@@ -163,13 +180,18 @@ pub fn set(root: &mut Value, path: &str, value: Value) -> Result<(), OverrideErr
                 let len = a.len();
                 a.get_mut(*i).ok_or(OverrideError::Index { path: path.to_string(), index: *i, len })?
             }
-            (step, _) => {
-                let part = match step {
-                    Step::Key(k) => k.to_string(),
-                    Step::Index(i) => format!("[{i}]"),
+            (step, node) => {
+                let what = match (step, node) {
+                    (Step::Key(k), Value::Array(_)) => format!("an array: give an index, as {at}[0].{k}"),
+                    (Step::Index(_), Value::Table(_)) => "a table, not an array: give a field".to_string(),
+                    _ => "a value, not a table or an array".to_string(),
                 };
-                return Err(OverrideError::NotAContainer { path: path.to_string(), part });
+                return Err(OverrideError::NotAContainer { path: path.to_string(), part: at, what });
             }
+        };
+        at = match step {
+            Step::Key(k) => k.to_string(),
+            Step::Index(i) => format!("{at}[{i}]"),
         };
     }
     // A whole number given as a float (3.0, numpy's float64(3)) sets an integer field, as a
@@ -180,6 +202,23 @@ pub fn set(root: &mut Value, path: &str, value: Value) -> Result<(), OverrideErr
         (_, value) => value,
     };
     Ok(())
+}
+
+/// The keys a path may take in table `t` at `depth` below the root, after the step `at`:
+/// those it has, and those of [`OPTIONAL`] it may gain (a scene without `[checks]`, or
+/// `[checks]` with some of its fields), sorted.
+fn valid_keys(t: &toml::Table, depth: usize, at: &str) -> String {
+    let mut keys: Vec<&str> = t.keys().map(String::as_str).collect();
+    for (table, fields) in OPTIONAL {
+        match depth {
+            0 => keys.push(table),
+            1 if at == *table => keys.extend(fields.iter().copied()),
+            _ => {}
+        }
+    }
+    keys.sort_unstable();
+    keys.dedup();
+    keys.join(", ")
 }
 
 /// The first two of `paths` (by position) that are fields of one group of [`ALTERNATIVES`]:
@@ -361,8 +400,30 @@ mod tests {
         assert_eq!(e.to_string(), "ship.mas: no field `mas` here (valid: length, mass)");
         let e = set(&mut v, "cable.stages[4].elements", Value::Integer(1)).unwrap_err();
         assert_eq!(e, OverrideError::Index { path: "cable.stages[4].elements".into(), index: 4, len: 1 });
+        // The part in the way is named, with what the path would need.
         let e = set(&mut v, "ship.mass.x", Value::Integer(1)).unwrap_err();
-        assert!(matches!(e, OverrideError::NotAContainer { .. }), "{e}");
+        assert_eq!(e.to_string(), "ship.mass.x: `mass` is a value, not a table or an array");
+        let e = set(&mut v, "ship.mass[0]", Value::Integer(1)).unwrap_err();
+        assert_eq!(e.to_string(), "ship.mass[0]: `mass` is a value, not a table or an array");
+        let e = set(&mut v, "cable.stages.elements", Value::Integer(1)).unwrap_err();
+        assert_eq!(e.to_string(), "cable.stages.elements: `stages` is an array: give an index, as stages[0].elements");
+        let e = set(&mut v, "ship[0]", Value::Integer(1)).unwrap_err();
+        assert_eq!(e.to_string(), "ship[0]: `ship` is a table, not an array: give a field");
+        // A typing error among the optional checks lists them all, at the top and inside.
+        let e = set(&mut v, "checks.max_stoping", Value::Float(1.0)).unwrap_err();
+        let OverrideError::NoSuchField { part, valid, .. } = &e else { panic!("{e}") };
+        assert_eq!((part.as_str(), valid.as_str()), ("max_stoping", crate::design::CHECK_FIELDS.join(", ").as_str()));
+        let e = set(&mut v, "chekcs.max_stopping_time", Value::Float(1.0)).unwrap_err();
+        let OverrideError::NoSuchField { valid, .. } = &e else { panic!("{e}") };
+        assert!(valid.contains("checks") && valid.contains("ship"), "{valid}");
+        set(&mut v, "checks.max_stopping_distance", Value::Float(40.0)).unwrap();
+        let e = set(&mut v, "checks.max_stoping", Value::Float(1.0)).unwrap_err();
+        let OverrideError::NoSuchField { valid, .. } = &e else { panic!("{e}") };
+        assert!(crate::design::CHECK_FIELDS.iter().all(|f| valid.contains(f)), "{valid}");
+        // The whole table, on a scene without it.
+        let mut w = value("[ship]\nmass = 1.0\n");
+        set(&mut w, "checks", value("max_stopping_time = 30.0\n")).unwrap();
+        assert_eq!(get(&w, "checks.max_stopping_time"), Some(&Value::Float(30.0)));
         for bad in ["", "ship..mass", "ship.mass[", "ship.mass[x]", "ship mass", "cable.stages[0]x"] {
             assert!(matches!(set(&mut v, bad, Value::Integer(1)), Err(OverrideError::Syntax { .. })), "{bad}");
         }

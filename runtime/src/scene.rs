@@ -1411,6 +1411,12 @@ pub fn plain_types(message: &str) -> String {
     ] {
         out = out.replace(&format!("expected {rust}"), &format!("expected {words}"));
     }
+    // `expected struct CableStage` → `expected a table`: the file's word, not the type's.
+    const STRUCT: &str = "expected struct ";
+    while let Some(i) = out.find(STRUCT) {
+        let name = out[i + STRUCT.len()..].chars().take_while(|c| c.is_ascii_alphanumeric() || *c == '_').count();
+        out.replace_range(i..i + STRUCT.len() + name, "expected a table");
+    }
     out
 }
 

@@ -508,7 +508,13 @@ pub fn write_plots(runs: &[(&Model, &RunResult)], dir: &Path) -> Result<Vec<Path
         _ => "Energy terms".to_string(),
     };
     let columns = if energy.len() > 1 { 2 } else { 1 };
-    let regions = runs.first().map(|(m, _)| members(m)).unwrap_or_default();
+    // The members of the lines, drawn when every run's line has the first's (lines laid out
+    // otherwise are compared by distance along the line).
+    let regions = if same_layouts(runs.iter().map(|(m, _)| *m)) {
+        runs.first().map(|(m, _)| members(m)).unwrap_or_default()
+    } else {
+        Vec::new()
+    };
     let charts = [
         (FILES[0], chart("Ship surge speed", "t (s)", "surge speed (m/s)", &speed_curves(runs), false, &[])),
         (
@@ -523,20 +529,13 @@ pub fn write_plots(runs: &[(&Model, &RunResult)], dir: &Path) -> Result<Vec<Path
         ),
         (
             FILES[2],
-            chart(
-                "Peak joint tension along the line",
-                "joint k (B_k−1 – B_k)",
-                "tension (kN)",
-                &tension_curves(runs),
-                true,
-                &regions,
-            ),
+            chart("Peak joint tension along the line", ALONG, "tension (kN)", &tension_curves(runs), true, &regions),
         ),
         (
             FILES[3],
             chart(
                 "Utilisation along the line: peak tension / break load",
-                "joint k (B_k−1 – B_k)",
+                ALONG,
                 "utilisation (%)",
                 &utilisation_curves(runs),
                 true,
@@ -618,33 +617,68 @@ fn displacement_curves(runs: &[(&Model, &RunResult)]) -> (Vec<Curve>, Vec<Curve>
     (ship, anchor)
 }
 
-/// The line's members along the joint axis: each name with the joints whose upper body is
-/// of it (the rod's with its joint to the ship), as (name, from, to) in joint units (a joint
-/// k spans k ± ½).
+/// The x axis of the charts along the line.
+const ALONG: &str = "distance along the line from the anchor (m)";
+
+/// The distance along the line from the anchor's shackle (joint 2) to each joint k = 2 … N
+/// (index k − 2), m: the unstretched lengths of the bodies between, B_2 … B_{k−1}. The
+/// position of the joint's tension on the charts along the line, so that lines of other
+/// element counts or stages compare at the same place.
+fn joint_distances(m: &Model) -> Vec<f64> {
+    let bodies = &m.chain.bodies;
+    let mut s = vec![0.0];
+    for body in &bodies[1..bodies.len().saturating_sub(1)] {
+        s.push(s[s.len() - 1] + body.length());
+    }
+    s
+}
+
+/// The member a body of the line belongs to, for the regions and the limits: the rod's
+/// limits are the cable's.
+fn member(kind: BodyKind) -> &'static str {
+    match kind {
+        BodyKind::ChainLink => "chain",
+        BodyKind::Cable { .. } => "cable",
+        BodyKind::Rod | BodyKind::Ship | BodyKind::Anchor => "rod",
+    }
+}
+
+/// The line's members along the distance axis: each name with the stretch its bodies
+/// (B_2 … B_{N−1}) cover, as (name, from, to) in m.
 fn members(m: &Model) -> Vec<(String, f64, f64)> {
+    let s = joint_distances(m);
     let mut out: Vec<(String, f64, f64)> = Vec::new();
-    for k in 2..=m.body_count() {
-        let name = match m.chain.bodies[k - 1].kind {
-            BodyKind::ChainLink => "chain",
-            BodyKind::Cable { .. } => "cable",
-            // The rod's joint to the ship is the rod's end.
-            BodyKind::Rod | BodyKind::Ship | BodyKind::Anchor => "rod",
-        };
+    for (i, body) in m.chain.bodies[1..m.chain.bodies.len() - 1].iter().enumerate() {
+        let (name, from, to) = (member(body.kind), s[i], s[i + 1]);
         match out.last_mut() {
-            Some(last) if last.0 == name => last.2 = k as f64 + 0.5,
-            _ => out.push((name.to_string(), k as f64 - 0.5, k as f64 + 0.5)),
+            Some(last) if last.0 == name => last.2 = to,
+            _ => out.push((name.to_string(), from, to)),
         }
     }
     out
 }
 
-/// A load limit along the line as a step: flat over each joint k (k ± ½), a vertical jump
-/// where it changes, a gap at a joint that has none.
-fn step(n: usize, value: impl Fn(usize) -> Option<f64>) -> Vec<(f64, f64)> {
+/// Whether every run's line has the first's members over the same stretches (to a
+/// millimetre) with the same load limits: then one set of regions and limits serves all.
+fn same_layouts<'a>(mut models: impl Iterator<Item = &'a Model>) -> bool {
+    let Some(first) = models.next() else { return true };
+    let (a, limits) = (members(first), |m: &Model| [BodyKind::ChainLink, BodyKind::Rod].map(|k| m.member_limits(k)));
+    models.all(|m| {
+        let b = members(m);
+        limits(m) == limits(first)
+            && a.len() == b.len()
+            && a.iter().zip(&b).all(|(p, q)| p.0 == q.0 && (p.1 - q.1).abs() < 1e-3 && (p.2 - q.2).abs() < 1e-3)
+    })
+}
+
+/// A limit along the line as a step: flat over each body of the line (B_2 … B_{N−1}) at
+/// `value` of its kind, a vertical jump where it changes, a gap over a body that has none.
+fn step(m: &Model, value: impl Fn(BodyKind) -> Option<f64>) -> Vec<(f64, f64)> {
+    let s = joint_distances(m);
     let mut points = Vec::new();
-    for k in 2..=n {
-        match value(k) {
-            Some(v) => points.extend([(k as f64 - 0.5, v), (k as f64 + 0.5, v)]),
+    for (i, body) in m.chain.bodies[1..m.chain.bodies.len() - 1].iter().enumerate() {
+        match value(body.kind) {
+            Some(v) => points.extend([(s[i], v), (s[i + 1], v)]),
             None => points.push((f64::NAN, f64::NAN)),
         }
     }
@@ -697,15 +731,19 @@ fn tension_curves(runs: &[(&Model, &RunResult)]) -> Vec<Curve> {
         .enumerate()
         .filter(|(_, (_, r))| r.ran())
         .map(|(i, (m, r))| {
-            let points = r.peak_tensions.iter().enumerate().map(|(j, p)| ((j + 2) as f64, p.tension / 1e3)).collect();
+            let s = joint_distances(m);
+            let points = r.peak_tensions.iter().zip(s).map(|(p, s)| (s, p.tension / 1e3)).collect();
             Curve::new(format!("{} peak", run_label(m, r)), i, points)
         })
         .collect();
     if let Some((m, _)) = runs.first() {
-        let n = m.body_count();
+        // The first run's limits, over its own line; named by its scene where another
+        // run's line is laid out otherwise.
+        let whose =
+            if same_layouts(runs.iter().map(|(m, _)| *m)) { String::new() } else { format!("{}: ", m.scene.meta.name) };
         let limit = |what: &str, look: usize, pick: fn(LoadLimits) -> Option<f64>| {
-            let points = step(n, |k| governing(m, k, pick).map(|(_, v)| v / 1e3));
-            Curve::limit(limit_label(m, what, pick), look, points, false)
+            let points = step(m, |kind| pick(m.member_limits(kind)).map(|v| v / 1e3));
+            Curve::limit(format!("{whose}{}", limit_label(m, what, pick)), look, points, false)
         };
         curves.push(limit("proof load", 4, |l| l.proof));
         curves.push(limit("break load", 1, |l| l.breaking));
@@ -725,25 +763,25 @@ fn utilisation_curves(runs: &[(&Model, &RunResult)]) -> Vec<Curve> {
             let points = r
                 .peak_tensions
                 .iter()
+                .zip(joint_distances(m))
                 .enumerate()
-                .map(|(j, p)| {
-                    let k = j + 2;
-                    (k as f64, m.joint_limits(k).breaking.map_or(f64::NAN, |b| 100.0 * p.tension / b))
-                })
+                .map(|(j, (p, s))| (s, m.joint_limits(j + 2).breaking.map_or(f64::NAN, |b| 100.0 * p.tension / b)))
                 .collect();
             Curve::new(run_label(m, r), i, points)
         })
         .collect();
     if let Some((m, _)) = runs.first() {
-        let n = m.body_count();
-        // Not drawn where the proof load is above the joint's break load (the chain's at the
-        // chain–cable joint, where the cable is the weaker member): the break load governs.
-        let proof = step(n, |k| {
-            let l = m.joint_limits(k);
-            Some(100.0 * l.proof? / l.breaking?).filter(|&u| u <= 100.0)
+        // Over each body, its member's proof load against its break load (the chain's).
+        let proof = step(m, |kind| {
+            let l = m.member_limits(kind);
+            Some(100.0 * l.proof? / l.breaking?)
         });
-        curves.push(Curve::limit("chain proof load", 4, proof, true));
-        curves.push(Curve::limit("break load (100 %)", 1, step(n, |_| Some(100.0)), true));
+        let whose =
+            if same_layouts(runs.iter().map(|(m, _)| *m)) { String::new() } else { format!("{}: ", m.scene.meta.name) };
+        curves.push(Curve::limit(format!("{whose}chain proof load"), 4, proof, true));
+        // Every run's break load is its 100 %: over the longest line.
+        let longest = runs.iter().filter_map(|(m, _)| joint_distances(m).last().copied()).fold(0.0, f64::max);
+        curves.push(Curve::limit("break load (100 %)", 1, vec![(0.0, 100.0), (longest, 100.0)], true));
     }
     curves
 }
@@ -967,23 +1005,57 @@ mod tests {
     fn a_limit_far_above_the_data_does_not_flatten_it() {
         // Regression: the peak-tension axis ran to the 4 000 kN break load; 400 kN peaks were a line.
         let data = Curve::new("peak", 0, vec![(2.0, 395.0), (46.0, 430.0)]);
-        let far = reference(step(46, |_| Some(3866.0)));
+        let flat = |v: f64| (2..=46).flat_map(|k| [(k as f64 - 0.5, v), (k as f64 + 0.5, v)]).collect();
+        let far = reference(flat(3866.0));
         let ((_, _), (y0, y1)) = bounds(&[data, far], true);
         assert_eq!(y0, 0.0);
         assert!(y1 < 500.0, "{y1}");
         let data = Curve::new("util", 0, vec![(2.0, 10.0), (46.0, 38.6)]);
-        let near = reference(step(46, |_| Some(70.0)));
+        let near = reference(flat(70.0));
         let (_, (_, y1)) = bounds(&[data, near], true);
         assert!(y1 > 70.0, "a limit near the data is on the axis: {y1}");
+    }
+
+    fn case1() -> Model {
+        let scene = kanestop_runtime::scene::Scene::from_toml(kanestop_runtime::paper::DEFAULT_SCENE, "case01.toml");
+        Model::new(&scene.unwrap()).unwrap()
     }
 
     #[test]
     fn a_limit_is_a_step_not_a_slope() {
         // Regression: the proof/break load changing from chain to cable was drawn as a slope.
-        let points = step(4, |k| Some(if k < 3 { 2.0 } else { 1.0 }));
-        assert_eq!(points, [(1.5, 2.0), (2.5, 2.0), (2.5, 1.0), (3.5, 1.0), (3.5, 1.0), (4.5, 1.0)]);
-        let gap = step(3, |k| (k == 2).then_some(1.0));
-        assert!(gap[2].0.is_nan(), "a joint without a limit breaks the line");
+        let m = case1();
+        let points = step(&m, |kind| Some(if kind == BodyKind::ChainLink { 2.0 } else { 1.0 }));
+        // 15 chain links of 1 m, then the cable: flat to 15 m, a jump, flat on.
+        assert_eq!(points[..4], [(0.0, 2.0), (1.0, 2.0), (1.0, 2.0), (2.0, 2.0)]);
+        assert_eq!(points[28..32], [(14.0, 2.0), (15.0, 2.0), (15.0, 1.0), (17.0, 1.0)]);
+        let gap = step(&m, |kind| (kind == BodyKind::ChainLink).then_some(1.0));
+        assert!(gap[30].0.is_nan(), "a body without a limit breaks the line");
+    }
+
+    #[test]
+    fn lines_laid_out_otherwise_are_told_apart() {
+        let (a, b) = (case1(), case1());
+        assert!(same_layouts([&a, &b].into_iter()));
+        let mut scene = b.scene.clone();
+        scene.cable.stages[0].element_length = 2.5;
+        let longer = Model::new(&scene).unwrap();
+        assert!(!same_layouts([&a, &longer].into_iter()), "a first stage of 2.5 m elements, not 2 m");
+        let mut scene = a.scene.clone();
+        scene.cable.break_load *= 2.0;
+        assert!(!same_layouts([&a, &Model::new(&scene).unwrap()].into_iter()), "another break load");
+    }
+
+    #[test]
+    fn the_line_is_drawn_by_distance_from_the_anchor() {
+        // Case 1: joint 2 at the anchor's shackle, joint N = 46 at the fairlead, 15 m of chain,
+        // 152 m of cable and the 1 m rod between: 168 m in all; the members over those stretches.
+        let m = case1();
+        let s = joint_distances(&m);
+        assert_eq!((s.len(), s[0], s[15]), (45, 0.0, 15.0));
+        assert!((s[44] - 168.0).abs() < 1e-9, "{}", s[44]);
+        let names: Vec<_> = members(&m).into_iter().map(|(n, a, b)| (n, a.round(), b.round())).collect();
+        assert_eq!(names, [("chain".into(), 0.0, 15.0), ("cable".into(), 15.0, 167.0), ("rod".into(), 167.0, 168.0)]);
     }
 
     #[test]

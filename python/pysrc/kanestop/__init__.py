@@ -272,6 +272,19 @@ def _no_bools(**solver: Any) -> None:
             raise TypeError(f"{name} = {value}: a number of seconds (or a tolerance), not a bool")
 
 
+def _jobs(jobs: Any) -> Optional[int]:
+    """``jobs`` as the pool takes it: None (every core) or a whole number in [1, MAX_JOBS],
+    a NumPy integer included; a bool or a float is a TypeError, a number out of range a
+    ValueError naming it."""
+    if jobs is None:
+        return None
+    if isinstance(jobs, (bool, np.bool_)) or not isinstance(jobs, (int, np.integer)):
+        raise TypeError(f"jobs must be a whole number in [1, {MAX_JOBS}] or None, not {type(jobs).__name__}")
+    if not 1 <= jobs <= MAX_JOBS:
+        raise ValueError(f"jobs = {jobs}: must be in [1, {MAX_JOBS}] (or None for every core)")
+    return int(jobs)
+
+
 def _scene(scene: Union[Scene, PathLike, Mapping[str, Any]]) -> Scene:
     if isinstance(scene, Scene):
         return scene
@@ -359,7 +372,9 @@ def sensitivity(
     [1e-6, 0.5), a bad ``jobs``, or a base scene that fails raises ``ValueError`` (the
     last with the command line's diagnosis).
     """
-    study: Dict[str, Any] = json.loads(_sensitivity(_scene(scene), step, jobs))
+    if isinstance(step, (bool, np.bool_)):
+        raise TypeError(f"step = {step}: a relative step (e.g. 0.05), not a bool")
+    study: Dict[str, Any] = json.loads(_sensitivity(_scene(scene), step, _jobs(jobs)))
     if records:
         return study
     rows = [
@@ -370,7 +385,7 @@ def sensitivity(
             "d_stopping_time": r["stopping_time"],
             "d_stopping_distance": r["stopping_distance"],
             "d_peak_tension": r["peak_tension"],
-            "message": r["message"],
+            "message": r["message"] or None,
             "difference": (r["difference"] or "").lower() or None,
             "step": r["step"],
         }
@@ -379,11 +394,28 @@ def sensitivity(
     pd = _pandas()
     if pd is None:
         return rows
-    df = pd.DataFrame(rows, columns=list(rows[0]) if rows else None)
+    df = _with_words(pd, pd.DataFrame(rows, columns=list(rows[0]) if rows else None), {"parameter", "message", "difference"})
     base = dict(zip(("stopping_time", "stopping_distance", "peak_tension"), study["base"]))
     df.attrs.update({"scene": study["scene"], "step": study["step"], "base": base, "runs": study["runs"]})
     df.attrs["units"] = dict(_sensitivity_units())
     return df
+
+
+def _with_words(pd: Any, frame: Any, words: "set[str]") -> Any:
+    """A table's DataFrame with one rule for empty cells: the columns of ``words`` hold
+    text, None where empty (object dtype, whatever pandas would infer); every other column
+    is numeric, float64 with NaN where empty, even where every row is (an output no row
+    has), unless it holds words (an input such as solver.integrator)."""
+    for c in frame.columns:
+        if c in words:
+            column = frame[c].astype(object)
+            frame[c] = column.where(column.notna(), None)
+            continue
+        try:
+            frame[c] = pd.to_numeric(frame[c])
+        except (TypeError, ValueError):
+            pass  # an input of words
+    return frame
 
 
 Rows = Iterable[Mapping[str, Any]]
@@ -504,10 +536,7 @@ def sweep(
     dicts ``{index, name, label, inputs, status, checks_pass, energy_split, summary,
     message}`` whose ``summary`` is the row's ``run --json`` record.
     """
-    if jobs is not None and (isinstance(jobs, bool) or not isinstance(jobs, int)):
-        raise TypeError(f"jobs must be a whole number in [1, {MAX_JOBS}] or None, not {type(jobs).__name__}")
-    if jobs is not None and not 1 <= jobs <= MAX_JOBS:
-        raise ValueError(f"jobs = {jobs}: must be in [1, {MAX_JOBS}] (or None for every core)")
+    jobs = _jobs(jobs)
     the_spec, the_rows = _spec(spec, rows, base_dir)
     plan: Optional[List[Dict[str, Any]]] = None
     if the_rows is not None:
@@ -540,16 +569,9 @@ def sweep(
     pd = _pandas()
     if pd is not None:
         frame = pd.DataFrame.from_records(table, columns=columns)
-        frame.attrs["units"] = dict(zip(columns, units))
-        # Every column but the words is numeric: float64 with NaN for the empty cells, even
-        # where every row is empty (an output no row has).
         words = {"name", "status", "checks", "message"}
-        for c in frame.columns:
-            if c in words or (c.startswith("check_") and c.endswith("_pass")):
-                continue
-            try:
-                frame[c] = pd.to_numeric(frame[c])
-            except (TypeError, ValueError):
-                pass  # an input of words (e.g. solver.integrator)
+        words.update(c for c in columns if c.startswith("check_") and c.endswith("_pass"))
+        frame = _with_words(pd, frame, words)
+        frame.attrs["units"] = dict(zip(columns, units))
         return frame
     return [dict(zip(columns, row)) for row in table]
