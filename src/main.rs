@@ -52,8 +52,9 @@ enum Command {
         /// on files written go to standard error.
         #[arg(long)]
         json: bool,
-        /// Add the solver internals to the summary: physics, bodies, initial state,
-        /// catenary residuals, stability eigenvalues, final state.
+        /// Add the solver internals to the text summary: physics, bodies, initial state,
+        /// catenary residuals, stability eigenvalues, final state (--json's object is the
+        /// same with or without it).
         #[arg(long, short)]
         verbose: bool,
         /// Which Kane kernel evaluates the equations of motion.
@@ -510,17 +511,41 @@ impl std::str::FromStr for MethodSpec {
 /// checked (they may mend it), and its model.
 fn load_model_with(scene: Option<&PathBuf>, o: &SolverOverrides) -> Result<Model> {
     let over = o.table();
+    let given: Vec<String> =
+        over.get("solver").and_then(|t| t.as_table()).map_or(Vec::new(), |t| t.keys().cloned().collect());
     let scene = match scene {
-        Some(path) => Scene::load_over(path, over)?,
-        None if over.is_empty() => Scene::from_toml(DEFAULT_SCENE, "embedded case01.toml")?,
-        None => default_over(over)?,
-    };
+        Some(path) => Scene::load_over(path, over),
+        None if over.is_empty() => Scene::from_toml(DEFAULT_SCENE, "embedded case01.toml"),
+        None => default_over(over),
+    }
+    .map_err(|e| with_flag_hints(e, &given))?;
     if scene.solver.integrator == Method::Rk4 && (o.rtol.is_some() || o.atol.is_some()) {
         eprintln!(
             "note: --rtol and --atol are the adaptive methods' tolerances; rk4 takes a fixed step and ignores them"
         );
     }
     Ok(Model::new(&scene)?)
+}
+
+/// A scene refused with command-line flags given (`given`: the `[solver]` keys they set),
+/// with a hint for each `[solver]` field refused that no flag set: its value is the file's,
+/// and which flag sets it (`run --dt 0.1` refuses the file's output_interval = 0.02).
+fn with_flag_hints(e: SceneError, given: &[String]) -> anyhow::Error {
+    let hints: Vec<String> = match (&e, given.is_empty()) {
+        (SceneError::Invalid { problems, .. }, false) => problems
+            .iter()
+            .filter_map(|p| p.field.strip_prefix("solver."))
+            .filter(|key| !given.iter().any(|g| g == key))
+            .map(|key| format!("  solver.{key} is the file's: --{} sets it on the command line", key.replace('_', "-")))
+            .collect(),
+        _ => Vec::new(),
+    };
+    let e = anyhow::Error::from(e);
+    if hints.is_empty() {
+        e
+    } else {
+        anyhow::anyhow!("{e}\n{}", hints.join("\n"))
+    }
 }
 
 impl SolverOverrides {

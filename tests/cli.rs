@@ -442,6 +442,14 @@ fn batch_and_run_take_solver_overrides() {
         kanestop().args(["run"]).arg(short_scene(&dir)).args(["--integrator", "sdirk4", "--atol=-1"]).output().unwrap();
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("solver.atol = -1"));
+    // A flag that makes the file's own value wrong: the refusal says which flag sets that.
+    let out = kanestop().args(["run", "--dt", "0.1"]).output().unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("solver.output_interval is the file's: --output-interval sets it on the command line"),
+        "{err}"
+    );
 }
 
 #[test]

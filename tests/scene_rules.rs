@@ -203,7 +203,7 @@ fn a_check_is_set_on_a_scene_without_checks() {
     let e = case1.with_overrides(&[("checks.max_distance", toml::Value::Float(20.0))]).unwrap_err().to_string();
     // (named as the unknown field, with the checks there are: it was "no field `checks`").
     assert!(
-        e.contains("no field `max_distance` here (valid: max_stopping_distance, "),
+        e.contains("no field `max_distance` here (valid: max_anchor_drag, max_proof_utilisation, "),
         "a field that is no check is still refused: {e}"
     );
     // CHECK_FIELDS are DesignChecks' own fields.

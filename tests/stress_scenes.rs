@@ -12,7 +12,7 @@ use std::sync::atomic::AtomicBool;
 use kanestop_runtime::generated::GeneratedKernel;
 use kanestop_runtime::model::Model;
 use kanestop_runtime::scene::{Method, Scene};
-use kanestop_runtime::simulate::{self, FailureKind, RunResult, Stop};
+use kanestop_runtime::simulate::{self, health, FailureKind, RunResult, Stop};
 use kanestop_workflow::diagnostic::describe;
 
 fn load(name: &str) -> Scene {
@@ -103,11 +103,15 @@ fn rk4_inside_the_start_limit_whose_tensions_chatter_stops_with_the_diagnostic()
     let r = run_scene(&scene);
     check("seabed_kz_x1e4 at 1 ms", &scene, &r);
     let Stop::Failed(f) = &r.stop else { panic!("expected the chatter, got {:?}", r.stop) };
-    let FailureKind::TensionChatter { joint, rough, window, .. } = f.kind else { panic!("{f}") };
-    assert!((2.0..4.0).contains(&f.t) && f.body == joint && rough * 5 >= window, "{f}");
+    let FailureKind::TensionChatter { joint, rough, since, .. } = f.kind else { panic!("{f}") };
+    assert!((2.0..4.0).contains(&f.t) && f.body == joint && rough >= health::CHATTER_STEPS, "{f}");
+    // The window's oldest rough step: the tensions are noise from about then.
+    assert!(since > 0 && since < health::CHATTER_WINDOW, "{f}");
     let text = diagnostic(&scene, &r);
     assert!(text.contains(&format!("tension chatter: the tension at joint {joint}")), "{text}");
-    assert!(text.contains("reduce solver.dt") && text.contains("dp5"), "{text}");
+    let from = f.t - f64::from(since) * scene.solver.dt;
+    assert!(text.contains(&format!("are noise from about t = {from:.3} s")), "{text}");
+    assert!(text.contains("halve solver.dt (try 5.0e-4 s") && text.contains("dp5"), "{text}");
     // At half the step the tensions are smooth: 433 kN at the fairlead by 1.6 s.
     scene.solver.dt = 5e-4;
     scene.solver.end_time = 5.0;

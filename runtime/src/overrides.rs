@@ -145,25 +145,7 @@ pub fn set(root: &mut Value, path: &str, value: Value) -> Result<(), OverrideErr
             }
         }
     }
-    if let (Some((table, key)), Value::Table(top)) = (optional_of(path), &mut *root) {
-        let t = top.entry(table).or_insert_with(|| Value::Table(toml::Table::new()));
-        if let Value::Table(t) = t {
-            t.entry(key).or_insert(Value::Float(0.0));
-        }
-    }
-    // A whole optional table (`checks = {…}`) on a scene without it.
-    if let (Some(table), Value::Table(top)) = (OPTIONAL.iter().find(|(t, _)| *t == path), &mut *root) {
-        top.entry(table.0).or_insert_with(|| Value::Table(toml::Table::new()));
-    }
-    // A field an optional table does not have, on a scene without it: that field is unknown.
-    if let [Step::Key(table), Step::Key(key), ..] = steps.as_slice() {
-        if let Some((_, fields)) = OPTIONAL.iter().find(|(t, _)| t == table) {
-            if root.get(*table).is_none() && !fields.contains(key) {
-                let valid = fields.join(", ");
-                return Err(OverrideError::NoSuchField { path: path.to_string(), part: key.to_string(), valid });
-            }
-        }
-    }
+    add_optional(root, &steps, path)?;
     let mut node = root;
     let mut at = String::new();
     for (depth, step) in steps.iter().enumerate() {
@@ -201,6 +183,32 @@ pub fn set(root: &mut Value, path: &str, value: Value) -> Result<(), OverrideErr
         (Value::Float(_), Value::Integer(n)) => Value::Float(n as f64),
         (_, value) => value,
     };
+    Ok(())
+}
+
+/// An optional table (`[checks]`) that `root` does not have, added for a path into it (its
+/// `steps`): with the field named, when it is one of the table's
+/// (`checks.max_stopping_distance`); a name that is none of them is refused with those
+/// there are.
+fn add_optional(root: &mut Value, steps: &[Step<'_>], path: &str) -> Result<(), OverrideError> {
+    if let (Some(Step::Key(table)), Value::Table(top)) = (steps.first(), &mut *root) {
+        if let Some((_, fields)) = OPTIONAL.iter().find(|(t, _)| t == table) {
+            if let (None, Some(Step::Key(key))) = (top.get(*table), steps.get(1)) {
+                if !fields.contains(key) {
+                    let mut valid = fields.to_vec();
+                    valid.sort_unstable();
+                    let (path, part, valid) = (path.to_string(), key.to_string(), valid.join(", "));
+                    return Err(OverrideError::NoSuchField { path, part, valid });
+                }
+            }
+            let t = top.entry(*table).or_insert_with(|| Value::Table(toml::Table::new()));
+            if let (Value::Table(t), Some(Step::Key(key))) = (t, steps.get(1)) {
+                if fields.contains(key) {
+                    t.entry(*key).or_insert(Value::Float(0.0));
+                }
+            }
+        }
+    }
     Ok(())
 }
 
@@ -412,7 +420,19 @@ mod tests {
         // A typing error among the optional checks lists them all, at the top and inside.
         let e = set(&mut v, "checks.max_stoping", Value::Float(1.0)).unwrap_err();
         let OverrideError::NoSuchField { part, valid, .. } = &e else { panic!("{e}") };
-        assert_eq!((part.as_str(), valid.as_str()), ("max_stoping", crate::design::CHECK_FIELDS.join(", ").as_str()));
+        let mut sorted = crate::design::CHECK_FIELDS.to_vec();
+        sorted.sort_unstable();
+        assert_eq!((part.as_str(), valid.as_str()), ("max_stoping", sorted.join(", ").as_str()));
+        // Deeper or indexed paths into a [checks] not there: the part in the way, as anywhere.
+        for (bad, said) in [
+            ("checks.max_stopping_time.x", "`max_stopping_time` is a value"),
+            ("checks.max_stopping_time[0]", "`max_stopping_time` is a value"),
+            ("checks[0]", "`checks` is a table, not an array"),
+        ] {
+            let mut fresh = value("[ship]\nmass = 1.0\n");
+            let e = set(&mut fresh, bad, Value::Float(1.0)).unwrap_err().to_string();
+            assert!(e.contains(said), "{bad}: {e}");
+        }
         let e = set(&mut v, "chekcs.max_stopping_time", Value::Float(1.0)).unwrap_err();
         let OverrideError::NoSuchField { valid, .. } = &e else { panic!("{e}") };
         assert!(valid.contains("checks") && valid.contains("ship"), "{valid}");

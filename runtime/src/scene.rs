@@ -1194,23 +1194,22 @@ impl Scene {
         }
         let steps = so.end_time / so.dt;
         if so.dt > 0.0 && so.end_time > 0.0 && so.end_time.is_finite() && steps > MAX_STEPS {
-            let seconds = steps * 4.0 * self.body_count() as f64 * SECONDS_PER_BODY_EVALUATION;
-            let why = format!(
-                "≥ solver.end_time / {MAX_STEPS:e} = {:.3e} s: {steps:.3e} steps exceed the limit of {MAX_STEPS:e} \
-                 (about {seconds:.1e} s of RK4 wall time at N = {}); or solver.end_time ≤ {} s",
-                so.end_time / MAX_STEPS,
-                self.body_count(),
-                fmt_significant(so.dt * MAX_STEPS, 3)
-            );
+            let end_bound = fmt_significant(so.dt * MAX_STEPS, 3);
             // Beyond the longest step (1 s) only a shorter end time helps: that is the field to name.
             if so.end_time / MAX_STEPS > MAX_DT {
                 let why = format!(
-                    "≤ solver.dt × {MAX_STEPS:e} = {} s: {steps:.3e} steps exceed the limit of {MAX_STEPS:e}, and no \
-                     step above solver.dt's {MAX_DT} s could make up for it",
-                    fmt_significant(so.dt * MAX_STEPS, 3)
+                    "≤ solver.dt × {MAX_STEPS:e} = {end_bound} s: {steps:.3e} steps exceed the limit of {MAX_STEPS:e}, \
+                     and no step within solver.dt's range (≤ {MAX_DT} s) could make up for it"
                 );
                 c.push("solver.end_time", &fmt_value(so.end_time), &why);
             } else {
+                let seconds = steps * 4.0 * self.body_count() as f64 * SECONDS_PER_BODY_EVALUATION;
+                let why = format!(
+                    "≥ solver.end_time / {MAX_STEPS:e} = {:.3e} s: {steps:.3e} steps exceed the limit of {MAX_STEPS:e} \
+                     (about {seconds:.1e} s of RK4 wall time at N = {}); or solver.end_time ≤ {end_bound} s",
+                    so.end_time / MAX_STEPS,
+                    self.body_count(),
+                );
                 c.push("solver.dt", &fmt_value(so.dt), &why);
             }
         }

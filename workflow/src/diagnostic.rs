@@ -21,8 +21,8 @@ pub fn describe(model: &Model, failure: &Failure) -> String {
     let refused = matches!(failure.kind, FailureKind::StepAboveLimit { .. });
     let (what, cause, suggestion) = match &failure.kind {
         FailureKind::StepAboveLimit { dt, limit } => refusal(*dt, limit),
-        kind @ FailureKind::TensionChatter { .. } => {
-            let (cause, suggestion) = chatter(model, failure.t);
+        kind @ FailureKind::TensionChatter { since, .. } => {
+            let (cause, suggestion) = chatter(model, failure.t, *since);
             (what(kind), cause, suggestion)
         }
         kind => {
@@ -108,10 +108,10 @@ fn what(kind: &FailureKind) -> String {
              the line's largest break load ({bound:.3e} N in all)",
             joint - 1
         ),
-        FailureKind::TensionChatter { joint, ratio, rough, window } => format!(
+        FailureKind::TensionChatter { joint, ratio, rough, window, .. } => format!(
             "tension chatter: the tension at joint {joint} (B_{} – B_{joint}) jumps from step to step (second \
              difference {ratio:.2} of its size), and the line's tensions did so at {rough} of the last {window} \
-             steps: the step no longer resolves them, so they and their peaks would be noise",
+             steps: the step no longer resolves them",
             joint - 1
         ),
     }
@@ -138,19 +138,33 @@ fn refusal(dt: f64, limit: &StabilityLimit) -> (String, String, String) {
     (what, cause, suggestion)
 }
 
-/// The cause and suggestion of RK4's tensions chattering at `t` (s): a mode faster than the
-/// linearised equations had at t = 0 (the limit RK4's step was checked against), as the
-/// line presses into the seabed or tightens.
-fn chatter(model: &Model, t: f64) -> (String, String) {
+/// The cause and suggestion of RK4's tensions chattering at `t` (s), the oldest rough step
+/// of the window `since` steps before: a mode faster than the linearised equations had at
+/// t = 0 (the limit RK4's step was checked against), as the line tightens or, on a seabed,
+/// presses into it. A step a little inside that mode's limit is enough, so the suggestion
+/// halves it (k_z × 1e4: 1 ms chatters, 0.5 ms runs cleanly).
+fn chatter(model: &Model, t: f64, since: u32) -> (String, String) {
     let solver = &model.scene.solver;
+    let dt = solver.dt;
+    let stiffer = if model.scene.environment.seabed {
+        "the seabed's contact stiffens as the line is pressed into it, and a tightening line's modes quicken \
+         with its tension"
+    } else {
+        "a tightening line's modes quicken with its tension"
+    };
+    let from = (t - f64::from(since) * dt).max(0.0);
     let cause = format!(
-        "the explicit step dt = {} s is at the edge of a mode faster than any at t = 0, where its stability limit \
-         was checked: the seabed's contact stiffens as the line is pressed into it, and a tightening line's \
-         modes quicken with its tension",
-        solver.dt
+        "the explicit step dt = {dt} s is at the edge of a mode faster than any at t = 0, where its stability limit \
+         was checked: {stiffer}; the tensions, and the peaks taken from them, are noise from about t = {from:.3} s"
     );
-    let kept = format!("the first {:.3} s up to the failure are kept", (t - solver.dt).max(0.0));
-    (cause, rk4_suggestion(solver.dt, solver.end_time, &kept))
+    let kept = format!("the first {:.3} s up to the failure are kept", (t - dt).max(0.0));
+    let floor = solver.end_time / MAX_STEPS;
+    let suggestion = if dt / 2.0 >= floor {
+        format!("halve solver.dt (try {:.1e} s, and again if the tensions still chatter) or use integrator = \"dp5\"; {kept}", dt / 2.0)
+    } else {
+        format!("use integrator = \"dp5\" (solver.dt is at its smallest for end_time {} s); {kept}", solver.end_time)
+    };
+    (cause, suggestion)
 }
 
 /// Reduce the step 16-fold, never below the smallest step a scene may ask for

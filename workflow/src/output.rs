@@ -56,10 +56,6 @@ pub fn check_file_target(path: &Path) -> std::io::Result<()> {
         return Err(std::io::Error::other("exists and is not a regular file"));
     }
     let dir = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
-    if dir.exists() && !dir.is_dir() {
-        // The message names the one that is in the way, not the file to be written.
-        return Err(std::io::Error::other(format!("{} exists and is not a folder", dir.display())));
-    }
     check_dir_target(dir)
 }
 
@@ -70,7 +66,8 @@ pub fn check_dir_target(dir: &Path) -> std::io::Result<()> {
         return check_writable_dir(dir);
     }
     if dir.exists() {
-        return Err(std::io::Error::other("exists and is not a folder"));
+        // Named: a file's folder is in the way, not the file to be written.
+        return Err(std::io::Error::other(format!("{} exists and is not a folder", dir.display())));
     }
     // The nearest existing ancestor must accept the folders to be created.
     let mut parent = dir.parent();

@@ -352,7 +352,7 @@ fn emptiest_corner(points: &[(f64, f64)], (x0, x1): (f64, f64), (y0, y1): (f64, 
 const SIZE: (u32, u32) = (900, 540);
 
 /// A chart of one panel, its legend beside it, as SVG text; `regions` names stretches of
-/// the x axis (the line's members along a joint axis).
+/// the x axis (the line's members along the distance from the anchor, m).
 fn chart(
     title: &str,
     x_label: &str,
@@ -508,12 +508,11 @@ pub fn write_plots(runs: &[(&Model, &RunResult)], dir: &Path) -> Result<Vec<Path
         _ => "Energy terms".to_string(),
     };
     let columns = if energy.len() > 1 { 2 } else { 1 };
-    // The members of the lines, drawn when every run's line has the first's (lines laid out
-    // otherwise are compared by distance along the line).
-    let regions = if same_layouts(runs.iter().map(|(m, _)| *m)) {
-        runs.first().map(|(m, _)| members(m)).unwrap_or_default()
-    } else {
-        Vec::new()
+    // The members of the lines, drawn when every run's line has the first's over the same
+    // stretches (lines laid out otherwise are compared by distance along the line).
+    let regions = match runs.first() {
+        Some((m, _)) if same_members(runs.iter().map(|(m, _)| *m)) => members(m),
+        _ => Vec::new(),
     };
     let charts = [
         (FILES[0], chart("Ship surge speed", "t (s)", "surge speed (m/s)", &speed_curves(runs), false, &[])),
@@ -627,7 +626,7 @@ const ALONG: &str = "distance along the line from the anchor (m)";
 fn joint_distances(m: &Model) -> Vec<f64> {
     let bodies = &m.chain.bodies;
     let mut s = vec![0.0];
-    for body in &bodies[1..bodies.len().saturating_sub(1)] {
+    for body in &bodies[1..bodies.len() - 1] {
         s.push(s[s.len() - 1] + body.length());
     }
     s
@@ -658,17 +657,23 @@ fn members(m: &Model) -> Vec<(String, f64, f64)> {
     out
 }
 
-/// Whether every run's line has the first's members over the same stretches (to a
-/// millimetre) with the same load limits: then one set of regions and limits serves all.
-fn same_layouts<'a>(mut models: impl Iterator<Item = &'a Model>) -> bool {
+/// Whether every line has the first's members over the same stretches (to a millimetre):
+/// then one set of member regions serves all the runs.
+fn same_members<'a>(mut models: impl Iterator<Item = &'a Model>) -> bool {
     let Some(first) = models.next() else { return true };
-    let (a, limits) = (members(first), |m: &Model| [BodyKind::ChainLink, BodyKind::Rod].map(|k| m.member_limits(k)));
+    let a = members(first);
     models.all(|m| {
         let b = members(m);
-        limits(m) == limits(first)
-            && a.len() == b.len()
+        a.len() == b.len()
             && a.iter().zip(&b).all(|(p, q)| p.0 == q.0 && (p.1 - q.1).abs() < 1e-3 && (p.2 - q.2).abs() < 1e-3)
     })
+}
+
+/// Whether every line has the first's members over the same stretches and the same load
+/// limits: then the first run's limits are every run's, and need no scene's name.
+fn same_limits(runs: &[(&Model, &RunResult)]) -> bool {
+    let limits = |m: &Model| [BodyKind::ChainLink, BodyKind::Rod].map(|k| m.member_limits(k));
+    same_members(runs.iter().map(|(m, _)| *m)) && runs.iter().all(|(m, _)| limits(m) == limits(runs[0].0))
 }
 
 /// A limit along the line as a step: flat over each body of the line (B_2 … B_{N−1}) at
@@ -738,9 +743,8 @@ fn tension_curves(runs: &[(&Model, &RunResult)]) -> Vec<Curve> {
         .collect();
     if let Some((m, _)) = runs.first() {
         // The first run's limits, over its own line; named by its scene where another
-        // run's line is laid out otherwise.
-        let whose =
-            if same_layouts(runs.iter().map(|(m, _)| *m)) { String::new() } else { format!("{}: ", m.scene.meta.name) };
+        // run's line is laid out otherwise or has other limits.
+        let whose = if same_limits(runs) { String::new() } else { format!("{}: ", m.scene.meta.name) };
         let limit = |what: &str, look: usize, pick: fn(LoadLimits) -> Option<f64>| {
             let points = step(m, |kind| pick(m.member_limits(kind)).map(|v| v / 1e3));
             Curve::limit(format!("{whose}{}", limit_label(m, what, pick)), look, points, false)
@@ -776,8 +780,7 @@ fn utilisation_curves(runs: &[(&Model, &RunResult)]) -> Vec<Curve> {
             let l = m.member_limits(kind);
             Some(100.0 * l.proof? / l.breaking?)
         });
-        let whose =
-            if same_layouts(runs.iter().map(|(m, _)| *m)) { String::new() } else { format!("{}: ", m.scene.meta.name) };
+        let whose = if same_limits(runs) { String::new() } else { format!("{}: ", m.scene.meta.name) };
         curves.push(Curve::limit(format!("{whose}chain proof load"), 4, proof, true));
         // Every run's break load is its 100 %: over the longest line.
         let longest = runs.iter().filter_map(|(m, _)| joint_distances(m).last().copied()).fold(0.0, f64::max);
@@ -1036,14 +1039,18 @@ mod tests {
     #[test]
     fn lines_laid_out_otherwise_are_told_apart() {
         let (a, b) = (case1(), case1());
-        assert!(same_layouts([&a, &b].into_iter()));
+        assert!(same_members([&a, &b].into_iter()));
         let mut scene = b.scene.clone();
         scene.cable.stages[0].element_length = 2.5;
         let longer = Model::new(&scene).unwrap();
-        assert!(!same_layouts([&a, &longer].into_iter()), "a first stage of 2.5 m elements, not 2 m");
+        assert!(!same_members([&a, &longer].into_iter()), "a first stage of 2.5 m elements, not 2 m");
+        // Another cable grade: the same members (drawn), other limits (named by scene).
         let mut scene = a.scene.clone();
         scene.cable.break_load *= 2.0;
-        assert!(!same_layouts([&a, &Model::new(&scene).unwrap()].into_iter()), "another break load");
+        let stronger = Model::new(&scene).unwrap();
+        assert!(same_members([&a, &stronger].into_iter()), "the same stretches");
+        let limits = |m: &Model| [BodyKind::ChainLink, BodyKind::Rod].map(|k| m.member_limits(k));
+        assert!(limits(&a) != limits(&stronger) && limits(&a) == limits(&b));
     }
 
     #[test]

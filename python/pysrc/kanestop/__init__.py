@@ -369,8 +369,9 @@ def sensitivity(
     dicts. With ``records=True``:
     ``sensitivity.json``'s record as a dict. The runs release the GIL, ``jobs`` at a time
     (every core when None); Ctrl-C waits for the study to end. A step outside
-    [1e-6, 0.5), a bad ``jobs``, or a base scene that fails raises ``ValueError`` (the
-    last with the command line's diagnosis).
+    [1e-6, 0.5), ``jobs`` outside [1, MAX_JOBS], or a base scene that fails raises
+    ``ValueError`` (the last with the command line's diagnosis); a ``jobs`` that is no whole
+    number (a bool, a float) or a bool ``step``, ``TypeError``.
     """
     if isinstance(step, (bool, np.bool_)):
         raise TypeError(f"step = {step}: a relative step (e.g. 0.05), not a bool")

@@ -96,6 +96,9 @@ pub enum FailureKind {
         rough: u32,
         /// The steps counted.
         window: u32,
+        /// How many steps before the failing one the oldest rough step of the window was:
+        /// the tensions and their peaks are noise from about then.
+        since: u32,
     },
 }
 

@@ -137,8 +137,9 @@ pub const CHATTER_WINDOW: u32 = 50;
 pub const CHATTER_STEPS: u32 = 10;
 
 /// Watches RK4's joint tensions step by step for chatter ([`CHATTER_STEPS`] rough steps of
-/// the last [`CHATTER_WINDOW`]).
-#[derive(Clone, Debug, Default)]
+/// the last [`CHATTER_WINDOW`]). It takes the states after each step, not the one at t = 0:
+/// the first second difference is at the third step.
+#[derive(Clone, Debug)]
 pub struct ChatterWatch {
     /// The tensions of the two steps before the last checked, and of the last (N).
     before: Vec<f64>,
@@ -151,12 +152,12 @@ pub struct ChatterWatch {
     floor: f64,
 }
 
-const _: () = assert!(CHATTER_WINDOW <= 64, "the window is a u64's bits");
+const _: () = assert!(CHATTER_WINDOW < 64, "the window is a u64's low bits");
 
 impl ChatterWatch {
     /// A watch for a line whose smaller break load (chain or cable) is `break_load`, N.
     pub fn new(break_load: f64) -> Self {
-        ChatterWatch { floor: CHATTER_FLOOR * break_load, ..Self::default() }
+        ChatterWatch { before: Vec::new(), last: Vec::new(), seen: 0, rough: 0, floor: CHATTER_FLOOR * break_load }
     }
 
     /// The watch for `model`'s line.
@@ -181,12 +182,17 @@ impl ChatterWatch {
         std::mem::swap(&mut self.before, &mut self.last);
         self.last.clear();
         self.last.extend_from_slice(tensions);
-        self.rough = (self.rough << 1 | u64::from(worst.is_some())) & ((1u64 << CHATTER_WINDOW) - 1);
+        self.rough = ((self.rough << 1) | u64::from(worst.is_some())) & ((1u64 << CHATTER_WINDOW) - 1);
         let rough = self.rough.count_ones();
         match worst {
-            Some((i, ratio)) if rough >= CHATTER_STEPS => {
-                Err(FailureKind::TensionChatter { joint: i + 2, ratio, rough, window: CHATTER_WINDOW })
-            }
+            Some((i, ratio)) if rough >= CHATTER_STEPS => Err(FailureKind::TensionChatter {
+                joint: i + 2,
+                ratio,
+                rough,
+                window: CHATTER_WINDOW,
+                // Bit b is the step b steps back: the highest set bit is the oldest rough one.
+                since: 63 - self.rough.leading_zeros(),
+            }),
             _ => Ok(()),
         }
     }
@@ -287,8 +293,9 @@ mod tests {
         for i in 0..200 {
             assert_eq!(slack.check(&[1e5, if i % 2 == 0 { 10.0 } else { 2000.0 }]), Ok(()), "step {i}");
         }
-        // Joint 3 (index 1) alternating between 1e5 and 3e5 N: rough from the third step on,
-        // a chatter once 10 of the last 50 steps were rough (step 12), naming joint 3.
+        // Joint 3 (index 1) alternating between 1e5 and 3e5 N: rough from the third step on
+        // (i = 2), a chatter once 10 of the last 50 steps were rough (i = 11), naming joint 3
+        // and the first rough step, 9 steps back.
         let mut c = ChatterWatch::new(1e6);
         let mut failed = None;
         for i in 0..60 {
@@ -298,10 +305,10 @@ mod tests {
                 break;
             }
         }
-        let Some((step, FailureKind::TensionChatter { joint, ratio, rough, window })) = failed else {
+        let Some((step, FailureKind::TensionChatter { joint, ratio, rough, window, since })) = failed else {
             panic!("expected a chatter, got {failed:?}")
         };
-        assert_eq!((step, joint, rough, window), (11, 3, CHATTER_STEPS, CHATTER_WINDOW));
+        assert_eq!((step, joint, rough, window, since), (11, 3, CHATTER_STEPS, CHATTER_WINDOW, 9));
         // |1e5 − 6e5 + 1e5| / 3e5 (or the other phase: |3e5 − 2e5 + 3e5| / 3e5).
         assert!((ratio - 4.0 / 3.0).abs() < 1e-12, "{ratio}");
         // Rough steps spread thinner than 10 in 50 pass: a spike every 30 steps roughens the
@@ -311,5 +318,24 @@ mod tests {
             let t = if i % 30 == 0 { 4e5 } else { 1e5 };
             assert_eq!(sparse.check(&[t]), Ok(()), "step {i}");
         }
+    }
+
+    #[test]
+    fn a_rough_step_counts_for_exactly_the_window() {
+        // A lone spike (4e5 N in 1e5 N) roughens exactly three steps: its own and the next
+        // two. Spikes at steps 10, 20 and 30 give 9 rough steps; a fourth spike chatters
+        // while step 10 is among the last 50 (step 59: 49 back) and not a step later.
+        let first_chatter = |spikes: &[usize]| -> Option<(usize, FailureKind)> {
+            let mut w = ChatterWatch::new(1e6);
+            (0..100).find_map(|i| {
+                let t = if spikes.contains(&i) { 4e5 } else { 1e5 };
+                w.check(&[t]).err().map(|e| (i, e))
+            })
+        };
+        let Some((59, FailureKind::TensionChatter { rough: 10, since: 49, .. })) = first_chatter(&[10, 20, 30, 59])
+        else {
+            panic!("{:?}", first_chatter(&[10, 20, 30, 59]))
+        };
+        assert_eq!(first_chatter(&[10, 20, 30, 60]), None, "step 10 has left the window");
     }
 }
