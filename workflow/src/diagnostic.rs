@@ -21,8 +21,8 @@ pub fn describe(model: &Model, failure: &Failure) -> String {
     let refused = matches!(failure.kind, FailureKind::StepAboveLimit { .. });
     let (what, cause, suggestion) = match &failure.kind {
         FailureKind::StepAboveLimit { dt, limit } => refusal(*dt, limit),
-        kind @ FailureKind::TensionChatter { since, .. } => {
-            let (cause, suggestion) = chatter(model, failure.t, *since);
+        kind @ FailureKind::TensionChatter { first_rough, .. } => {
+            let (cause, suggestion) = chatter(model, failure.t, *first_rough);
             (what(kind), cause, suggestion)
         }
         kind => {
@@ -138,12 +138,12 @@ fn refusal(dt: f64, limit: &StabilityLimit) -> (String, String, String) {
     (what, cause, suggestion)
 }
 
-/// The cause and suggestion of RK4's tensions chattering at `t` (s), the oldest rough step
-/// of the window `since` steps before: a mode faster than the linearised equations had at
+/// The cause and suggestion of RK4's tensions chattering at `t` (s), the run's first rough
+/// step `first_rough` steps before: a mode faster than the linearised equations had at
 /// t = 0 (the limit RK4's step was checked against), as the line tightens or, on a seabed,
 /// presses into it. A step a little inside that mode's limit is enough, so the suggestion
 /// halves it (k_z × 1e4: 1 ms chatters, 0.5 ms runs cleanly).
-fn chatter(model: &Model, t: f64, since: u32) -> (String, String) {
+fn chatter(model: &Model, t: f64, first_rough: u64) -> (String, String) {
     let solver = &model.scene.solver;
     let dt = solver.dt;
     let stiffer = if model.scene.environment.seabed {
@@ -152,10 +152,11 @@ fn chatter(model: &Model, t: f64, since: u32) -> (String, String) {
     } else {
         "a tightening line's modes quicken with its tension"
     };
-    let from = (t - f64::from(since) * dt).max(0.0);
+    let from = (t - first_rough as f64 * dt).max(0.0);
     let cause = format!(
         "the explicit step dt = {dt} s is at the edge of a mode faster than any at t = 0, where its stability limit \
-         was checked: {stiffer}; the tensions, and the peaks taken from them, are noise from about t = {from:.3} s"
+         was checked: {stiffer}; the tensions were first rough at t = {from:.3} s, and the peaks taken from them since \
+         are suspect"
     );
     let kept = format!("the first {:.3} s up to the failure are kept", (t - dt).max(0.0));
     let floor = solver.end_time / MAX_STEPS;

@@ -96,9 +96,9 @@ pub enum FailureKind {
         rough: u32,
         /// The steps counted.
         window: u32,
-        /// How many steps before the failing one the oldest rough step of the window was:
-        /// the tensions and their peaks are noise from about then.
-        since: u32,
+        /// How many steps before the failing one the run's first rough step was: its
+        /// tensions and their peaks are suspect from then.
+        first_rough: u64,
     },
 }
 

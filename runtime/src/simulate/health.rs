@@ -150,6 +150,9 @@ pub struct ChatterWatch {
     rough: u64,
     /// The smallest change of tension counted, N.
     floor: f64,
+    /// Steps checked, and the first of them that was rough (its count then).
+    steps: u64,
+    first_rough: Option<u64>,
 }
 
 const _: () = assert!(CHATTER_WINDOW < 64, "the window is a u64's low bits");
@@ -157,7 +160,8 @@ const _: () = assert!(CHATTER_WINDOW < 64, "the window is a u64's low bits");
 impl ChatterWatch {
     /// A watch for a line whose smaller break load (chain or cable) is `break_load`, N.
     pub fn new(break_load: f64) -> Self {
-        ChatterWatch { before: Vec::new(), last: Vec::new(), seen: 0, rough: 0, floor: CHATTER_FLOOR * break_load }
+        let floor = CHATTER_FLOOR * break_load;
+        ChatterWatch { before: Vec::new(), last: Vec::new(), seen: 0, rough: 0, floor, steps: 0, first_rough: None }
     }
 
     /// The watch for `model`'s line.
@@ -183,6 +187,10 @@ impl ChatterWatch {
         self.last.clear();
         self.last.extend_from_slice(tensions);
         self.rough = ((self.rough << 1) | u64::from(worst.is_some())) & ((1u64 << CHATTER_WINDOW) - 1);
+        self.steps += 1;
+        if worst.is_some() && self.first_rough.is_none() {
+            self.first_rough = Some(self.steps);
+        }
         let rough = self.rough.count_ones();
         match worst {
             Some((i, ratio)) if rough >= CHATTER_STEPS => Err(FailureKind::TensionChatter {
@@ -190,8 +198,7 @@ impl ChatterWatch {
                 ratio,
                 rough,
                 window: CHATTER_WINDOW,
-                // Bit b is the step b steps back: the highest set bit is the oldest rough one.
-                since: 63 - self.rough.leading_zeros(),
+                first_rough: self.steps - self.first_rough.unwrap_or(self.steps),
             }),
             _ => Ok(()),
         }
@@ -295,7 +302,7 @@ mod tests {
         }
         // Joint 3 (index 1) alternating between 1e5 and 3e5 N: rough from the third step on
         // (i = 2), a chatter once 10 of the last 50 steps were rough (i = 11), naming joint 3
-        // and the first rough step, 9 steps back.
+        // and the run's first rough step, 9 steps back.
         let mut c = ChatterWatch::new(1e6);
         let mut failed = None;
         for i in 0..60 {
@@ -305,10 +312,10 @@ mod tests {
                 break;
             }
         }
-        let Some((step, FailureKind::TensionChatter { joint, ratio, rough, window, since })) = failed else {
+        let Some((step, FailureKind::TensionChatter { joint, ratio, rough, window, first_rough })) = failed else {
             panic!("expected a chatter, got {failed:?}")
         };
-        assert_eq!((step, joint, rough, window, since), (11, 3, CHATTER_STEPS, CHATTER_WINDOW, 9));
+        assert_eq!((step, joint, rough, window, first_rough), (11, 3, CHATTER_STEPS, CHATTER_WINDOW, 9));
         // |1e5 − 6e5 + 1e5| / 3e5 (or the other phase: |3e5 − 2e5 + 3e5| / 3e5).
         assert!((ratio - 4.0 / 3.0).abs() < 1e-12, "{ratio}");
         // Rough steps spread thinner than 10 in 50 pass: a spike every 30 steps roughens the
@@ -332,10 +339,16 @@ mod tests {
                 w.check(&[t]).err().map(|e| (i, e))
             })
         };
-        let Some((59, FailureKind::TensionChatter { rough: 10, since: 49, .. })) = first_chatter(&[10, 20, 30, 59])
+        let Some((59, FailureKind::TensionChatter { rough: 10, first_rough: 49, .. })) =
+            first_chatter(&[10, 20, 30, 59])
         else {
             panic!("{:?}", first_chatter(&[10, 20, 30, 59]))
         };
         assert_eq!(first_chatter(&[10, 20, 30, 60]), None, "step 10 has left the window");
+        // The run's first rough step is named even when it left the window long ago.
+        let Some((89, FailureKind::TensionChatter { first_rough: 84, .. })) = first_chatter(&[5, 50, 60, 70, 89])
+        else {
+            panic!("{:?}", first_chatter(&[5, 50, 60, 70, 89]))
+        };
     }
 }
