@@ -527,6 +527,11 @@ fn load_model_with(scene: Option<&PathBuf>, o: &SolverOverrides) -> Result<Model
     Ok(Model::new(&scene)?)
 }
 
+/// The command-line flag that sets `[solver]` field `key`: `output_interval` → `--output-interval`.
+fn flag(key: &str) -> String {
+    format!("--{}", key.replace('_', "-"))
+}
+
 /// A scene refused with command-line flags given (`given`: the `[solver]` keys they set),
 /// with a hint for each `[solver]` field refused that no flag set: its value is the file's,
 /// and which flag sets it (`run --dt 0.1` refuses the file's output_interval = 0.02).
@@ -536,7 +541,7 @@ fn with_flag_hints(e: SceneError, given: &[String]) -> anyhow::Error {
             .iter()
             .filter_map(|p| p.field.strip_prefix("solver."))
             .filter(|key| !given.iter().any(|g| g == key))
-            .map(|key| format!("  solver.{key} is the file's: --{} sets it on the command line", key.replace('_', "-")))
+            .map(|key| format!("  solver.{key} is the file's: {} sets it on the command line", flag(key)))
             .collect(),
         _ => Vec::new(),
     };
@@ -565,7 +570,7 @@ impl SolverOverrides {
             .own_problems()
             .iter()
             .filter_map(|p| p.field.strip_prefix("solver.").filter(|key| given(key)).map(|key| (key, p)))
-            .map(|(key, p)| format!("--{} = {}: must be {}", key.replace('_', "-"), p.value, p.expected))
+            .map(|(key, p)| format!("{} = {}: must be {}", flag(key), p.value, p.expected))
             .collect();
         anyhow::ensure!(bad.is_empty(), "{}", bad.join("\n"));
         Ok(())

@@ -141,11 +141,10 @@ pub const CHATTER_STEPS: u32 = 10;
 /// the first second difference is at the third step.
 #[derive(Clone, Debug)]
 pub struct ChatterWatch {
-    /// The tensions of the two steps before the last checked, and of the last (N).
+    /// The tensions of the two steps before the last checked, and of the last (N); empty
+    /// until there were such steps (the first two have no second difference).
     before: Vec<f64>,
     last: Vec<f64>,
-    /// How many steps were checked (up to 2: the first two have no second difference).
-    seen: u8,
     /// Bit i: whether the i-th latest step was rough, for the last [`CHATTER_WINDOW`] steps.
     rough: u64,
     /// The smallest change of tension counted, N.
@@ -161,7 +160,7 @@ impl ChatterWatch {
     /// A watch for a line whose smaller break load (chain or cable) is `break_load`, N.
     pub fn new(break_load: f64) -> Self {
         let floor = CHATTER_FLOOR * break_load;
-        ChatterWatch { before: Vec::new(), last: Vec::new(), seen: 0, rough: 0, floor, steps: 0, first_rough: None }
+        ChatterWatch { before: Vec::new(), last: Vec::new(), rough: 0, floor, steps: 0, first_rough: None }
     }
 
     /// The watch for `model`'s line.
@@ -173,7 +172,7 @@ impl ChatterWatch {
     /// the joint rough at this step whose second difference is the largest against its scale.
     pub fn check(&mut self, tensions: &[f64]) -> Result<(), FailureKind> {
         let mut worst: Option<(usize, f64)> = None;
-        if self.seen == 2 && self.before.len() == tensions.len() && self.last.len() == tensions.len() {
+        if self.before.len() == tensions.len() && self.last.len() == tensions.len() {
             for (i, ((&t, &t1), &t2)) in tensions.iter().zip(&self.last).zip(&self.before).enumerate() {
                 let scale = t.abs().max(t1.abs()).max(t2.abs()).max(self.floor);
                 let ratio = (t - 2.0 * t1 + t2).abs() / scale;
@@ -182,7 +181,6 @@ impl ChatterWatch {
                 }
             }
         }
-        self.seen = (self.seen + 1).min(2);
         std::mem::swap(&mut self.before, &mut self.last);
         self.last.clear();
         self.last.extend_from_slice(tensions);
