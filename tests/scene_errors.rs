@@ -75,7 +75,7 @@ fn magnitudes_that_overflow_the_equations_are_refused() {
     for (from, to, field) in [
         ("[anchor]\nmass = 40000.0", "[anchor]\nmass = 1e300", "anchor.mass = 1e300"),
         ("element_length = 1.0", "element_length = 1e200", "chain.element_length = 1e200"),
-        ("added_mass_coefficient = 1.0", "added_mass_coefficient = 1e300", "hydrodynamics.added_mass_coefficient"),
+        ("water_density = 1025.0", "water_density = 1e300", "environment.water_density = 1e300"),
         // Two ranges bounded below by other values had no cap (1e300 was taken).
         (
             "output_interval = 0.02",
@@ -94,6 +94,19 @@ fn magnitudes_that_overflow_the_equations_are_refused() {
     }
     let ok = edited("[anchor]\nmass = 40000.0", "[anchor]\nmass = 1e15");
     assert!(Scene::from_toml(&ok, "big.toml").is_ok());
+}
+
+#[test]
+fn hydrodynamic_coefficients_beyond_any_published_value_are_refused() {
+    // A drag coefficient of 1e6 used to run and fail on a stiffness the diagnostic blamed on a
+    // small mass; ten, the cap, still runs to a model.
+    let e = error(&edited("normal_drag_coefficient = 1.21", "normal_drag_coefficient = 1e6"));
+    assert_mentions(&e, &["hydrodynamics.normal_drag_coefficient = 1000000", "in [0, 10]", "below 3"]);
+    let e = error(&edited("tangential_drag_coefficient = 0.062", "tangential_drag_coefficient = -0.1"));
+    assert_mentions(&e, &["hydrodynamics.tangential_drag_coefficient = -0.1", "in [0, 10]"]);
+    let at_cap = edited("anchor_drag_coefficient = 1.05", "anchor_drag_coefficient = 10.0");
+    let scene = Scene::from_toml(&at_cap, "cap.toml").unwrap();
+    assert!(Model::new(&scene).is_ok());
 }
 
 #[test]

@@ -164,7 +164,10 @@ def test_channel_units_and_groups(case01_result: kanestop.Result) -> None:
     assert r.channels.attrs["units"] == r.units
     assert "rod–ship joint" in r.descriptions["tension_fairlead"]
     assert r.channels_of("tension") == ["t", "tension_fairlead", "tension_anchor", "tension_max"]
-    with pytest.raises(ValueError, match="unknown channel group"):
+    # Channel names too, mixed with groups, in column order, as `run --channels` takes them.
+    assert r.channels_of("tension_anchor", "ship_vx") == ["t", "ship_vx", "tension_anchor"]
+    assert r.channels_of("tension_max", "tension") == r.channels_of("tension")
+    with pytest.raises(ValueError, match="unknown channel or group \\['nope'\\]"):
         r.channels_of("nope")
 
 

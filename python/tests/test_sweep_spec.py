@@ -211,6 +211,7 @@ def test_bad_spec_dicts_name_the_field(case01: kanestop.Scene) -> None:
     with pytest.raises(kanestop.SpecError) as info:
         kanestop.Spec.from_dict({"base": case01, "sampling": {"method": "random", "samples": "many", "seed": 1}})
     assert info.value.field == "sampling.samples" and 'invalid type: string "many", expected a whole number ≥ 0' in str(info.value)
+    assert info.value.value == '"many"'  # the value as given, as for a range error
     with pytest.raises(kanestop.SpecError) as info:
         kanestop.Spec.from_dict({"base": case01, "axis": [{"path": "ship.mass", "valuez": [1.0]}]})
     assert info.value.field == "axis[0].valuez" and "unknown field `valuez`" in str(info.value)
@@ -218,6 +219,7 @@ def test_bad_spec_dicts_name_the_field(case01: kanestop.Scene) -> None:
         axes = [{"path": "ship.mass", "values": [5e5]}, {"path": "anchor.mass", "range": {"from": 1.0, "to": 2.0, "steps": "x"}}]
         kanestop.Spec.from_dict({"base": case01, "axis": axes})
     assert info.value.field == "axis[1].range.steps" and "expected a whole number ≥ 0" in str(info.value)
+    assert info.value.value == '"x"'
     with pytest.raises(kanestop.SpecError) as info:
         kanestop.Spec.from_toml("base = 'x.toml'\n", base=case01)
     assert info.value.field == "base" and "given twice" in str(info.value)

@@ -154,13 +154,13 @@ impl Environment {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Hydrodynamics {
-    /// C_M, added-mass coefficient of the rods, dimensionless, ≥ 0 (the paper's 1.0).
+    /// C_M, added-mass coefficient of the rods, dimensionless, in [0, 10] (the paper's 1.0).
     pub added_mass_coefficient: f64,
-    /// C_D, normal drag coefficient of the rods, dimensionless, ≥ 0 (the paper's 1.21).
+    /// C_D, normal drag coefficient of the rods, dimensionless, in [0, 10] (the paper's 1.21).
     pub normal_drag_coefficient: f64,
-    /// C_F, tangential drag coefficient of the rods, dimensionless, ≥ 0 (the paper's 0.062).
+    /// C_F, tangential drag coefficient of the rods, dimensionless, in [0, 10] (the paper's 0.062).
     pub tangential_drag_coefficient: f64,
-    /// C_1^D, drag coefficient of the anchor, dimensionless, ≥ 0 (Eq. 39; the paper's 1.05).
+    /// C_1^D, drag coefficient of the anchor, dimensionless, in [0, 10] (Eq. 39; the paper's 1.05).
     pub anchor_drag_coefficient: f64,
 }
 
@@ -933,13 +933,18 @@ impl Scene {
         c.range("environment.current_exponent", e.current_exponent, 0.0, 1.0, false, "(dimensionless)");
     }
 
-    /// `[hydrodynamics]`: the coefficients of Eqs. 43–47, none negative.
+    /// `[hydrodynamics]`: the coefficients of Eqs. 39 and 43–47, each in [0, [`MAX_HYDRO_COEFFICIENT`]].
     fn check_hydrodynamics(&self, c: &mut Checker) {
         let h = &self.hydrodynamics;
-        c.non_negative("hydrodynamics.added_mass_coefficient", h.added_mass_coefficient, "(dimensionless)");
-        c.non_negative("hydrodynamics.normal_drag_coefficient", h.normal_drag_coefficient, "(dimensionless)");
-        c.non_negative("hydrodynamics.tangential_drag_coefficient", h.tangential_drag_coefficient, "(dimensionless)");
-        c.non_negative("hydrodynamics.anchor_drag_coefficient", h.anchor_drag_coefficient, "(dimensionless)");
+        let unit = "(dimensionless; published values for chain, wire and anchor blocks stay below 3)";
+        for (field, v) in [
+            ("hydrodynamics.added_mass_coefficient", h.added_mass_coefficient),
+            ("hydrodynamics.normal_drag_coefficient", h.normal_drag_coefficient),
+            ("hydrodynamics.tangential_drag_coefficient", h.tangential_drag_coefficient),
+            ("hydrodynamics.anchor_drag_coefficient", h.anchor_drag_coefficient),
+        ] {
+            c.range(field, v, 0.0, MAX_HYDRO_COEFFICIENT, true, unit);
+        }
     }
 
     /// `[anchor]` and `[chain]`: positive sizes, masses and loads.
@@ -1478,6 +1483,15 @@ fn extreme(v: f64) -> bool {
 /// reported by the physics' own checks), while 1e300 overflowed the products of the loads
 /// and the solve into a non-finite acceleration at t = 0 that looked like a step-size failure.
 pub const MAX_MAGNITUDE: f64 = 1e15;
+
+/// Upper bound of the hydrodynamic coefficients (`[hydrodynamics]`), dimensionless.
+///
+/// Published coefficients stay below 3: studless chain C_D ≈ 2.4 and C_F ≈ 1.15 on the nominal
+/// diameter, wire rope C_D ≈ 1.2, C_M ≈ 1–2, a block anchor's C_D ≈ 1–2. Ten leaves room for
+/// marine growth and for deliberate bounding cases; far beyond it a "coefficient" is a typo, and
+/// the run would fail on a stiffness that looks like something else (a drag of 1e6 stiffens the
+/// line as a tiny mass would).
+pub const MAX_HYDRO_COEFFICIENT: f64 = 10.0;
 
 #[derive(Default)]
 struct Checker {

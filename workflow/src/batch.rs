@@ -326,13 +326,36 @@ fn checks_word(pass: Option<bool>) -> &'static str {
     }
 }
 
+/// Each row's name in the terminal table: its `case`, and where another row has the same
+/// (edited copies of one scene keep its `meta.name`), its file's name too, or its whole path
+/// where the file names are alike as well.
+fn case_labels(rows: &[BatchRow]) -> Vec<String> {
+    let file_name = |r: &BatchRow| {
+        Path::new(&r.file).file_name().map_or_else(|| r.file.clone(), |n| n.to_string_lossy().into_owned())
+    };
+    let shared = |key: &dyn Fn(&BatchRow) -> String, r: &BatchRow| rows.iter().filter(|o| key(o) == key(r)).count() > 1;
+    rows.iter()
+        .map(|r| {
+            if !shared(&|o| o.case.clone(), r) {
+                r.case.clone()
+            } else if !shared(&|o| format!("{}\n{}", o.case, file_name(o)), r) {
+                format!("{} ({})", r.case, file_name(r))
+            } else {
+                format!("{} ({})", r.case, r.file)
+            }
+        })
+        .collect()
+}
+
 /// The rows as a terminal table.
 pub fn table(rows: &[BatchRow]) -> String {
     let estimates = rows.iter().any(|r| {
         r.stop_error_estimate.is_some() || r.trajectory_error_estimate.is_some() || r.peak_error_estimate.is_some()
     });
+    let labels = case_labels(rows);
+    let width = labels.iter().map(|l| l.chars().count()).fold(15, usize::max);
     let mut out = format!(
-        "{:<15} {:>3} {:<6} {:<9} {:>6} {:>9} {:>9} {:>8} {:>11} {:>6} {:>8} {:>9} {:>8} {:>9} {:>8}",
+        "{:<width$} {:>3} {:<6} {:<9} {:>6} {:>9} {:>9} {:>8} {:>11} {:>6} {:>8} {:>9} {:>8} {:>9} {:>8}",
         "case",
         "N",
         "method",
@@ -354,10 +377,10 @@ pub fn table(rows: &[BatchRow]) -> String {
     }
     out.push('\n');
     let e = |v: Option<f64>| v.map(|v| format!("{v:.1e}")).unwrap_or_else(|| "—".into());
-    for r in rows {
+    for (r, label) in rows.iter().zip(&labels) {
         out.push_str(&format!(
-            "{:<15} {:>3} {:<6} {:<9} {:>6} {:>9} {:>9} {:>8} {:>11} {:>6} {:>8} {:>9} {:>8} {:>9} {:>8.2}",
-            r.case,
+            "{:<width$} {:>3} {:<6} {:<9} {:>6} {:>9} {:>9} {:>8} {:>11} {:>6} {:>8} {:>9} {:>8} {:>9} {:>8.2}",
+            label,
             r.bodies.map(|n| n.to_string()).unwrap_or_default(),
             r.method.map(Method::name).unwrap_or_default(),
             r.status.name(),
@@ -486,6 +509,25 @@ mod tests {
     use super::*;
     use kanestop_runtime::generated::GeneratedKernel;
     use kanestop_runtime::paper::DEFAULT_SCENE;
+
+    #[test]
+    fn rows_of_one_scene_name_are_told_apart_by_their_files() {
+        let mut scene = Scene::from_toml(DEFAULT_SCENE, "case01.toml").unwrap();
+        scene.solver.end_time = 0.01;
+        let model = Model::new(&scene).unwrap();
+        let result = simulate::run(&model, Box::new(GeneratedKernel::new(&model.chain).unwrap()));
+        let rows: Vec<BatchRow> = ["a/case01.toml", "a/heavy.toml", "b/heavy.toml"]
+            .iter()
+            .map(|f| row(Path::new(f), &model, &result))
+            .collect();
+        assert_eq!(case_labels(&rows), ["case01 (case01.toml)", "case01 (a/heavy.toml)", "case01 (b/heavy.toml)"]);
+        assert_eq!(case_labels(&rows[..1]), ["case01"]);
+        // The column widens to the longest name, and the rows stay aligned.
+        let text = table(&rows);
+        let lines: Vec<&str> = text.lines().collect();
+        assert!(lines[0].starts_with(&format!("{:<21} ", "case")), "{text}");
+        assert!(lines[3].starts_with("case01 (b/heavy.toml)  46 rk4"), "{text}");
+    }
 
     #[test]
     fn a_verdict_that_differs_in_the_refined_run_is_said_to_be_unresolved() {

@@ -203,13 +203,18 @@ class Result:
                 self._frame.attrs["units"] = dict(self.units)
         return self._frame
 
-    def channels_of(self, *groups: str) -> List[str]:
-        """The channel names of these groups, in column order (``t`` first), as
-        ``kanestop run --channels ship,tension`` selects them."""
-        unknown = [g for g in groups if g not in set(self.groups.values())]
+    def channels_of(self, *names: str) -> List[str]:
+        """The channels these names select, in column order (``t`` first), as
+        ``kanestop run --channels ship,tension_fairlead`` selects them: each name a group
+        (``ship``, ``tension``, …) or a channel (``tension_fairlead``, ``anchor_drag``, …)."""
+        valid_groups = set(self.groups.values())
+        unknown = [n for n in names if n not in valid_groups and n not in self.groups]
         if unknown:
-            raise ValueError(f"unknown channel group(s) {unknown}: valid are {sorted(set(self.groups.values()))}")
-        return [n for n, g in self.groups.items() if g == "time" or g in groups]
+            raise ValueError(
+                f"unknown channel or group {unknown}: give channel names (ship_x, anchor_drag, "
+                f"tension_fairlead, …; see docs/conventions.md) or groups {sorted(valid_groups)}"
+            )
+        return [n for n, g in self.groups.items() if g == "time" or g in names or n in names]
 
     @property
     def diagnostic(self) -> Optional[str]:

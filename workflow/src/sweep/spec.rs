@@ -177,11 +177,17 @@ impl Spec {
 
     /// [`Spec::from_toml`] of a spec given as a table of the same fields (a Python dict).
     pub fn from_table(table: toml::Table, file: &Path, dir: &Path, scene: Option<Scene>) -> Result<Spec> {
-        let raw: SpecFile = kanestop_runtime::scene::from_value_at(Value::Table(table)).map_err(|e| {
-            // The message ends "in `axis[1].range.steps`" when the error is at a key: its field.
+        let root = Value::Table(table);
+        let raw: SpecFile = kanestop_runtime::scene::from_value_at(root.clone()).map_err(|e| {
+            // The message ends "in `axis[1].range.steps`" when the error is at a key: its field,
+            // whose value as given is said with it (none where the key is missing).
             let text = kanestop_runtime::scene::plain_types(&e);
             match text.trim_end().rsplit_once("\nin `") {
-                Some((message, key)) => bad(file, key.trim_end_matches('`'), "", message.trim()),
+                Some((message, key)) => {
+                    let key = key.trim_end_matches('`');
+                    let value = overrides::get(&root, key).map(Value::to_string).unwrap_or_default();
+                    bad(file, key, value, message.trim())
+                }
                 None => bad(file, "(spec)", "", text.trim()),
             }
         })?;
@@ -600,6 +606,8 @@ mod tests {
         let bad: toml::Table =
             toml::from_str("[sampling]\nmethod = \"random\"\nsamples = \"many\"\nseed = 1\n").unwrap();
         let e = Spec::from_table(bad, Path::new("<dict>"), Path::new(""), Some(case01())).unwrap_err();
+        // The value as given is said with its field (it was left empty for a type error).
+        assert!(e.to_string().contains("sampling.samples = \"many\": invalid type"), "{e}");
         assert_eq!(field(e), "sampling.samples");
     }
 
