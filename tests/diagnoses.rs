@@ -58,3 +58,16 @@ fn the_advice_never_goes_below_the_smallest_sensible_step() {
     let text = describe(&model, &runaway(1.0, None));
     assert!(text.contains("a smaller step is not sensible") && text.contains("dp5"), "{text}");
 }
+
+#[test]
+fn a_failure_at_a_heavy_body_is_not_blamed_on_a_light_element() {
+    let model = case1();
+    // B_19, a cable element 18 048 times lighter than the ship: the light element's mode.
+    let text = describe(&model, &runaway(1.0, None));
+    assert!(text.contains("a light element swinging between heavy neighbours") && text.contains("18048:1"), "{text}");
+    // The ship (B_46), the heaviest body: a stiffness grown with the motion, no mass ratio.
+    let ship = Failure { body: model.body_count(), ..runaway(1.0, None) };
+    let text = describe(&model, &ship);
+    assert!(text.contains("ship (B_46") && text.contains("a stiffness that grew with the motion"), "{text}");
+    assert!(!text.contains("light element swinging") && !text.contains("mass ratio"), "{text}");
+}

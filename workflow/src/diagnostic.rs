@@ -183,6 +183,11 @@ fn rk4_suggestion(dt: f64, end_time: f64, kept: &str) -> String {
     }
 }
 
+/// A failing body this many times lighter than the heaviest, or more, is diagnosed as a light
+/// element swinging between heavy neighbours (case 1: a cable element is 18 048 times lighter
+/// than the ship); a heavier one is not.
+const LIGHT: f64 = 3.0;
+
 /// The likely cause and what to try for a failure at `t` (s) whose unstable mode lives at
 /// body `k` (1-based), for the scene's method.
 fn advice(model: &Model, t: f64, k: usize) -> (String, String) {
@@ -190,11 +195,21 @@ fn advice(model: &Model, t: f64, k: usize) -> (String, String) {
     let solver = &model.scene.solver;
     let dt = solver.dt;
     let ratio = model.chain.bodies.iter().map(|b| b.mass).fold(0.0, f64::max) / body.mass;
-    let ratio = if ratio < 1e6 { format!("{ratio:.0}") } else { format!("{ratio:.2e}") };
-    let mode = format!(
-        "the stiffest mode: a light element swinging between heavy neighbours under high tension (mass ratio \
-         {ratio}:1 with the heaviest body)"
-    );
+    let mode = if ratio < LIGHT {
+        // Not a light element: what stiffened is the load on a heavy body (a tension, the
+        // seabed's contact or drag, growing with the motion).
+        format!(
+            "the stiffest mode, at a body within {LIGHT}× of the heaviest's mass (not a light element between heavy \
+             neighbours): a stiffness that grew with the motion, such as the line's tension, its contact with the \
+             seabed or its drag"
+        )
+    } else {
+        let ratio = if ratio < 1e6 { format!("{ratio:.0}") } else { format!("{ratio:.2e}") };
+        format!(
+            "the stiffest mode: a light element swinging between heavy neighbours under high tension (mass ratio \
+             {ratio}:1 with the heaviest body)"
+        )
+    };
     let kept = if t - dt > 0.0 {
         format!("the first {:.3} s up to the failure are kept", t - dt)
     } else {
