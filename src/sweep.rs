@@ -214,14 +214,25 @@ fn report(
         }
         let points = sweep::by_grid_point(rows, per_point);
         for (point, group) in &points {
+            let stopped = group.iter().filter(|r| r.status == Status::Stopped).count();
             if points.len() > 1 {
-                let stopped = group.iter().filter(|r| r.status == Status::Stopped).count();
                 println!("point     {point} ({} samples, {stopped} stopped)", group.len());
+            } else {
+                println!("samples   {}, {stopped} stopped the ship", group.len());
             }
-            for (name, f, scale) in stats {
+            for (i, (name, f, scale)) in stats.into_iter().enumerate() {
+                // The first two are the stopping time and distance: over the rows that stopped.
+                let caveat = match (i < 2, stopped) {
+                    (true, s) if s < 2 => {
+                        println!("{name:<22} none: {s} sample(s) stopped the ship, statistics need 2");
+                        continue;
+                    }
+                    (true, s) if s < group.len() => format!(" (over the {s} that stopped: biased low)"),
+                    _ => String::new(),
+                };
                 if let Some([mean, sd, p5, p95]) = sweep::statistics(group, f) {
                     let [mean, sd, p5, p95] = [mean, sd, p5, p95].map(|v| v * scale);
-                    println!("{name:<22} mean {mean:.3}  sd {sd:.3}  5 % {p5:.3}  95 % {p95:.3}");
+                    println!("{name:<22} mean {mean:.3}  sd {sd:.3}  5 % {p5:.3}  95 % {p95:.3}{caveat}");
                 }
             }
         }

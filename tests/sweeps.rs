@@ -80,6 +80,15 @@ fn a_3x3_grid_runs_in_spec_order_with_inputs_as_columns_and_checks() {
         .join(" ");
     let quoted = format!("{failing} of the {} rows fail", rows.len());
     assert!(doc.contains(&quoted), "docs/sweeps.md should say of scenes/sweeps/mass_speed.toml: {quoted}");
+    // A row that fails a check says which in its message, as `batch` does; one that passes is silent.
+    for r in &rows {
+        let message = r["message"].as_str().unwrap();
+        if r["checks_pass"] == false {
+            assert!(message.starts_with("check failed: ") && message.contains("(FAIL)"), "{r}");
+        } else {
+            assert_eq!(message, "", "{r}");
+        }
+    }
     // Heavier and faster ships take longer to stop.
     let t = |i: usize| rows[i]["summary"]["stopping_time"].as_f64().unwrap();
     assert!(t(0) < t(3) && t(3) < t(6), "mass");
@@ -442,6 +451,31 @@ fn refresh_sensitivity_doc(study: &Value) {
         std::fs::write(&path, &text).unwrap();
         panic!("docs/sweeps.md's sensitivity table was stale and has been regenerated: review and commit it");
     }
+}
+
+/// Samples that did not stop the ship by the end time are counted, and the stopping
+/// statistics over those that did are said to be biased low (they used to be printed as if
+/// over every sample).
+#[test]
+fn sampling_says_how_many_samples_stopped_the_ship() {
+    let dir = temp_dir("stopped-count");
+    let out = dir.join("out");
+    // Case 1 stops at 19.8 s: the heavier ships of the sample have not stopped at 20.5 s.
+    let body = "[set]\n\"solver.end_time\" = 20.5\n\
+                [sampling]\nmethod = \"latin-hypercube\"\nsamples = 6\nseed = 3\n\
+                [[uncertain]]\npath = \"ship.mass\"\ndistribution = \"normal\"\nmean = 5e5\nsd = 5e4\n";
+    let o = sweep(&spec(&dir, body), &out);
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    let stopped = rows(&out).iter().filter(|r| r["status"] == "stopped").count();
+    assert!((2..6).contains(&stopped), "the sample should stop some ships and not others: {stdout}");
+    assert!(stdout.contains(&format!("samples   6, {stopped} stopped the ship\n")), "{stdout}");
+    let caveat = format!("(over the {stopped} that stopped: biased low)");
+    for name in ["stopping time (s)", "stopping distance (m)"] {
+        let line = stdout.lines().find(|l| l.starts_with(name)).expect(name);
+        assert!(line.ends_with(&caveat), "{line}");
+    }
+    let peak = stdout.lines().find(|l| l.starts_with("peak tension (kN)")).unwrap();
+    assert!(!peak.contains("biased"), "every sample ran to its end: {peak}");
 }
 
 /// Sampling on top of a grid: the statistics are each grid point's, over its own samples,

@@ -143,13 +143,9 @@ pub fn row(file: &Path, model: &Model, result: &RunResult) -> BatchRow {
     let ran = result.ran();
     let peak = result.peak_tension().filter(|_| ran);
     let outcomes = model.scene.checks.as_ref().map(|c| checks::evaluate(c, model, result)).unwrap_or_default();
-    let failed_checks: Vec<String> = match &model.scene.checks {
-        Some(c) => outcomes.iter().filter(|o| !o.pass).map(|o| checks::outcome_words(o, c)).collect(),
-        None => Vec::new(),
-    };
     // The break-load check applies to every scene, `[checks]` or not (as in `run`).
     let over = break_exceedances(model, result);
-    let failures: Vec<String> = checks::break_failure(&over).into_iter().chain(failed_checks).collect();
+    let failures = checks::failures(model, result);
     let message = match &result.stop {
         Stop::Failed(f) => one_line(&diagnostic::describe(model, f)),
         Stop::ShipStopped | Stop::EndTime if !failures.is_empty() => {

@@ -152,6 +152,16 @@ fn shown(v: f64, limit: f64, decimals: usize) -> String {
     format!("{v:.places$}")
 }
 
+/// The failed design checks of the run `result` of `model` in words, the break loads first
+/// ([`break_failure`]), then each failed `[checks]` limit ([`outcome_words`]); empty when
+/// none failed. A row's message says them after "check failed: " (`batch`, `sweep`).
+pub fn failures(model: &Model, result: &RunResult) -> Vec<String> {
+    let failed = model.scene.checks.as_ref().map(|c| {
+        evaluate(c, model, result).iter().filter(|o| !o.pass).map(|o| outcome_words(o, c)).collect::<Vec<_>>()
+    });
+    break_failure(&break_exceedances(model, result)).into_iter().chain(failed.unwrap_or_default()).collect()
+}
+
 /// The design checks' [`verdict`] of the run `result` of `model`: its `[checks]` evaluated
 /// and its break loads.
 pub fn verdict_of(model: &Model, result: &RunResult) -> Option<bool> {

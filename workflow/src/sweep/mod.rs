@@ -30,6 +30,7 @@ use toml::Value;
 pub use spec::{PlannedRow, Spec};
 
 use crate::batch::Status;
+use crate::checks;
 use crate::kernels::KernelFactory;
 use crate::output::{self, csv_field, write_atomically, CsvNumber};
 use crate::record::{Peak, RunSummary};
@@ -144,7 +145,18 @@ pub fn run_row_cancellable(row: &PlannedRow, kernel: KernelFactory, cancel: &Ato
         // + 0.0: no work is 0, not the -0.0 of its negation.
         out.energy_split = summary.work.iter().filter_map(|(k, w)| Some((k.clone(), -(*w)? / k0 + 0.0))).collect();
     }
-    out.message = summary.failure.as_ref().map(|f| one_line(&f.message)).unwrap_or_default();
+    // A numerical failure's diagnostic, else the failed design checks (as `batch` words them).
+    out.message = match &summary.failure {
+        Some(f) => one_line(&f.message),
+        None => {
+            let failed = checks::failures(&model, &result);
+            if failed.is_empty() {
+                String::new()
+            } else {
+                format!("check failed: {}", failed.join("; "))
+            }
+        }
+    };
     out.summary = Some(summary);
     Some(out)
 }
