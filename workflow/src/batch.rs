@@ -322,9 +322,10 @@ fn checks_word(pass: Option<bool>) -> &'static str {
     }
 }
 
-/// Each row's name in the terminal table: its `case`, and where another row has the same
-/// (edited copies of one scene keep its `meta.name`), its file's name too, or its whole path
-/// where the file names are alike as well.
+/// Each row's name in the terminal table: its `case`, and where another row of the same
+/// method has the same (edited copies of one scene keep its `meta.name`), its file's name
+/// too, or its whole path where the file names are alike as well. Rows of one scene by
+/// several `--methods` are told apart by their method column.
 fn case_labels(rows: &[BatchRow]) -> Vec<String> {
     let file_name = |r: &BatchRow| {
         Path::new(&r.file).file_name().map_or_else(|| r.file.clone(), |n| n.to_string_lossy().into_owned())
@@ -332,9 +333,10 @@ fn case_labels(rows: &[BatchRow]) -> Vec<String> {
     let shared = |key: &dyn Fn(&BatchRow) -> String, r: &BatchRow| rows.iter().filter(|o| key(o) == key(r)).count() > 1;
     rows.iter()
         .map(|r| {
-            if !shared(&|o| o.case.clone(), r) {
+            let method = |o: &BatchRow| o.method.map(Method::name).unwrap_or_default();
+            if !shared(&|o| format!("{}\n{}", o.case, method(o)), r) {
                 r.case.clone()
-            } else if !shared(&|o| format!("{}\n{}", o.case, file_name(o)), r) {
+            } else if !shared(&|o| format!("{}\n{}\n{}", o.case, method(o), file_name(o)), r) {
                 format!("{} ({})", r.case, file_name(r))
             } else {
                 format!("{} ({})", r.case, r.file)
@@ -518,6 +520,10 @@ mod tests {
             .collect();
         assert_eq!(case_labels(&rows), ["case01 (case01.toml)", "case01 (a/heavy.toml)", "case01 (b/heavy.toml)"]);
         assert_eq!(case_labels(&rows[..1]), ["case01"]);
+        // One file by two methods: the method column tells them apart.
+        let mut by_dp5 = rows[0].clone();
+        by_dp5.method = Some(Method::Dp5);
+        assert_eq!(case_labels(&[rows[0].clone(), by_dp5]), ["case01", "case01"]);
         // The column widens to the longest name, and the rows stay aligned.
         let text = table(&rows);
         let lines: Vec<&str> = text.lines().collect();
