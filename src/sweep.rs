@@ -486,7 +486,7 @@ pub fn sensitivity(args: &SensitivityArgs) -> Result<Exit> {
     bar.finish_and_clear();
     print!("{}", sensitivity::table(&study));
     if !sigmas.is_empty() {
-        let (band, missing) = sensitivity::band(&study, &sigmas);
+        let sensitivity::Band { sd: band, unknown, missing } = sensitivity::band(&study, &sigmas);
         let used = sigmas.len() - missing.len();
         if used == 0 {
             println!(
@@ -494,16 +494,21 @@ pub fn sensitivity(args: &SensitivityArgs) -> Result<Exit> {
                 sigmas.len()
             );
         } else {
-            // An output the base run did not give has no band.
-            let o = |v: Option<f64>, b: f64, s: f64, digits: usize, unit: &str| match v {
-                Some(v) => format!("{:.*} ± {:.*} {unit}", digits, v * s, digits, b * s),
+            // An output the base run did not give has no band, nor one an input's effect on
+            // is unknown (counting it as zero would narrow the band).
+            let o = |k: usize, s: f64, digits: usize, unit: &str| match study.base[k] {
+                Some(_) if !unknown[k].is_empty() => format!(
+                    "— (the effect of {} is unknown: a perturbed run did not stop the ship; raise solver.end_time)",
+                    unknown[k].join(", ")
+                ),
+                Some(v) => format!("{:.*} ± {:.*} {unit}", digits, v * s, digits, band[k] * s),
                 None => "— (the base run gave none)".to_string(),
             };
             let inputs = if used == 1 { "input" } else { "inputs" };
             println!("first-order band (1 σ) from {used} uncertain {inputs}:");
-            println!("  stopping time      {}", o(study.base[0], band[0], 1.0, 3, "s"));
-            println!("  stopping distance  {}", o(study.base[1], band[1], 1.0, 3, "m"));
-            println!("  peak tension       {}", o(study.base[2], band[2], 1e-3, 1, "kN"));
+            println!("  stopping time      {}", o(0, 1.0, 3, "s"));
+            println!("  stopping distance  {}", o(1, 1.0, 3, "m"));
+            println!("  peak tension       {}", o(2, 1e-3, 1, "kN"));
         }
         for m in missing {
             println!("  note: {m} is not a continuous parameter of the scene (a zero or non-real field); ignored");

@@ -104,6 +104,12 @@ pub struct Sensitivity {
     /// The relative step h the effects were differenced at (the study's, or cut by
     /// [`RETRY_DIVISOR`]); none with `difference`.
     pub step: Option<f64>,
+    /// Where one perturbed run did not stop the ship by the end time T (the base did): the
+    /// bound on d(stopping time)/d(ln p) that gives, s: (T − t_below)/span when p·(1 + h)
+    /// did not stop (the effect is above it), (t_above − T)/span when p·(1 − h) did not
+    /// (below it). Ranks the row, which has no `stopping_time`; said in `message`.
+    #[serde(skip)]
+    pub stopping_time_bound: Option<f64>,
 }
 
 /// A sensitivity study of one scene.
@@ -271,6 +277,7 @@ pub fn study(
         r
     })?;
     let mut next = 0;
+    let base_stop = base[0];
     let mut rows: Vec<Sensitivity> = probes
         .iter()
         .map(|probe| {
@@ -285,6 +292,7 @@ pub fn study(
                 message: probe.note.clone(),
                 difference: probe.difference.map(|(d, _)| d),
                 step: probe.difference.map(|(_, h)| h),
+                stopping_time_bound: None,
             };
             let Some((difference, h)) = probe.difference else { return row };
             // The run above p and the run below p (the base for a one-sided difference).
@@ -301,6 +309,9 @@ pub fn study(
                     row.stopping_time = e(0);
                     row.stopping_distance = e(1);
                     row.peak_tension = e(2);
+                    if let Some(note) = not_stopped(&mut row, base_stop, (a[0], b[0]), span, scene.solver.end_time) {
+                        row.message = if row.message.is_empty() { note } else { format!("{}; {note}", row.message) };
+                    }
                 }
                 (Err(m), _) | (_, Err(m)) => {
                     let m = m.lines().map(str::trim).filter(|l| !l.is_empty()).collect::<Vec<_>>().join(" ");
@@ -316,34 +327,82 @@ pub fn study(
     Ok(Study { scene: scene.meta.name.clone(), step, base, rows, runs: 1 + scenes.len() })
 }
 
+/// Where the base stopped the ship (at `base_stop`, s) and a perturbed run did not by
+/// `end_time` (s): sets the row's [`Sensitivity::stopping_time_bound`] from the stopping
+/// times above and below p (`stops`, none for a run that did not stop) and returns what to
+/// say of it. A stop that moved past the end time is a large effect, not a missing one.
+fn not_stopped(
+    row: &mut Sensitivity,
+    base_stop: Option<f64>,
+    stops: (Option<f64>, Option<f64>),
+    span: f64,
+    end_time: f64,
+) -> Option<String> {
+    base_stop?;
+    let h = row.step.unwrap_or_default();
+    let (side, bound) = match stops {
+        (None, Some(below)) => (format!("p·(1 + {h})"), Some((end_time - below) / span)),
+        (Some(above), None) => (format!("p·(1 − {h})"), Some((above - end_time) / span)),
+        (None, None) => ("neither p·(1 ± h)".to_string(), None),
+        (Some(_), Some(_)) => return None,
+    };
+    row.stopping_time_bound = bound;
+    let effect = match bound {
+        Some(b) if b >= 0.0 => format!("d_stopping_time > {b:+.3} s, ranked by that bound"),
+        Some(b) => format!("d_stopping_time < {b:+.3} s, ranked by that bound"),
+        None => "no stopping-time effect".to_string(),
+    };
+    Some(format!(
+        "{side} did not stop the ship by solver.end_time = {end_time} s: {effect}; raise end_time for the effects"
+    ))
+}
+
 /// The effect the rows are ranked by, given the base run's outputs: on the stopping time, or
 /// on the peak tension when the base did not stop (no stopping time to move: every stop
 /// effect is none, and a ranking by them would be the file order).
 pub fn ranked_by(base: &[Option<f64>; 3]) -> fn(&Sensitivity) -> Option<f64> {
     // A ship at rest at the start has stopped at t = 0: nothing moves its stop either.
     if base[0].is_some_and(|t| t > 0.0) {
-        |r| r.stopping_time
+        |r| r.stopping_time.or(r.stopping_time_bound)
     } else {
         |r| r.peak_tension
     }
 }
 
+/// A first-order band: each output's standard deviation from the uncertain inputs' σ.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Band {
+    /// σ of the stopping time (s), stopping distance (m) and peak tension (N).
+    pub sd: [f64; 3],
+    /// Per output, the uncertain inputs whose effect on it is unknown though the base run
+    /// gave it (a perturbed run did not stop): that output has no band.
+    pub unknown: [Vec<String>; 3],
+    /// The inputs that are no parameter of the study (ignored).
+    pub missing: Vec<String>,
+}
+
 /// The first-order standard deviation of each output, from each parameter's σ of ln p
-/// (`(path, sigma_ln)`; paths not in the study are ignored and returned).
-pub fn band(study: &Study, sigmas: &[(String, f64)]) -> ([f64; 3], Vec<String>) {
+/// (`(path, sigma_ln)`): σ_out² = Σ (effect · σ_ln p)². An effect the study could not
+/// difference is never taken as zero: its output is marked unknown ([`Band::unknown`]).
+pub fn band(study: &Study, sigmas: &[(String, f64)]) -> Band {
     let mut var = [0.0; 3];
+    let mut unknown: [Vec<String>; 3] = Default::default();
     let mut missing = Vec::new();
     for (path, s) in sigmas {
         match study.rows.iter().find(|r| &r.parameter == path) {
             Some(r) => {
                 for (k, e) in [r.stopping_time, r.stopping_distance, r.peak_tension].iter().enumerate() {
-                    var[k] += (e.unwrap_or(0.0) * s).powi(2);
+                    match e {
+                        Some(e) => var[k] += (e * s).powi(2),
+                        None if study.base[k].is_some() => unknown[k].push(path.clone()),
+                        None => {}
+                    }
                 }
             }
             None => missing.push(path.clone()),
         }
     }
-    (var.map(f64::sqrt), missing)
+    Band { sd: var.map(f64::sqrt), unknown, missing }
 }
 
 /// The study as a terminal table: a row a parameter, its step (±h central, +h or −h
@@ -438,6 +497,58 @@ mod tests {
 
     fn case1() -> Scene {
         Scene::from_toml(kanestop_runtime::paper::DEFAULT_SCENE, "case01.toml").unwrap()
+    }
+
+    fn row(parameter: &str, stopping_time: Option<f64>) -> Sensitivity {
+        Sensitivity {
+            parameter: parameter.into(),
+            value: 1.0,
+            stopping_time,
+            stopping_distance: stopping_time,
+            peak_tension: Some(1e3),
+            message: String::new(),
+            difference: Some(Difference::Central),
+            step: Some(0.05),
+            stopping_time_bound: None,
+        }
+    }
+
+    /// A perturbed run that did not stop by the end time bounds the effect, which ranks the
+    /// row, instead of ranking it last as if it had none.
+    #[test]
+    fn a_stop_moved_past_the_end_time_is_a_large_effect_not_a_missing_one() {
+        let span = Difference::Central.span(0.05);
+        let mut heavier = row("ship.mass", None);
+        // p·(1 + h) did not stop by 20.5 s; p·(1 − h) stopped at 18.9 s.
+        let note = not_stopped(&mut heavier, Some(19.8), (None, Some(18.9)), span, 20.5).unwrap();
+        let bound = (20.5 - 18.9) / span;
+        assert_eq!(heavier.stopping_time_bound, Some(bound));
+        assert!(
+            note.starts_with("p·(1 + 0.05) did not stop the ship by solver.end_time = 20.5 s: d_stopping_time > +15.9"),
+            "{note}"
+        );
+        let mut lighter = row("anchor.mass", None);
+        not_stopped(&mut lighter, Some(19.8), (Some(19.0), None), span, 20.5).unwrap();
+        assert_eq!(lighter.stopping_time_bound, Some((19.0 - 20.5) / span));
+        // Both stopped, or the base did not: nothing to say.
+        assert_eq!(not_stopped(&mut row("x", None), Some(19.8), (Some(20.0), Some(19.0)), span, 20.5), None);
+        assert_eq!(not_stopped(&mut row("x", None), None, (None, Some(19.0)), span, 20.5), None);
+        // Ranked by the bound, above a row of a smaller known effect.
+        let ranked = ranked_by(&[Some(19.8), Some(27.0), Some(4e5)]);
+        assert_eq!(ranked(&heavier), Some(bound));
+        assert_eq!(ranked(&row("rod.radius", Some(0.1))), Some(0.1));
+        // The band: the unknown effect marks the stopping outputs as unknown, never as zero.
+        let study = Study {
+            scene: "case01".into(),
+            step: 0.05,
+            base: [Some(19.8), Some(27.0), Some(4e5)],
+            rows: vec![heavier, row("rod.radius", Some(0.1))],
+            runs: 5,
+        };
+        let sigmas = [("ship.mass".to_string(), 0.1), ("rod.radius".to_string(), 0.2), ("nope".to_string(), 0.1)];
+        let b = band(&study, &sigmas);
+        assert_eq!(b.unknown, [vec!["ship.mass".to_string()], vec!["ship.mass".to_string()], vec![]]);
+        assert_eq!((b.sd[2], b.missing.as_slice()), ((1e4f64 + 4e4).sqrt(), &["nope".to_string()][..]));
     }
 
     #[test]
