@@ -436,6 +436,12 @@ fn slurm(args: &SweepArgs, spec: &sweep::Spec, plan: &[PlannedRow]) -> Result<Ex
     let exe = std::env::current_exe().context("cannot find the kanestop binary's path")?;
     let spec_file = spec.file.canonicalize().with_context(|| format!("cannot resolve {}", spec.file.display()))?;
     let out = std::path::absolute(&args.out).with_context(|| format!("cannot resolve {}", args.out.display()))?;
+    // What the jobs would find only after the array ran: the folder, and shard files there
+    // of another sweep or shard count.
+    check_dir(&out, &sweep::FILES)?;
+    check_dir(&out.join("shards"), &[])?;
+    let id = SweepId::of(spec, plan, args.kernel.0.name());
+    kanestop_workflow::sweep::shard_file::check_joinable(&out, &id, shards)?;
     let script = slurm::JobScript {
         kanestop: &exe,
         spec: &spec_file,
@@ -446,6 +452,7 @@ fn slurm(args: &SweepArgs, spec: &sweep::Spec, plan: &[PlannedRow]) -> Result<Ex
         cpus,
         kernel: args.kernel.0.name(),
         checkpoint: args.checkpoint,
+        heatmap: &args.heatmap,
     };
     print!("{}", script.text());
     Ok(Exit::Done)

@@ -420,6 +420,37 @@ fn the_slurm_script_names_the_array_the_task_and_the_merge() {
     assert!(stderr(&o).contains("--shard = 7/7: K in [0, 6]"), "{}", stderr(&o));
 }
 
+/// What the array's tasks or its merge would refuse only after running is refused when the
+/// script is written: an output folder that is a file, shard files there of another shard
+/// count or of another sweep.
+#[test]
+fn the_slurm_script_is_refused_for_a_folder_its_jobs_could_not_finish_in() {
+    let dir = temp_dir("slurm-out");
+    let file = dir.join("afile");
+    std::fs::write(&file, "").unwrap();
+    let o = run(&["sweep", s(&spec(&dir, 3.0)), "--slurm", "--out", s(&file)], &[]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("not a folder"), "{}", stderr(&o));
+    // One shard of 2 already run into the folder: an array of 4 would not merge with it.
+    let out = dir.join("out");
+    let o = run(&["sweep", s(&spec(&dir, 0.02)), "--out", s(&out), "--shard", "0/2"], &[]);
+    assert!(matches!(o.status.code(), Some(0 | 3 | 4)), "{}", stderr(&o));
+    let o = run(&["sweep", s(&spec(&dir, 0.02)), "--slurm", "--shards", "4", "--out", s(&out)], &[]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("shard-0-of-2.json: shard 0/2 of this sweep, and the array would write shards of 4"),
+        "{}",
+        stderr(&o)
+    );
+    assert!(stderr(&o).contains("give --shards 2"), "{}", stderr(&o));
+    let o = run(&["sweep", s(&spec(&dir, 0.02)), "--slurm", "--shards", "2", "--out", s(&out)], &[]);
+    assert!(o.status.success(), "the array resumes the shard: {}", stderr(&o));
+    // Another sweep's shard (another end time) in the folder.
+    let o = run(&["sweep", s(&spec(&dir, 0.04)), "--slurm", "--shards", "2", "--out", s(&out)], &[]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("belong to different sweeps"), "{}", stderr(&o));
+}
+
 #[test]
 fn the_plan_hash_depends_on_the_plan_and_kernel_not_on_where_or_how_it_runs() {
     let hash_of = |dir: &Path, extra: &[&str]| -> String {

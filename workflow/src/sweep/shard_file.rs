@@ -287,6 +287,38 @@ impl ShardRun {
     }
 }
 
+/// Checks, before a job array of `shards` shards of the sweep `id` is submitted into the
+/// sweep folder `dir`, that the shard files already there can join it: each of the same
+/// sweep (plan hash) and of the same shard count. Otherwise every task would run and the
+/// resume or the merge refuse only at the end.
+pub fn check_joinable(dir: &Path, id: &SweepId, shards: usize) -> Result<()> {
+    if !dir.join("shards").is_dir() {
+        return Ok(());
+    }
+    for path in files_in(dir)? {
+        let file = ShardFile::read(&path)?;
+        if file.plan_hash != id.plan_hash {
+            return Err(Error::Shard(ShardError::OtherSweep {
+                first: path,
+                first_hash: file.plan_hash,
+                second: id.spec.clone(),
+                second_hash: id.plan_hash.clone(),
+            }));
+        }
+        if file.shard.count != shards {
+            return Err(Error::Shard(ShardError::File {
+                file: path,
+                problem: format!(
+                    "shard {} of this sweep, and the array would write shards of {shards}: a merge refuses the mix; \
+                     give --shards {} to resume those, or another --out folder",
+                    file.shard, file.shard.count
+                ),
+            }));
+        }
+    }
+    Ok(())
+}
+
 /// The shard files in a sweep folder (`DIR/shards/shard-K-of-N.json`, or in `DIR` itself
 /// when it has no `shards/`), ordered by N then K.
 pub fn files_in(dir: &Path) -> Result<Vec<PathBuf>> {

@@ -26,6 +26,8 @@ pub struct JobScript<'a> {
     pub kernel: &'a str,
     /// How often a task saves its shard file, s (`--checkpoint`).
     pub checkpoint: f64,
+    /// The heat maps the merge draws (`--heatmap`; empty: its default).
+    pub heatmap: &'a [String],
 }
 
 /// The shard count when `--shards` is not given: one shard per row up to 10.
@@ -51,6 +53,11 @@ impl JobScript<'_> {
         let logs = |file: &str| shell_quote(&format!("{}/logs/{file}", self.out.display()));
         let (shard_log, merge_log) = (logs("shard-%a.log"), logs("merge.log"));
         let (cpus, kernel, rows, checkpoint) = (self.cpus, self.kernel, self.rows, self.checkpoint);
+        let heatmap = if self.heatmap.is_empty() {
+            String::new()
+        } else {
+            format!(" --heatmap {}", shell_quote(&self.heatmap.join(",")))
+        };
         format!(
             r#"#!/usr/bin/env bash
 # The sweep {job} ({rows} rows) as a Slurm job array of {n} shards, then a merge job once
@@ -78,7 +85,7 @@ array=${{array%%;*}}
 merge=$(sbatch --parsable --dependency=afterany:"$array" --output={merge_log} <<'JOB'
 #!/bin/bash
 #SBATCH --job-name={job}-merge
-exec {exe} sweep merge {out} --spec {spec}
+exec {exe} sweep merge {out} --spec {spec}{heatmap}
 JOB
 )
 merge=${{merge%%;*}}
@@ -106,6 +113,7 @@ mod tests {
             cpus: 2,
             kernel: "generated",
             checkpoint: 10.0,
+            heatmap: &[],
         }
         .text();
         assert!(script.contains("#SBATCH --array=0-6\n"), "{script}");
@@ -117,6 +125,25 @@ mod tests {
         );
         assert_eq!(default_shards(3), 3);
         assert_eq!(default_shards(500), 10);
+        // The heat maps asked for are the merge's (they were checked, then dropped).
+        let maps = ["stopping_time".to_string(), "peak_tension".to_string()];
+        let script = JobScript {
+            kanestop: Path::new("/k"),
+            spec: Path::new("/s.toml"),
+            out: Path::new("/o"),
+            name: "m",
+            rows: 2,
+            shards: 2,
+            cpus: 1,
+            kernel: "generated",
+            checkpoint: 10.0,
+            heatmap: &maps,
+        }
+        .text();
+        assert!(
+            script.contains("exec '/k' sweep merge '/o' --spec '/s.toml' --heatmap 'stopping_time,peak_tension'\n"),
+            "{script}"
+        );
     }
 
     /// No text of the spec or the command line runs as a command: the script submitted
@@ -144,6 +171,7 @@ mod tests {
             cpus: 1,
             kernel: "generated",
             checkpoint: 10.0,
+            heatmap: &[],
         }
         .text();
         let file = dir.join("sweep.sh");
