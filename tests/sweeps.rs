@@ -453,6 +453,24 @@ fn refresh_sensitivity_doc(study: &Value) {
     }
 }
 
+/// The table's utilisation is the line's worst joint's, not the one at the peak tension's
+/// joint: with a weak chain the chain governs though the rod's joint carries more.
+#[test]
+fn the_table_gives_the_worst_joints_utilisation() {
+    let dir = temp_dir("worst-util");
+    let out = dir.join("out");
+    let body = "[set]\n\"chain.proof_load\" = 3.5e5\n\
+                [[axis]]\npath = \"chain.break_load\"\nvalues = [5e5]\n";
+    let o = sweep(&spec(&dir, body), &out);
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    let row = &rows(&out)[0]["summary"];
+    let at_peak = row["peak_tension"]["break_utilisation"].as_f64().unwrap();
+    let chain = row["chain_peak"]["break_utilisation"].as_f64().unwrap();
+    assert!(chain > 2.0 * at_peak, "the chain should govern: {chain} against {at_peak}");
+    let line = stdout.lines().find(|l| l.starts_with("spec-000")).unwrap();
+    assert!(line.contains(&format!(" {:.1}  chain.break_load=500000", 100.0 * chain)), "{line}");
+}
+
 /// Samples that did not stop the ship by the end time are counted, and the stopping
 /// statistics over those that did are said to be biased low (they used to be printed as if
 /// over every sample).

@@ -168,10 +168,18 @@ impl RunSummary {
     /// Whether a break load was exceeded: some peak (over the whole line, or a member's
     /// over its joints) above its break load.
     pub fn break_load_exceeded(&self) -> bool {
+        self.max_break_utilisation().is_some_and(|u| u > 1.0)
+    }
+
+    /// The line's largest break utilisation: peak tension over break load at the worst joint,
+    /// which need not be the joint of the largest tension (a weaker chain). Each member has
+    /// one break load, so it is the largest of the members' peaks' utilisations.
+    pub fn max_break_utilisation(&self) -> Option<f64> {
         [&self.peak_tension, &self.chain_peak, &self.cable_peak, &self.rod_peak]
             .into_iter()
             .flatten()
-            .any(|p| p.break_utilisation.is_some_and(|u| u > 1.0))
+            .filter_map(|p| p.break_utilisation)
+            .reduce(f64::max)
     }
 
     /// The summary of `result`, a run of `model`.

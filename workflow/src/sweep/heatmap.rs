@@ -93,11 +93,7 @@ impl Output {
         match self {
             Output::StoppingDistance => s.stopping_distance,
             Output::StoppingTime => s.stopping_time.filter(|_| s.stopping_distance.is_some()),
-            Output::PeakUtilisation => [s.peak_tension, s.chain_peak, s.cable_peak, s.rod_peak]
-                .into_iter()
-                .flatten()
-                .filter_map(|p| p.break_utilisation)
-                .reduce(f64::max),
+            Output::PeakUtilisation => s.max_break_utilisation(),
             Output::PeakTension => s.peak_tension.map(|p| p.tension * 1e-3),
             Output::AnchorDrag => Some(s.anchor_drag_distance.abs()),
             Output::ShipDisplacement => Some(s.ship_displacement),

@@ -409,7 +409,7 @@ pub fn table(rows: &[SweepRow]) -> String {
     let w = rows.iter().map(|r| r.name.chars().count()).max().unwrap_or(0).max(3);
     let mut out = format!(
         "{:<w$} {:<9} {:>6} {:>9} {:>9} {:>9} {:>10} {:>6}  {}\n",
-        "row", "status", "checks", "stop (s)", "dist (m)", "drag (m)", "peak (kN)", "util", "inputs"
+        "row", "status", "checks", "stop (s)", "dist (m)", "drag (m)", "peak (kN)", "util %", "inputs"
     );
     for r in rows {
         let s = r.summary.as_ref();
@@ -426,7 +426,8 @@ pub fn table(rows: &[SweepRow]) -> String {
             d(s.and_then(|s| s.stopping_distance), 1.0, 2),
             d(s.map(|s| s.anchor_drag_distance), 1.0, 2),
             d(s.and_then(|s| s.peak_tension).map(|p| p.tension), 1e-3, 1),
-            d(s.and_then(|s| s.peak_tension).and_then(|p| p.break_utilisation), 1.0, 2),
+            // The worst joint's, as the heat map and the safety factor judge it.
+            d(s.and_then(RunSummary::max_break_utilisation), 100.0, 1),
             short_label(&r.label)
         ));
         if !r.message.is_empty() {
