@@ -83,7 +83,7 @@ enum Command {
         kind: ReportKind,
     },
     /// Run every scene of a folder in parallel: a table of stopping times (against Table 3
-    /// where the scene names one), peak tensions, anchor start and energy drift, also
+    /// where the scene is one of the paper's cases), peak tensions, anchor start and energy drift, also
     /// written as batch.csv and batch.json, with the columns' units in batch.units.csv.
     Batch {
         /// Folder of scene TOML files, e.g. scenes/paper.
@@ -191,8 +191,9 @@ impl ValueEnum for KernelArg {
         let help = match self.0 {
             KernelChoice::Reference => "The generic formulation of the paper's Eqs. 1–27 (slow, the oracle)",
             KernelChoice::Generated => {
-                "Flat code emitted by kanestop-codegen, with the O(N) recursive solve: unrolled when the build has \
-                 the chain's N, else rolled, which serves any N (default)"
+                "Flat code emitted by kanestop-codegen, with the O(N) recursive solve (default): the rolled steps, \
+                 which serve any N, with the scene's loads fused in (every scene of the repository); unrolled where \
+                 the loads are not fused and the build has the chain's N"
             }
         };
         Some(PossibleValue::new(self.0.name()).help(help))

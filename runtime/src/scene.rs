@@ -313,7 +313,8 @@ pub struct Initial {
     /// cable's length L_c; with x_L, see `horizontal_projection`. Sets the water depth
     /// d = h_L + δ_c + `rod.length` − `ship.hinge_z`, where δ_c is the laid cable's resting
     /// height above the seabed (its centreline where the foundation carries its submerged
-    /// weight, Eqs. 41, 42: a few mm, from +R on a hard seabed to −R, buried, on a soft one).
+    /// weight, Eqs. 41, 42: the cable's radius R less its embedment of a few mm, 21.8 mm in
+    /// case 1; from +R on a hard seabed to −R, buried, on a soft one).
     pub vertical_projection: f64,
     /// The ship's initial surge speed, m/s, in [0, 20] m/s. A ship at rest (0) has stopped at
     /// t = 0: its stopping time is 0, and `solver.stop_when_ship_stops` ends its run there

@@ -353,7 +353,7 @@ pub fn table(rows: &[BatchRow]) -> String {
     let labels = case_labels(rows);
     let width = labels.iter().map(|l| l.chars().count()).fold(15, usize::max);
     let mut out = format!(
-        "{:<width$} {:>3} {:<6} {:<9} {:>6} {:>9} {:>9} {:>8} {:>11} {:>6} {:>8} {:>9} {:>8} {:>9} {:>8}",
+        "{:<width$} {:>3} {:<6} {:<9} {:>6} {:>9} {:>9} {:>8} {:>11} {:>6} {:>9} {:>9} {:>8} {:>9} {:>8}",
         "case",
         "N",
         "method",
@@ -364,7 +364,7 @@ pub fn table(rows: &[BatchRow]) -> String {
         "diff %",
         "peak (kN)",
         "joint",
-        "slides at",
+        "slide (s)",
         "drift",
         "cpu (s)",
         "evals",
@@ -377,7 +377,7 @@ pub fn table(rows: &[BatchRow]) -> String {
     let e = |v: Option<f64>| v.map(|v| format!("{v:.1e}")).unwrap_or_else(|| "—".into());
     for (r, label) in rows.iter().zip(&labels) {
         out.push_str(&format!(
-            "{:<width$} {:>3} {:<6} {:<9} {:>6} {:>9} {:>9} {:>8} {:>11} {:>6} {:>8} {:>9} {:>8} {:>9} {:>8.2}",
+            "{:<width$} {:>3} {:<6} {:<9} {:>6} {:>9} {:>9} {:>8} {:>11} {:>6} {:>9} {:>9} {:>8} {:>9} {:>8.2}",
             label,
             r.bodies.map(|n| n.to_string()).unwrap_or_default(),
             r.method.map(Method::name).unwrap_or_default(),

@@ -169,8 +169,9 @@ pub fn verdict_of(model: &Model, result: &RunResult) -> Option<bool> {
     verdict(&outcomes, &break_exceedances(model, result), break_loads_held(model, result))
 }
 
-/// Whether the run `result` of `model` was held to its break loads: it took a step, did not
-/// fail, and some joint has one (the paper's every joint). The break-load check is then a
+/// Whether the run `result` of `model` was held to its break loads: it ran ([`RunResult::ran`]:
+/// took a step, or its ship was at rest at the start and is judged on the state at t = 0),
+/// did not fail, and some joint has one (the paper's every joint). The break-load check is then a
 /// check of the run, passed or failed, as `run`'s summary says it, whether the scene has
 /// `[checks]` or not. A failed run has passed nothing (as [`evaluate`]'s tension checks); a
 /// break load it exceeded before its failure fails it all the same ([`verdict`]).
