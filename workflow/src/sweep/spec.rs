@@ -235,17 +235,28 @@ impl Spec {
         }
         let mut set =
             |path: &str, v: Value| overrides::set(&mut value, path, v).map_err(|e| bad(file, path, "", e.to_string()));
+        // The spec's field and path of every value fixed for all rows ([solver], [set]): each
+        // path once, and none an axis or uncertain input too (whose values would silently
+        // override it in every row).
+        let mut fixed: Vec<(String, String)> = Vec::new();
         for (k, v) in raw.solver.into_iter().flatten() {
-            set(&format!("solver.{k}"), v)?;
+            let path = format!("solver.{k}");
+            set(&path, v)?;
+            fixed.push((path.clone(), path));
         }
         // Each input's field in the spec, its path and what the field holds (a [set] entry
         // holds its value, an axis's `path` the path).
         let mut inputs: Vec<(String, String, String)> = Vec::new();
         for (k, v) in raw.set.into_iter().flatten() {
+            let field = format!("set.\"{k}\"");
             if k == ROW_NAME.0 {
-                return Err(bad(file, format!("set.\"{k}\""), v, ROW_NAME.1));
+                return Err(bad(file, field, v, ROW_NAME.1));
             }
-            inputs.push((format!("set.\"{k}\""), k.clone(), v.to_string()));
+            if let Some((other, _)) = fixed.iter().find(|(_, p)| *p == k) {
+                return Err(bad(file, field, v, format!("{k} is set in [solver] too ({other}): set it in one place")));
+            }
+            inputs.push((field.clone(), k.clone(), v.to_string()));
+            fixed.push((field, k.clone()));
             set(&k, v)?;
         }
         let base = Scene::from_value(value, &format!("{} (base with [checks], [solver] and [set])", file.display()))?;
@@ -259,20 +270,26 @@ impl Spec {
             .map(|(i, u)| uncertain(file, &base_value, i, u))
             .collect::<Result<Vec<_>>>()?;
         // Each input path once: a second axis (or uncertain input) on a path would override
-        // the first in the scene while the table recorded the first.
+        // the first in the scene while the table recorded the first; one on a path [set] or
+        // [solver] fixes would override that in every row.
         let paths = axes.iter().map(|a| a.path.as_str()).chain(uncertain.iter().map(|u| u.path.as_str()));
         for (i, path) in paths.clone().enumerate() {
+            let field =
+                if i < axes.len() { format!("axis[{i}].path") } else { format!("uncertain[{}].path", i - axes.len()) };
             if paths.clone().take(i).any(|p| p == path) {
-                let field = if i < axes.len() {
-                    format!("axis[{i}].path")
-                } else {
-                    format!("uncertain[{}].path", i - axes.len())
-                };
                 return Err(bad(
                     file,
                     field,
                     path,
                     "a path not already an input (each path once, as an axis or an uncertain input)",
+                ));
+            }
+            if let Some((other, _)) = fixed.iter().find(|(_, p)| p == path) {
+                return Err(bad(
+                    file,
+                    field,
+                    path,
+                    format!("a path not fixed for every row: {other} sets it too, and the input would override it"),
                 ));
             }
         }
@@ -642,6 +659,18 @@ mod tests {
                          [sampling]\nmethod = \"random\"\nsamples = 2\nseed = 1\n";
         let e = spec(&format!("{}{uncertain}", axis("5e5"))).unwrap_err();
         assert_eq!(field(e), "uncertain[0].path");
+        // A path fixed for every row by [set] or [solver] is no input too (the input won).
+        let e = spec(&format!("[set]\n\"ship.mass\" = 4e5\n{}", axis("5e5"))).unwrap_err();
+        assert!(
+            e.to_string()
+                .contains("axis[0].path = ship.mass: a path not fixed for every row: set.\"ship.mass\" sets it too"),
+            "{e}"
+        );
+        let end = "[[axis]]\npath = \"solver.end_time\"\nvalues = [0.2]\n";
+        let e = spec(&format!("[solver]\nend_time = 0.1\n{end}")).unwrap_err();
+        assert!(e.to_string().contains("solver.end_time sets it too"), "{e}");
+        let e = spec("[solver]\nend_time = 0.1\n[set]\n\"solver.end_time\" = 0.2\n").unwrap_err();
+        assert_eq!(field(e), "set.\"solver.end_time\"");
     }
 
     #[test]
