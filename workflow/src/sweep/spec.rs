@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 
 use kanestop_runtime::design::DesignChecks;
 use kanestop_runtime::overrides;
-use kanestop_runtime::scene::Scene;
+use kanestop_runtime::scene::{Scene, SceneError};
 use serde::Deserialize;
 use toml::Value;
 
@@ -145,6 +145,19 @@ pub fn check_name(name: &str) -> std::result::Result<(), String> {
     }
 }
 
+/// A base scene's error, its file named as the spec's `base` (`../paper/case1.toml (the base
+/// of sweep spec s.toml)`), as a command line's overrides are named: the file alone did not
+/// say where it was asked for.
+fn named_by_spec(e: SceneError, spec: &Path) -> SceneError {
+    let named = |file: String| format!("{file} (the base of sweep spec {})", spec.display());
+    match e {
+        SceneError::Io { file, extended_by, source } => SceneError::Io { file: named(file), extended_by, source },
+        SceneError::Parse { file, message } => SceneError::Parse { file: named(file), message },
+        SceneError::Invalid { file, problems } => SceneError::Invalid { file: named(file), problems },
+        SceneError::Override { file, error } => SceneError::Override { file: named(file), error },
+    }
+}
+
 impl Spec {
     /// Reads and checks a spec file; the base scene is relative to it.
     pub fn load(file: &Path) -> Result<Spec> {
@@ -217,7 +230,7 @@ impl Spec {
 
     fn from_raw(raw: SpecFile, file: &Path, dir: &Path, scene: Option<Scene>) -> Result<Spec> {
         let original = match (raw.base, scene) {
-            (Some(base), None) => Scene::load(&dir.join(base))?,
+            (Some(base), None) => Scene::load(&dir.join(base)).map_err(|e| named_by_spec(e, file))?,
             (None, Some(scene)) => scene,
             (Some(base), Some(_)) => return Err(bad(file, "base", base, "given twice: a file and a scene")),
             (None, None) => return Err(bad(file, "base", "(missing)", "the base scene, a file relative to the spec")),
@@ -326,8 +339,20 @@ impl Spec {
             .map(|s| s.to_string_lossy().into_owned())
             .filter(|s| !s.starts_with('<'))
             .unwrap_or_else(|| "sweep".into());
+        let given = raw.name.is_some();
         let name = raw.name.unwrap_or(stem);
-        check_name(&name).map_err(|expected| bad(file, "name", format!("{name:?}"), expected))?;
+        check_name(&name).map_err(|expected| {
+            // A name the spec did not give is its file's stem: say so, and how to give one.
+            let (value, expected) = if given {
+                (format!("{name:?}"), expected)
+            } else {
+                (
+                    format!("{name:?} (the spec file's name: the spec has no `name`)"),
+                    format!("{expected}; set name = \"…\""),
+                )
+            };
+            bad(file, "name", value, expected)
+        })?;
         Ok(Spec { file: file.to_path_buf(), name, base, axes, sampling, uncertain })
     }
 
@@ -647,6 +672,22 @@ mod tests {
         assert_eq!(super::super::file_stem("../../x"), "_._.._x");
         assert_eq!(super::super::file_stem("a/b\nc"), "a_b_c");
         assert_eq!(super::super::file_stem(""), "_");
+    }
+
+    /// Errors of what the spec did not write itself say where they come from: a base scene
+    /// the spec names, a name taken from the spec file's.
+    #[test]
+    fn a_base_or_a_default_name_is_named_as_the_spec_s() {
+        let e = Spec::from_toml("base = \"no-such.toml\"\n", Path::new("s.toml"), Path::new("d"), None).unwrap_err();
+        let text = e.to_string();
+        assert!(text.starts_with("cannot read scene d/no-such.toml (the base of sweep spec s.toml): "), "{text}");
+        assert!(matches!(e, Error::Scene(SceneError::Io { .. })), "still a scene's error: {e:?}");
+        let e = Spec::from_toml("", Path::new("short (1).toml"), Path::new(""), Some(case01())).unwrap_err();
+        let text = e.to_string();
+        assert!(text.contains("name = \"short (1)\" (the spec file's name: the spec has no `name`)"), "{text}");
+        assert!(text.ends_with("set name = \"…\""), "{text}");
+        let e = Spec::from_toml("name = \"a (1)\"\n", Path::new("s.toml"), Path::new(""), Some(case01())).unwrap_err();
+        assert!(!e.to_string().contains("the spec has no"), "{e}");
     }
 
     #[test]
