@@ -166,6 +166,33 @@ fn the_sweep_heat_maps_render_with_the_check_boundary() {
         assert!(r.coloured > area / 5, "{name}: {} coloured pixels", r.coloured);
         assert!(r.inked < area * 9 / 10, "{name}: {} inked pixels", r.inked);
     }
+    // Cut short at 1 s, no ship stops: the stopping distance has no values and says so (no
+    // made-up scale of 0 to 1), and the peaks are daggered as values up to the end time.
+    let mut short = spec.clone();
+    short.base.solver.end_time = 1.0;
+    let rows_short = sweep::run(&short.plan(), &kernels::factory(KernelChoice::Generated), None, &|_| {}).unwrap();
+    assert!(rows_short.iter().all(|r| r.status == kanestop_workflow::batch::Status::EndTime));
+    let cut = Scratch::new("heatmap-cut");
+    let outputs = [heatmap::Output::StoppingDistance, heatmap::Output::PeakTension];
+    let files = heatmap::write(&short, &rows_short, &outputs, &cut).unwrap();
+    let svg = |k: usize| std::fs::read_to_string(&files[k]).unwrap();
+    let (distance, peak) = (svg(0), svg(1));
+    assert!(distance.contains("stopping distance (m): no values") && distance.contains("9 of 9 cells"), "{distance}");
+    assert!(!distance.contains(">0.5<") && !distance.contains(">1<"), "no scale without values");
+    assert!(!distance.contains("off the scale"), "no scale for the limit to be off");
+    assert!(peak.contains("†: the ship had not stopped at solver.end_time") && peak.contains("(9 of 9 cells)"));
+    assert!(!peak.contains("no values"));
+    let name = |k: usize| format!("cut-{}", files[k].file_name().unwrap().to_string_lossy().replace(".svg", ".png"));
+    // All grey: drawn, with no colour.
+    let r = render(&distance, &png_dir().join(name(0)));
+    assert!(
+        r.inked > (r.width * r.height) as usize / 5 && r.coloured < 1000,
+        "{}: {} {}",
+        name(0),
+        r.inked,
+        r.coloured
+    );
+    assert_chart(&peak, &name(1));
     // A one-axis sweep has none (and says why).
     let mut one = spec.clone();
     one.axes.truncate(1);

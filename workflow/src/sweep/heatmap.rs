@@ -15,6 +15,7 @@ use plotters::style::text_anchor::{HPos, Pos, VPos};
 use toml::Value;
 
 use super::{Spec, SweepRow};
+use crate::batch::Status;
 use crate::output::write_atomically;
 use crate::plot::sans;
 use crate::record::RunSummary;
@@ -173,6 +174,9 @@ struct Cell {
     pass: Option<bool>,
     /// The checks its rows failed, in words.
     failed: Vec<&'static str>,
+    /// How many of the runs that gave the value ended at the end time with the ship still
+    /// moving: their value is the run's up to then (a peak, a drag distance), not the stop's.
+    unstopped: usize,
 }
 
 /// A check's name in a cell, short.
@@ -202,6 +206,7 @@ fn cells(spec: &Spec, rows: &[SweepRow], output: Output) -> Vec<Vec<Cell>> {
         if let Some(v) = r.summary.as_ref().and_then(|s| output.of(s)).filter(|v| v.is_finite()) {
             cell.0 += v;
             cell.1 += 1;
+            cell.2.unstopped += usize::from(r.status == Status::EndTime);
         }
         if let Some(p) = r.checks_pass {
             cell.2.pass = Some(cell.2.pass.unwrap_or(true) && p);
@@ -302,8 +307,8 @@ fn short_in(v: f64, span: f64) -> String {
 const SIZE: (u32, u32) = (1000, 760);
 /// The title's type size, px as drawn.
 const TITLE_FONT: f64 = 20.0;
-/// The legend's height below the chart, px: five rows, the first on two lines.
-const LEGEND_HEIGHT: u32 = 170;
+/// The legend's height below the chart, px: six rows, the first on two lines.
+const LEGEND_HEIGHT: u32 = 196;
 
 /// The heat map of `output` over the spec's two grid axes, as SVG text (the spec must have
 /// them: see [`unsupported`]).
@@ -335,7 +340,7 @@ pub fn heat_map(spec: &Spec, rows: &[SweepRow], output: Output) -> std::result::
         let (body, legend) = root.split_vertically(SIZE.1 - head - LEGEND_HEIGHT);
         let (main, scale) = body.split_horizontally(SIZE.0 - 170);
         draw_cells(&main, spec, &grid, (lo, hi))?;
-        draw_scale(&scale, output, (lo, hi), limit)?;
+        draw_scale(&scale, output, (lo, hi), limit, !values.is_empty())?;
         draw_legend(&legend, spec, &grid, limit, (lo, hi))?;
         root.present().map_err(|e| e.to_string())?;
     }
@@ -427,7 +432,10 @@ fn draw_cells<DB: DrawingBackend>(
             if annotate {
                 // A mean over part of its rows (the others did not stop, or failed) is starred.
                 let star = if cell.value.is_some() && cell.runs < cell.rows { "*" } else { "" };
-                let text = cell.value.map(|v| format!("{}{star}", short_in(v, hi - lo))).unwrap_or_else(|| "—".into());
+                // A value of a run cut short by the end time is daggered.
+                let dagger = if cell.unstopped > 0 { "†" } else { "" };
+                let text =
+                    cell.value.map(|v| format!("{}{star}{dagger}", short_in(v, hi - lo))).unwrap_or_else(|| "—".into());
                 let light = cell.value.is_some_and(|v| (v - lo) / (hi - lo) < 0.6);
                 let colour = if light { WHITE } else { BLACK };
                 let centred = Pos::new(HPos::Center, VPos::Center);
@@ -479,8 +487,11 @@ fn draw_scale<DB: DrawingBackend>(
     output: Output,
     (lo, hi): (f64, f64),
     limit: Option<(f64, &'static str)>,
+    any_value: bool,
 ) -> std::result::Result<(), String> {
     let err = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
+    // No cell has a value: a grey bar with no numbers, not a scale of 0 to 1 made up.
+    let describe = if any_value { output.describe().to_string() } else { format!("{}: no values", output.describe()) };
     let mut c = ChartBuilder::on(area)
         .margin_top(12)
         .margin_bottom(62)
@@ -492,9 +503,10 @@ fn draw_scale<DB: DrawingBackend>(
         .set_secondary_coord(0.0..1.0, lo..hi);
     c.configure_mesh().disable_mesh().disable_x_axis().disable_y_axis().draw().map_err(err)?;
     c.configure_secondary_axes()
-        .y_desc(output.describe())
+        .y_desc(describe)
         .label_style(sans(14.0))
         .axis_desc_style(sans(15.0))
+        .y_labels(if any_value { 10 } else { 0 })
         .y_label_formatter(&|v| short_in(*v, hi - lo))
         .draw()
         .map_err(err)?;
@@ -502,7 +514,8 @@ fn draw_scale<DB: DrawingBackend>(
     let band = (hi - lo) / steps as f64;
     c.draw_series((0..steps).map(|k| {
         let v = lo + k as f64 * band;
-        Rectangle::new([(0.0, v), (1.0, v + band)], viridis((v + 0.5 * band - lo) / (hi - lo)).filled())
+        let colour = if any_value { viridis((v + 0.5 * band - lo) / (hi - lo)) } else { RGBColor(200, 200, 200) };
+        Rectangle::new([(0.0, v), (1.0, v + band)], colour.filled())
     }))
     .map_err(err)?;
     if let Some((l, _)) = limit.filter(|(l, _)| (lo..=hi).contains(l)) {
@@ -544,7 +557,9 @@ fn draw_legend<DB: DrawingBackend>(
         area.draw(&Text::new(line.clone(), (x0 + 36, y0 + 2 + 18 * k as i32), font.clone())).map_err(err)?;
     }
     let y1 = y0 + 28 + 18 * (hatched.len() as i32 - 1);
-    let limit_words = match limit {
+    // Without values there is no scale to place the limit on.
+    let any_value = grid.iter().flatten().any(|c| c.value.is_some());
+    let limit_words = match limit.filter(|_| any_value) {
         Some((v, name)) if (lo..=hi).contains(&v) => format!("; on the scale: {name} = {}", short(v)),
         Some((v, name)) => format!("; {name} = {} is off the scale", short(v)),
         None => String::new(),
@@ -567,24 +582,21 @@ fn draw_legend<DB: DrawingBackend>(
     ))
     .map_err(err)?;
     // Sampled inputs on the grid: a cell is a mean, and says over how many runs; one over
-    // part of its runs is starred.
+    // part of its runs is starred. A value of a run the end time cut short is daggered.
     let rows = grid.iter().flatten().map(|c| c.rows).max().unwrap_or(0);
     let partial = grid.iter().flatten().filter(|c| c.value.is_some() && c.runs < c.rows).count();
-    if rows > 1 {
-        area.draw(&Text::new(
-            format!("each cell: the mean over its {rows} runs (the sampled inputs at that grid point)"),
-            (x0 + 36, y2 + 28),
-            font.clone(),
-        ))
-        .map_err(err)?;
-    }
-    if partial > 0 {
-        area.draw(&Text::new(
-            format!("*: the mean of the runs that gave a value; the others did not stop or failed ({partial} of {total} cells)"),
-            (x0 + 36, y2 + 56),
-            font,
-        ))
-        .map_err(err)?;
+    let cut = grid.iter().flatten().filter(|c| c.unstopped > 0).count();
+    let notes = [
+        (rows > 1).then(|| format!("each cell: the mean over its {rows} runs (the sampled inputs at that grid point)")),
+        (partial > 0).then(|| {
+            format!("*: the mean of the runs that gave a value; the others did not stop or failed ({partial} of {total} cells)")
+        }),
+        (cut > 0).then(|| {
+            format!("†: the ship had not stopped at solver.end_time: the value is the run's up to then ({cut} of {total} cells)")
+        }),
+    ];
+    for (k, note) in notes.into_iter().flatten().enumerate() {
+        area.draw(&Text::new(note, (x0 + 36, y2 + 28 * (k as i32 + 1)), font.clone())).map_err(err)?;
     }
     Ok(())
 }
