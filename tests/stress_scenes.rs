@@ -342,7 +342,7 @@ fn case_1_limit_and_the_steps_beyond_it_are_as_documented() {
     let Stop::Failed(f) = &blown.stop else { panic!("15 ms: expected a failure, got {:?}", blown.stop) };
     let limit = ok.stability.expect("RK4 reports its limit");
     let quoted = format!(
-        "Case 1's limit is {:.1} ms (a seabed contact mode at {:.0} rad/s); RK4 runs case 1 at 10 ms but blows up at 15 ms after {:.1} s",
+        "Case 1's limit is {:.1} ms (a seabed contact mode at {:.0} rad/s); RK4 runs case 1 at 10 ms but blows up at 15 ms at about {:.2} s",
         1e3 * limit.rk4_dt,
         limit.lambda.norm(),
         f.t
