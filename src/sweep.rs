@@ -214,20 +214,27 @@ fn report(
         }
         let points = sweep::by_grid_point(rows, per_point);
         for (point, group) in &points {
-            let stopped = group.iter().filter(|r| r.status == Status::Stopped).count();
+            // Stopped: a stopping time (a run kept going after it, `stop_when_ship_stops =
+            // false`, has one too); cut short: ran to the end time without one.
+            let stops = |r: &&SweepRow| r.summary.as_ref().is_some_and(|s| s.stopping_time.is_some());
+            let stopped = group.iter().filter(stops).count();
+            let cut = group.iter().filter(|r| r.status == Status::EndTime && !stops(r)).count();
+            let problems = group.iter().filter(|r| r.status.is_problem()).count();
+            let others = if problems > 0 { format!(", {problems} failed or invalid") } else { String::new() };
             if points.len() > 1 {
-                println!("point     {point} ({} samples, {stopped} stopped)", group.len());
+                println!("point     {point} ({} samples, {stopped} stopped{others})", group.len());
             } else {
-                println!("samples   {}, {stopped} stopped the ship", group.len());
+                println!("samples   {}, {stopped} stopped the ship{others}", group.len());
             }
             for (i, (name, f, scale)) in stats.into_iter().enumerate() {
-                // The first two are the stopping time and distance: over the rows that stopped.
+                // The first two are the stopping time and distance: over the rows that stopped,
+                // biased low where others ran to the end time without stopping (the longest).
                 let caveat = match (i < 2, stopped) {
                     (true, s) if s < 2 => {
                         println!("{name:<22} none: {s} sample(s) stopped the ship, statistics need 2");
                         continue;
                     }
-                    (true, s) if s < group.len() => format!(" (over the {s} that stopped: biased low)"),
+                    (true, s) if cut > 0 => format!(" (over the {s} that stopped: biased low)"),
                     _ => String::new(),
                 };
                 if let Some([mean, sd, p5, p95]) = sweep::statistics(group, f) {
@@ -505,7 +512,7 @@ pub fn sensitivity(args: &SensitivityArgs) -> Result<Exit> {
             // is unknown (counting it as zero would narrow the band).
             let o = |k: usize, s: f64, digits: usize, unit: &str| match study.base[k] {
                 Some(_) if !unknown[k].is_empty() => format!(
-                    "— (the effect of {} is unknown: a perturbed run did not stop the ship; raise solver.end_time)",
+                    "— (the effect of {} is unknown: see the table's line under its row)",
                     unknown[k].join(", ")
                 ),
                 Some(v) => format!("{:.*} ± {:.*} {unit}", digits, v * s, digits, band[k] * s),

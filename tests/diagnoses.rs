@@ -70,4 +70,10 @@ fn a_failure_at_a_heavy_body_is_not_blamed_on_a_light_element() {
     let text = describe(&model, &ship);
     assert!(text.contains("ship (B_46") && text.contains("a stiffness that grew with the motion"), "{text}");
     assert!(!text.contains("light element swinging") && !text.contains("mass ratio"), "{text}");
+    // The anchor (B_1), 12.5 times lighter than the ship, is an end of the line, no element
+    // between neighbours.
+    let anchor = Failure { body: 1, ..runaway(1.0, None) };
+    let text = describe(&model, &anchor);
+    assert!(text.contains("anchor (B_1") && text.contains("at an end of the line"), "{text}");
+    assert!(!text.contains("light element swinging") && !text.contains("mass ratio"), "{text}");
 }

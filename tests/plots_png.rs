@@ -180,6 +180,7 @@ fn the_sweep_heat_maps_render_with_the_check_boundary() {
     assert!(distance.contains("stopping distance (m): no values") && distance.contains("9 of 9 cells"), "{distance}");
     assert!(!distance.contains(">0.5<") && !distance.contains(">1<"), "no scale without values");
     assert!(!distance.contains("off the scale"), "no scale for the limit to be off");
+    assert!(!distance.to_uppercase().contains("#E61E1E"), "no red limit line on the grey bar");
     assert!(peak.contains("†: the ship had not stopped at solver.end_time") && peak.contains("(9 of 9 cells)"));
     assert!(!peak.contains("no values"));
     let name = |k: usize| format!("cut-{}", files[k].file_name().unwrap().to_string_lossy().replace(".svg", ".png"));

@@ -79,6 +79,7 @@ pub fn workflow_error(py: Python<'_>, e: kanestop_workflow::Error) -> PyErr {
         _ => {
             return match e {
                 Error::Scene(s) => scene_error(py, s),
+                Error::BaseScene { error, .. } => scene_error(py, *error),
                 other => PyValueError::new_err(other.to_string()),
             }
         }

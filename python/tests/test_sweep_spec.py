@@ -263,3 +263,10 @@ def test_a_spec_pickles_and_compares(tmp_path: Path) -> None:
     # A scene's own name, which a spec file's name could not be, comes back as it was.
     named = kanestop.Spec.from_scene(spec.base, "case 1 (paper)")
     assert pickle.loads(pickle.dumps(named)).name == "case 1 (paper)"
+
+
+def test_a_solver_keyword_on_a_path_the_spec_sweeps_is_refused(case01: kanestop.Scene) -> None:
+    spec = {"base": case01, "axis": [{"path": "solver.end_time", "values": [0.1, 0.2]}]}
+    with pytest.raises(kanestop.SpecError) as info:
+        kanestop.sweep(spec, end_time=0.3)
+    assert info.value.field == "solver.end_time" and "whose values would override it" in str(info.value)

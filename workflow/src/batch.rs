@@ -426,7 +426,7 @@ pub const COLUMNS: [(&str, &str, &str); 22] = [
     ("peak_time", "s", "when the largest tension occurred"),
     ("break_exceedances", "", "joints whose peak tension exceeded their break load"),
     ("anchor_start", "s", "when the anchor first slid"),
-    ("energy_drift", "", "largest energy-balance drift, relative to the largest kinetic energy so far (a fraction)"),
+    ("energy_drift", "", crate::record::ENERGY_DRIFT_MEANING),
     ("wall_time", "s", "wall-clock time of the run"),
     ("message", "", "error, diagnostic or failed check"),
     ("method", "", "integrator: rk4, dp5, sdirk4"),

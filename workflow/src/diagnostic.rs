@@ -183,9 +183,9 @@ fn rk4_suggestion(dt: f64, end_time: f64, kept: &str) -> String {
     }
 }
 
-/// A failing body this many times lighter than the heaviest, or more, is diagnosed as a light
-/// element swinging between heavy neighbours (case 1: a cable element is 18 048 times lighter
-/// than the ship); a heavier one is not.
+/// A failing body between two others this many times lighter than the heaviest, or more, is
+/// diagnosed as a light element swinging between heavy neighbours (case 1: a cable element is
+/// 18 048 times lighter than the ship); a heavier one is not, nor an end of the line.
 const LIGHT: f64 = 3.0;
 
 /// The likely cause and what to try for a failure at `t` (s) whose unstable mode lives at
@@ -195,13 +195,17 @@ fn advice(model: &Model, t: f64, k: usize) -> (String, String) {
     let solver = &model.scene.solver;
     let dt = solver.dt;
     let ratio = model.chain.bodies.iter().map(|b| b.mass).fold(0.0, f64::max) / body.mass;
-    let mode = if ratio < LIGHT {
-        // Not a light element: what stiffened is the load on a heavy body (a tension, the
-        // seabed's contact or drag, growing with the motion).
+    // Not a light element: an end of the line (the anchor, the ship), or a body nearly as
+    // heavy as the heaviest. What stiffened is a load on it (a tension, the seabed's contact
+    // or drag, growing with the motion).
+    let grown = "a stiffness that grew with the motion, such as the line's tension, its contact with the seabed or \
+                 its drag";
+    let mode = if k == 1 || k == model.body_count() {
+        format!("the stiffest mode, at an end of the line (not a light element between heavy neighbours): {grown}")
+    } else if ratio < LIGHT {
         format!(
             "the stiffest mode, at a body within {LIGHT}× of the heaviest's mass (not a light element between heavy \
-             neighbours): a stiffness that grew with the motion, such as the line's tension, its contact with the \
-             seabed or its drag"
+             neighbours): {grown}"
         )
     } else {
         let ratio = if ratio < 1e6 { format!("{ratio:.0}") } else { format!("{ratio:.2e}") };

@@ -48,6 +48,15 @@ pub enum Error {
     /// A scene could not be read or is not valid.
     #[error(transparent)]
     Scene(#[from] kanestop_runtime::scene::SceneError),
+    /// The base scene a sweep spec names could not be read or is not valid: the scene's
+    /// error, and where it was asked for.
+    #[error("{error}\n  (the base scene of sweep spec {})", spec.display())]
+    BaseScene {
+        /// The spec file.
+        spec: PathBuf,
+        /// The scene's error (boxed: it is large, and rare).
+        error: Box<kanestop_runtime::scene::SceneError>,
+    },
     /// A scene admits no model (e.g. no initial configuration).
     #[error(transparent)]
     Model(#[from] kanestop_runtime::model::ModelError),

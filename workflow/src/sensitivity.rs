@@ -33,7 +33,12 @@ pub const FILES: [&str; 3] = ["sensitivity.csv", "sensitivity.json", "sensitivit
 /// header and `sensitivity.units.csv`): the effects are d(output)/d(ln p), in the output's
 /// unit (the change for a 100 % change of the parameter, to first order).
 pub const COLUMNS: [(&str, &str, &str); 9] = [
-    ("rank", "", "rank by |d_stopping_time| (by |d_peak_tension| when the base run did not stop)"),
+    (
+        "rank",
+        "",
+        "rank by |d_stopping_time| (by its bound where a perturbed run did not stop by the end time; by \
+         |d_peak_tension| when the base run did not stop)",
+    ),
     ("parameter", "", "the scene field's dotted path"),
     ("value", "", "the parameter's value in the scene, in its field's unit, which differs by row (docs/scenes.md)"),
     ("d_stopping_time", "s", "d(stopping time)/d(ln p)"),
@@ -268,10 +273,17 @@ pub fn study(
     }
     let base = outputs(&summary);
     let scenes: Vec<&Scene> = probes.iter().flat_map(|p| &p.scenes).collect();
+    // A perturbed run that failed gives no effect (its partial outputs are no sample of the
+    // parameter's), only its diagnostic; one that ran to the end time without stopping the
+    // ship gives none for the stop either, but a bound ([`not_stopped`]).
     let runs = parallel::map_jobs(jobs, &scenes, |s| {
-        let r = Model::new(s).map_err(|e| e.to_string()).map(|model| {
+        let r = Model::new(s).map_err(|e| e.to_string()).and_then(|model| {
             let result = simulate::run(&model, kernel(&model));
-            outputs(&RunSummary::of(&model, &result))
+            let summary = RunSummary::of(&model, &result);
+            match &summary.failure {
+                Some(f) => Err(format!("failed: {}", f.message)),
+                None => Ok(outputs(&summary)),
+            }
         });
         done();
         r
@@ -313,10 +325,9 @@ pub fn study(
                         row.message = if row.message.is_empty() { note } else { format!("{}; {note}", row.message) };
                     }
                 }
-                (Err(m), _) | (_, Err(m)) => {
-                    let m = m.lines().map(str::trim).filter(|l| !l.is_empty()).collect::<Vec<_>>().join(" ");
-                    row.message = if row.message.is_empty() { m } else { format!("{}; {m}", row.message) };
-                }
+                // The side that gave nothing, named.
+                (Err(m), _) => add_note(&mut row, &format!("p·(1 + {h})"), m),
+                (_, Err(m)) => add_note(&mut row, &format!("p·(1 − {h})"), m),
             }
             row
         })
@@ -327,8 +338,15 @@ pub fn study(
     Ok(Study { scene: scene.meta.name.clone(), step, base, rows, runs: 1 + scenes.len() })
 }
 
-/// Where the base stopped the ship (at `base_stop`, s) and a perturbed run did not by
-/// `end_time` (s): sets the row's [`Sensitivity::stopping_time_bound`] from the stopping
+/// Adds to a row's message what its `side` (`p·(1 + h)`) said, on one line.
+fn add_note(row: &mut Sensitivity, side: &str, message: &str) {
+    let m = message.lines().map(str::trim).filter(|l| !l.is_empty()).collect::<Vec<_>>().join(" ");
+    let m = format!("{side}: {m}");
+    row.message = if row.message.is_empty() { m } else { format!("{}; {m}", row.message) };
+}
+
+/// Where the base stopped the ship (at `base_stop`, s) and a perturbed run that did not fail
+/// did not stop it by `end_time` (s): sets the row's [`Sensitivity::stopping_time_bound`] from the stopping
 /// times above and below p (`stops`, none for a run that did not stop) and returns what to
 /// say of it. A stop that moved past the end time is a large effect, not a missing one.
 fn not_stopped(
@@ -343,7 +361,7 @@ fn not_stopped(
     let (side, bound) = match stops {
         (None, Some(below)) => (format!("p·(1 + {h})"), Some((end_time - below) / span)),
         (Some(above), None) => (format!("p·(1 − {h})"), Some((above - end_time) / span)),
-        (None, None) => ("neither p·(1 ± h)".to_string(), None),
+        (None, None) => (format!("p·(1 ± {h})"), None),
         (Some(_), Some(_)) => return None,
     };
     row.stopping_time_bound = bound;
@@ -531,6 +549,10 @@ mod tests {
         not_stopped(&mut lighter, Some(19.8), (Some(19.0), None), span, 20.5).unwrap();
         assert_eq!(lighter.stopping_time_bound, Some((19.0 - 20.5) / span));
         // Both stopped, or the base did not: nothing to say.
+        let both = not_stopped(&mut row("x", None), Some(19.8), (None, None), span, 20.5).unwrap();
+        assert!(
+            both.starts_with("p·(1 ± 0.05) did not stop the ship by solver.end_time = 20.5 s: no stopping-time effect")
+        );
         assert_eq!(not_stopped(&mut row("x", None), Some(19.8), (Some(20.0), Some(19.0)), span, 20.5), None);
         assert_eq!(not_stopped(&mut row("x", None), None, (None, Some(19.0)), span, 20.5), None);
         // Ranked by the bound, above a row of a smaller known effect.

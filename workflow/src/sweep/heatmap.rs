@@ -192,6 +192,11 @@ fn check_word(name: &str) -> &'static str {
 }
 
 /// The cells, `[x][y]` over axis 0 (x) and axis 1 (y).
+/// A row's stopping time, s (none where the ship did not stop, or the row did not run).
+fn stopping_time(r: &SweepRow) -> Option<f64> {
+    r.summary.as_ref().and_then(|s| s.stopping_time)
+}
+
 fn cells(spec: &Spec, rows: &[SweepRow], output: Output) -> Vec<Vec<Cell>> {
     let (ax, ay) = (&spec.axes[0], &spec.axes[1]);
     let mut sums = vec![vec![(0.0, 0usize, Cell::default()); ay.values.len()]; ax.values.len()];
@@ -206,7 +211,9 @@ fn cells(spec: &Spec, rows: &[SweepRow], output: Output) -> Vec<Vec<Cell>> {
         if let Some(v) = r.summary.as_ref().and_then(|s| output.of(s)).filter(|v| v.is_finite()) {
             cell.0 += v;
             cell.1 += 1;
-            cell.2.unstopped += usize::from(r.status == Status::EndTime);
+            // Cut short: at the end time with no stop (a run kept going after its stop,
+            // `stop_when_ship_stops = false`, has one).
+            cell.2.unstopped += usize::from(r.status == Status::EndTime && stopping_time(r).is_none());
         }
         if let Some(p) = r.checks_pass {
             cell.2.pass = Some(cell.2.pass.unwrap_or(true) && p);
@@ -518,7 +525,7 @@ fn draw_scale<DB: DrawingBackend>(
         Rectangle::new([(0.0, v), (1.0, v + band)], colour.filled())
     }))
     .map_err(err)?;
-    if let Some((l, _)) = limit.filter(|(l, _)| (lo..=hi).contains(l)) {
+    if let Some((l, _)) = limit.filter(|(l, _)| any_value && (lo..=hi).contains(l)) {
         let red = RGBColor(230, 30, 30);
         c.draw_series(std::iter::once(PathElement::new(vec![(0.0, l), (1.0, l)], red.stroke_width(4)))).map_err(err)?;
     }

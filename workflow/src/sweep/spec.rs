@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 
 use kanestop_runtime::design::DesignChecks;
 use kanestop_runtime::overrides;
-use kanestop_runtime::scene::{Scene, SceneError};
+use kanestop_runtime::scene::Scene;
 use serde::Deserialize;
 use toml::Value;
 
@@ -145,19 +145,6 @@ pub fn check_name(name: &str) -> std::result::Result<(), String> {
     }
 }
 
-/// A base scene's error, its file named as the spec's `base` (`../paper/case1.toml (the base
-/// of sweep spec s.toml)`), as a command line's overrides are named: the file alone did not
-/// say where it was asked for.
-fn named_by_spec(e: SceneError, spec: &Path) -> SceneError {
-    let named = |file: String| format!("{file} (the base of sweep spec {})", spec.display());
-    match e {
-        SceneError::Io { file, extended_by, source } => SceneError::Io { file: named(file), extended_by, source },
-        SceneError::Parse { file, message } => SceneError::Parse { file: named(file), message },
-        SceneError::Invalid { file, problems } => SceneError::Invalid { file: named(file), problems },
-        SceneError::Override { file, error } => SceneError::Override { file: named(file), error },
-    }
-}
-
 impl Spec {
     /// Reads and checks a spec file; the base scene is relative to it.
     pub fn load(file: &Path) -> Result<Spec> {
@@ -220,8 +207,19 @@ impl Spec {
         }
     }
 
-    /// The same spec with `values` set on the base scene for every row, as if added to `[set]`.
+    /// The same spec with `values` set on the base scene for every row, as if added to `[set]`;
+    /// a path that is an input of the spec (an axis, an uncertain input) is refused, as in
+    /// `[set]`: its values would override the one given in every row.
     pub fn with_set(mut self, values: &[(&str, Value)]) -> Result<Spec> {
+        let inputs = self.axes.iter().map(|a| &a.path).chain(self.uncertain.iter().map(|u| &u.path));
+        if let Some((path, v)) = values.iter().find(|(p, _)| inputs.clone().any(|i| i == p)) {
+            return Err(bad(
+                &self.file,
+                *path,
+                v,
+                "a path not also an input of the spec (an axis or an uncertain input), whose values would override it",
+            ));
+        }
         if !values.is_empty() {
             self.base = self.base.with_overrides(values)?;
         }
@@ -230,7 +228,8 @@ impl Spec {
 
     fn from_raw(raw: SpecFile, file: &Path, dir: &Path, scene: Option<Scene>) -> Result<Spec> {
         let original = match (raw.base, scene) {
-            (Some(base), None) => Scene::load(&dir.join(base)).map_err(|e| named_by_spec(e, file))?,
+            (Some(base), None) => Scene::load(&dir.join(base))
+                .map_err(|error| Error::BaseScene { spec: file.to_path_buf(), error: Box::new(error) })?,
             (None, Some(scene)) => scene,
             (Some(base), Some(_)) => return Err(bad(file, "base", base, "given twice: a file and a scene")),
             (None, None) => return Err(bad(file, "base", "(missing)", "the base scene, a file relative to the spec")),
@@ -246,16 +245,17 @@ impl Spec {
                 t.insert("checks".into(), Value::try_from(c).expect("design checks are optional numbers"));
             }
         }
+        let with_checks = value.clone();
         let mut set =
             |path: &str, v: Value| overrides::set(&mut value, path, v).map_err(|e| bad(file, path, "", e.to_string()));
-        // The spec's field and path of every value fixed for all rows ([solver], [set]): each
-        // path once, and none an axis or uncertain input too (whose values would silently
-        // override it in every row).
-        let mut fixed: Vec<(String, String)> = Vec::new();
+        // The spec's field, path and value of everything fixed for all rows ([solver], [set]):
+        // each path once, and none an axis or uncertain input too, whose values would silently
+        // override it in every row (unless the base needs it to be valid at all).
+        let mut fixed: Vec<(String, String, Value)> = Vec::new();
         for (k, v) in raw.solver.into_iter().flatten() {
             let path = format!("solver.{k}");
-            set(&path, v)?;
-            fixed.push((path.clone(), path));
+            set(&path, v.clone())?;
+            fixed.push((path.clone(), path, v));
         }
         // Each input's field in the spec, its path and what the field holds (a [set] entry
         // holds its value, an axis's `path` the path).
@@ -265,13 +265,19 @@ impl Spec {
             if k == ROW_NAME.0 {
                 return Err(bad(file, field, v, ROW_NAME.1));
             }
-            if let Some((other, _)) = fixed.iter().find(|(_, p)| *p == k) {
+            if let Some((other, ..)) = fixed.iter().find(|(_, p, _)| *p == k) {
                 return Err(bad(file, field, v, format!("{k} is set in [solver] too ({other}): set it in one place")));
             }
             inputs.push((field.clone(), k.clone(), v.to_string()));
-            fixed.push((field, k.clone()));
+            fixed.push((field, k.clone(), v.clone()));
             set(&k, v)?;
         }
+        // Whether the base is a valid scene without the fixed entry `skip` (its field).
+        let valid_without = |skip: &str| {
+            let mut v = with_checks.clone();
+            fixed.iter().filter(|(f, ..)| f != skip).all(|(_, p, x)| overrides::set(&mut v, p, x.clone()).is_ok())
+                && Scene::from_value(v, "").is_ok()
+        };
         let base = Scene::from_value(value, &format!("{} (base with [checks], [solver] and [set])", file.display()))?;
         let base_value = base.to_value();
         let axes =
@@ -297,7 +303,9 @@ impl Spec {
                     "a path not already an input (each path once, as an axis or an uncertain input)",
                 ));
             }
-            if let Some((other, _)) = fixed.iter().find(|(_, p)| p == path) {
+            // Allowed where the base needs the fixed value to be valid (an output interval no
+            // shorter than a [solver] dt, with the interval an axis): the rows take the input's.
+            if let Some((other, ..)) = fixed.iter().find(|(_, p, _)| p == path).filter(|(f, ..)| valid_without(f)) {
                 return Err(bad(
                     file,
                     field,
@@ -678,10 +686,15 @@ mod tests {
     /// the spec names, a name taken from the spec file's.
     #[test]
     fn a_base_or_a_default_name_is_named_as_the_spec_s() {
+        use kanestop_runtime::scene::SceneError;
         let e = Spec::from_toml("base = \"no-such.toml\"\n", Path::new("s.toml"), Path::new("d"), None).unwrap_err();
         let text = e.to_string();
-        assert!(text.starts_with("cannot read scene d/no-such.toml (the base of sweep spec s.toml): "), "{text}");
-        assert!(matches!(e, Error::Scene(SceneError::Io { .. })), "still a scene's error: {e:?}");
+        assert!(text.starts_with("cannot read scene d/no-such.toml: "), "{text}");
+        assert!(text.ends_with("\n  (the base scene of sweep spec s.toml)"), "{text}");
+        // The scene's own error, its file the path as given.
+        let Error::BaseScene { error, .. } = e else { panic!("{e:?}") };
+        let SceneError::Io { file, .. } = *error else { panic!("{error:?}") };
+        assert_eq!(file, "d/no-such.toml");
         let e = Spec::from_toml("", Path::new("short (1).toml"), Path::new(""), Some(case01())).unwrap_err();
         let text = e.to_string();
         assert!(text.contains("name = \"short (1)\" (the spec file's name: the spec has no `name`)"), "{text}");
@@ -712,6 +725,14 @@ mod tests {
         assert!(e.to_string().contains("solver.end_time sets it too"), "{e}");
         let e = spec("[solver]\nend_time = 0.1\n[set]\n\"solver.end_time\" = 0.2\n").unwrap_err();
         assert_eq!(field(e), "set.\"solver.end_time\"");
+        // Unless the base needs the fixed value to be valid: an output interval as long as the
+        // [solver] dt, the interval an axis (case 1's own 0.02 s is below dt = 0.05 s).
+        let interval = "[[axis]]\npath = \"solver.output_interval\"\nvalues = [0.05, 0.5]\n";
+        let ok = spec(&format!("[solver]\ndt = 0.05\noutput_interval = 0.05\n{interval}")).unwrap();
+        assert_eq!(ok.rows(), 2);
+        // Set on a spec for every row (Python's solver keywords), an input's path is refused.
+        let e = ok.with_set(&[("solver.output_interval", Value::Float(0.1))]).unwrap_err();
+        assert_eq!(field(e), "solver.output_interval");
     }
 
     #[test]

@@ -69,7 +69,7 @@ pub fn column(name: &str, inputs: &[&str]) -> Option<(&'static str, String)> {
         "anchor_drag_distance" => fixed("m", "anchor's drag distance at the end of the run"),
         "anchor_start" => fixed("s", "when the anchor first slid"),
         "initial_energy" => fixed("J", "E_0: the energy balance at t = 0 (Eq. 63)"),
-        "energy_drift" => fixed("", "largest energy-balance drift, relative to energy_scale"),
+        "energy_drift" => fixed("", crate::record::ENERGY_DRIFT_MEANING),
         "t_end" => fixed("s", "time the run ended"),
         "steps" => fixed("", "intervals of solver.dt completed (the adaptive methods' observation intervals)"),
         "rhs_evaluations" => fixed("", "right-hand-side evaluations"),
@@ -81,7 +81,10 @@ pub fn column(name: &str, inputs: &[&str]) -> Option<(&'static str, String)> {
         "initial_horizontal_tension" => fixed("N", "T_h of the laid line"),
         "water_depth" => fixed("m", "water depth d"),
         "initial_top_tension" => fixed("N", "T_t = T_h + w_c h_L of the laid line"),
-        "energy_scale" => fixed("J", "largest kinetic energy over the run: the scale of energy_drift"),
+        "energy_scale" => fixed(
+            "J",
+            "largest kinetic energy over the run, the entrained water's included: the scale of energy_drift at the end",
+        ),
         _ => None,
     }
 }
