@@ -108,8 +108,9 @@ pub fn evaluate(checks: &DesignChecks, model: &Model, result: &RunResult) -> Vec
 
 /// A `[checks]` outcome in words, as the scene sets it and in the engineer's terms, with
 /// its own verdict: `max_stopping_distance = 40 m: stopped in 41.20 m (FAIL)`,
-/// `safety_factor = 7: 5.85 on the break load at joint 33 (FAIL)` (the factor the run
-/// achieved, break load over peak tension, not the utilisation ratio the outcome holds),
+/// `safety_factor = 7: 5.85 achieved on the break load at joint 33; utilisation × 7 = 1.196 > 1
+/// (FAIL)` (the factor the run achieved, break load over peak tension, and the utilisation
+/// times the factor that the outcome holds against 1),
 /// `max_stopping_time = 30 s: no value as the run did not reach it (FAIL)`. `checks` is what
 /// `o` was evaluated against.
 pub fn outcome_words(o: &CheckOutcome, checks: &DesignChecks) -> String {
@@ -133,8 +134,14 @@ pub fn outcome_words(o: &CheckOutcome, checks: &DesignChecks) -> String {
         ("max_stopping_time", Some(v)) => format!("stopped in {} s", shown(v, o.limit, 3)),
         ("max_anchor_drag", Some(v)) => format!("dragged {} m", shown(v, o.limit, 2)),
         ("safety_factor", Some(v)) => {
+            // The factor achieved, and the value the record holds against 1 (`run --json`,
+            // sweep.csv's check_safety_factor_value), so the two read as one.
             let achieved = if v > 0.0 { shown(required / v, required, 2) } else { "∞ (no tension)".into() };
-            format!("{achieved} on the break load{at}")
+            let against = if o.pass { "≤" } else { ">" };
+            format!(
+                "{achieved} achieved on the break load{at}; utilisation × {required} = {} {against} 1",
+                shown(v, 1.0, 3)
+            )
         }
         ("max_proof_utilisation", Some(v)) => format!("{} of the proof load{at}", shown(v, o.limit, 3)),
         (_, Some(v)) => format!("{}{at}", shown(v, o.limit, 3)),
@@ -219,17 +226,23 @@ mod tests {
     }
 
     /// The safety factor is said as the factor the run achieved (break load over peak
-    /// tension), not as the utilisation × required factor the outcome holds against 1.
+    /// tension), and with the utilisation × required factor the outcome holds against 1.
     #[test]
     fn the_safety_factor_is_said_as_achieved() {
         let checks = DesignChecks { safety_factor: Some(7.0), ..Default::default() };
         // Utilisation 430.7/2520 = 0.1709: 7 × that = 1.196 > 1 fails; the factor is 5.85.
         let u = 430.7 / 2520.0;
         let failed = outcome("safety_factor", Some(7.0 * u), 1.0, Some(46), false);
-        assert_eq!(outcome_words(&failed, &checks), "safety_factor = 7: 5.85 on the break load at joint 46 (FAIL)");
+        assert_eq!(
+            outcome_words(&failed, &checks),
+            "safety_factor = 7: 5.85 achieved on the break load at joint 46; utilisation × 7 = 1.196 > 1 (FAIL)"
+        );
         let checks = DesignChecks { safety_factor: Some(1.5), ..Default::default() };
         let passed = outcome("safety_factor", Some(1.5 * u), 1.0, Some(46), true);
-        assert_eq!(outcome_words(&passed, &checks), "safety_factor = 1.5: 5.85 on the break load at joint 46 (pass)");
+        assert_eq!(
+            outcome_words(&passed, &checks),
+            "safety_factor = 1.5: 5.85 achieved on the break load at joint 46; utilisation × 1.5 = 0.256 ≤ 1 (pass)"
+        );
     }
 
     #[test]
@@ -276,7 +289,10 @@ mod tests {
         assert_eq!(outcome_words(&o, &checks), "max_stopping_distance = 20 m: stopped in 20.00 m (pass)");
         // A factor of 6.9999 against 7: value = 7 / 6.9999 > 1.
         let o = outcome("safety_factor", Some(7.0 / 6.9999), 1.0, Some(3), false);
-        assert_eq!(outcome_words(&o, &checks), "safety_factor = 7: 6.9999 on the break load at joint 3 (FAIL)");
+        assert_eq!(
+            outcome_words(&o, &checks),
+            "safety_factor = 7: 6.9999 achieved on the break load at joint 3; utilisation × 7 = 1.00001 > 1 (FAIL)"
+        );
         let o = outcome("max_anchor_drag", Some(f64::NAN), 100.0, None, false);
         assert_eq!(outcome_words(&o, &checks), "max_anchor_drag = 100 m: NaN (not finite) (FAIL)");
     }
