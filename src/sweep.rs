@@ -214,33 +214,35 @@ fn report(
         }
         let points = sweep::by_grid_point(rows, per_point);
         for (point, group) in &points {
-            // Stopped: a stopping time (a run kept going after it, `stop_when_ship_stops =
-            // false`, has one too); cut short: ran to the end time without one.
-            let stops = |r: &&SweepRow| r.summary.as_ref().is_some_and(|s| s.stopping_time.is_some());
-            let stopped = group.iter().filter(stops).count();
-            let cut = group.iter().filter(|r| r.status == Status::EndTime && !stops(r)).count();
-            let problems = group.iter().filter(|r| r.status.is_problem()).count();
+            // The rows that ran to their end (the statistics' samples), those of them that
+            // stopped the ship (a run kept going after its stop, `stop_when_ship_stops =
+            // false`, did too), and those cut short by the end time.
+            let ran: Vec<&SweepRow> =
+                group.iter().filter(|r| matches!(r.status, Status::Stopped | Status::EndTime)).collect();
+            let stopped = ran.iter().filter(|r| r.summary.as_ref().is_some_and(|s| s.stopping_time.is_some())).count();
+            let cut = ran.len() - stopped;
+            let problems = group.len() - ran.len();
             let others = if problems > 0 { format!(", {problems} failed or invalid") } else { String::new() };
             if points.len() > 1 {
                 println!("point     {point} ({} samples, {stopped} stopped{others})", group.len());
             } else {
                 println!("samples   {}, {stopped} stopped the ship{others}", group.len());
             }
-            for (i, (name, f, scale)) in stats.into_iter().enumerate() {
-                // The first two are the stopping time and distance: over the rows that stopped,
-                // biased low where others ran to the end time without stopping (the longest).
-                let caveat = match (i < 2, stopped) {
-                    (true, s) if s < 2 => {
-                        println!("{name:<22} none: {s} sample(s) stopped the ship, statistics need 2");
-                        continue;
-                    }
-                    (true, s) if cut > 0 => format!(" (over the {s} that stopped: biased low)"),
-                    _ => String::new(),
+            for (name, f, scale) in stats {
+                // Over the samples that gave the output: where some ran to the end time without
+                // a stop, the stopping outputs are over those that stopped, the shortest: biased low.
+                let gave = ran.iter().filter(|r| r.summary.as_ref().and_then(f).is_some()).count();
+                let Some([mean, sd, p5, p95]) = sweep::statistics(group, f) else {
+                    println!("{name:<22} none: {gave} sample(s) gave it, statistics need 2");
+                    continue;
                 };
-                if let Some([mean, sd, p5, p95]) = sweep::statistics(group, f) {
-                    let [mean, sd, p5, p95] = [mean, sd, p5, p95].map(|v| v * scale);
-                    println!("{name:<22} mean {mean:.3}  sd {sd:.3}  5 % {p5:.3}  95 % {p95:.3}{caveat}");
-                }
+                let caveat = if gave < ran.len() && cut > 0 {
+                    format!(" (over the {gave} that stopped: biased low)")
+                } else {
+                    String::new()
+                };
+                let [mean, sd, p5, p95] = [mean, sd, p5, p95].map(|v| v * scale);
+                println!("{name:<22} mean {mean:.3}  sd {sd:.3}  5 % {p5:.3}  95 % {p95:.3}{caveat}");
             }
         }
     }

@@ -170,6 +170,8 @@ fn the_sweep_heat_maps_render_with_the_check_boundary() {
     // made-up scale of 0 to 1), and the peaks are daggered as values up to the end time.
     let mut short = spec.clone();
     short.base.solver.end_time = 1.0;
+    // A limit inside the 0–1 an empty scale spans, where a red line would be drawn on it.
+    short.base.checks.as_mut().expect("the spec's [checks]").max_stopping_distance = Some(0.5);
     let rows_short = sweep::run(&short.plan(), &kernels::factory(KernelChoice::Generated), None, &|_| {}).unwrap();
     assert!(rows_short.iter().all(|r| r.status == kanestop_workflow::batch::Status::EndTime));
     let cut = Scratch::new("heatmap-cut");

@@ -29,13 +29,19 @@ pyo3::create_exception!(
 
 /// The Python `SceneError` of a Rust one.
 pub fn scene_error(py: Python<'_>, e: RustSceneError) -> PyErr {
+    let message = e.to_string();
+    scene_error_said(py, e, message)
+}
+
+/// [`scene_error`] whose `str(e)` is `message` (the command line's, with its context).
+fn scene_error_said(py: Python<'_>, e: RustSceneError, message: String) -> PyErr {
     let (kind, file, problems) = match &e {
         RustSceneError::Io { file, .. } => ("io", file.clone(), Vec::new()),
         RustSceneError::Parse { file, .. } => ("parse", file.clone(), Vec::new()),
         RustSceneError::Invalid { file, problems } => ("invalid", file.clone(), problems.clone()),
         RustSceneError::Override { file, .. } => ("override", file.clone(), Vec::new()),
     };
-    let err = SceneError::new_err(e.to_string());
+    let err = SceneError::new_err(message);
     let value = err.value(py);
     let set = || -> PyResult<()> {
         let list: Vec<Bound<'_, PyTuple>> = problems
@@ -77,11 +83,13 @@ pub fn workflow_error(py: Python<'_>, e: kanestop_workflow::Error) -> PyErr {
             (path.display().to_string(), "(file)".to_string(), path.display().to_string(), cause.to_string())
         }
         _ => {
+            let message = e.to_string();
             return match e {
                 Error::Scene(s) => scene_error(py, s),
-                Error::BaseScene { error, .. } => scene_error(py, *error),
-                other => PyValueError::new_err(other.to_string()),
-            }
+                // The scene's error, `file` its path; `str(e)` says the spec too, as the CLI.
+                Error::BaseScene { error, .. } => scene_error_said(py, *error, message),
+                _ => PyValueError::new_err(message),
+            };
         }
     };
     let err = SpecError::new_err(e.to_string());

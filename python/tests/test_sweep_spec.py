@@ -229,8 +229,11 @@ def test_bad_spec_dicts_name_the_field(case01: kanestop.Scene) -> None:
     with pytest.raises(kanestop.SceneError) as scene_info:
         kanestop.Spec.from_dict({"base": str(CASE01), "set": {"ship.mass": -1.0}})
     assert scene_info.value.problems == [("ship.mass", "-1", "finite and > 0 kg")]
-    with pytest.raises(kanestop.SceneError):
+    with pytest.raises(kanestop.SceneError) as scene_info:
         kanestop.Spec.from_dict({"base": "no-such-scene.toml"})
+    # The scene's file as given, and the message the command line prints, the spec named.
+    assert scene_info.value.file == "no-such-scene.toml" and scene_info.value.kind == "io"
+    assert str(scene_info.value).endswith("(the base scene of sweep spec <dict>)"), str(scene_info.value)
 
 
 def test_a_spec_file_with_rows_or_a_stray_base_dir_is_refused_in_words(tmp_path: Path, case01: kanestop.Scene) -> None:

@@ -411,6 +411,11 @@ pub fn table(rows: &[BatchRow]) -> String {
     out
 }
 
+/// What a run's `energy_drift` is, in the units files of `batch` and `sweep` alike.
+pub const ENERGY_DRIFT_MEANING: &str =
+    "largest energy-balance drift |E - E_0|/K, K the largest kinetic energy so far, \
+                                        the entrained water's included (a fraction)";
+
 /// The columns of `batch.csv` in order, each with its unit ("" for a number without one, a
 /// count or text) and what it holds: the header and the units sidecar, `batch.units.csv`.
 pub const COLUMNS: [(&str, &str, &str); 22] = [
@@ -426,7 +431,7 @@ pub const COLUMNS: [(&str, &str, &str); 22] = [
     ("peak_time", "s", "when the largest tension occurred"),
     ("break_exceedances", "", "joints whose peak tension exceeded their break load"),
     ("anchor_start", "s", "when the anchor first slid"),
-    ("energy_drift", "", crate::record::ENERGY_DRIFT_MEANING),
+    ("energy_drift", "", ENERGY_DRIFT_MEANING),
     ("wall_time", "s", "wall-clock time of the run"),
     ("message", "", "error, diagnostic or failed check"),
     ("method", "", "integrator: rk4, dp5, sdirk4"),

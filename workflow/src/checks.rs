@@ -108,7 +108,7 @@ pub fn evaluate(checks: &DesignChecks, model: &Model, result: &RunResult) -> Vec
 
 /// A `[checks]` outcome in words, as the scene sets it and in the engineer's terms, with
 /// its own verdict: `max_stopping_distance = 40 m: stopped in 41.20 m (FAIL)`,
-/// `safety_factor = 7: 5.85 achieved on the break load at joint 33; utilisation × 7 = 1.196 > 1
+/// `safety_factor = 7: 5.85 achieved on the break load at joint 33 (utilisation × 7 = 1.196 > 1)
 /// (FAIL)` (the factor the run achieved, break load over peak tension, and the utilisation
 /// times the factor that the outcome holds against 1),
 /// `max_stopping_time = 30 s: no value as the run did not reach it (FAIL)`. `checks` is what
@@ -139,7 +139,7 @@ pub fn outcome_words(o: &CheckOutcome, checks: &DesignChecks) -> String {
             let achieved = if v > 0.0 { shown(required / v, required, 2) } else { "∞ (no tension)".into() };
             let against = if o.pass { "≤" } else { ">" };
             format!(
-                "{achieved} achieved on the break load{at}; utilisation × {required} = {} {against} 1",
+                "{achieved} achieved on the break load{at} (utilisation × {required} = {} {against} 1)",
                 shown(v, 1.0, 3)
             )
         }
@@ -235,13 +235,13 @@ mod tests {
         let failed = outcome("safety_factor", Some(7.0 * u), 1.0, Some(46), false);
         assert_eq!(
             outcome_words(&failed, &checks),
-            "safety_factor = 7: 5.85 achieved on the break load at joint 46; utilisation × 7 = 1.196 > 1 (FAIL)"
+            "safety_factor = 7: 5.85 achieved on the break load at joint 46 (utilisation × 7 = 1.196 > 1) (FAIL)"
         );
         let checks = DesignChecks { safety_factor: Some(1.5), ..Default::default() };
         let passed = outcome("safety_factor", Some(1.5 * u), 1.0, Some(46), true);
         assert_eq!(
             outcome_words(&passed, &checks),
-            "safety_factor = 1.5: 5.85 achieved on the break load at joint 46; utilisation × 1.5 = 0.256 ≤ 1 (pass)"
+            "safety_factor = 1.5: 5.85 achieved on the break load at joint 46 (utilisation × 1.5 = 0.256 ≤ 1) (pass)"
         );
     }
 
@@ -291,7 +291,7 @@ mod tests {
         let o = outcome("safety_factor", Some(7.0 / 6.9999), 1.0, Some(3), false);
         assert_eq!(
             outcome_words(&o, &checks),
-            "safety_factor = 7: 6.9999 achieved on the break load at joint 3; utilisation × 7 = 1.00001 > 1 (FAIL)"
+            "safety_factor = 7: 6.9999 achieved on the break load at joint 3 (utilisation × 7 = 1.00001 > 1) (FAIL)"
         );
         let o = outcome("max_anchor_drag", Some(f64::NAN), 100.0, None, false);
         assert_eq!(outcome_words(&o, &checks), "max_anchor_drag = 100 m: NaN (not finite) (FAIL)");

@@ -164,11 +164,6 @@ fn segment(model: &Model, k: usize) -> Segment {
     }
 }
 
-/// What a run's `energy_drift` is, in the units files of `batch` and `sweep` alike.
-pub const ENERGY_DRIFT_MEANING: &str =
-    "largest energy-balance drift |E - E_0|/K, K the largest kinetic energy so far, \
-                                        the entrained water's included (a fraction)";
-
 impl RunSummary {
     /// Whether a break load was exceeded: some peak (over the whole line, or a member's
     /// over its joints) above its break load.

@@ -314,21 +314,8 @@ pub fn study(
                 Difference::Forward => (mine.first(), Some(&base)),
                 Difference::Backward => (Some(&base), mine.last()),
             };
-            let span = difference.span(h);
-            match (above.unwrap_or(&base), below.unwrap_or(&base)) {
-                (Ok(a), Ok(b)) => {
-                    let e = |k: usize| a[k].zip(b[k]).map(|(a, b)| (a - b) / span);
-                    row.stopping_time = e(0);
-                    row.stopping_distance = e(1);
-                    row.peak_tension = e(2);
-                    if let Some(note) = not_stopped(&mut row, base_stop, (a[0], b[0]), span, scene.solver.end_time) {
-                        row.message = if row.message.is_empty() { note } else { format!("{}; {note}", row.message) };
-                    }
-                }
-                // The side that gave nothing, named.
-                (Err(m), _) => add_note(&mut row, &format!("p·(1 + {h})"), m),
-                (_, Err(m)) => add_note(&mut row, &format!("p·(1 − {h})"), m),
-            }
+            let sides = (above.unwrap_or(&base), below.unwrap_or(&base));
+            difference_into(&mut row, sides, difference.span(h), base_stop, scene.solver.end_time);
             row
         })
         .collect();
@@ -336,6 +323,37 @@ pub fn study(
     let key = |r: &Sensitivity| ranked(r).map(f64::abs).unwrap_or(-1.0);
     rows.sort_by(|a, b| key(b).total_cmp(&key(a)));
     Ok(Study { scene: scene.meta.name.clone(), step, base, rows, runs: 1 + scenes.len() })
+}
+
+/// A perturbed run's outputs, or why it gave none (its scene refused, the run failed).
+type Probed = std::result::Result<[Option<f64>; 3], String>;
+
+/// Sets the row's effects from the runs above and below p (`sides`; the base for one of
+/// them in a one-sided difference), `span` the ln of their parameters' ratio; a side that
+/// gave nothing is named in the message with why, and a stop past the end time is bounded
+/// ([`not_stopped`]).
+fn difference_into(row: &mut Sensitivity, sides: (&Probed, &Probed), span: f64, base_stop: Option<f64>, end_time: f64) {
+    let h = row.step.unwrap_or_default();
+    match sides {
+        (Ok(a), Ok(b)) => {
+            let e = |k: usize| a[k].zip(b[k]).map(|(a, b)| (a - b) / span);
+            row.stopping_time = e(0);
+            row.stopping_distance = e(1);
+            row.peak_tension = e(2);
+            if let Some(note) = not_stopped(row, base_stop, (a[0], b[0]), span, end_time) {
+                row.message = if row.message.is_empty() { note } else { format!("{}; {note}", row.message) };
+            }
+        }
+        (a, b) => {
+            // Each side that gave nothing, named.
+            if let Err(m) = a {
+                add_note(row, &format!("p·(1 + {h})"), m);
+            }
+            if let Err(m) = b {
+                add_note(row, &format!("p·(1 − {h})"), m);
+            }
+        }
+    }
 }
 
 /// Adds to a row's message what its `side` (`p·(1 + h)`) said, on one line.
@@ -393,7 +411,7 @@ pub struct Band {
     /// σ of the stopping time (s), stopping distance (m) and peak tension (N).
     pub sd: [f64; 3],
     /// Per output, the uncertain inputs whose effect on it is unknown though the base run
-    /// gave it (a perturbed run did not stop): that output has no band.
+    /// gave it (a perturbed run did not stop or failed): that output has no band.
     pub unknown: [Vec<String>; 3],
     /// The inputs that are no parameter of the study (ignored).
     pub missing: Vec<String>,
@@ -548,11 +566,11 @@ mod tests {
         let mut lighter = row("anchor.mass", None);
         not_stopped(&mut lighter, Some(19.8), (Some(19.0), None), span, 20.5).unwrap();
         assert_eq!(lighter.stopping_time_bound, Some((19.0 - 20.5) / span));
-        // Both stopped, or the base did not: nothing to say.
         let both = not_stopped(&mut row("x", None), Some(19.8), (None, None), span, 20.5).unwrap();
         assert!(
             both.starts_with("p·(1 ± 0.05) did not stop the ship by solver.end_time = 20.5 s: no stopping-time effect")
         );
+        // Both stopped, or the base did not: nothing to say.
         assert_eq!(not_stopped(&mut row("x", None), Some(19.8), (Some(20.0), Some(19.0)), span, 20.5), None);
         assert_eq!(not_stopped(&mut row("x", None), None, (None, Some(19.0)), span, 20.5), None);
         // Ranked by the bound, above a row of a smaller known effect.
@@ -571,6 +589,25 @@ mod tests {
         let b = band(&study, &sigmas);
         assert_eq!(b.unknown, [vec!["ship.mass".to_string()], vec!["ship.mass".to_string()], vec![]]);
         assert_eq!((b.sd[2], b.missing.as_slice()), ((1e4f64 + 4e4).sqrt(), &["nope".to_string()][..]));
+    }
+
+    /// A side that failed gives no effect and is named with its diagnostic; both, both.
+    #[test]
+    fn a_failed_perturbed_run_gives_no_effect_and_says_why() {
+        let span = Difference::Central.span(0.05);
+        let ran: Probed = Ok([Some(19.0), Some(26.0), Some(4e5)]);
+        let failed: Probed = Err("failed: numerical failure at t = 3.1 s\n  body: B_4".into());
+        let blank = || Sensitivity { peak_tension: None, ..row("ship.mass", None) };
+        let mut one = blank();
+        difference_into(&mut one, (&failed, &ran), span, Some(19.8), 20.5);
+        assert_eq!((one.stopping_time, one.peak_tension, one.stopping_time_bound), (None, None, None));
+        assert_eq!(one.message, "p·(1 + 0.05): failed: numerical failure at t = 3.1 s body: B_4");
+        let mut both = blank();
+        difference_into(&mut both, (&failed, &failed), span, Some(19.8), 20.5);
+        assert!(both.message.contains("p·(1 + 0.05): failed") && both.message.contains("; p·(1 − 0.05): failed"));
+        let mut fine = blank();
+        difference_into(&mut fine, (&ran, &Ok([Some(18.0), Some(25.0), Some(3.9e5)])), span, Some(19.8), 20.5);
+        assert_eq!(fine.stopping_time, Some(1.0 / span));
     }
 
     #[test]

@@ -19,25 +19,6 @@ pub struct Validation {
 /// of the cases by stopping time with Table 3's (over the pairs of one method whose Table 3
 /// times differ).
 pub fn validate(rows: &[BatchRow], tolerance: f64) -> Validation {
-    let mut problems = Vec::new();
-    for r in rows {
-        if r.status != Status::Stopped {
-            problems.push(format!("{}: {} {}", r.case, r.status, r.message));
-            continue;
-        }
-        if let Some(d) = r.relative_difference.filter(|d| d.abs() > tolerance) {
-            problems.push(format!("{}: stopping time differs from Table 3 by {:+.2} %", r.case, 100.0 * d));
-        }
-        if let Some(e) = r.energy_drift.filter(|&e| e > 0.005) {
-            problems.push(format!("{}: energy balance drift {e:.2e} > 0.5 %", r.case));
-        }
-        if r.break_exceedances > 0 {
-            problems.push(format!("{}: break load exceeded at {} joint(s)", r.case, r.break_exceedances));
-        }
-    }
-    let paired: Vec<(&BatchRow, f64, f64)> =
-        rows.iter().filter_map(|r| Some((r, r.stopping_time?, r.paper_stopping_time?))).collect();
-    let (mut concordant, mut discordant) = (0usize, Vec::new());
     // With several methods a case is named with its method.
     let methods =
         rows.iter().filter_map(|r| r.method.map(Method::name)).collect::<std::collections::BTreeSet<_>>().len();
@@ -45,6 +26,26 @@ pub fn validate(rows: &[BatchRow], tolerance: f64) -> Validation {
         Some(m) => format!("{} ({})", r.case, m.name()),
         None => r.case.clone(),
     };
+    let mut problems = Vec::new();
+    for r in rows {
+        let case = name(r);
+        if r.status != Status::Stopped {
+            problems.push(format!("{case}: {} {}", r.status, r.message));
+            continue;
+        }
+        if let Some(d) = r.relative_difference.filter(|d| d.abs() > tolerance) {
+            problems.push(format!("{case}: stopping time differs from Table 3 by {:+.2} %", 100.0 * d));
+        }
+        if let Some(e) = r.energy_drift.filter(|&e| e > 0.005) {
+            problems.push(format!("{case}: energy balance drift {e:.2e} > 0.5 %"));
+        }
+        if r.break_exceedances > 0 {
+            problems.push(format!("{case}: break load exceeded at {} joint(s)", r.break_exceedances));
+        }
+    }
+    let paired: Vec<(&BatchRow, f64, f64)> =
+        rows.iter().filter_map(|r| Some((r, r.stopping_time?, r.paper_stopping_time?))).collect();
+    let (mut concordant, mut discordant) = (0usize, Vec::new());
     for i in 0..paired.len() {
         for j in i + 1..paired.len() {
             let (a, b) = (&paired[i], &paired[j]);

@@ -529,8 +529,10 @@ def sweep(
     (``[{"ship.mass": 1e6}, …]``; the rows may set different paths).
 
     The solver keywords are set on the base scene for every row, as the spec's ``[solver]``
-    would (``SceneError`` when out of range). A bad spec raises ``SpecError`` naming the
-    field (or ``SceneError`` for its base scene), before any run.
+    would (``SceneError`` when out of range; ``SpecError`` on a path the spec sweeps, whose
+    values would override it, unless the base needs the value to be valid). A bad spec
+    raises ``SpecError`` naming the field (or ``SceneError`` for its base scene), before
+    any run.
 
     Returns the table of ``sweep.csv`` as a DataFrame (a list of dicts without pandas), one
     row per run in spec order: ``index``, ``name``, one column per input (its dotted path),

@@ -212,7 +212,12 @@ impl Spec {
     /// `[set]`: its values would override the one given in every row.
     pub fn with_set(mut self, values: &[(&str, Value)]) -> Result<Spec> {
         let inputs = self.axes.iter().map(|a| &a.path).chain(self.uncertain.iter().map(|u| &u.path));
-        if let Some((path, v)) = values.iter().find(|(p, _)| inputs.clone().any(|i| i == p)) {
+        // As in a spec file: allowed where the base needs the value to be valid at all.
+        let needed = |path: &str| {
+            let others: Vec<(&str, Value)> = values.iter().filter(|(p, _)| *p != path).cloned().collect();
+            self.base.with_overrides(&others).is_err()
+        };
+        if let Some((path, v)) = values.iter().find(|(p, _)| inputs.clone().any(|i| i == p) && !needed(p)) {
             return Err(bad(
                 &self.file,
                 *path,
@@ -730,9 +735,12 @@ mod tests {
         let interval = "[[axis]]\npath = \"solver.output_interval\"\nvalues = [0.05, 0.5]\n";
         let ok = spec(&format!("[solver]\ndt = 0.05\noutput_interval = 0.05\n{interval}")).unwrap();
         assert_eq!(ok.rows(), 2);
-        // Set on a spec for every row (Python's solver keywords), an input's path is refused.
-        let e = ok.with_set(&[("solver.output_interval", Value::Float(0.1))]).unwrap_err();
+        // Set on a spec for every row (Python's solver keywords), an input's path is refused,
+        // unless the base needs it: a dt of 0.1 s needs an interval of 0.1 s at least.
+        let e = ok.clone().with_set(&[("solver.output_interval", Value::Float(0.1))]).unwrap_err();
         assert_eq!(field(e), "solver.output_interval");
+        let needed = [("solver.dt", Value::Float(0.1)), ("solver.output_interval", Value::Float(0.1))];
+        assert_eq!(ok.with_set(&needed).unwrap().base.solver.dt, 0.1);
     }
 
     #[test]

@@ -69,7 +69,7 @@ pub fn column(name: &str, inputs: &[&str]) -> Option<(&'static str, String)> {
         "anchor_drag_distance" => fixed("m", "anchor's drag distance at the end of the run"),
         "anchor_start" => fixed("s", "when the anchor first slid"),
         "initial_energy" => fixed("J", "E_0: the energy balance at t = 0 (Eq. 63)"),
-        "energy_drift" => fixed("", crate::record::ENERGY_DRIFT_MEANING),
+        "energy_drift" => fixed("", crate::batch::ENERGY_DRIFT_MEANING),
         "t_end" => fixed("s", "time the run ended"),
         "steps" => fixed("", "intervals of solver.dt completed (the adaptive methods' observation intervals)"),
         "rhs_evaluations" => fixed("", "right-hand-side evaluations"),
