@@ -553,9 +553,33 @@ fn a_ship_at_rest_has_stopped_at_the_start() {
     assert_eq!(r.samples.first().map(|s| s.t), Some(0.0));
     assert!(r.samples.windows(2).all(|w| w[0].t < w[1].t), "one sample a time");
 
+    assert_eq!(r.stopping_distance, Some(0.0));
+
     // A moving ship's stop is located where its speed crosses zero, as before.
     scene.initial.ship_speed = 0.5;
     scene.solver.end_time = 30.0;
     let r = run_scene(&scene);
     assert!(r.stopping_time.is_some_and(|t| t > 0.1), "{:?}", r.stopping_time);
+}
+
+/// A run that goes on past the ship's stop keeps the stop's time and distance, the same as the
+/// run that ends there (the distance was missing until 2026-12-07), and the stopping checks
+/// judge them.
+#[test]
+fn a_run_past_the_stop_keeps_the_stopping_distance() {
+    let mut scene = kanestop_runtime::paper::CASES[0].scene();
+    let ended = run_scene(&scene);
+    scene.solver.stop_when_ship_stops = false;
+    scene.solver.end_time = 21.0;
+    let on = run_scene(&scene);
+    assert_eq!((&ended.stop, &on.stop), (&Stop::ShipStopped, &Stop::EndTime));
+    assert_eq!(on.stopping_time, ended.stopping_time);
+    assert_eq!(on.stopping_distance, ended.stopping_distance);
+    let ship = |r: &RunResult, s: &kanestop_runtime::simulate::Sample| s.bodies[r.samples[0].bodies.len() - 1].x;
+    let moved = ship(&ended, ended.samples.last().unwrap()) - ship(&ended, &ended.samples[0]);
+    assert_eq!(ended.stopping_distance, Some(moved));
+    let model = kanestop_runtime::model::Model::new(&scene).unwrap();
+    let checks = kanestop_runtime::design::DesignChecks { max_stopping_distance: Some(26.0), ..Default::default() };
+    let outcome = &kanestop_workflow::checks::evaluate(&checks, &model, &on)[0];
+    assert_eq!((outcome.value, outcome.pass), (on.stopping_distance, false));
 }

@@ -386,7 +386,8 @@ pub struct Solver {
     /// `dt` and at most 1e15 s.
     pub output_interval: f64,
     /// End the run when the ship's surge speed first reaches zero (at t = 0 for a ship at rest
-    /// at the start).
+    /// at the start). With `false` the run goes on to `end_time`; its stopping time and
+    /// distance are still those of that first zero, and the stopping checks judge them.
     pub stop_when_ship_stops: bool,
     /// Relative energy-balance drift |E − E_0|/K at which a run is stopped as unstable,
     /// dimensionless; K is the largest kinetic energy before the step checked (the entrained

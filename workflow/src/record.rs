@@ -234,7 +234,7 @@ impl RunSummary {
             status: Status::of(&result.stop),
             stopping_time: result.stopping_time,
             paper_stopping_time: kanestop_runtime::paper::stopping_time(&model.scene),
-            stopping_distance: (result.stop == Stop::ShipStopped).then(|| displacement(n - 1)),
+            stopping_distance: result.stopping_distance,
             ship_displacement: displacement(n - 1),
             anchor_drag_distance: displacement(0),
             anchor_start: result.anchor_start(),

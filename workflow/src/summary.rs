@@ -245,7 +245,11 @@ fn outcome_lines(out: &mut Lines, model: &Model, result: &RunResult) {
             "ended",
             match result.stopping_time {
                 Some(0.0) => "end time reached; the ship was at rest at the start (initial.ship_speed = 0)".to_string(),
-                Some(t) => format!("end time reached; ship surge speed first zero at t = {t:.3} s{}", paper(t)),
+                Some(t) => format!(
+                    "end time reached; ship surge speed first zero at t = {t:.3} s after {:.2} m{}",
+                    result.stopping_distance.unwrap_or(f64::NAN),
+                    paper(t)
+                ),
                 None => format!(
                     "end time {:.3} s reached; the ship did not stop (moved {:.2} m)",
                     result.t_end,

@@ -147,6 +147,7 @@ pub fn run_cancellable(model: &Model, kernel: Box<dyn Kernel>, cancel: &AtomicBo
         }
     };
     result.stopping_time = stepper.stopping_time();
+    result.stopping_distance = stepper.stopping_distance();
     result.t_end = stepper.t();
     result.steps = stepper.steps();
     result.rhs_evaluations = stepper.rhs_evaluations();

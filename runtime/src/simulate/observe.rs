@@ -21,6 +21,11 @@ pub(crate) struct Observation {
 }
 
 impl Observation {
+    /// The ship's surge position (the last body's x), m.
+    pub fn ship_x(&self) -> f64 {
+        self.bodies[self.bodies.len() - 1].x
+    }
+
     /// The ship's surge velocity (the last body's ẋ), m/s.
     pub fn ship_vx(&self) -> f64 {
         self.bodies[self.bodies.len() - 1].vx

@@ -67,6 +67,9 @@ pub struct RunResult {
     /// First zero of the ship's surge speed, located to round-off, s: 0 for a ship at rest at
     /// the start.
     pub stopping_time: Option<f64>,
+    /// The ship's surge displacement at that zero, m: the stopping distance, also of a run
+    /// that goes on past it (`solver.stop_when_ship_stops = false`).
+    pub stopping_distance: Option<f64>,
     /// The anchor's switches, in order.
     pub anchor_events: Vec<AnchorEvent>,
     /// Peak tension at every joint k = 2 … N (index k − 2), over every step.
@@ -208,6 +211,7 @@ impl RunResult {
             stop: Stop::EndTime,
             t_end: 0.0,
             stopping_time: None,
+            stopping_distance: None,
             anchor_events: Vec::new(),
             peak_tensions: vec![PeakTension::default(); n - 1],
             steps: 0,

@@ -174,6 +174,8 @@ pub struct Stepper<'a> {
     /// whose observations are `solver.dt` apart, not their steps.
     chatter: Option<health::ChatterWatch>,
     stopping_time: Option<f64>,
+    /// The ship's surge position at the start and at the stop (its x), m.
+    ship_x: (f64, Option<f64>),
     /// The tensions at an adaptive method's sub-step ends inside the current interval
     /// (time, s; |F^H_k|, N), before any anchor switch or ship stop in it.
     inner: Vec<(f64, Vec<f64>)>,
@@ -215,6 +217,7 @@ impl<'a> Stepper<'a> {
             spike_bound: health::spike_bound(model),
             chatter: (solver.integrator == Method::Rk4).then(|| health::ChatterWatch::for_model(model)),
             stopping_time: None,
+            ship_x: (0.0, None),
             inner: Vec::new(),
         }
     }
@@ -245,8 +248,10 @@ impl<'a> Stepper<'a> {
         self.drift = health::DriftWatch::new(obs.energy.balance(), obs.energy.kinetic_total());
         // A ship at rest has stopped before it moved: its first zero is the start, not the
         // first sign change of the round-off around rest that the line's settling gives.
+        self.ship_x.0 = obs.ship_x();
         if obs.ship_vx() <= 0.0 {
             self.stopping_time = Some(0.0);
+            self.ship_x.1 = Some(self.ship_x.0);
         }
         self.obs = Some(obs);
         Ok(())
@@ -351,6 +356,11 @@ impl<'a> Stepper<'a> {
     /// at the start.
     pub fn stopping_time(&self) -> Option<f64> {
         self.stopping_time
+    }
+
+    /// The ship's surge displacement from the start to that zero, m.
+    pub fn stopping_distance(&self) -> Option<f64> {
+        self.ship_x.1.map(|x| x - self.ship_x.0)
     }
 
     /// RK4's step limit at t = 0 (RK4 runs, after [`Stepper::start`]).
@@ -501,6 +511,7 @@ impl<'a> Stepper<'a> {
         let (hs, _, os) = located?;
         let t = seg.t + hs;
         self.stopping_time = Some(t);
+        self.ship_x.1 = Some(os.ship_x());
         if !self.model.scene.solver.stop_when_ship_stops {
             return Ok(None);
         }
