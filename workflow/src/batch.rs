@@ -145,7 +145,7 @@ pub fn row(file: &Path, model: &Model, result: &RunResult) -> BatchRow {
     let outcomes = model.scene.checks.as_ref().map(|c| checks::evaluate(c, model, result)).unwrap_or_default();
     // The break-load check applies to every scene, `[checks]` or not (as in `run`).
     let over = break_exceedances(model, result);
-    let failures = checks::failures(model, result);
+    let failures = checks::failures_of(model.scene.checks.as_ref(), &outcomes, &over);
     let message = match &result.stop {
         Stop::Failed(f) => one_line(&diagnostic::describe(model, f)),
         Stop::ShipStopped | Stop::EndTime if !failures.is_empty() => {
@@ -513,12 +513,18 @@ mod tests {
     use kanestop_runtime::generated::GeneratedKernel;
     use kanestop_runtime::paper::DEFAULT_SCENE;
 
-    #[test]
-    fn rows_of_one_scene_name_are_told_apart_by_their_files() {
+    /// Case 1's model and its run to `end_time`, s.
+    fn case1_run(end_time: f64) -> (Model, RunResult) {
         let mut scene = Scene::from_toml(DEFAULT_SCENE, "case01.toml").unwrap();
-        scene.solver.end_time = 0.01;
+        scene.solver.end_time = end_time;
         let model = Model::new(&scene).unwrap();
         let result = simulate::run(&model, Box::new(GeneratedKernel::new(&model.chain).unwrap()));
+        (model, result)
+    }
+
+    #[test]
+    fn rows_of_one_scene_name_are_told_apart_by_their_files() {
+        let (model, result) = case1_run(0.01);
         let rows: Vec<BatchRow> = ["a/case01.toml", "a/heavy.toml", "b/heavy.toml"]
             .iter()
             .map(|f| row(Path::new(f), &model, &result))
@@ -538,10 +544,7 @@ mod tests {
 
     #[test]
     fn a_verdict_that_differs_in_the_refined_run_is_said_to_be_unresolved() {
-        let mut scene = Scene::from_toml(DEFAULT_SCENE, "case01.toml").unwrap();
-        scene.solver.end_time = 0.05;
-        let model = Model::new(&scene).unwrap();
-        let coarse = simulate::run(&model, Box::new(GeneratedKernel::new(&model.chain).unwrap()));
+        let (model, coarse) = case1_run(0.05);
         let mut row = row(Path::new("case01.toml"), &model, &coarse);
         // No [checks]: the break loads' check, which every scene has, passed.
         assert_eq!(row.checks_pass, Some(true));

@@ -160,10 +160,19 @@ fn shown(v: f64, limit: f64, decimals: usize) -> String {
 /// ([`break_failure`]), then each failed `[checks]` limit ([`outcome_words`]); empty when
 /// none failed. A row's message says them after "check failed: " (`batch`, `sweep`).
 pub fn failures(model: &Model, result: &RunResult) -> Vec<String> {
-    let failed = model.scene.checks.as_ref().map(|c| {
-        evaluate(c, model, result).iter().filter(|o| !o.pass).map(|o| outcome_words(o, c)).collect::<Vec<_>>()
-    });
-    break_failure(&break_exceedances(model, result)).into_iter().chain(failed.unwrap_or_default()).collect()
+    let outcomes = model.scene.checks.as_ref().map(|c| evaluate(c, model, result)).unwrap_or_default();
+    failures_of(model.scene.checks.as_ref(), &outcomes, &break_exceedances(model, result))
+}
+
+/// [`failures`] from the `outcomes` of `checks` and the break loads' `exceedances`, where the
+/// caller has them already.
+pub fn failures_of(
+    checks: Option<&DesignChecks>,
+    outcomes: &[CheckOutcome],
+    exceedances: &[Exceedance],
+) -> Vec<String> {
+    let failed = checks.map(|c| outcomes.iter().filter(|o| !o.pass).map(|o| outcome_words(o, c)).collect::<Vec<_>>());
+    break_failure(exceedances).into_iter().chain(failed.unwrap_or_default()).collect()
 }
 
 /// The design checks' [`verdict`] of the run `result` of `model`: its `[checks]` evaluated

@@ -162,6 +162,19 @@ impl ShardFile {
         Ok(file)
     }
 
+    /// Checks that this file, read from `path`, is of the sweep `id` (its plan hash).
+    fn of_sweep(&self, path: &Path, id: &SweepId) -> Result<()> {
+        if self.plan_hash == id.plan_hash {
+            return Ok(());
+        }
+        Err(Error::Shard(ShardError::OtherSweep {
+            first: path.to_path_buf(),
+            first_hash: self.plan_hash.clone(),
+            second: id.spec.clone(),
+            second_hash: id.plan_hash.clone(),
+        }))
+    }
+
     /// Writes it whole or not at all.
     pub fn write(&self, path: &Path) -> Result<()> {
         let json = serde_json::to_string_pretty(self).expect("a shard file serialises: numbers and strings");
@@ -221,14 +234,7 @@ impl ShardRun {
         };
         if resume && path.exists() {
             let old = ShardFile::read(&path)?;
-            if old.plan_hash != id.plan_hash {
-                return Err(Error::Shard(ShardError::OtherSweep {
-                    first: path,
-                    first_hash: old.plan_hash,
-                    second: id.spec.clone(),
-                    second_hash: id.plan_hash.clone(),
-                }));
-            }
+            old.of_sweep(&path, id)?;
             // Kept rows are the plan's, checked now rather than at the merge after the rest ran.
             let differs = |r: &ShardRow| match plan.get(r.row.index) {
                 Some(planned) => super::merge::differs(&r.row, r.scene.as_deref(), planned),
@@ -297,14 +303,7 @@ pub fn check_joinable(dir: &Path, id: &SweepId, shards: usize) -> Result<()> {
     }
     for path in files_in(dir)? {
         let file = ShardFile::read(&path)?;
-        if file.plan_hash != id.plan_hash {
-            return Err(Error::Shard(ShardError::OtherSweep {
-                first: path,
-                first_hash: file.plan_hash,
-                second: id.spec.clone(),
-                second_hash: id.plan_hash.clone(),
-            }));
-        }
+        file.of_sweep(&path, id)?;
         if file.shard.count != shards {
             return Err(Error::Shard(ShardError::File {
                 file: path,
