@@ -508,6 +508,15 @@ impl std::str::FromStr for MethodSpec {
     }
 }
 
+impl std::fmt::Display for MethodSpec {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self.dt {
+            Some(dt) => write!(f, "{}@{dt}", self.method.name()),
+            None => f.write_str(self.method.name()),
+        }
+    }
+}
+
 /// The scene with the command line's `[solver]` values laid on its file's before it is
 /// checked (they may mend it), and its model.
 fn load_model_with(scene: Option<&PathBuf>, o: &SolverOverrides) -> Result<Model> {
@@ -755,10 +764,14 @@ fn try_main() -> Result<Exit> {
                 "--methods sets the integrator and its step (method@dt): drop --integrator and --dt"
             );
             solver.check_alone()?;
-            for m in &methods {
+            for (i, m) in methods.iter().enumerate() {
+                anyhow::ensure!(
+                    !methods[..i].iter().any(|o| o.method == m.method && o.dt == m.dt),
+                    "--methods {m}: given twice (each method once per step)"
+                );
                 SolverOverrides { integrator: Some(MethodArg(m.method)), dt: m.dt, ..solver.clone() }
                     .check_alone()
-                    .with_context(|| format!("--methods {}@{}", m.method.name(), m.dt.unwrap_or_default()))?;
+                    .with_context(|| format!("--methods {m}"))?;
             }
             let per_method = configurations(&solver, &methods);
             let configures: Vec<kanestop_workflow::batch::Configure> = per_method.iter().map(|c| c.as_ref()).collect();

@@ -308,6 +308,13 @@ fn batch_compares_methods_with_error_estimates() {
     let rows = json.as_array().unwrap();
     let methods: Vec<&str> = rows.iter().map(|r| r["method"].as_str().unwrap()).collect();
     assert_eq!(methods, ["rk4", "dp5"]);
+    // Each row says the step and the tolerances it ran at (none for RK4's fixed step).
+    let setting = |r: &serde_json::Value| (r["dt"].as_f64(), r["rtol"].as_f64(), r["atol"].as_f64());
+    assert_eq!(setting(&rows[0]), (Some(0.0005), None, None));
+    assert_eq!(setting(&rows[1]), (Some(0.01), Some(1e-5), Some(1e-7)));
+    let csv = std::fs::read_to_string(out_dir.join("batch.csv")).unwrap();
+    assert!(csv.lines().next().unwrap().ends_with(",peak_error_estimate,dt,rtol,atol"), "{csv}");
+    assert!(csv.lines().nth(2).unwrap().ends_with(",0.01,0.00001,1e-7"), "{csv}");
     for r in rows {
         // The short scene runs to its end time: a trajectory estimate, no stopping time.
         let e = r["trajectory_error_estimate"].as_f64().expect("an estimate");
@@ -349,6 +356,23 @@ fn batch_compares_methods_with_error_estimates() {
     let out = kanestop().args(["batch"]).arg(&scenes).args(["--methods", "euler"]).output().unwrap();
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("unknown method"));
+    // One method at two steps: the method column says each row's step, and one method
+    // twice at one step is refused.
+    let out = kanestop()
+        .args(["batch"])
+        .arg(&scenes)
+        .args(["--methods", "rk4@0.001,rk4@0.0005", "--out"])
+        .arg(dir.join("steps-out"))
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{stdout}");
+    let method_column: Vec<&str> =
+        stdout.lines().skip(1).take(2).map(|l| l.split_whitespace().nth(2).unwrap_or_default()).collect();
+    assert_eq!(method_column, ["rk4@0.001", "rk4@0.0005"], "{stdout}");
+    let out = kanestop().args(["batch"]).arg(&scenes).args(["--methods", "rk4@0.001,dp5,rk4@0.001"]).output().unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--methods rk4@0.001: given twice"));
 }
 
 #[test]

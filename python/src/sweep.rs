@@ -214,7 +214,17 @@ pub fn _sweep(
                     spec.file.display()
                 )));
             }
-            spec.plan_inputs(row_list(py, rows)?)
+            let rows = row_list(py, rows)?;
+            // A row's value on a path a keyword sets would silently override the keyword.
+            for (i, row) in rows.iter().enumerate() {
+                if let Some((path, v)) = row.iter().find(|(p, _)| solver.iter().any(|(k, _)| k == p)) {
+                    let keyword = path.trim_start_matches("solver.");
+                    return Err(PyValueError::new_err(format!(
+                        "row {i}: {path} = {v}: the keyword {keyword}= sets it for every row too: set it in one place"
+                    )));
+                }
+            }
+            spec.plan_inputs(rows)
         }
     };
     let done = run_rows(py, &plan, choice, jobs, progress.as_ref())?;

@@ -273,3 +273,6 @@ def test_a_solver_keyword_on_a_path_the_spec_sweeps_is_refused(case01: kanestop.
     with pytest.raises(kanestop.SpecError) as info:
         kanestop.sweep(spec, end_time=0.3)
     assert info.value.field == "solver.end_time" and "whose values would override it" in str(info.value)
+    # Explicit rows on a path a keyword sets: refused too (the row used to win silently).
+    with pytest.raises(ValueError, match=r"row 1: solver.end_time = 0.2: the keyword end_time= sets it"):
+        kanestop.sweep(case01, [{"ship.mass": 5e5}, {"solver.end_time": 0.2}], end_time=0.1)

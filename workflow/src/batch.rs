@@ -78,6 +78,16 @@ pub struct BatchRow {
     pub method: Option<Method>,
     /// Number of bodies.
     pub bodies: Option<usize>,
+    /// RK4's step, or the adaptive methods' observation interval, s (none when the scene did
+    /// not load).
+    #[serde(default)]
+    pub dt: Option<f64>,
+    /// The adaptive methods' relative tolerance (none for RK4, which takes a fixed step).
+    #[serde(default)]
+    pub rtol: Option<f64>,
+    /// The adaptive methods' absolute tolerance, in the state's units (none for RK4).
+    #[serde(default)]
+    pub atol: Option<f64>,
     /// First zero of the ship's surge speed, s.
     pub stopping_time: Option<f64>,
     /// Table 3's value, s.
@@ -153,12 +163,16 @@ pub fn row(file: &Path, model: &Model, result: &RunResult) -> BatchRow {
         }
         Stop::ShipStopped | Stop::EndTime => String::new(),
     };
+    let adaptive = model.scene.solver.integrator != Method::Rk4;
     BatchRow {
         case: model.scene.meta.name.clone(),
         file: file.display().to_string(),
         status: Status::of(&result.stop),
         method: Some(model.scene.solver.integrator),
         bodies: Some(model.body_count()),
+        dt: Some(model.scene.solver.dt),
+        rtol: adaptive.then_some(model.scene.solver.rtol),
+        atol: adaptive.then_some(model.scene.solver.atol),
         stopping_time: result.stopping_time,
         paper_stopping_time: paper,
         relative_difference: result.stopping_time.zip(paper).map(|(t, p)| (t - p) / p),
@@ -280,6 +294,9 @@ pub fn run_all(
                 status: Status::Invalid,
                 method: None,
                 bodies: None,
+                dt: None,
+                rtol: None,
+                atol: None,
                 stopping_time: None,
                 paper_stopping_time: None,
                 relative_difference: None,
@@ -322,21 +339,44 @@ fn checks_word(pass: Option<bool>) -> &'static str {
     }
 }
 
+/// Each row's method as the table and the validation name it: its name, and `@dt` where the
+/// batch ran a file by that method more than once (`--methods rk4@0.01,rk4@0.005`), or ""
+/// when the scene did not load. The validation orders rows of one label against each other.
+pub fn method_labels(rows: &[BatchRow]) -> Vec<String> {
+    let mut runs = std::collections::HashMap::new();
+    for r in rows {
+        if let Some(m) = r.method {
+            *runs.entry((r.file.as_str(), m.name())).or_insert(0usize) += 1;
+        }
+    }
+    let twice: Vec<&str> = runs.iter().filter(|(_, &n)| n > 1).map(|(&(_, m), _)| m).collect();
+    rows.iter()
+        .map(|r| {
+            let name = r.method.map(Method::name).unwrap_or_default();
+            match r.dt.filter(|_| twice.contains(&name)) {
+                Some(dt) => format!("{name}@{dt}"),
+                None => name.to_string(),
+            }
+        })
+        .collect()
+}
+
 /// Each row's name in the terminal table: its `case`, and where another row of the same
-/// method has the same (edited copies of one scene keep its `meta.name`), its file's name
-/// too, or its whole path where the file names are alike as well. Rows of one scene by
-/// several `--methods` are told apart by their method column.
+/// method label ([`method_labels`]) has the same (edited copies of one scene keep its
+/// `meta.name`), its file's name too, or its whole path where the file names are alike as
+/// well. Rows of one scene by several `--methods` are told apart by their method column.
 fn case_labels(rows: &[BatchRow]) -> Vec<String> {
     let file_name = |r: &BatchRow| {
         Path::new(&r.file).file_name().map_or_else(|| r.file.clone(), |n| n.to_string_lossy().into_owned())
     };
-    let shared = |key: &dyn Fn(&BatchRow) -> String, r: &BatchRow| rows.iter().filter(|o| key(o) == key(r)).count() > 1;
-    rows.iter()
-        .map(|r| {
-            let method = |o: &BatchRow| o.method.map(Method::name).unwrap_or_default();
-            if !shared(&|o| format!("{}\n{}", o.case, method(o)), r) {
+    let methods = method_labels(rows);
+    let shared = |key: &dyn Fn(usize) -> String, i: usize| (0..rows.len()).filter(|&o| key(o) == key(i)).count() > 1;
+    (0..rows.len())
+        .map(|i| {
+            let r = &rows[i];
+            if !shared(&|o| format!("{}\n{}", rows[o].case, methods[o]), i) {
                 r.case.clone()
-            } else if !shared(&|o| format!("{}\n{}\n{}", o.case, method(o), file_name(o)), r) {
+            } else if !shared(&|o| format!("{}\n{}\n{}", rows[o].case, methods[o], file_name(&rows[o])), i) {
                 format!("{} ({})", r.case, file_name(r))
             } else {
                 format!("{} ({})", r.case, r.file)
@@ -351,9 +391,11 @@ pub fn table(rows: &[BatchRow]) -> String {
         r.stop_error_estimate.is_some() || r.trajectory_error_estimate.is_some() || r.peak_error_estimate.is_some()
     });
     let labels = case_labels(rows);
+    let methods = method_labels(rows);
     let width = labels.iter().map(|l| l.chars().count()).fold(15, usize::max);
+    let m_width = methods.iter().map(|l| l.chars().count()).fold(6, usize::max);
     let mut out = format!(
-        "{:<width$} {:>3} {:<6} {:<9} {:>6} {:>9} {:>9} {:>8} {:>11} {:>6} {:>9} {:>9} {:>8} {:>9} {:>8}",
+        "{:<width$} {:>3} {:<m_width$} {:<9} {:>6} {:>9} {:>9} {:>8} {:>11} {:>6} {:>9} {:>9} {:>8} {:>9} {:>8}",
         "case",
         "N",
         "method",
@@ -375,12 +417,12 @@ pub fn table(rows: &[BatchRow]) -> String {
     }
     out.push('\n');
     let e = |v: Option<f64>| v.map(|v| format!("{v:.1e}")).unwrap_or_else(|| "—".into());
-    for (r, label) in rows.iter().zip(&labels) {
+    for ((r, label), method) in rows.iter().zip(&labels).zip(&methods) {
         out.push_str(&format!(
-            "{:<width$} {:>3} {:<6} {:<9} {:>6} {:>9} {:>9} {:>8} {:>11} {:>6} {:>9} {:>9} {:>8} {:>9} {:>8.2}",
+            "{:<width$} {:>3} {:<m_width$} {:<9} {:>6} {:>9} {:>9} {:>8} {:>11} {:>6} {:>9} {:>9} {:>8} {:>9} {:>8.2}",
             label,
             r.bodies.map(|n| n.to_string()).unwrap_or_default(),
-            r.method.map(Method::name).unwrap_or_default(),
+            method,
             r.status.name(),
             r.checks_pass.map_or("—", |p| checks_word(Some(p))),
             opt(r.stopping_time, 1.0, 3),
@@ -418,7 +460,7 @@ pub const ENERGY_DRIFT_MEANING: &str =
 
 /// The columns of `batch.csv` in order, each with its unit ("" for a number without one, a
 /// count or text) and what it holds: the header and the units sidecar, `batch.units.csv`.
-pub const COLUMNS: [(&str, &str, &str); 22] = [
+pub const COLUMNS: [(&str, &str, &str); 25] = [
     ("case", "", "scene name (meta.name), or the file name when the scene did not load"),
     ("file", "", "the scene file"),
     ("status", "", "how the run ended: stopped, end time, failed, invalid"),
@@ -441,6 +483,9 @@ pub const COLUMNS: [(&str, &str, &str); 22] = [
     ("cpu_time", "s", "CPU time of the run on its own thread"),
     ("rhs_evaluations", "", "right-hand-side evaluations"),
     ("peak_error_estimate", "N", "|peak tension - the refined run's| (--error-estimate)"),
+    ("dt", "s", "rk4's step, or the adaptive methods' observation interval"),
+    ("rtol", "", "the adaptive methods' relative tolerance (empty for rk4)"),
+    ("atol", "", "the adaptive methods' absolute tolerance, in the state's units (empty for rk4)"),
 ];
 
 /// The rows as CSV, the columns of [`COLUMNS`].
@@ -450,7 +495,7 @@ pub fn csv(rows: &[BatchRow]) -> String {
     let o = |v: Option<f64>| v.map(|v| CsvNumber(v).to_string()).unwrap_or_default();
     for r in rows {
         out.push_str(&format!(
-            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},\"{}\",{},{},{},{},{},{},{}\n",
+            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},\"{}\",{},{},{},{},{},{},{},{},{},{}\n",
             r.case,
             r.file,
             r.status.name(),
@@ -473,6 +518,9 @@ pub fn csv(rows: &[BatchRow]) -> String {
             o(r.cpu_time),
             r.rhs_evaluations.map(|n| n.to_string()).unwrap_or_default(),
             o(r.peak_error_estimate),
+            o(r.dt),
+            o(r.rtol),
+            o(r.atol),
         ));
     }
     out
@@ -534,7 +582,14 @@ mod tests {
         // One file by two methods: the method column tells them apart.
         let mut by_dp5 = rows[0].clone();
         by_dp5.method = Some(Method::Dp5);
-        assert_eq!(case_labels(&[rows[0].clone(), by_dp5]), ["case01", "case01"]);
+        assert_eq!(case_labels(&[rows[0].clone(), by_dp5.clone()]), ["case01", "case01"]);
+        // One file by one method at two steps: the method column says the step, for every
+        // row of that method (`--methods rk4@0.002,rk4@0.001,dp5`).
+        let finer = BatchRow { dt: Some(0.001), ..rows[0].clone() };
+        let other = BatchRow { file: "b.toml".into(), case: "b".into(), ..rows[0].clone() };
+        let both = [rows[0].clone(), finer, by_dp5, other];
+        assert_eq!(method_labels(&both), ["rk4@0.002", "rk4@0.001", "dp5", "rk4@0.002"]);
+        assert_eq!(case_labels(&both), ["case01", "case01", "case01", "b"]);
         // The column widens to the longest name, and the rows stay aligned.
         let text = table(&rows);
         let lines: Vec<&str> = text.lines().collect();

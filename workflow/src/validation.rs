@@ -1,7 +1,6 @@
 //! The paper cases of a batch against Table 3: values within a tolerance, the same order.
 
-use crate::batch::{BatchRow, Status};
-use kanestop_runtime::scene::Method;
+use crate::batch::{self, BatchRow, Status};
 
 /// What a validation against Table 3 found.
 #[derive(Clone, Debug, PartialEq)]
@@ -16,19 +15,19 @@ pub struct Validation {
 
 /// Checks rows against the paper: stopping time within `tolerance` (relative) of Table 3,
 /// energy drift below 0.5 %, no break load exceeded, no failed run; and compares the order
-/// of the cases by stopping time with Table 3's (over the pairs of one method whose Table 3
-/// times differ).
+/// of the cases by stopping time with Table 3's (over the pairs of one method label, as
+/// [`batch::method_labels`] gives it, whose Table 3 times differ).
 pub fn validate(rows: &[BatchRow], tolerance: f64) -> Validation {
-    // With several methods a case is named with its method.
-    let methods =
-        rows.iter().filter_map(|r| r.method.map(Method::name)).collect::<std::collections::BTreeSet<_>>().len();
-    let name = |r: &BatchRow| match r.method.filter(|_| methods > 1) {
-        Some(m) => format!("{} ({})", r.case, m.name()),
-        None => r.case.clone(),
+    // With several method labels a case is named with its label.
+    let labels = batch::method_labels(rows);
+    let several = labels.iter().collect::<std::collections::BTreeSet<_>>().len() > 1;
+    let name = |i: usize| match several {
+        true => format!("{} ({})", rows[i].case, labels[i]),
+        false => rows[i].case.clone(),
     };
     let mut problems = Vec::new();
-    for r in rows {
-        let case = name(r);
+    for (i, r) in rows.iter().enumerate() {
+        let case = name(i);
         if r.status != Status::Stopped {
             problems.push(format!("{case}: {} {}", r.status, r.message));
             continue;
@@ -43,16 +42,17 @@ pub fn validate(rows: &[BatchRow], tolerance: f64) -> Validation {
             problems.push(format!("{case}: break load exceeded at {} joint(s)", r.break_exceedances));
         }
     }
-    let paired: Vec<(&BatchRow, f64, f64)> =
-        rows.iter().filter_map(|r| Some((r, r.stopping_time?, r.paper_stopping_time?))).collect();
+    let paired: Vec<(usize, f64, f64)> =
+        rows.iter().enumerate().filter_map(|(i, r)| Some((i, r.stopping_time?, r.paper_stopping_time?))).collect();
     let (mut concordant, mut discordant) = (0usize, Vec::new());
     for i in 0..paired.len() {
         for j in i + 1..paired.len() {
             let (a, b) = (&paired[i], &paired[j]);
             // One case twice (its file copied, or run by several `--methods`): Table 3 gives
-            // the pair no order to keep. Cases run by different methods are not ordered
-            // against each other: each method is held to Table 3's order on its own.
-            if a.2 == b.2 || a.0.method != b.0.method {
+            // the pair no order to keep. Cases run by different methods, or one method at
+            // different steps, are not ordered against each other: each is held to Table 3's
+            // order on its own.
+            if a.2 == b.2 || labels[a.0] != labels[b.0] {
                 continue;
             }
             if (a.1 - b.1) * (a.2 - b.2) > 0.0 {
@@ -70,6 +70,7 @@ pub fn validate(rows: &[BatchRow], tolerance: f64) -> Validation {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use kanestop_runtime::scene::Method;
 
     fn row(case: &str, t: f64, paper: f64) -> BatchRow {
         BatchRow {
@@ -78,6 +79,9 @@ mod tests {
             status: Status::Stopped,
             method: None,
             bodies: Some(46),
+            dt: Some(0.002),
+            rtol: None,
+            atol: None,
             stopping_time: Some(t),
             paper_stopping_time: Some(paper),
             relative_difference: Some((t - paper) / paper),
@@ -128,5 +132,24 @@ mod tests {
         ];
         let v = validate(&rows, 0.5);
         assert_eq!(v.discordant, [("case01 (dp5)".to_string(), "case02 (dp5)".to_string())]);
+        // One method at two steps (`--methods rk4@0.01,rk4@0.005`): each step on its own,
+        // and a pair out of order named with its step.
+        let at = |case: &str, t: f64, paper: f64, dt: f64| BatchRow {
+            method: Some(Method::Rk4),
+            dt: Some(dt),
+            file: format!("{case}.toml"),
+            ..row(case, t, paper)
+        };
+        let rows = [
+            at("case01", 23.6, 20.01, 0.01),
+            at("case01", 19.9, 20.01, 0.005),
+            at("case02", 23.7, 23.65, 0.01),
+            at("case02", 23.5, 23.65, 0.005),
+        ];
+        let v = validate(&rows, 0.5);
+        assert_eq!((v.kendall_tau, v.discordant.len()), (Some(1.0), 0));
+        let rows = [at("case01", 24.0, 20.01, 0.01), at("case01", 19.9, 20.01, 0.005), at("case02", 23.7, 23.65, 0.01)];
+        let v = validate(&rows, 0.5);
+        assert_eq!(v.discordant, [("case01 (rk4@0.01)".to_string(), "case02 (rk4@0.01)".to_string())]);
     }
 }
