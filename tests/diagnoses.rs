@@ -5,6 +5,7 @@ use kanestop_runtime::model::Model;
 use kanestop_runtime::paper::DEFAULT_SCENE;
 use kanestop_runtime::scene::{Scene, MAX_STEPS};
 use kanestop_runtime::simulate::{is_early, Failure, FailureKind, StaticResidual};
+use kanestop_runtime::stability::StabilityLimit;
 use kanestop_workflow::diagnostic::describe;
 
 fn case1() -> Model {
@@ -17,6 +18,7 @@ fn runaway(t: f64, residual: Option<StaticResidual>) -> Failure {
         body: 19,
         kind: FailureKind::EnergyRunaway { drift: 0.056, limit: 0.05, scale: 2.25e6 },
         initial_residual: residual,
+        last_limit: None,
     }
 }
 
@@ -76,4 +78,32 @@ fn a_failure_at_a_heavy_body_is_not_blamed_on_a_light_element() {
     let text = describe(&model, &anchor);
     assert!(text.contains("anchor (B_1") && text.contains("at an end of the line"), "{text}");
     assert!(!text.contains("light element swinging") && !text.contains("mass ratio"), "{text}");
+}
+
+/// RK4's limit at the last good state decides the advice: below the step, a step within it
+/// (and at most half the failed one); at or above it, the linearisation does not explain the
+/// blow-up, and the much finer step of old is advised.
+#[test]
+fn the_limit_at_the_last_good_state_decides_the_advice() {
+    let model = case1();
+    let limit =
+        |rk4_dt: f64| StabilityLimit { rk4_dt, lambda: nalgebra::Complex::new(-1.0, 400.0), body: 45, settled: true };
+    let at = |l: f64| describe(&model, &Failure { last_limit: Some(limit(l)), ..runaway(1.0, None) });
+    // dt = 2 ms: a limit of 1 ms, so 0.9 of it.
+    let text = at(1.0e-3);
+    assert!(
+        text.contains("stiffened during the run: RK4's limit at the last good state (t = 0.998 s) is 1.000e-3 s"),
+        "{text}"
+    );
+    assert!(text.contains("reduce solver.dt to 9.0e-4 s (at most 0.9 of that limit and half the step"), "{text}");
+    // A limit just under the step: half the step.
+    let text = at(1.9e-3);
+    assert!(text.contains("reduce solver.dt to 1.0e-3 s"), "{text}");
+    // Above the step: not the limit's doing.
+    let text = at(3.0e-3);
+    assert!(
+        text.contains("RK4's linearised limit at the last good state (t = 0.998 s) is 3.000e-3 s, above the step"),
+        "{text}"
+    );
+    assert!(text.contains("reduce solver.dt (try 1.3e-4 s)") && !text.contains("stiffened"), "{text}");
 }

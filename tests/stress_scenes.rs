@@ -348,6 +348,29 @@ fn case_1_limit_and_the_steps_beyond_it_are_as_documented() {
         f.t
     );
     assert!(integrators_doc().contains(&quoted), "docs/integrators.md should say: {quoted}");
+    // The failure carries RK4's limit at its last good state, below the step (the mode
+    // stiffened), and the diagnostic advises a step within it; that step completes.
+    let last = f.last_limit.expect("RK4's blow-up carries the limit at its last good state");
+    assert!(last.rk4_dt < 0.015 && last.rk4_dt < limit.rk4_dt / 2.0, "{last:?}");
+    let advised = 0.9 * last.rk4_dt;
+    let text = describe(&model(&blown_scene()), f);
+    assert!(
+        text.contains(&format!(
+            "RK4's limit at the last good state (t = {:.3} s) is {:.3e} s",
+            f.t - 0.015,
+            last.rk4_dt
+        )) && text.contains(&format!("reduce solver.dt to {advised:.1e} s")),
+        "{text}"
+    );
+    let advised: f64 = format!("{advised:.1e}").parse().unwrap();
+    assert_eq!(at(advised).stop, Stop::ShipStopped, "the advised step {advised} s");
+}
+
+/// Case 1 at 15 ms.
+fn blown_scene() -> kanestop_runtime::scene::Scene {
+    let mut scene = kanestop_runtime::paper::CASES[0].scene();
+    scene.solver.dt = 0.015;
+    scene
 }
 
 /// The whole stress set, each scene with RK4 at its own dt and DP5 (rtol 1e-5, atol 1e-7,

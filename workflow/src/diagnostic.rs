@@ -37,9 +37,9 @@ pub fn describe(model: &Model, failure: &Failure) -> String {
                     if model.scene.environment.water
                         && r.line.0.max(r.top.0) > NOT_STATIC * model.scene.environment.gravity =>
                 {
-                    not_static(model, failure.t, swinging, &r)
+                    not_static(model, failure, swinging, &r)
                 }
-                _ => advice(model, failure.t, swinging),
+                _ => advice(model, failure, swinging),
             };
             (what(kind), cause, suggestion)
         }
@@ -66,14 +66,15 @@ pub const NOT_STATIC: f64 = 0.5;
 /// that is as meant (a line laid taut by `initial.top_tension` starts with its vertical rod
 /// swinging, docs/model-choices.md) needs the start's transient integrated more finely, as
 /// [`advice`] says for the scene's method.
-fn not_static(model: &Model, t: f64, k: usize, r: &StaticResidual) -> (String, String) {
+fn not_static(model: &Model, failure: &Failure, k: usize, r: &StaticResidual) -> (String, String) {
+    let t = failure.t;
     let cause = format!(
         "the initial state is not static: the run failed {t:.3} s after the start, and at rest (t = 0, anchor held) \
          the line accelerates up to {:.2e} m/s² (B_{}) and {:.2e} m/s² beside the rod (B_{}); the initial \
          geometry is the likely cause",
         r.line.0, r.line.1, r.top.0, r.top.1
     );
-    let (_, finer) = advice(model, t, k);
+    let (_, finer) = advice(model, failure, k);
     let suggestion = format!(
         "check the initial geometry (initial.horizontal_projection, horizontal_tension or top_tension, \
          initial.vertical_projection, the cable stages, rod.length and ship.hinge_z) and the line's weights; if \
@@ -133,7 +134,7 @@ fn refusal(dt: f64, limit: &StabilityLimit) -> (String, String, String) {
         "set solver.dt ≤ {:.1e} s, or integrator = \"dp5\" (adapts its step) or \"sdirk4\" (stiff); the limit is \
          the start's: a line that tightens or presses into the seabed may need a smaller step later, which the \
          run's checks report",
-        0.9 * limit.rk4_dt
+        LIMIT_MARGIN * limit.rk4_dt
     );
     (what, cause, suggestion)
 }
@@ -168,6 +169,50 @@ fn chatter(model: &Model, t: f64, first_rough: u64) -> (String, String) {
     (cause, suggestion)
 }
 
+/// RK4's cause and suggestion, from its stability limit at the last good state where the run
+/// computed it ([`Failure::last_limit`]): below `dt`, the mode stiffened during the run and a
+/// step within that limit and at most half the failed one is advised (case 1 blown up at
+/// 15 ms: 6.3 ms at t = 1.455 s, so 5.6 ms, which completes; at 20 ms: 10 ms); at or above it, the linearisation does not explain the blow-up,
+/// and a much finer step is advised ([`rk4_suggestion`]).
+fn rk4_advice(failure: &Failure, dt: f64, end_time: f64, mode: &str, kept: &str) -> (String, String) {
+    let cause = format!("the explicit step dt = {dt} s is beyond the stability limit of {mode}");
+    let last = format!("the last good state (t = {:.3} s)", (failure.t - dt).max(0.0));
+    match failure.last_limit {
+        Some(l) if l.rk4_dt < dt => {
+            let cause = format!(
+                "{cause}, which stiffened during the run: RK4's limit at {last} is {:.3e} s (its stiffest hinge at \
+                 B_{}), below the step",
+                l.rk4_dt, l.body
+            );
+            // The state is the blown-up run's, maybe before its stiffest (case 1 at 20 ms fails
+            // at 1.38 s, before the peak tension, where the limit is 15.2 ms; 15 ms fails too):
+            // at most half the step.
+            let within = (LIMIT_MARGIN * l.rk4_dt).min(dt / 2.0);
+            let suggestion = if within >= end_time / MAX_STEPS {
+                format!(
+                    "reduce solver.dt to {within:.1e} s (at most {LIMIT_MARGIN} of that limit and half the step; a \
+                     state still to come may need less) or use integrator = \"dp5\"; {kept}"
+                )
+            } else {
+                rk4_suggestion(dt, end_time, kept)
+            };
+            (cause, suggestion)
+        }
+        Some(l) => (
+            format!(
+                "{cause}, though RK4's linearised limit at {last} is {:.3e} s, above the step: the blow-up came \
+                 with a change the linearisation does not see (a seabed contact made or lost, a snap load)",
+                l.rk4_dt
+            ),
+            rk4_suggestion(dt, end_time, kept),
+        ),
+        None => (cause, rk4_suggestion(dt, end_time, kept)),
+    }
+}
+
+/// The share of a stability limit advised as the step: the start's refusal advises the same.
+const LIMIT_MARGIN: f64 = 0.9;
+
 /// Reduce the step 16-fold, never below the smallest step a scene may ask for
 /// (end_time / `MAX_STEPS`); at that floor, the adaptive methods instead.
 fn rk4_suggestion(dt: f64, end_time: f64, kept: &str) -> String {
@@ -188,9 +233,10 @@ fn rk4_suggestion(dt: f64, end_time: f64, kept: &str) -> String {
 /// 18 048 times lighter than the ship); a heavier one is not, nor an end of the line.
 const LIGHT: f64 = 3.0;
 
-/// The likely cause and what to try for a failure at `t` (s) whose unstable mode lives at
-/// body `k` (1-based), for the scene's method.
-fn advice(model: &Model, t: f64, k: usize) -> (String, String) {
+/// The likely cause and what to try for `failure`, whose unstable mode lives at body `k`
+/// (1-based), for the scene's method.
+fn advice(model: &Model, failure: &Failure, k: usize) -> (String, String) {
+    let t = failure.t;
     let body = &model.chain.bodies[k - 1];
     let solver = &model.scene.solver;
     let dt = solver.dt;
@@ -220,10 +266,7 @@ fn advice(model: &Model, t: f64, k: usize) -> (String, String) {
         "it failed in the first interval, so only the initial state is kept".to_string()
     };
     let (cause, suggestion) = match solver.integrator {
-        Method::Rk4 => (
-            format!("the explicit step dt = {dt} s is beyond the stability limit of {mode}"),
-            rk4_suggestion(dt, solver.end_time, &kept),
-        ),
+        Method::Rk4 => rk4_advice(failure, dt, solver.end_time, &mode, &kept),
         Method::Dp5 => (
             format!("the error-controlled steps could not follow {mode}"),
             format!("tighten solver.rtol (now {}) or use integrator = \"sdirk4\"; {kept}", solver.rtol),

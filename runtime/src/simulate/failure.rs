@@ -23,6 +23,12 @@ pub struct Failure {
     /// longer) of a run that evaluated it ([`super::run_checked`]): how far the initial state
     /// was from static, the likelier cause than the step.
     pub initial_residual: Option<StaticResidual>,
+    /// For RK4's energy runaway, non-finite state or force spike: its stability limit at the
+    /// last good state, as at t = 0 ([`crate::stability::limit`]; none where it could not be
+    /// computed). Below `solver.dt`, the mode stiffened during the run (case 1 at 15 ms: 6.3 ms
+    /// at t = 1.455 s, against 36.5 ms at the start); at or above it, the blow-up came with
+    /// something the linearisation does not see (a contact switching, a snap load).
+    pub last_limit: Option<StabilityLimit>,
 }
 
 /// A failure this soon after the start, s (or within 20 steps), is diagnosed with the
@@ -121,12 +127,18 @@ impl Failure {
             FailureKind::TensionChatter { joint, .. } => (joint, kind),
             other => (swinging, other),
         };
-        Failure { t, body, kind, initial_residual: None }
+        Failure { t, body, kind, initial_residual: None, last_limit: None }
     }
 
     /// The refusal of an RK4 step `dt` above `limit`, before the run.
     pub fn step_above_limit(dt: f64, limit: StabilityLimit) -> Self {
-        Failure { t: 0.0, body: limit.body, kind: FailureKind::StepAboveLimit { dt, limit }, initial_residual: None }
+        Failure {
+            t: 0.0,
+            body: limit.body,
+            kind: FailureKind::StepAboveLimit { dt, limit },
+            initial_residual: None,
+            last_limit: None,
+        }
     }
 }
 
