@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 use anyhow::{Context, Result};
 use kanestop_runtime::eval::{evaluate, StateFile};
 use kanestop_runtime::model::Model;
-use kanestop_runtime::scene::Scene;
+use kanestop_runtime::scene::{Scene, MAX_SCENE_BYTES};
 use kanestop_runtime::simulate::{self, FailureKind, RunResult, Stop};
 use kanestop_workflow::kernels::KernelFactory;
 use kanestop_workflow::record::RunSummary;
@@ -138,7 +138,8 @@ pub fn run(model: &Model, kernel: KernelFactory, files: &RunFiles, json: bool, v
 pub fn eval(model: &Model, kernel: KernelFactory, state: Option<&Path>) -> Result<()> {
     let state = match state {
         Some(path) => {
-            let text = std::fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))?;
+            let text = kanestop_runtime::scene::read_text_file(path, MAX_SCENE_BYTES, "a state file's")
+                .with_context(|| format!("cannot read {}", path.display()))?;
             let s: StateFile =
                 serde_json::from_str(&text).with_context(|| format!("state file {} is not valid", path.display()))?;
             Some(s)

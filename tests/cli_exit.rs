@@ -95,6 +95,21 @@ fn exit_2_bad_arguments_scene_and_paths() {
         assert_eq!(out.status.code(), Some(2), "{args:?}: {stdout}{stderr}");
         assert!(!stderr.is_empty() && !stderr.contains("panicked"), "{args:?}: {stderr}");
     }
+    // An input file that is no regular file is refused before it is read (read whole,
+    // /dev/zero filled the memory at 1.5 GB/s).
+    let out_dir = dir.join("zero-out");
+    let out_dir = out_dir.to_str().unwrap();
+    for args in [
+        vec!["eval", "--state", "/dev/zero"],
+        vec!["sweep", "/dev/zero", "--out", out_dir],
+        vec!["sweep", "merge", "/dev/zero", "--out", out_dir],
+        vec!["report", "sensitivity", "--uncertain", "/dev/zero", "--out", out_dir],
+    ] {
+        let out = kanestop().args(&args).output().unwrap();
+        let (stdout, stderr) = text(&out);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {stdout}{stderr}");
+        assert!(stderr.contains("/dev/zero: not a regular file"), "{args:?}: {stderr}");
+    }
     // A negative number is a value of its flag, refused by the scene's range, not an argument
     // of its own.
     for (flag, field) in [("--dt", "solver.dt = -1: must be in (0, 1] s"), ("--end-time", "solver.end_time = -1")] {

@@ -183,11 +183,8 @@ fn _scene_from_toml(py: Python<'_>, text: &str, name: &str) -> PyResult<PyScene>
 /// sweep spec (`base`, `axis`) from a scene file for `sweep(path, rows)`'s message.
 #[pyfunction]
 fn _toml_keys(path: PathBuf) -> Option<Vec<String>> {
-    let meta = std::fs::metadata(&path).ok()?;
-    if !meta.is_file() || meta.len() > kanestop_runtime::scene::MAX_SCENE_BYTES {
-        return None;
-    }
-    let table: toml::Table = std::fs::read_to_string(&path).ok()?.parse().ok()?;
+    let text = kanestop_runtime::scene::read_text_file(&path, kanestop_runtime::scene::MAX_SCENE_BYTES, "").ok()?;
+    let table: toml::Table = text.parse().ok()?;
     Some(table.keys().cloned().collect())
 }
 

@@ -1366,12 +1366,20 @@ pub const MAX_SCENE_BYTES: u64 = 16 << 20;
 
 /// A scene file's text: a regular file of at most [`MAX_SCENE_BYTES`].
 fn read_scene_file(path: &Path) -> std::io::Result<String> {
+    read_text_file(path, MAX_SCENE_BYTES, "a scene's")
+}
+
+/// The text of an input file (a scene, a sweep spec, a state, a shard file): a regular file
+/// of at most `max` bytes, `whose` naming the limit in the error ("a scene's"). Anything else
+/// (`/dev/zero`, a folder, a file far larger than its kind) is refused before it is read:
+/// read whole, it would only fill the memory.
+pub fn read_text_file(path: &Path, max: u64, whose: &str) -> std::io::Result<String> {
     let meta = std::fs::metadata(path)?;
     if !meta.is_file() {
         return Err(std::io::Error::other("not a regular file"));
     }
-    if meta.len() > MAX_SCENE_BYTES {
-        return Err(std::io::Error::other(format!("{} bytes, more than a scene's {MAX_SCENE_BYTES}", meta.len())));
+    if meta.len() > max {
+        return Err(std::io::Error::other(format!("{} bytes, more than {whose} {max}", meta.len())));
     }
     std::fs::read_to_string(path)
 }

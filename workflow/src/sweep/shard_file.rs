@@ -19,6 +19,10 @@ use super::{scene_file, PlannedRow, Spec, SweepRow};
 use crate::output::write_atomically;
 use crate::{Error, Result};
 
+/// The largest shard file read, bytes: [`MAX_ROWS`] rows of up to 16 kB each. A larger file
+/// (or `/dev/zero`) is no shard file.
+const MAX_SHARD_BYTES: u64 = 16_384 * MAX_ROWS as u64;
+
 /// The `format` field of a shard file.
 pub const FORMAT: &str = "kanestop-sweep-shard/1";
 
@@ -139,7 +143,8 @@ impl ShardFile {
 
     /// Reads and checks a shard file.
     pub fn read(path: &Path) -> Result<ShardFile> {
-        let text = std::fs::read_to_string(path).map_err(Error::io("read", path))?;
+        let text = kanestop_runtime::scene::read_text_file(path, MAX_SHARD_BYTES, "a shard file's")
+            .map_err(Error::io("read", path))?;
         let problem = |p: String| Error::Shard(ShardError::File { file: path.to_path_buf(), problem: p });
         let format = serde_json::from_str::<serde_json::Value>(&text)
             .map_err(|e| problem(format!("not JSON ({e})")))?

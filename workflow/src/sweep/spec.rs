@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 
 use kanestop_runtime::design::DesignChecks;
 use kanestop_runtime::overrides;
-use kanestop_runtime::scene::Scene;
+use kanestop_runtime::scene::{Scene, MAX_SCENE_BYTES};
 use serde::Deserialize;
 use toml::Value;
 
@@ -148,7 +148,8 @@ pub fn check_name(name: &str) -> std::result::Result<(), String> {
 impl Spec {
     /// Reads and checks a spec file; the base scene is relative to it.
     pub fn load(file: &Path) -> Result<Spec> {
-        let text = std::fs::read_to_string(file).map_err(Error::io("read", file))?;
+        let text = kanestop_runtime::scene::read_text_file(file, MAX_SCENE_BYTES, "a sweep spec's")
+            .map_err(Error::io("read", file))?;
         let dir = file.parent().unwrap_or(Path::new(""));
         Spec::from_toml(&text, file, dir, None)
     }
