@@ -226,6 +226,15 @@ fn a_relative_tolerance_double_precision_cannot_meet_is_refused() {
 }
 
 #[test]
+fn a_name_on_more_than_one_line_is_refused() {
+    // Regression: a line break in meta.name split the terminal tables and batch.csv's rows.
+    let e = error(&edited("name = \"case01\"", "name = \"case01\\nnext\""));
+    assert_mentions(&e, &["meta.name = \"case01\\nnext\"", "one line of text"]);
+    // A comma is a name like any other (CSV quotes it).
+    assert!(Scene::from_toml(&edited("name = \"case01\"", "name = \"case 1, heavy\""), "comma.toml").is_ok());
+}
+
+#[test]
 fn a_paper_time_that_is_not_a_time_is_refused() {
     let e = error(&edited("paper_stopping_time = 20.01", "paper_stopping_time = nan"));
     assert_mentions(&e, &["meta.paper_stopping_time = nan", "(0, 1e15] s"]);

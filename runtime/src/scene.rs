@@ -72,9 +72,9 @@ pub struct Scene {
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Meta {
-    /// Short name used in reports and file names.
+    /// Short name used in reports and file names: one line, without control characters.
     pub name: String,
-    /// One line for humans.
+    /// One line for humans, without control characters.
     pub description: String,
     /// The stopping time the paper reports for this scene (Table 3), s, as the paper's scene
     /// files state it, in (0, 1e15]; absent for other scenes. Reports take Table 3's time from the
@@ -782,6 +782,12 @@ impl Scene {
     /// Every out-of-range value, in file order.
     pub fn problems(&self) -> Vec<Problem> {
         let mut c = Checker::default();
+        // Names and descriptions stand on one line of tables, CSV rows and plot titles.
+        for (field, text) in [("meta.name", &self.meta.name), ("meta.description", &self.meta.description)] {
+            if text.chars().any(char::is_control) {
+                c.push(field, &format!("{text:?}"), "one line of text, without line breaks, tabs or other control characters");
+            }
+        }
         if let Some(t) = self.meta.paper_stopping_time {
             c.range("meta.paper_stopping_time", t, 0.0, MAX_MAGNITUDE, false, "s");
         }

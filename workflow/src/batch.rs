@@ -12,7 +12,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::checks::{self, break_exceedances};
 use crate::kernels::KernelFactory;
-use crate::output::{self, CsvNumber};
+use crate::output::{self, csv_field, CsvNumber};
 use crate::{diagnostic, parallel, Result};
 
 /// How a row's run ended.
@@ -496,8 +496,8 @@ pub fn csv(rows: &[BatchRow]) -> String {
     for r in rows {
         out.push_str(&format!(
             "{},{},{},{},{},{},{},{},{},{},{},{},{},{},\"{}\",{},{},{},{},{},{},{},{},{},{}\n",
-            r.case,
-            r.file,
+            csv_field(&r.case),
+            csv_field(&r.file),
             r.status.name(),
             r.bodies.map(|n| n.to_string()).unwrap_or_default(),
             o(r.stopping_time),
@@ -510,7 +510,7 @@ pub fn csv(rows: &[BatchRow]) -> String {
             o(r.anchor_start),
             o(r.energy_drift),
             r.wall_time,
-            r.message.replace('"', "'"),
+            r.message.replace('"', "\"\""),
             r.method.map(Method::name).unwrap_or_default(),
             o(r.stop_error_estimate),
             o(r.trajectory_error_estimate),
@@ -595,6 +595,18 @@ mod tests {
         let lines: Vec<&str> = text.lines().collect();
         assert!(lines[0].starts_with(&format!("{:<21} ", "case")), "{text}");
         assert!(lines[3].starts_with("case01 (b/heavy.toml)  46 rk4"), "{text}");
+        // A name or file with a comma or a quote is one CSV field (RFC 4180), as is a message
+        // with quotes (they were unquoted, and shifted the row's columns).
+        let named = BatchRow {
+            case: "case 1, heavy \"ship\"".into(),
+            file: "a,b.toml".into(),
+            message: "use integrator = \"dp5\"".into(),
+            ..rows[0].clone()
+        };
+        let text = csv(&[named]);
+        let line = text.lines().nth(1).unwrap();
+        assert!(line.starts_with("\"case 1, heavy \"\"ship\"\"\",\"a,b.toml\",end time,"), "{line}");
+        assert!(line.contains(",\"use integrator = \"\"dp5\"\"\",rk4,"), "{line}");
     }
 
     #[test]

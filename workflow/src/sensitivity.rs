@@ -512,7 +512,7 @@ pub fn csv(study: &Study) -> String {
             o(r.stopping_time),
             o(r.stopping_distance),
             o(r.peak_tension),
-            r.message.replace('"', "'"),
+            r.message.replace('"', "\"\""),
             difference,
             o(r.step)
         ));
