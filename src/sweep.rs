@@ -171,7 +171,7 @@ pub fn sweep(args: &SweepArgs) -> Result<Exit> {
         Some((s, from)) => run_shard(args, &id, &plan, s, from),
         None if args.resume => resume_all(args, &spec, &heat_maps, &id, &plan),
         None => {
-            check_dir(&args.out, &sweep::FILES)?;
+            check_outputs(&args.out, plan.iter().map(|r| r.name.as_str()), &heat_maps)?;
             let kernel = args.kernel.factory();
             let bar = progress::bar(plan.len(), "runs");
             let rows = sweep::run(&plan, &kernel, args.jobs, &|r| {
@@ -319,6 +319,15 @@ fn exit(rows: &[SweepRow]) -> Exit {
     }
 }
 
+/// Checks, before any run, that every file a sweep of the rows `names` and the heat maps
+/// `heat_maps` writes into `out` can be written there ([`sweep::output_entries`]); the rows'
+/// scene files where `out/scenes` exists already.
+fn check_outputs<'a>(out: &Path, names: impl Iterator<Item = &'a str>, heat_maps: &[heatmap::Output]) -> Result<()> {
+    let names: Vec<&str> = if out.join("scenes").is_dir() { names.collect() } else { Vec::new() };
+    let entries = sweep::output_entries(names, heat_maps);
+    check_dir(out, &entries.iter().map(String::as_str).collect::<Vec<_>>())
+}
+
 /// Runs the rows of `shard` still to do (all, or with `resume` those missing or failed in
 /// its file), saving its file as it goes; the file at the end and how many rows were kept.
 fn execute_shard(
@@ -366,7 +375,7 @@ fn resume_all(
     id: &SweepId,
     plan: &[PlannedRow],
 ) -> Result<Exit> {
-    check_dir(&args.out, &sweep::FILES)?;
+    check_outputs(&args.out, plan.iter().map(|r| r.name.as_str()), heat_maps)?;
     let folder = args.out.join("shards");
     let files = if folder.is_dir() { shard_file::files_in(&args.out)? } else { Vec::new() };
     let mut counts = std::collections::BTreeSet::new();
@@ -411,6 +420,7 @@ fn merge(m: &MergeArgs) -> Result<Exit> {
     let heat_maps = heatmap::parse_outputs(&m.heatmap)?;
     let spec = m.spec.as_ref().map(|f| sweep::Spec::load(f)).transpose()?;
     let merged = merge::merge(&m.dirs)?;
+    check_outputs(&out, merged.scenes.iter().map(|(name, _)| name.as_str()), &heat_maps)?;
     if let (Some(spec), Some(file)) = (&spec, &m.spec) {
         let plan = spec.plan();
         let same = ["generated", "reference"].iter().any(|k| SweepId::of(spec, &plan, k).plan_hash == merged.plan_hash);
@@ -445,9 +455,10 @@ fn slurm(args: &SweepArgs, spec: &sweep::Spec, plan: &[PlannedRow]) -> Result<Ex
     let exe = std::env::current_exe().context("cannot find the kanestop binary's path")?;
     let spec_file = spec.file.canonicalize().with_context(|| format!("cannot resolve {}", spec.file.display()))?;
     let out = std::path::absolute(&args.out).with_context(|| format!("cannot resolve {}", args.out.display()))?;
-    // What the jobs would find only after the array ran: the folder, and shard files there
-    // of another sweep or shard count.
-    check_dir(&out, &sweep::FILES)?;
+    // What the jobs would find only after the array ran: the folder and the merge's files in
+    // it, and shard files there of another sweep or shard count.
+    let heat_maps = heatmap::parse_outputs(&args.heatmap)?;
+    check_outputs(&out, plan.iter().map(|r| r.name.as_str()), &heat_maps)?;
     check_dir(&out.join("shards"), &[])?;
     let id = SweepId::of(spec, plan, args.kernel.0.name());
     kanestop_workflow::sweep::shard_file::check_joinable(&out, &id, shards)?;

@@ -261,6 +261,20 @@ fn exit_2_sweep_arguments_refused_before_anything_is_written() {
         .unwrap();
     assert!(o.status.code() == Some(2) && text(&o).1.contains("--jobs = 0: in [1, 1024]"), "{:?}", text(&o));
     assert!(!out.exists(), "report sensitivity --jobs 0 wrote {}", out.display());
+    // A folder where a heat map or a row's scene file goes is found before the runs (it was
+    // found after them, with the table and some files written).
+    for (blocked, args) in [
+        ("heatmap-stopping_time.svg", vec!["sweep", two.to_str().unwrap()]),
+        ("scenes/small-000.toml", vec!["sweep", small.to_str().unwrap()]),
+    ] {
+        let out = dir.join(format!("out-{}", blocked.len()));
+        std::fs::create_dir_all(out.join(blocked)).unwrap();
+        let o = kanestop().args(&args).arg("--out").arg(&out).output().unwrap();
+        let (stdout, stderr) = text(&o);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {stdout}{stderr}");
+        assert!(stderr.contains(&format!("{blocked} exists and is not a regular file")), "{stderr}");
+        assert!(stdout.is_empty() && !out.join("sweep.csv").exists(), "{args:?}: {stdout}");
+    }
 }
 
 #[test]

@@ -661,6 +661,11 @@ fn describe_checks(spec: &Spec) -> String {
     }
 }
 
+/// The file of heat map `o` in the sweep's folder: `heatmap-NAME.svg`.
+pub fn file_name(o: Output) -> String {
+    format!("heatmap-{}.svg", o.name())
+}
+
 /// Draws every heat map of `outputs` (nothing when the spec has no two numeric grid axes),
 /// then writes them into `dir` as `heatmap-NAME.svg`, each whole or not at all. Returns the
 /// files written.
@@ -670,7 +675,7 @@ pub fn write(spec: &Spec, rows: &[SweepRow], outputs: &[Output], dir: &Path) -> 
     }
     let mut charts = Vec::new();
     for &o in outputs {
-        let file = format!("heatmap-{}.svg", o.name());
+        let file = file_name(o);
         let svg = heat_map(spec, rows, o).map_err(|message| Error::Plot { chart: file.clone(), message })?;
         charts.push((dir.join(file), svg));
     }

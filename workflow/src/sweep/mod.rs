@@ -527,6 +527,17 @@ pub fn file_stem(name: &str) -> String {
 /// `heatmap-NAME.svg` beside them.
 pub const FILES: [&str; 5] = ["sweep.csv", "sweep.json", "sweep.units.csv", "sweep.parquet", "scenes/"];
 
+/// Every entry of a sweep's folder that its rows `names` and heat maps `heat_maps` are
+/// written to: [`FILES`], `scenes/NAME.toml` and `heatmap-NAME.svg`, for
+/// [`output::check_dir_entries`] before any run (a folder where a file goes was found only
+/// when the rows had run, and left some files written).
+pub fn output_entries<'a>(names: impl IntoIterator<Item = &'a str>, heat_maps: &[heatmap::Output]) -> Vec<String> {
+    let mut entries: Vec<String> = FILES.iter().map(|f| f.to_string()).collect();
+    entries.extend(heat_maps.iter().map(|&o| heatmap::file_name(o)));
+    entries.extend(names.into_iter().map(|n| format!("scenes/{}.toml", file_stem(n))));
+    entries
+}
+
 /// Every row's scene file: (row name, text), for [`write()`].
 pub fn scene_files(plan: &[PlannedRow]) -> Vec<(String, String)> {
     plan.iter().filter_map(|row| Some((row.name.clone(), scene_file(row)?))).collect()
