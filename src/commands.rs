@@ -257,13 +257,9 @@ pub fn plot(scenes: &[PathBuf], out: &Path, kernel: KernelFactory) -> Result<Run
 
 /// `report accuracy`: the work–precision study, printed and written into `out`.
 pub fn accuracy(scene: &Scene, out: &Path, repeats: usize, atol_ratio: f64, kernel: KernelFactory) -> Result<()> {
-    anyhow::ensure!(repeats >= 1, "--repeats {repeats}: must be at least 1");
-    anyhow::ensure!(
-        atol_ratio.is_finite() && atol_ratio > 0.0,
-        "--atol-ratio {atol_ratio}: must be finite and > 0 (atol = ratio × rtol)"
-    );
-    check_dir(out, &accuracy::FILES)?;
     let plan = accuracy::default_plan();
+    accuracy::check(&plan, atol_ratio, repeats)?;
+    check_dir(out, &accuracy::FILES)?;
     let bar = progress::bar(accuracy::run_count(&plan, repeats), "runs");
     let study = accuracy::study(scene, &plan, atol_ratio, kernel, repeats, &|what| {
         bar.set_message(what.to_string());

@@ -418,6 +418,11 @@ fn merge(m: &MergeArgs) -> Result<Exit> {
     });
     check_dir(&out, &sweep::FILES)?;
     let heat_maps = heatmap::parse_outputs(&m.heatmap)?;
+    anyhow::ensure!(
+        m.heatmap.is_empty() || heat_maps.is_empty() || m.spec.is_some(),
+        "--heatmap {} without --spec: a heat map's axes come from the sweep spec; give --spec SPEC",
+        m.heatmap.join(",")
+    );
     let spec = m.spec.as_ref().map(|f| sweep::Spec::load(f)).transpose()?;
     let merged = merge::merge(&m.dirs)?;
     check_outputs(&out, merged.scenes.iter().map(|(name, _)| name.as_str()), &heat_maps)?;

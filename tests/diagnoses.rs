@@ -17,7 +17,7 @@ fn runaway(t: f64, residual: Option<StaticResidual>) -> Failure {
         t,
         body: 19,
         kind: FailureKind::EnergyRunaway { drift: 0.056, limit: 0.05, scale: 2.25e6 },
-        initial_residual: residual,
+        initial_residual: residual.map(Box::new),
         last_limit: None,
     }
 }
@@ -88,7 +88,7 @@ fn the_limit_at_the_last_good_state_decides_the_advice() {
     let model = case1();
     let limit =
         |rk4_dt: f64| StabilityLimit { rk4_dt, lambda: nalgebra::Complex::new(-1.0, 400.0), body: 45, settled: true };
-    let at = |l: f64| describe(&model, &Failure { last_limit: Some(limit(l)), ..runaway(1.0, None) });
+    let at = |l: f64| describe(&model, &Failure { last_limit: Some(Box::new(limit(l))), ..runaway(1.0, None) });
     // dt = 2 ms: a limit of 1 ms, so 0.9 of it.
     let text = at(1.0e-3);
     assert!(
@@ -106,4 +106,35 @@ fn the_limit_at_the_last_good_state_decides_the_advice() {
         "{text}"
     );
     assert!(text.contains("reduce solver.dt (try 1.3e-4 s)") && !text.contains("stiffened"), "{text}");
+}
+
+/// A step-size collapse or stall of an adaptive method is not advised tighter tolerances (they
+/// shrink the steps sooner): the stiff method, or looser tolerances. A blow-up still is.
+#[test]
+fn a_collapse_of_the_adaptive_steps_is_advised_looser_tolerances() {
+    use kanestop_runtime::integrate::StepError;
+    use kanestop_runtime::scene::Method;
+    let collapse = FailureKind::Step(StepError::StepSizeCollapse {
+        t: 0.0,
+        h: 1e-20,
+        h_min: 1e-18,
+        error: 3.0,
+        component: 100,
+        reason: "error test".into(),
+    });
+    let mut model = case1();
+    (model.scene.solver.rtol, model.scene.solver.atol) = (1e-14, 1e-16);
+    for (method, advice) in [
+        (
+            Method::Dp5,
+            "use integrator = \"sdirk4\" (stiff), or loosen the tolerances (solver.rtol = 1e-14, solver.atol = 1e-16)",
+        ),
+        (Method::Sdirk4, "loosen the tolerances (solver.rtol = 1e-14, solver.atol = 1e-16), or reduce solver.dt"),
+    ] {
+        model.scene.solver.integrator = method;
+        let text = describe(&model, &Failure { kind: collapse.clone(), ..runaway(1.0, None) });
+        assert!(text.contains(advice) && !text.contains("tighten"), "{text}");
+        let text = describe(&model, &runaway(1.0, None));
+        assert!(text.contains("tighten solver.rtol"), "{text}");
+    }
 }

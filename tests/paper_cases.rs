@@ -172,7 +172,7 @@ fn accuracy_study_compares_methods_with_a_tight_reference() {
     assert_eq!(ran.len(), accuracy::run_count(&plan, 1), "{ran:?}");
     assert!(ran[0].starts_with("reference") && ran[2].starts_with("rk4"), "{ran:?}");
     let refused = accuracy::study(&scene, &plan, 0.0, &kernel, 1, &|_| {});
-    assert!(refused.unwrap_err().to_string().contains("atol ratio = 0"));
+    assert!(refused.unwrap_err().to_string().contains("--atol-ratio = 0: in ["));
     assert!((s.reference_stopping_time - 10.025).abs() < 0.01, "{}", s.reference_stopping_time);
     assert!(s.reference_error < 1e-4, "reference error {}", s.reference_error);
     assert_eq!(s.rows.len(), 5);

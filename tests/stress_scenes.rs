@@ -350,7 +350,7 @@ fn case_1_limit_and_the_steps_beyond_it_are_as_documented() {
     assert!(integrators_doc().contains(&quoted), "docs/integrators.md should say: {quoted}");
     // The failure carries RK4's limit at its last good state, below the step (the mode
     // stiffened), and the diagnostic advises a step within it; that step completes.
-    let last = f.last_limit.expect("RK4's blow-up carries the limit at its last good state");
+    let last = f.last_limit.as_deref().expect("RK4's blow-up carries the limit at its last good state");
     assert!(last.rk4_dt < 0.015 && last.rk4_dt < limit.rk4_dt / 2.0, "{last:?}");
     let advised = 0.9 * last.rk4_dt;
     let text = describe(&model(&blown_scene()), f);

@@ -268,6 +268,13 @@ fn a_merge_refuses_another_sweep_a_missing_shard_and_a_row_twice() {
     assert!(o.status.code() == Some(2) && stderr(&o).contains("not JSON"), "{}", stderr(&o));
     let o = merge(&[&temp_dir("refuse-empty")]);
     assert!(o.status.code() == Some(2) && stderr(&o).contains("no shard file in"), "{}", stderr(&o));
+    // A heat map asked of a merge without the spec that gives its axes (it was ignored).
+    let o = run(&["sweep", "merge", s(&out), "--heatmap", "stopping_time"], &[]);
+    assert!(
+        o.status.code() == Some(2) && stderr(&o).contains("--heatmap stopping_time without --spec"),
+        "{}",
+        stderr(&o)
+    );
 }
 
 #[test]

@@ -18,7 +18,7 @@ use std::path::{Path, PathBuf};
 
 use kanestop_runtime::kernel::Kernel;
 use kanestop_runtime::model::Model;
-use kanestop_runtime::scene::{Method, Scene};
+use kanestop_runtime::scene::{fmt_value, Method, Scene, MIN_ATOL};
 use kanestop_runtime::simulate::{self, FailureKind, RunResult, Stop};
 use serde::{Deserialize, Serialize};
 
@@ -158,6 +158,36 @@ pub fn default_plan() -> Vec<Setting> {
         .collect()
 }
 
+/// The most timed repetitions of a setting: the median of more says nothing new.
+pub const MAX_REPEATS: usize = 100;
+
+/// Checks a study's arguments before any run: `repeats` in [1, [`MAX_REPEATS`]], and
+/// `atol_ratio` such that every adaptive setting's atol (ratio × rtol) is a scene's, in
+/// [[`MIN_ATOL`], 1].
+pub fn check(plan: &[Setting], atol_ratio: f64, repeats: usize) -> Result<()> {
+    if !(1..=MAX_REPEATS).contains(&repeats) {
+        return Err(Error::Argument {
+            name: "--repeats",
+            value: repeats.to_string(),
+            expected: format!("in [1, {MAX_REPEATS}]"),
+        });
+    }
+    let rtols = plan.iter().filter(|s| s.0 != Method::Rk4).map(|s| s.2);
+    let (lo, hi) = rtols.fold((f64::INFINITY, 0.0f64), |(lo, hi), r| (lo.min(r), hi.max(r)));
+    let (min, max) = if hi > 0.0 { (MIN_ATOL / lo, 1.0 / hi) } else { (0.0, f64::INFINITY) };
+    if !(atol_ratio.is_finite() && atol_ratio > 0.0 && (min..=max).contains(&atol_ratio)) {
+        return Err(Error::Argument {
+            name: "--atol-ratio",
+            value: fmt_value(atol_ratio),
+            expected: format!(
+                "in [{min:e}, {max:e}] (atol = ratio × rtol, within a scene's [{MIN_ATOL:e}, 1] for the study's rtol \
+                 {lo:e} to {hi:e})"
+            ),
+        });
+    }
+    Ok(())
+}
+
 /// Runs the study on `scene` over `plan` with kernels from `kernel`; the adaptive runs take
 /// atol = `atol_ratio` × rtol (the reference always [`DEFAULT_ATOL_RATIO`]); `repeats`
 /// timed repetitions per setting. `progress` is called after each run with what ran (e.g.
@@ -170,16 +200,7 @@ pub fn study(
     repeats: usize,
     progress: &dyn Fn(&str),
 ) -> Result<AccuracyStudy> {
-    if !(atol_ratio.is_finite() && atol_ratio > 0.0) {
-        return Err(Error::Argument {
-            name: "atol ratio",
-            value: atol_ratio.to_string(),
-            expected: "must be finite and > 0 (atol = ratio × rtol)".into(),
-        });
-    }
-    if repeats == 0 {
-        return Err(Error::Argument { name: "repeats", value: "0".into(), expected: "must be at least 1".into() });
-    }
+    check(plan, atol_ratio, repeats)?;
     let reference_run = |rtol: f64| {
         let label = format!("reference dp5 {rtol:e}");
         run(&configured(scene, Method::Dp5, 0.02, rtol, DEFAULT_ATOL_RATIO), kernel, 1, &|| progress(&label))

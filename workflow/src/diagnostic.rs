@@ -4,6 +4,7 @@
 //! ("cable stage 1 (B_18, 27.7 kg, 2.00 m)"), words what was detected and advises which
 //! scene field or flag to change for the method the scene uses.
 
+use kanestop_runtime::integrate::StepError;
 use kanestop_runtime::model::Model;
 use kanestop_runtime::scene::{Method, MAX_STEPS};
 use kanestop_runtime::simulate::{Failure, FailureKind, StaticResidual, SPIKE_FACTOR};
@@ -32,12 +33,12 @@ pub fn describe(model: &Model, failure: &Failure) -> String {
             };
             // Without water the ship falls freely from the start: its residual is that fall,
             // not a geometry to fix ([`advice`] says so).
-            let (cause, suggestion) = match failure.initial_residual {
+            let (cause, suggestion) = match failure.initial_residual.as_deref() {
                 Some(r)
                     if model.scene.environment.water
                         && r.line.0.max(r.top.0) > NOT_STATIC * model.scene.environment.gravity =>
                 {
-                    not_static(model, failure, swinging, &r)
+                    not_static(model, failure, swinging, r)
                 }
                 _ => advice(model, failure, swinging),
             };
@@ -177,7 +178,7 @@ fn chatter(model: &Model, t: f64, first_rough: u64) -> (String, String) {
 fn rk4_advice(failure: &Failure, dt: f64, end_time: f64, mode: &str, kept: &str) -> (String, String) {
     let cause = format!("the explicit step dt = {dt} s is beyond the stability limit of {mode}");
     let last = format!("the last good state (t = {:.3} s)", (failure.t - dt).max(0.0));
-    match failure.last_limit {
+    match failure.last_limit.as_deref() {
         Some(l) if l.rk4_dt < dt => {
             let cause = format!(
                 "{cause}, which stiffened during the run: RK4's limit at {last} is {:.3e} s (its stiffest hinge at \
@@ -265,11 +266,27 @@ fn advice(model: &Model, failure: &Failure, k: usize) -> (String, String) {
     } else {
         "it failed in the first interval, so only the initial state is kept".to_string()
     };
+    let shrank =
+        matches!(failure.kind, FailureKind::Step(StepError::StepSizeCollapse { .. } | StepError::TooManySteps { .. }));
+    let tolerances = format!(
+        "the tolerances (solver.rtol = {}, solver.atol = {})",
+        kanestop_runtime::scene::fmt_value(solver.rtol),
+        kanestop_runtime::scene::fmt_value(solver.atol)
+    );
     let (cause, suggestion) = match solver.integrator {
         Method::Rk4 => rk4_advice(failure, dt, solver.end_time, &mode, &kept),
+        // The steps shrank to nothing: tighter tolerances would only shrink them sooner.
+        Method::Dp5 if shrank => (
+            format!("the error-controlled steps could not follow {mode}"),
+            format!("use integrator = \"sdirk4\" (stiff), or loosen {tolerances}; {kept}"),
+        ),
         Method::Dp5 => (
             format!("the error-controlled steps could not follow {mode}"),
             format!("tighten solver.rtol (now {}) or use integrator = \"sdirk4\"; {kept}", solver.rtol),
+        ),
+        Method::Sdirk4 if shrank => (
+            format!("the implicit method's Newton iterations or error control failed on {mode}"),
+            format!("loosen {tolerances}, or reduce solver.dt (now {dt} s, its longest step); {kept}"),
         ),
         Method::Sdirk4 => (
             format!("the implicit method's Newton iterations or error control failed on {mode}"),

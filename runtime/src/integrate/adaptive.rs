@@ -164,8 +164,8 @@ pub enum StepError {
     /// have to go below the floor.
     #[error(
         "step-size collapse at t = {t:.6} s: the step fell to {h:.3e} s, below the floor {h_min:.3e} s \
-         ({reason}; scaled error {error:.3e}, largest in state component {component}); the problem is \
-         stiff or singular here: try the stiff method or looser tolerances"
+         ({reason}; scaled error {error:.3e}, largest in state component {component}): the problem is \
+         stiff or singular here, or the tolerances tighter than the steps can meet"
     )]
     StepSizeCollapse {
         /// Start of the step, s.
@@ -186,8 +186,8 @@ pub enum StepError {
     /// without collapsing (a stiff term the method resolves step by tiny step).
     #[error(
         "step-size stall at t = {t:.6} s: {steps} accepted steps and {rhs} right-hand sides, the last step \
-         {h:.3e} s long, did not reach t = {t1:.6} s; the problem is stiff or singular here: try the stiff \
-         method or looser tolerances, and check the scene's coefficients"
+         {h:.3e} s long, did not reach t = {t1:.6} s: the problem is stiff or singular here, or the tolerances \
+         tighter than the steps can meet"
     )]
     TooManySteps {
         /// Where the steps had reached, s.

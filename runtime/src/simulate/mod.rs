@@ -67,7 +67,7 @@ pub fn run_checked_cancellable(
     result.initial_residual = residual;
     if let Stop::Failed(f) = &mut result.stop {
         if failure::is_early(f.t, model.scene.solver.dt) {
-            f.initial_residual = residual;
+            f.initial_residual = residual.map(Box::new);
         }
     }
     Ok(result)

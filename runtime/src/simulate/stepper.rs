@@ -409,7 +409,7 @@ impl<'a> Stepper<'a> {
         );
         if self.model.scene.solver.integrator == Method::Rk4 && blow_up && self.y.iter().all(|v| v.is_finite()) {
             let before = self.m.dynamics.evaluations();
-            f.last_limit = stability::limit(&mut self.m.dynamics, &self.y, &AtomicBool::new(false)).ok();
+            f.last_limit = stability::limit(&mut self.m.dynamics, &self.y, &AtomicBool::new(false)).ok().map(Box::new);
             self.evaluations0 += self.m.dynamics.evaluations() - before;
         }
         f
