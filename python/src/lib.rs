@@ -398,7 +398,7 @@ fn interruptible<T: Send>(py: Python<'_>, work: impl FnOnce(&AtomicBool) -> Opti
 /// The sensitivity study of `kanestop report sensitivity` (central differences of the
 /// stopping time, distance and peak tension in each continuous parameter's logarithm,
 /// docs/sweeps.md) as its `sensitivity.json` record in JSON text. The runs release the GIL;
-/// Ctrl-C waits for the study to end. A bad step or job count, or a base scene that fails, is
+/// Ctrl-C stops them at their next step and raises KeyboardInterrupt. A bad step or job count, or a base scene that fails, is
 /// a ValueError (the latter with the command line's message).
 #[pyfunction]
 #[pyo3(signature = (scene, step=0.05, jobs=None))]
@@ -410,10 +410,10 @@ fn _sensitivity(py: Python<'_>, scene: &PyScene, step: f64, jobs: Option<usize>)
     }
     sweep::check_jobs(jobs)?;
     let scene = scene.inner.clone();
-    let study = interruptible(py, move |_| {
+    let study = interruptible(py, move |cancel| {
         let probes = sensitivity::probes(&scene, step);
         let kernel = kernels::factory(kernels::KernelChoice::Generated);
-        Some(sensitivity::study(&scene, step, &probes, &kernel, jobs, &|| {}))
+        sensitivity::study_cancellable(&scene, step, &probes, &kernel, jobs, &|| {}, cancel)
     })?
     .map_err(|e| workflow_error(py, e))?;
     serde_json::to_string(&study).map_err(|e| PyValueError::new_err(e.to_string()))

@@ -215,8 +215,16 @@ pub fn _sweep(
                 )));
             }
             let rows = row_list(py, rows)?;
-            // A row's value on a path a keyword sets would silently override the keyword.
+            let base = spec.base.to_value();
             for (i, row) in rows.iter().enumerate() {
+                // A path that names no field of the scene is found before any run, as an
+                // axis's is (its rows came back invalid after the others had run).
+                let mut value = base.clone();
+                for (path, v) in row {
+                    kanestop_runtime::overrides::set(&mut value, path, v.clone())
+                        .map_err(|e| PyValueError::new_err(format!("row {i}: {e}")))?;
+                }
+                // A row's value on a path a keyword sets would silently override the keyword.
                 if let Some((path, v)) = row.iter().find(|(p, _)| solver.iter().any(|(k, _)| k == p)) {
                     let keyword = path.trim_start_matches("solver.");
                     return Err(PyValueError::new_err(format!(

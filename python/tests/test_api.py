@@ -279,6 +279,23 @@ def test_ctrl_c_stops_a_sweep_s_running_rows(case01: kanestop.Scene) -> None:
     assert time.perf_counter() - start < 10.0
 
 
+def test_ctrl_c_stops_a_sensitivity_study(case01: kanestop.Scene) -> None:
+    """As a run: its base run of two million steps, interrupted after 0.3 s (the study
+    waited for all of its runs; docs/python.md)."""
+    import _thread
+    import threading
+    import time
+
+    slow = case01.with_overrides({"solver.dt": 1e-5, "solver.output_interval": 0.1})
+    timer = threading.Timer(0.3, _thread.interrupt_main)
+    start = time.perf_counter()
+    timer.start()
+    with pytest.raises(KeyboardInterrupt):
+        kanestop.sensitivity(slow, jobs=2)
+    timer.join()
+    assert time.perf_counter() - start < 10.0
+
+
 def test_runs_release_the_gil(case01: kanestop.Scene) -> None:
     """A thread that needs the GIL keeps running while a run integrates.
 
@@ -330,3 +347,14 @@ def test_empty_sweep_cells_are_none_and_numeric_columns_are_float(case01: kanest
     assert df["stopping_time"].dtype == np.float64 and df["stopping_time"].isna().all()
     assert df["peak_proof_utilisation"].dtype == np.float64
     assert df["index"].dtype == np.int64 and df["status"].tolist() == ["end time", "invalid"]
+
+
+def test_a_failed_check_is_on_the_result(case01: kanestop.Scene) -> None:
+    """A run that stops but fails a [checks] limit is not `failed`: `checks_pass` says so."""
+    s = case01.with_overrides({"checks.max_anchor_drag": 1e-3, "solver.end_time": 2.0})
+    r = kanestop.run(s)
+    assert not r.failed and r.checks_pass is False
+    assert [c["name"] for c in r.checks] == ["max_anchor_drag"] and r.checks[0]["pass"] is False
+    assert "checks FAIL" in repr(r) and "t_end=2 " not in repr(r) and "t_end=2>" in repr(r)
+    plain = kanestop.run(case01, end_time=0.02)
+    assert plain.checks == [] and plain.checks_pass is True and "checks pass" in repr(plain)

@@ -117,9 +117,23 @@ def test_empty_text_cells_are_none_and_empty_numbers_nan(case01: kanestop.Scene)
 
 
 def test_a_bad_sweep_row_is_a_row_not_an_exception(case01: kanestop.Scene) -> None:
-    df = kanestop.sweep(case01, [{"ship.mass": NAN}, {"ship.mass": "x"}, {"ship.nope": 1}], end_time=0.1)
-    assert list(df["status"]) == ["invalid"] * 3
+    df = kanestop.sweep(case01, [{"ship.mass": NAN}, {"ship.mass": "x"}], end_time=0.1)
+    assert list(df["status"]) == ["invalid"] * 2
     assert all(isinstance(e, str) and e for e in df["message"])
+
+
+def test_a_row_path_that_names_no_field_is_refused_before_any_run(case01: kanestop.Scene) -> None:
+    calls = []
+    with pytest.raises(ValueError, match=r"row 1: ship.mas: no field `mas` here \(valid: .*mass"):
+        kanestop.sweep(case01, [{"ship.mass": 4e5}, {"ship.mas": 4e5}], end_time=0.1, progress=lambda d, t: calls.append(d))
+    assert calls == []
+
+
+def test_the_columns_do_not_depend_on_which_rows_ran(case01: kanestop.Scene) -> None:
+    pytest.importorskip("pandas")
+    ran = kanestop.sweep(case01, [{"ship.mass": 5e5}], end_time=0.02)
+    invalid = kanestop.sweep(case01, [{"ship.mass": -1.0}], end_time=0.02)
+    assert list(invalid.columns) == list(ran.columns) and "work_drag" in ran.columns
 
 
 def test_the_state_of_eval_takes_numpy(case01: kanestop.Scene) -> None:

@@ -276,3 +276,18 @@ def test_a_solver_keyword_on_a_path_the_spec_sweeps_is_refused(case01: kanestop.
     # Explicit rows on a path a keyword sets: refused too (the row used to win silently).
     with pytest.raises(ValueError, match=r"row 1: solver.end_time = 0.2: the keyword end_time= sets it"):
         kanestop.sweep(case01, [{"ship.mass": 5e5}, {"solver.end_time": 0.2}], end_time=0.1)
+
+
+def test_a_design_table_is_rows(case01: kanestop.Scene) -> None:
+    pd = pytest.importorskip("pandas")
+    design = pd.DataFrame({"ship.mass": [4e5, 6e5], "anchor.mass": [float("nan"), 5e4]})
+    df = kanestop.sweep(case01, design, end_time=0.05)
+    rows = kanestop.sweep(case01, [{"ship.mass": 4e5}, {"ship.mass": 6e5, "anchor.mass": 5e4}], end_time=0.05)
+    keep = ["ship.mass", "anchor.mass", "status", "peak_tension"]
+    assert df[keep].equals(rows[keep]) and list(df["status"]) == ["end time"] * 2
+
+
+def test_a_spec_dict_without_base_is_told_so() -> None:
+    with pytest.raises(kanestop.SpecError) as info:
+        kanestop.sweep({"axis": [{"path": "ship.mass", "values": [1e5]}]})
+    assert info.value.field == "base" and "(missing)" in str(info.value)

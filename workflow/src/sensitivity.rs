@@ -12,6 +12,8 @@
 //! against the base ([`Difference`]). Which scenes run is decided before any run, from the
 //! scenes' checks alone ([`probes`]).
 
+use std::sync::atomic::{AtomicBool, Ordering};
+
 use kanestop_runtime::model::Model;
 use kanestop_runtime::scene::{Scene, SceneError};
 use kanestop_runtime::simulate::{self, FailureKind, Stop};
@@ -131,6 +133,9 @@ pub struct Study {
     pub rows: Vec<Sensitivity>,
     /// The runs made: the base and one or two per parameter.
     pub runs: usize,
+    /// The output the rows are ranked by: `stopping_time`, or `peak_tension` when the base
+    /// run has no stop to move ([`ranked_by`]).
+    pub ranked_by: &'static str,
 }
 
 /// Every continuous physical parameter of `scene`: (dotted path, value), in file order.
@@ -259,17 +264,36 @@ pub fn study(
     jobs: Option<usize>,
     done: &(dyn Fn() + Sync),
 ) -> Result<Study> {
-    check_step(step)?;
+    study_cancellable(scene, step, probes, kernel, jobs, done, &AtomicBool::new(false)).expect("nothing cancels it")
+}
+
+/// [`study`], stopped once `cancel` is set (Python's Ctrl-C): the runs going stop at their
+/// next step, those not started are not, and the study is None.
+pub fn study_cancellable(
+    scene: &Scene,
+    step: f64,
+    probes: &[Probe],
+    kernel: KernelFactory,
+    jobs: Option<usize>,
+    done: &(dyn Fn() + Sync),
+    cancel: &AtomicBool,
+) -> Option<Result<Study>> {
+    if let Err(e) = check_step(step) {
+        return Some(Err(e));
+    }
     // The base first: when it fails, no probe is worth running.
     let base_failed = |message: String, refused: bool| crate::Error::BaseRun { message, refused };
-    let model = Model::new(scene).map_err(|e| base_failed(e.to_string(), true))?;
+    let model = match Model::new(scene) {
+        Ok(m) => m,
+        Err(e) => return Some(Err(base_failed(e.to_string(), true))),
+    };
     // Checked as `run` checks it: a failing base gets the same diagnosis.
-    let result = simulate::run_checked(&model, kernel(&model), kernel(&model));
+    let result = simulate::run_checked_cancellable(&model, kernel(&model), kernel(&model), cancel).ok()?;
     let summary = RunSummary::of(&model, &result);
     done();
     if let Some(f) = &summary.failure {
         let refused = matches!(&result.stop, Stop::Failed(f) if matches!(f.kind, FailureKind::StepAboveLimit { .. }));
-        return Err(base_failed(f.message.clone(), refused));
+        return Some(Err(base_failed(f.message.clone(), refused)));
     }
     let base = outputs(&summary);
     let scenes: Vec<&Scene> = probes.iter().flat_map(|p| &p.scenes).collect();
@@ -277,8 +301,11 @@ pub fn study(
     // parameter's), only its diagnostic; one that ran to the end time without stopping the
     // ship gives none for the stop either, but a bound ([`not_stopped`]).
     let runs = parallel::map_jobs(jobs, &scenes, |s| {
+        if cancel.load(Ordering::Relaxed) {
+            return Err("cancelled".to_string());
+        }
         let r = Model::new(s).map_err(|e| e.to_string()).and_then(|model| {
-            let result = simulate::run(&model, kernel(&model));
+            let result = simulate::run_cancellable(&model, kernel(&model), cancel).map_err(|_| "cancelled")?;
             let summary = RunSummary::of(&model, &result);
             match &summary.failure {
                 Some(f) => Err(format!("failed: {}", f.message)),
@@ -287,7 +314,12 @@ pub fn study(
         });
         done();
         r
-    })?;
+    });
+    let runs = match runs {
+        _ if cancel.load(Ordering::Relaxed) => return None,
+        Ok(runs) => runs,
+        Err(e) => return Some(Err(e)),
+    };
     let mut next = 0;
     let base_stop = base[0];
     let mut rows: Vec<Sensitivity> = probes
@@ -322,7 +354,8 @@ pub fn study(
     let ranked = ranked_by(&base);
     let key = |r: &Sensitivity| ranked(r).map(f64::abs).unwrap_or(-1.0);
     rows.sort_by(|a, b| key(b).total_cmp(&key(a)));
-    Ok(Study { scene: scene.meta.name.clone(), step, base, rows, runs: 1 + scenes.len() })
+    let ranked_by = if ranks_by_stop(&base) { "stopping_time" } else { "peak_tension" };
+    Some(Ok(Study { scene: scene.meta.name.clone(), step, base, rows, runs: 1 + scenes.len(), ranked_by }))
 }
 
 /// A perturbed run's outputs, or why it gave none (its scene refused, the run failed).
@@ -393,12 +426,18 @@ fn not_stopped(
     ))
 }
 
+/// Whether the base run's outputs have a stop to move, by which the rows are then ranked: a
+/// ship that did not stop has none, and one at rest at the start stopped at t = 0, where
+/// nothing moves it either.
+fn ranks_by_stop(base: &[Option<f64>; 3]) -> bool {
+    base[0].is_some_and(|t| t > 0.0)
+}
+
 /// The effect the rows are ranked by, given the base run's outputs: on the stopping time, or
 /// on the peak tension when the base did not stop (no stopping time to move: every stop
 /// effect is none, and a ranking by them would be the file order).
 pub fn ranked_by(base: &[Option<f64>; 3]) -> fn(&Sensitivity) -> Option<f64> {
-    // A ship at rest at the start has stopped at t = 0: nothing moves its stop either.
-    if base[0].is_some_and(|t| t > 0.0) {
+    if ranks_by_stop(base) {
         |r| r.stopping_time.or(r.stopping_time_bound)
     } else {
         |r| r.peak_tension
@@ -451,7 +490,7 @@ pub fn table(study: &Study) -> String {
         "sensitivity of {} (central differences at p·(1 ± {})): d(output)/d(ln p)\n{:<4} {:<42} {:>16} {:>7} {:>12} {:>12} {:>12}\n",
         study.scene, study.step, "rank", "parameter", "value", "step", "stop (s)", "dist (m)", "peak (kN)"
     );
-    if !study.base[0].is_some_and(|t| t > 0.0) {
+    if !ranks_by_stop(&study.base) {
         out.push_str(
             "note: the base run has no stop to move (it did not stop by its end time, or its ship was at rest at the \
              start): ranked by the effect on the peak tension\n",
@@ -535,6 +574,25 @@ mod tests {
         Scene::from_toml(kanestop_runtime::paper::DEFAULT_SCENE, "case01.toml").unwrap()
     }
 
+    /// Cancelled once the base has run, the study runs no probe and is None; not cancelled,
+    /// it is the study.
+    #[test]
+    fn a_cancelled_study_runs_no_more_probes() {
+        let mut scene = case1();
+        scene.solver.end_time = 0.02;
+        let probes = probes(&scene, 0.05);
+        let kernel = crate::kernels::factory(crate::kernels::KernelChoice::Generated);
+        let (cancel, runs) = (AtomicBool::new(false), std::sync::atomic::AtomicUsize::new(0));
+        let done = || {
+            runs.fetch_add(1, Ordering::Relaxed);
+            cancel.store(true, Ordering::Relaxed);
+        };
+        assert!(study_cancellable(&scene, 0.05, &probes, &kernel, Some(1), &done, &cancel).is_none());
+        assert_eq!(runs.load(Ordering::Relaxed), 1, "only the base ran");
+        let whole = study_cancellable(&scene, 0.05, &probes, &kernel, Some(1), &|| {}, &AtomicBool::new(false));
+        assert!(whole.is_some_and(|s| s.is_ok_and(|s| s.runs > 1)));
+    }
+
     fn row(parameter: &str, stopping_time: Option<f64>) -> Sensitivity {
         Sensitivity {
             parameter: parameter.into(),
@@ -584,6 +642,7 @@ mod tests {
             base: [Some(19.8), Some(27.0), Some(4e5)],
             rows: vec![heavier, row("rod.radius", Some(0.1))],
             runs: 5,
+            ranked_by: "stopping_time",
         };
         let sigmas = [("ship.mass".to_string(), 0.1), ("rod.radius".to_string(), 0.2), ("nope".to_string(), 0.1)];
         let b = band(&study, &sigmas);

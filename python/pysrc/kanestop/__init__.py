@@ -19,6 +19,7 @@ See docs/python.md for the API, the channel names and the Dask example.
 from __future__ import annotations
 
 import json
+import math
 import os
 import warnings
 from typing import Any, Callable, Dict, Iterable, List, Mapping, Optional, Sequence, Tuple, Union
@@ -238,6 +239,21 @@ class Result:
         t = self.summary.get("stopping_time")
         return None if t is None else float(t)
 
+    @property
+    def checks_pass(self) -> Optional[bool]:
+        """Whether every design check passed (the break loads, and the scene's ``[checks]``):
+        ``summary["checks_pass"]``, None where no check was made (a run that failed, or was
+        refused, with no break load exceeded). ``False`` is the command line's exit code 4;
+        a run that did not fail can still fail its checks (``failed`` is False)."""
+        v = self.summary.get("checks_pass")
+        return None if v is None else bool(v)
+
+    @property
+    def checks(self) -> List[Dict[str, Any]]:
+        """The records of the scene's ``[checks]`` (``{name, value, limit, joint, pass}``), an
+        empty list for a scene without ``[checks]`` (``summary["checks"]`` is then absent)."""
+        return list(self.summary.get("checks", []))
+
     def __getstate__(self) -> Dict[str, Any]:
         return {
             "summary": self.summary,
@@ -264,9 +280,15 @@ class Result:
 
     def __repr__(self) -> str:
         s = self.summary
+
+        def short(v: Any) -> str:
+            return "None" if v is None else f"{v:.6g}"
+
+        checks = {True: " checks pass", False: " checks FAIL", None: ""}[self.checks_pass]
+        kind = f" ({self.failure['kind']})" if self.failure else ""
         return (
-            f"<kanestop.Result {s.get('scene')!r} {s.get('status')} "
-            f"stopping_time={s.get('stopping_time')} t_end={s.get('t_end')}>"
+            f"<kanestop.Result {s.get('scene')!r} {s.get('status')}{kind}{checks} "
+            f"stopping_time={short(s.get('stopping_time'))} t_end={short(s.get('t_end'))}>"
         )
 
 
@@ -369,11 +391,14 @@ def sensitivity(
     Returns ``sensitivity.csv``'s table: a DataFrame (pandas installed) with the columns
     ``rank, parameter, value, d_stopping_time, d_stopping_distance, d_peak_tension,
     message, difference, step`` and ``df.attrs`` holding ``scene``, the base run's
-    ``base`` outputs, the ``runs`` made and each column's ``units`` (as
+    ``base`` outputs, the ``runs`` made, ``ranked_by`` (``stopping_time``, or
+    ``peak_tension`` when the base run has no stop to move, as the command line's note
+    says) and each column's ``units`` (as
     ``sensitivity.units.csv``; ``value`` is in its parameter's own unit); else a list of
     dicts. With ``records=True``:
     ``sensitivity.json``'s record as a dict. The runs release the GIL, ``jobs`` at a time
-    (every core when None); Ctrl-C waits for the study to end. A step outside
+    (every core when None); Ctrl-C stops them at their next step and raises
+    ``KeyboardInterrupt``. A step outside
     [1e-6, 0.5), ``jobs`` outside [1, MAX_JOBS], or a base scene that fails raises
     ``ValueError`` (the last with the command line's diagnosis); a ``jobs`` that is no whole
     number (a bool, a float) or a bool ``step``, ``TypeError``.
@@ -402,7 +427,9 @@ def sensitivity(
         return rows
     df = _with_words(pd, pd.DataFrame(rows, columns=list(rows[0]) if rows else None), {"parameter", "message", "difference"})
     base = dict(zip(("stopping_time", "stopping_distance", "peak_tension"), study["base"]))
-    df.attrs.update({"scene": study["scene"], "step": study["step"], "base": base, "runs": study["runs"]})
+    df.attrs.update(
+        {"scene": study["scene"], "step": study["step"], "base": base, "runs": study["runs"], "ranked_by": study["ranked_by"]}
+    )
     df.attrs["units"] = dict(_sensitivity_units())
     return df
 
@@ -461,6 +488,10 @@ def _is_spec_file(path: PathLike) -> bool:
     return keys is not None and bool({"base", "axis"} & set(keys))
 
 
+# The fields a sweep spec has and a scene does not (both have `checks` and `solver`).
+_SPEC_ONLY_FIELDS = {"axis", "sampling", "uncertain", "set"}
+
+
 def _spec(spec: SweepSpec, rows: Optional[Rows], base_dir: Optional[PathLike]) -> "Tuple[Spec, Optional[Rows]]":
     """The spec, and the rows when a scene needs them (``ValueError`` when none are given)."""
     if base_dir is not None and not (isinstance(spec, Mapping) and "base" in spec):
@@ -478,7 +509,9 @@ def _spec(spec: SweepSpec, rows: Optional[Rows], base_dir: Optional[PathLike]) -
         if rows is None and len(the_spec) == 1 and "grid" not in spec:
             raise ValueError("sweep spec: no rows (give rows=[{...}, …] or grid)")
         return the_spec, rows
-    if isinstance(spec, Mapping) and "base" in spec:
+    # A dict with a spec's own fields is a spec, whose missing base Spec.from_dict names (it
+    # was taken for a scene's tables, and told to give rows).
+    if isinstance(spec, Mapping) and ("base" in spec or _SPEC_ONLY_FIELDS & set(spec)):
         return Spec.from_dict(dict(spec), base_dir=base_dir), rows
     if isinstance(spec, (Scene, str, os.PathLike, Mapping)):
         if rows is None:
@@ -526,7 +559,8 @@ def sweep(
     "values": [...]}], "sampling": {...}, "uncertain": [...], "checks": {...}}``; a ``base``
     path is relative to ``base_dir``, default the current directory). Or, with ``rows``, a
     scene (``Scene``, path or dict of its tables) and one dict of overrides per row
-    (``[{"ship.mass": 1e6}, …]``; the rows may set different paths).
+    (``[{"ship.mass": 1e6}, …]``; the rows may set different paths), or a pandas DataFrame
+    whose columns are the paths (an empty cell leaves its path at the base's value).
 
     The solver keywords are set on the base scene for every row, as the spec's ``[solver]``
     would (``SceneError`` when out of range; ``SpecError`` on a path the spec sweeps, whose
@@ -547,6 +581,13 @@ def sweep(
     jobs = _jobs(jobs)
     the_spec, the_rows = _spec(spec, rows, base_dir)
     plan: Optional[List[Dict[str, Any]]] = None
+    if the_rows is not None and hasattr(the_rows, "to_dict") and hasattr(the_rows, "columns"):
+        # A pandas design table: a row per DataFrame row, a path per column; an empty cell
+        # (NaN) leaves its path at the base scene's value.
+        the_rows = [
+            {k: v for k, v in r.items() if not (isinstance(v, float) and math.isnan(v))}
+            for r in the_rows.to_dict("records")
+        ]
     if the_rows is not None:
         plan = []
         for i, r in enumerate(the_rows):

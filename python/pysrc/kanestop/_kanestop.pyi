@@ -48,13 +48,16 @@ class Scene:
         ``scenes/paper/caseNN.toml``, no file needed. Raises ValueError outside 1–19."""
     @staticmethod
     def from_dict(d: Mapping[str, Any], name: str = "<dict>") -> "Scene":
-        """A scene from a dict of its tables (as ``to_dict`` gives). Raises SceneError."""
+        """A scene from a dict of its tables (as ``to_dict`` gives). Raises SceneError.
+        ``name`` names the source in errors, not the scene: ``meta.name`` does (set it with
+        ``with_overrides({"meta.name": …})``)."""
     @staticmethod
     def from_toml(
         text: str, name: str = "<string>", base_dir: Optional[Union[str, "os.PathLike[str]"]] = None
     ) -> "Scene":
         """A scene from TOML text; an ``extends`` is resolved from ``base_dir`` (default the
-        current directory), as ``load`` resolves it from the file's folder. Raises SceneError."""
+        current directory), as ``load`` resolves it from the file's folder. Raises SceneError.
+        ``name`` names the source in errors, not the scene: ``meta.name`` does."""
     def with_overrides(self, overrides: Mapping[str, Any]) -> "Scene":
         """The same scene with each dotted path set (``{"ship.mass": 1e6}``), checked."""
     def to_dict(self) -> Dict[str, Any]:

@@ -298,8 +298,15 @@ struct Layout<'a> {
 
 fn layout(rows: &[SweepRow]) -> Layout<'_> {
     let paths = input_paths(rows);
-    let works: Vec<String> =
-        rows.iter().find_map(|r| r.summary.as_ref()).map(|s| s.work.keys().cloned().collect()).unwrap_or_default();
+    // Every summary reports every term (`RunSummary::work`): the columns are there whether or
+    // not a row ran (a sweep of invalid rows had none, and a DataFrame changed its shape).
+    let works: Vec<String> = kanestop_runtime::energy::Energy::default()
+        .reported_work()
+        .iter()
+        .map(|(name, _)| name.to_string())
+        .collect::<std::collections::BTreeSet<_>>()
+        .into_iter()
+        .collect();
     let checks: Vec<String> = rows
         .iter()
         .find_map(|r| r.summary.as_ref().filter(|s| !s.checks.is_empty()))
