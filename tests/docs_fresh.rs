@@ -43,7 +43,8 @@ fn render(scene: &str, design: &str) -> String {
          rejected, and every value is checked (finite, in range) before a run; an error names the\n\
          file, the field, the value and the valid range. Every positive or non-negative\n\
          quantity but `solver.end_time` is at most 1e15 in its SI unit (far beyond any\n\
-         mooring; larger values overflow the equations' products). The paper's 19 cases are in\n\
+         mooring; larger values overflow the equations' products), and every positive one at\n\
+         least 1e-15 (smaller ones underflow them). The paper's 19 cases are in\n\
          `scenes/paper/`, generated from `runtime/src/paper.rs`.\n\n\
          A scene can be a few lines over another: `extends = \"base.toml\"` (a path relative to the\n\
          file; chains allowed) takes every table of the base and lays the file's own over it, key\n\

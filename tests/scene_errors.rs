@@ -288,3 +288,15 @@ fn a_table_of_the_wrong_type_is_called_a_table_not_a_rust_type() {
     assert_mentions(&e, &["expected a table"]);
     assert!(!e.contains("struct"), "{e:?}");
 }
+
+#[test]
+fn a_positive_size_too_small_for_the_equations_is_refused() {
+    // Regression: 1e-100 m links and a 1e-300 m rod failed at t = 0 (exit 3), blaming the rod.
+    for (from, to, field) in [
+        ("element_length = 1.0", "element_length = 1e-100", "chain.element_length = 1e-100"),
+        ("mass = 500000.0", "mass = 2.9e-106", "ship.mass = 2.9e-106"),
+    ] {
+        let e = error(&edited(from, to));
+        assert_mentions(&e, &[field, "at least 1e-15", "underflow"]);
+    }
+}

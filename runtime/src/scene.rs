@@ -1523,6 +1523,12 @@ fn extreme(v: f64) -> bool {
 /// and the solve into a non-finite acceleration at t = 0 that looked like a step-size failure.
 pub const MAX_MAGNITUDE: f64 = 1e15;
 
+/// The smallest value a positive field takes, in its SI unit: far below any ship, anchor or
+/// line, while 1e-100 m links, a 1e-300 m rod or a 2.9e-106 kg ship (a wide lognormal
+/// sample) underflowed the equations into a non-finite acceleration or an unconverged
+/// stability analysis at t = 0, reported as a numerical failure of the rod (exit 3).
+pub const MIN_MAGNITUDE: f64 = 1e-15;
+
 /// Upper bound of the hydrodynamic coefficients (`[hydrodynamics]`), dimensionless.
 ///
 /// Published coefficients stay below 3: studless chain C_D ≈ 2.4 and C_F ≈ 1.15 on the nominal
@@ -1546,6 +1552,12 @@ impl Checker {
     fn positive(&mut self, field: &str, v: f64, unit: &str) {
         if !(v.is_finite() && v > 0.0) {
             self.push(field, &fmt_value(v), &format!("finite and > 0 {unit}"));
+        } else if v < MIN_MAGNITUDE {
+            self.push(
+                field,
+                &fmt_value(v),
+                &format!("at least 1e-15 {unit}: smaller values underflow the products of the equations"),
+            );
         } else {
             self.magnitude(field, v, unit);
         }
