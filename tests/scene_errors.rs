@@ -300,3 +300,15 @@ fn a_positive_size_too_small_for_the_equations_is_refused() {
         assert_mentions(&e, &[field, "at least 1e-15", "underflow"]);
     }
 }
+
+#[test]
+fn an_end_time_of_zero_is_refused_once_and_an_empty_extends_is_no_file() {
+    // Regression: two refusals of one field; "cannot read scene <folder>" for extends = "".
+    let e = error(&edited("end_time = 60.0", "end_time = 0.0"));
+    assert_eq!(e.matches("solver.end_time").count(), 1, "{e}");
+    let dir = Scratch::new("empty-extends");
+    let file = dir.join("e.toml");
+    std::fs::write(&file, "extends = \"\"\n").unwrap();
+    let e = Scene::load(&file).unwrap_err().to_string();
+    assert_mentions(&e, &["e.toml", "extends must be a file name"]);
+}

@@ -59,7 +59,7 @@ pub enum OverrideError {
         /// The second path.
         second: String,
     },
-    /// `extends` is not a string.
+    /// `extends` is not a string, or an empty one.
     #[error("extends must be a file name, e.g. extends = \"base.toml\"")]
     ExtendsType,
     /// A file extends itself, directly or round a chain.
@@ -331,7 +331,10 @@ pub fn resolve<E>(
         let mut value = parse(&file, &read(&file, named_by.as_deref())?)?;
         if let Some(table) = value.as_table_mut() {
             if let Some(base) = table.remove("extends") {
-                let base = base.as_str().ok_or_else(|| wrap(&file, OverrideError::ExtendsType))?;
+                let base = base
+                    .as_str()
+                    .filter(|b| !b.trim().is_empty())
+                    .ok_or_else(|| wrap(&file, OverrideError::ExtendsType))?;
                 let dir = file.parent().unwrap_or(Path::new(""));
                 next = Some(dir.join(base));
             }

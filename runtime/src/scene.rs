@@ -622,7 +622,8 @@ impl Scene {
             _ => return Scene::from_toml(text, &file),
         };
         let own = top.clone();
-        let Some(base) = top.remove("extends").and_then(|v| v.as_str().map(str::to_string)) else {
+        let base = top.remove("extends").and_then(|v| v.as_str().map(str::to_string));
+        let Some(base) = base.filter(|b| !b.trim().is_empty()) else {
             return Err(SceneError::Override { file, error: OverrideError::ExtendsType });
         };
         let mut value = Scene::resolve_file(&path.parent().unwrap_or(Path::new("")).join(base), Some(path))?;
@@ -1211,7 +1212,8 @@ impl Scene {
         if so.dt.is_finite() && so.dt > 0.0 {
             let hint = format!("s (at least solver.dt = {} s: raise it, or take a smaller step)", fmt_value(so.dt));
             c.range("solver.output_interval", so.output_interval, so.dt, MAX_MAGNITUDE, true, &hint);
-            if so.end_time.is_finite() && so.end_time < so.dt {
+            // An end time ≤ 0 is refused by its own range alone.
+            if so.end_time.is_finite() && so.end_time > 0.0 && so.end_time < so.dt {
                 c.push("solver.end_time", &fmt_value(so.end_time), &format!("≥ solver.dt = {} s", fmt_value(so.dt)));
             }
         }
