@@ -563,6 +563,10 @@ fn run_json_is_the_documented_summary() {
     assert_eq!(v["status"], "failed");
     assert!(v["failure"]["message"].as_str().unwrap().contains("stability limit"), "{}", v["failure"]);
     assert!(v["peak_tension"].is_null(), "a refused run has no peak");
+    // The run ends at the last whole step at or before the end time (it went past: 0.502 s).
+    let out = kanestop().args(["run", "--end-time", "0.501", "--json"]).output().unwrap();
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!((v["t_end"].as_f64(), v["steps"].as_u64()), (Some(0.5), Some(250)), "{v}");
 }
 
 #[test]

@@ -382,7 +382,9 @@ pub struct Solver {
     /// at rtol 1e-14 with atol 1e-16 under both methods, and collapsed at t = 0 with 1e-300).
     pub atol: f64,
     /// Simulated time after which the run ends in any case, s, in (0, ∞), and at most
-    /// `dt` × 1e7 (`MAX_STEPS`: 20 000 s at the paper's 2 ms).
+    /// `dt` × 1e7 (`MAX_STEPS`: 20 000 s at the paper's 2 ms). The run ends at the last
+    /// whole `dt` at or before it (0.501 s at 2 ms: 0.5 s; until 2026-12-07 the nearest,
+    /// 0.502 s, past it).
     pub end_time: f64,
     /// Interval between recorded samples, s (rounded to a whole number of steps), at least
     /// `dt` and at most 1e15 s.

@@ -209,7 +209,9 @@ impl<'a> Stepper<'a> {
             y: model.q0.iter().chain(&model.u0).copied().chain([0.0; WORK_COUNT]).collect(),
             obs: None,
             steps: 0,
-            max_steps: (solver.end_time / solver.dt).round() as u64,
+            // The last whole step at or before the end time (a step count a hair under a
+            // whole number by rounding, 0.6 / 0.002 = 299.99999999999994, is that number).
+            max_steps: (solver.end_time / solver.dt * (1.0 + 1e-12)).floor() as u64,
             stride: ((solver.output_interval / solver.dt).round() as u64).max(1),
             interval: None,
             evaluations0: 0,
