@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 
 use kanestop_runtime::design::DesignChecks;
 use kanestop_runtime::overrides;
-use kanestop_runtime::scene::{Scene, MAX_SCENE_BYTES};
+use kanestop_runtime::scene::{Scene, SceneError, MAX_SCENE_BYTES};
 use serde::Deserialize;
 use toml::Value;
 
@@ -577,7 +577,19 @@ fn axis(file: &Path, base: &Value, i: usize, a: AxisFile) -> Result<Axis> {
                 },
             )),
         })
-        .collect::<Result<_>>()?;
+        .collect::<Result<Vec<Value>>>()?;
+    // A table, an array or a text can be malformed inside (an unknown key in a stage, a
+    // method no integrator has): refused now, not found as an invalid row after the others
+    // have run. A value out of its range stays a row of its own.
+    for v in typed.iter().filter(|v| matches!(v, Value::Table(_) | Value::Array(_) | Value::String(_))) {
+        let mut scene = base.clone();
+        if overrides::set(&mut scene, &a.path, v.clone()).is_ok() {
+            if let Err(SceneError::Parse { message, .. }) = Scene::from_value(scene, "") {
+                let why = kanestop_runtime::scene::plain_types(&message).replace('\n', " ");
+                return Err(bad(file, field("values"), v, why));
+            }
+        }
+    }
     Ok(Axis { path: a.path, values: typed })
 }
 
@@ -707,6 +719,24 @@ mod tests {
         assert!(text.ends_with("set name = \"…\""), "{text}");
         let e = Spec::from_toml("name = \"a (1)\"\n", Path::new("s.toml"), Path::new(""), Some(case01())).unwrap_err();
         assert!(!e.to_string().contains("the spec has no"), "{e}");
+    }
+
+    /// A malformed table or text among an axis's values is the spec's error, found before any
+    /// run (it was an invalid row, exit 3); a value out of range is still a row of its own.
+    #[test]
+    fn a_malformed_axis_value_is_refused_and_one_out_of_range_is_a_row() {
+        let spec = |text: &str| Spec::from_toml(text, Path::new("<string>"), Path::new(""), Some(case01()));
+        let e = spec("[[axis]]\npath = \"solver.integrator\"\nvalues = [\"rk4\", \"bogus\"]\n").unwrap_err();
+        assert!(
+            e.to_string().contains("axis[0].values = \"bogus\": bogus: unknown method (valid: rk4, dp5, sdirk4)"),
+            "{e}"
+        );
+        let stages =
+            "[[axis]]\npath = \"cable.stages\"\nvalues = [[{elements = 30, element_length = 5.0, bogus = 1}]]\n";
+        let e = spec(stages).unwrap_err();
+        assert!(e.to_string().contains("unknown field `bogus`") && !e.to_string().contains('\n'), "{e}");
+        let out_of_range = spec("[[axis]]\npath = \"ship.mass\"\nvalues = [5e5, -1.0]\n").unwrap();
+        assert!(out_of_range.plan()[1].scene.is_err());
     }
 
     #[test]
