@@ -491,7 +491,18 @@ fn axis(file: &Path, base: &Value, i: usize, a: AxisFile) -> Result<Axis> {
         return Err(bad(file, field("path"), &a.path, ROW_NAME.1));
     }
     let current = overrides::get_or_alternative(base, &a.path).ok_or_else(|| {
-        bad(file, field("path"), &a.path, "a field of the scene, e.g. ship.mass or cable.stages[1].elements")
+        // Why, where setting the path says (a part that names no field, with the valid ones;
+        // an index past the array's end, with its length).
+        let why = match overrides::set(&mut base.clone(), &a.path, Value::Integer(0)) {
+            Err(e) => format!(": {e}"),
+            Ok(()) => String::new(),
+        };
+        bad(
+            file,
+            field("path"),
+            &a.path,
+            format!("a field of the scene, e.g. ship.mass or cable.stages[1].elements{why}"),
+        )
     })?;
     let integer = current.is_integer();
     // Where the values came from, for a refusal of one of them.
@@ -735,6 +746,9 @@ mod tests {
             "[[axis]]\npath = \"cable.stages\"\nvalues = [[{elements = 30, element_length = 5.0, bogus = 1}]]\n";
         let e = spec(stages).unwrap_err();
         assert!(e.to_string().contains("unknown field `bogus`") && !e.to_string().contains('\n'), "{e}");
+        // A path past an array's end says its length.
+        let e = spec("[[axis]]\npath = \"cable.stages[7].elements\"\nvalues = [3]\n").unwrap_err();
+        assert!(e.to_string().contains("index 7 is out of range (the array has 3 entries)"), "{e}");
         let out_of_range = spec("[[axis]]\npath = \"ship.mass\"\nvalues = [5e5, -1.0]\n").unwrap();
         assert!(out_of_range.plan()[1].scene.is_err());
     }
