@@ -113,7 +113,9 @@ impl PySpec {
     }
 
     fn __repr__(&self) -> String {
-        format!("Spec({:?}, {} rows, base {:?})", self.inner.name, self.inner.rows(), self.inner.base.meta.name)
+        let rows = self.inner.rows();
+        let word = if rows == 1 { "row" } else { "rows" };
+        format!("Spec({:?}, {rows} {word}, base {:?})", self.inner.name, self.inner.base.meta.name)
     }
 
     /// Pickles as its own fields (`Spec::to_table`) and its base scene's TOML, checked again
