@@ -80,6 +80,7 @@ fn eval_accepts_a_state_file_and_rejects_a_bad_one() {
         let err = String::from_utf8_lossy(&out.stderr);
         assert_eq!(out.status.code(), Some(2), "{kernel}: {err}");
         assert!(out.stdout.is_empty() && err.contains("non-finite acceleration"), "{kernel}: {err}");
+        assert!(err.contains("the state's largest entry is state.q[10] = 1e300"), "{kernel}: {err}");
     }
 
     std::fs::write(&state, r#"{"q": [0.0, 1.0], "u": [0.0, 0.0]}"#).unwrap();

@@ -119,6 +119,19 @@ pub enum EvalError {
     /// The right-hand side refused the state.
     #[error(transparent)]
     Dynamics(#[from] crate::kernel::RhsError),
+    /// The right-hand side refused a given state: its largest entry is named, the likeliest
+    /// to be out of the model's range.
+    #[error("{error}; the state's largest entry is state.{name}[{index}] = {value:e}")]
+    StateRefused {
+        /// Why.
+        error: crate::kernel::RhsError,
+        /// `q` or `u`.
+        name: &'static str,
+        /// 0-based position of the entry.
+        index: usize,
+        /// Its value.
+        value: f64,
+    },
 }
 
 impl StateFile {
@@ -159,7 +172,14 @@ pub fn evaluate(model: &Model, kernel: Box<dyn Kernel>, state: Option<&StateFile
     let physics = forces.description();
     let mut dynamics = Dynamics::new(kernel, forces, anchor);
     let mut qdd = vec![0.0; n];
-    dynamics.accelerations(&q, &u, &mut qdd)?;
+    if let Err(error) = dynamics.accelerations(&q, &u, &mut qdd) {
+        let Some(_) = state else { return Err(error.into()) };
+        let entries = [("q", &q), ("u", &u)]
+            .into_iter()
+            .flat_map(|(name, v)| v.iter().enumerate().map(move |(i, &x)| (name, i, x)));
+        let (name, index, value) = entries.fold(("q", 0, 0.0_f64), |m, e| if e.2.abs() > m.2.abs() { e } else { m });
+        return Err(EvalError::StateRefused { error, name, index, value });
+    }
     let active = dynamics.active_speeds();
     // M and f for the report come from an assembly, whatever the kernel's solve path.
     let mut asm = Assembly::new(n);
