@@ -503,10 +503,8 @@ pub fn write_plots(runs: &[(&Model, &RunResult)], dir: &Path) -> Result<Vec<Path
         .filter(|(_, r)| !r.samples.is_empty())
         .map(|(m, r)| (run_label(m, r), energy_curves(m, r)))
         .collect();
-    let energy_title = match runs {
-        [(m, _)] => format!("Energy terms, {}", m.scene.meta.name),
-        _ => "Energy terms".to_string(),
-    };
+    // Each panel is named by its run (one run's too: "case01", or how it failed).
+    let energy_title = "Energy terms";
     let columns = if energy.len() > 1 { 2 } else { 1 };
     // The members of the lines, drawn when every run's line has the first's over the same
     // stretches (lines laid out otherwise are compared by distance along the line).
@@ -541,7 +539,7 @@ pub fn write_plots(runs: &[(&Model, &RunResult)], dir: &Path) -> Result<Vec<Path
                 &regions,
             ),
         ),
-        (FILES[4], panels(&energy_title, "t (s)", "energy (MJ)", &energy, columns)),
+        (FILES[4], panels(energy_title, "t (s)", "energy (MJ)", &energy, columns)),
     ];
     let mut svgs = Vec::new();
     for (file, svg) in charts {
