@@ -284,7 +284,8 @@ impl Spec {
             fixed.iter().filter(|(f, ..)| f != skip).all(|(_, p, x)| overrides::set(&mut v, p, x.clone()).is_ok())
                 && Scene::from_value(v, "").is_ok()
         };
-        let base = Scene::from_value(value, &format!("{} (base with [checks], [solver] and [set])", file.display()))?;
+        let named = format!("(the base of sweep spec {} with its [checks], [solver] and [set])", file.display());
+        let base = Scene::from_value(value, &named)?;
         let base_value = base.to_value();
         let axes =
             raw.axis.into_iter().enumerate().map(|(i, a)| axis(file, &base_value, i, a)).collect::<Result<Vec<_>>>()?;
