@@ -306,6 +306,9 @@ fn an_end_time_of_zero_is_refused_once_and_an_empty_extends_is_no_file() {
     // Regression: two refusals of one field; "cannot read scene <folder>" for extends = "".
     let e = error(&edited("end_time = 60.0", "end_time = 0.0"));
     assert_eq!(e.matches("solver.end_time").count(), 1, "{e}");
+    // A step out of its range bounds no other field (it gave an interval in [1e300, 1e15]).
+    let e = error(&edited("dt = 0.002", "dt = 1e300"));
+    assert_mentions(&e, &["1 invalid value(s)", "solver.dt = 1e300: must be in (0, 1] s"]);
     let dir = Scratch::new("empty-extends");
     let file = dir.join("e.toml");
     std::fs::write(&file, "extends = \"\"\n").unwrap();

@@ -1211,7 +1211,8 @@ impl Scene {
     fn check_solver(&self, c: &mut Checker) {
         let so = &self.solver;
         so.check_fixed(c, false);
-        if so.dt.is_finite() && so.dt > 0.0 {
+        // A step out of its own range bounds nothing else (an interval in [1e300, 1e15]).
+        if so.dt.is_finite() && so.dt > 0.0 && so.dt <= MAX_DT {
             let hint = format!("s (at least solver.dt = {} s: raise it, or take a smaller step)", fmt_value(so.dt));
             c.range("solver.output_interval", so.output_interval, so.dt, MAX_MAGNITUDE, true, &hint);
             // An end time ≤ 0 is refused by its own range alone.
