@@ -104,7 +104,9 @@ pub(crate) fn label(inputs: &[(String, Value)]) -> String {
 fn fmt_value(v: &Value) -> String {
     match v {
         Value::String(s) => s.clone(),
-        Value::Float(x) => format!("{x}"),
+        // As every CSV writes a number: an exponent for the very small and large (1e300
+        // wrote 301 digits).
+        Value::Float(x) => CsvNumber(*x).to_string(),
         other => other.to_string(),
     }
 }
@@ -632,6 +634,12 @@ mod tests {
         let thirty: Vec<f64> = (1..=30).map(f64::from).collect();
         assert!((quantile(&thirty, 0.05) - 2.45).abs() < 1e-12 && (quantile(&thirty, 0.95) - 28.55).abs() < 1e-12);
         assert_eq!((quantile(&v, 0.0), quantile(&v, 1.0), quantile(&[7.0], 0.95)), (1.0, 10.0, 7.0));
+    }
+
+    #[test]
+    fn inputs_are_written_as_every_csv_writes_a_number() {
+        let inputs = [("ship.mass".to_string(), Value::Float(5e5)), ("x".to_string(), Value::Float(1e300))];
+        assert_eq!(label(&inputs), "ship.mass=500000 x=1e300");
     }
 
     #[test]
