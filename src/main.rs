@@ -101,7 +101,8 @@ enum Command {
         #[command(flatten)]
         solver: SolverOverrides,
         /// Compare methods: run every scene with each, e.g. `rk4,dp5@0.02,sdirk4@0.02`
-        /// (`@dt` sets that method's step or observation interval, s). Replaces --integrator.
+        /// (`@dt` sets that method's step or observation interval, s; a method given more than
+        /// once needs it on each, `rk4@0.01,rk4@0.005`). Replaces --integrator.
         #[arg(long, value_delimiter = ',')]
         methods: Vec<MethodSpec>,
         /// Repeat every run refined (dt/2; adaptive methods also at rtol/10 and atol/10) and
@@ -164,10 +165,12 @@ enum ReportKind {
         /// Folder for accuracy.csv, accuracy.json, accuracy.svg and accuracy.units.csv.
         #[arg(long, default_value = "out/accuracy")]
         out: PathBuf,
-        /// Runs per setting; the median CPU time (and the median wall time beside it) is reported.
+        /// Runs per setting, 1 to 100; the median CPU time (and the median wall time beside it)
+        /// is reported.
         #[arg(long, default_value_t = 3)]
         repeats: usize,
-        /// Absolute tolerance of the adaptive runs as a multiple of their rtol (> 0).
+        /// Absolute tolerance of the adaptive runs as a multiple of their rtol: 1e-8 to 1e3, so
+        /// that every atol of the study is a scene's (in [1e-16, 1]).
         #[arg(long, allow_negative_numbers = true, default_value_t = kanestop_workflow::accuracy::DEFAULT_ATOL_RATIO)]
         atol_ratio: f64,
         #[arg(long, value_enum, default_value = "generated")]
@@ -511,7 +514,7 @@ impl std::str::FromStr for MethodSpec {
 impl std::fmt::Display for MethodSpec {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self.dt {
-            Some(dt) => write!(f, "{}@{dt}", self.method.name()),
+            Some(dt) => f.write_str(&kanestop_workflow::batch::method_at(self.method, dt)),
             None => f.write_str(self.method.name()),
         }
     }
@@ -768,6 +771,15 @@ fn try_main() -> Result<Exit> {
                 anyhow::ensure!(
                     !methods[..i].iter().any(|o| o.method == m.method && o.dt == m.dt),
                     "--methods {m}: given twice (each method once per step)"
+                );
+                // Without its step, an entry runs each scene at the scene's own, which another
+                // entry's may equal: rows alike, and no step common to a label's rows.
+                let again = methods.iter().filter(|o| o.method == m.method).count() > 1;
+                anyhow::ensure!(
+                    !again || m.dt.is_some(),
+                    "--methods {m}: {} is given more than once, so give each its step ({}@DT)",
+                    m.method.name(),
+                    m.method.name()
                 );
                 SolverOverrides { integrator: Some(MethodArg(m.method)), dt: m.dt, ..solver.clone() }
                     .check_alone()

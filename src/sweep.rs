@@ -171,7 +171,7 @@ pub fn sweep(args: &SweepArgs) -> Result<Exit> {
         Some((s, from)) => run_shard(args, &id, &plan, s, from),
         None if args.resume => resume_all(args, &spec, &heat_maps, &id, &plan),
         None => {
-            check_outputs(&args.out, plan.iter().map(|r| r.name.as_str()), &heat_maps)?;
+            check_outputs(&args.out, plan.iter().map(|r| r.name.as_str()), Some(&spec), &heat_maps)?;
             let kernel = args.kernel.factory();
             let bar = progress::bar(plan.len(), "runs");
             let rows = sweep::run(&plan, &kernel, args.jobs, &|r| {
@@ -319,12 +319,19 @@ fn exit(rows: &[SweepRow]) -> Exit {
     }
 }
 
-/// Checks, before any run, that every file a sweep of the rows `names` and the heat maps
-/// `heat_maps` writes into `out` can be written there ([`sweep::output_entries`]); the rows'
-/// scene files where `out/scenes` exists already.
-fn check_outputs<'a>(out: &Path, names: impl Iterator<Item = &'a str>, heat_maps: &[heatmap::Output]) -> Result<()> {
+/// Checks, before any run, that every file a sweep of the rows `names` writes into `out` can
+/// be written there ([`sweep::output_entries`]): the rows' scene files where `out/scenes`
+/// exists already, and the heat maps `heat_maps` where `spec` draws them (it is given and
+/// has two numeric grid axes).
+fn check_outputs<'a>(
+    out: &Path,
+    names: impl Iterator<Item = &'a str>,
+    spec: Option<&sweep::Spec>,
+    heat_maps: &[heatmap::Output],
+) -> Result<()> {
     let names: Vec<&str> = if out.join("scenes").is_dir() { names.collect() } else { Vec::new() };
-    let entries = sweep::output_entries(names, heat_maps);
+    let drawn = spec.is_some_and(|s| heatmap::unsupported(s).is_none());
+    let entries = sweep::output_entries(names, if drawn { heat_maps } else { &[] });
     check_dir(out, &entries.iter().map(String::as_str).collect::<Vec<_>>())
 }
 
@@ -375,7 +382,7 @@ fn resume_all(
     id: &SweepId,
     plan: &[PlannedRow],
 ) -> Result<Exit> {
-    check_outputs(&args.out, plan.iter().map(|r| r.name.as_str()), heat_maps)?;
+    check_outputs(&args.out, plan.iter().map(|r| r.name.as_str()), Some(spec), heat_maps)?;
     let folder = args.out.join("shards");
     let files = if folder.is_dir() { shard_file::files_in(&args.out)? } else { Vec::new() };
     let mut counts = std::collections::BTreeSet::new();
@@ -425,7 +432,7 @@ fn merge(m: &MergeArgs) -> Result<Exit> {
     );
     let spec = m.spec.as_ref().map(|f| sweep::Spec::load(f)).transpose()?;
     let merged = merge::merge(&m.dirs)?;
-    check_outputs(&out, merged.scenes.iter().map(|(name, _)| name.as_str()), &heat_maps)?;
+    check_outputs(&out, merged.scenes.iter().map(|(name, _)| name.as_str()), spec.as_ref(), &heat_maps)?;
     if let (Some(spec), Some(file)) = (&spec, &m.spec) {
         let plan = spec.plan();
         let same = ["generated", "reference"].iter().any(|k| SweepId::of(spec, &plan, k).plan_hash == merged.plan_hash);
@@ -463,7 +470,7 @@ fn slurm(args: &SweepArgs, spec: &sweep::Spec, plan: &[PlannedRow]) -> Result<Ex
     // What the jobs would find only after the array ran: the folder and the merge's files in
     // it, and shard files there of another sweep or shard count.
     let heat_maps = heatmap::parse_outputs(&args.heatmap)?;
-    check_outputs(&out, plan.iter().map(|r| r.name.as_str()), &heat_maps)?;
+    check_outputs(&out, plan.iter().map(|r| r.name.as_str()), Some(spec), &heat_maps)?;
     check_dir(&out.join("shards"), &[])?;
     let id = SweepId::of(spec, plan, args.kernel.0.name());
     kanestop_workflow::sweep::shard_file::check_joinable(&out, &id, shards)?;

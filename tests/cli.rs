@@ -374,6 +374,11 @@ fn batch_compares_methods_with_error_estimates() {
     let out = kanestop().args(["batch"]).arg(&scenes).args(["--methods", "rk4@0.001,dp5,rk4@0.001"]).output().unwrap();
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("--methods rk4@0.001: given twice"));
+    // A method given twice names each entry's step (rk4 alone is the scene's own, 0.0005 s).
+    let out = kanestop().args(["batch"]).arg(&scenes).args(["--methods", "rk4,rk4@0.0005"]).output().unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr)
+        .contains("--methods rk4: rk4 is given more than once, so give each its step"));
 }
 
 #[test]
@@ -388,6 +393,11 @@ fn plot_writes_the_four_svg_charts() {
         assert!(svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>"), "{name} is not a whole SVG");
         assert!(svg.contains("<polyline") || svg.contains("<path"), "{name} has no curve");
     }
+    // The energy chart of one run: one title, its panel named by the run (it said it twice).
+    let one = dir.join("one");
+    assert!(kanestop().arg("plot").arg(&scene).arg("--out").arg(&one).output().unwrap().status.success());
+    let energy = std::fs::read_to_string(one.join("energy.svg")).unwrap();
+    assert!(energy.contains("\nEnergy terms\n") && !energy.contains("Energy terms, "), "the energy chart's title");
     // The limits, above the axis, are named with their members and values (Table 1's loads
     // of case 1: the chain's break load 3866 kN, the cable's 2520 kN, the chain's proof load
     // 2709 kN).

@@ -280,9 +280,17 @@ def test_a_solver_keyword_on_a_path_the_spec_sweeps_is_refused(case01: kanestop.
 
 def test_a_design_table_is_rows(case01: kanestop.Scene) -> None:
     pd = pytest.importorskip("pandas")
-    design = pd.DataFrame({"ship.mass": [4e5, 6e5], "anchor.mass": [float("nan"), 5e4]})
+    design = pd.DataFrame(
+        {
+            "ship.mass": [4e5, 6e5],
+            "anchor.mass": [float("nan"), 5e4],
+            "solver.integrator": [None, "rk4"],
+            "chain.elements": pd.array([pd.NA, 15], dtype="Int64"),
+        }
+    )
     df = kanestop.sweep(case01, design, end_time=0.05)
-    rows = kanestop.sweep(case01, [{"ship.mass": 4e5}, {"ship.mass": 6e5, "anchor.mass": 5e4}], end_time=0.05)
+    second = {"ship.mass": 6e5, "anchor.mass": 5e4, "solver.integrator": "rk4", "chain.elements": 15}
+    rows = kanestop.sweep(case01, [{"ship.mass": 4e5}, second], end_time=0.05)
     keep = ["ship.mass", "anchor.mass", "status", "peak_tension"]
     assert df[keep].equals(rows[keep]) and list(df["status"]) == ["end time"] * 2
 
@@ -291,3 +299,7 @@ def test_a_spec_dict_without_base_is_told_so() -> None:
     with pytest.raises(kanestop.SpecError) as info:
         kanestop.sweep({"axis": [{"path": "ship.mass", "values": [1e5]}]})
     assert info.value.field == "base" and "(missing)" in str(info.value)
+
+
+def test_a_spec_s_repr_counts_its_rows(case01: kanestop.Scene) -> None:
+    assert repr(kanestop.Spec.from_scene(case01)) == 'Spec("case01", 1 row, base "case01")'

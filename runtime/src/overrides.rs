@@ -266,6 +266,12 @@ pub fn get<'a>(root: &'a Value, path: &str) -> Option<&'a Value> {
     Some(node)
 }
 
+/// The file an `extends` value names: a non-empty string, else none (the value is refused
+/// with [`OverrideError::ExtendsType`]).
+pub fn extends_target(value: &Value) -> Option<&str> {
+    value.as_str().filter(|b| !b.trim().is_empty())
+}
+
 /// Lays `over` onto `base`: tables merge key by key, recursively; anything else (values,
 /// arrays such as `cable.stages`) replaces what `base` had; a field of [`ALTERNATIVES`] in
 /// `over` drops the others of its group from `base`.
@@ -331,10 +337,7 @@ pub fn resolve<E>(
         let mut value = parse(&file, &read(&file, named_by.as_deref())?)?;
         if let Some(table) = value.as_table_mut() {
             if let Some(base) = table.remove("extends") {
-                let base = base
-                    .as_str()
-                    .filter(|b| !b.trim().is_empty())
-                    .ok_or_else(|| wrap(&file, OverrideError::ExtendsType))?;
+                let base = extends_target(&base).ok_or_else(|| wrap(&file, OverrideError::ExtendsType))?;
                 let dir = file.parent().unwrap_or(Path::new(""));
                 next = Some(dir.join(base));
             }

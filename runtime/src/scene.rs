@@ -624,8 +624,8 @@ impl Scene {
             _ => return Scene::from_toml(text, &file),
         };
         let own = top.clone();
-        let base = top.remove("extends").and_then(|v| v.as_str().map(str::to_string));
-        let Some(base) = base.filter(|b| !b.trim().is_empty()) else {
+        let extends = top.remove("extends");
+        let Some(base) = extends.as_ref().and_then(overrides::extends_target) else {
             return Err(SceneError::Override { file, error: OverrideError::ExtendsType });
         };
         let mut value = Scene::resolve_file(&path.parent().unwrap_or(Path::new("")).join(base), Some(path))?;
@@ -1245,6 +1245,19 @@ impl Scene {
 }
 
 impl Solver {
+    /// The steps of `dt` (RK4's, or the adaptive methods' observation intervals) a run takes
+    /// at most: the last whole one at or before `end_time` (a count a hair under a whole
+    /// number by rounding, 0.6 / 0.002 = 299.99999999999994, is that number).
+    pub fn steps(&self) -> u64 {
+        (self.end_time / self.dt * (1.0 + 1e-12)).floor() as u64
+    }
+
+    /// When a run that goes on ends, s: after [`Solver::steps`] steps (0.5 s for an end time
+    /// of 0.501 s at 2 ms).
+    pub fn last_time(&self) -> f64 {
+        self.steps() as f64 * self.dt
+    }
+
     /// The fields' problems each on its own, in its fixed range, without the ranges another
     /// field bounds (output_interval ≥ dt, end_time ≥ dt, the step count), which a whole
     /// scene's [`Scene::problems`] adds: what a command line's flag can be checked against
@@ -1561,7 +1574,7 @@ impl Checker {
             self.push(
                 field,
                 &fmt_value(v),
-                &format!("at least 1e-15 {unit}: smaller values underflow the products of the equations"),
+                &format!("at least {MIN_MAGNITUDE:e} {unit}: smaller values underflow the products of the equations"),
             );
         } else {
             self.magnitude(field, v, unit);
@@ -1582,7 +1595,7 @@ impl Checker {
             self.push(
                 field,
                 &fmt_value(v),
-                &format!("at most 1e15 {unit}: larger values overflow the products of the equations"),
+                &format!("at most {MAX_MAGNITUDE:e} {unit}: larger values overflow the products of the equations"),
             );
         }
     }

@@ -12,7 +12,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::checks::{self, break_exceedances};
 use crate::kernels::KernelFactory;
-use crate::output::{self, csv_field, CsvNumber};
+use crate::output::{self, csv_field, csv_quoted, CsvNumber};
 use crate::{diagnostic, parallel, Result};
 
 /// How a row's run ended.
@@ -339,6 +339,11 @@ fn checks_word(pass: Option<bool>) -> &'static str {
     }
 }
 
+/// A method at a step, as `--methods` takes it and the table names it: `rk4@0.01`.
+pub fn method_at(method: Method, dt: f64) -> String {
+    format!("{}@{dt}", method.name())
+}
+
 /// Each row's method as the table and the validation name it: its name, and `@dt` where the
 /// batch ran a file by that method more than once (`--methods rk4@0.01,rk4@0.005`), or ""
 /// when the scene did not load. The validation orders rows of one label against each other.
@@ -353,9 +358,9 @@ pub fn method_labels(rows: &[BatchRow]) -> Vec<String> {
     rows.iter()
         .map(|r| {
             let name = r.method.map(Method::name).unwrap_or_default();
-            match r.dt.filter(|_| twice.contains(&name)) {
-                Some(dt) => format!("{name}@{dt}"),
-                None => name.to_string(),
+            match (r.method, r.dt.filter(|_| twice.contains(&name))) {
+                (Some(m), Some(dt)) => method_at(m, dt),
+                _ => name.to_string(),
             }
         })
         .collect()
@@ -495,7 +500,7 @@ pub fn csv(rows: &[BatchRow]) -> String {
     let o = |v: Option<f64>| v.map(|v| CsvNumber(v).to_string()).unwrap_or_default();
     for r in rows {
         out.push_str(&format!(
-            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},\"{}\",{},{},{},{},{},{},{},{},{},{}\n",
+            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n",
             csv_field(&r.case),
             csv_field(&r.file),
             r.status.name(),
@@ -510,7 +515,7 @@ pub fn csv(rows: &[BatchRow]) -> String {
             o(r.anchor_start),
             o(r.energy_drift),
             r.wall_time,
-            r.message.replace('"', "\"\""),
+            csv_quoted(&r.message),
             r.method.map(Method::name).unwrap_or_default(),
             o(r.stop_error_estimate),
             o(r.trajectory_error_estimate),

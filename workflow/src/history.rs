@@ -294,7 +294,7 @@ pub fn columns(result: &RunResult, channels: &[Channel]) -> Vec<Vec<f64>> {
 pub fn units_csv(channels: &[Channel]) -> String {
     let mut out = String::from("channel,unit,description\n");
     for c in channels {
-        let _ = writeln!(out, "{},{},\"{}\"", c.name, c.unit, c.description.replace('"', "\"\""));
+        let _ = writeln!(out, "{},{},{}", c.name, c.unit, crate::output::csv_quoted(&c.description));
     }
     out
 }

@@ -129,10 +129,16 @@ pub fn write_into<const N: usize>(dir: &Path, names: [&str; N], texts: [String; 
 /// break, a quote inside doubled.
 pub fn csv_field(s: &str) -> String {
     if s.contains([',', '"', '\n', '\r']) {
-        format!("\"{}\"", s.replace('"', "\"\""))
+        csv_quoted(s)
     } else {
         s.to_string()
     }
+}
+
+/// A text as one CSV field, always quoted (RFC 4180, a quote inside doubled): the columns
+/// of messages and descriptions, quoted whatever they hold.
+pub fn csv_quoted(s: &str) -> String {
+    format!("\"{}\"", s.replace('"', "\"\""))
 }
 
 /// The units sidecar of a table's CSV (`batch.units.csv`, `sweep.units.csv`, …):

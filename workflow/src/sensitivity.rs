@@ -15,7 +15,7 @@
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use kanestop_runtime::model::Model;
-use kanestop_runtime::scene::{Scene, SceneError};
+use kanestop_runtime::scene::{Scene, SceneError, Solver};
 use kanestop_runtime::simulate::{self, FailureKind, Stop};
 use serde::Serialize;
 use toml::Value;
@@ -278,6 +278,8 @@ pub fn study_cancellable(
     done: &(dyn Fn() + Sync),
     cancel: &AtomicBool,
 ) -> Option<Result<Study>> {
+    // Long by design: the base, the probes' runs and each row's difference read best in the
+    // order they happen.
     if let Err(e) = check_step(step) {
         return Some(Err(e));
     }
@@ -347,7 +349,7 @@ pub fn study_cancellable(
                 Difference::Backward => (Some(&base), mine.last()),
             };
             let sides = (above.unwrap_or(&base), below.unwrap_or(&base));
-            difference_into(&mut row, sides, difference.span(h), base_stop, scene.solver.end_time);
+            difference_into(&mut row, sides, difference.span(h), base_stop, &scene.solver);
             row
         })
         .collect();
@@ -365,7 +367,13 @@ type Probed = std::result::Result<[Option<f64>; 3], String>;
 /// them in a one-sided difference), `span` the ln of their parameters' ratio; a side that
 /// gave nothing is named in the message with why, and a stop past the end time is bounded
 /// ([`not_stopped`]).
-fn difference_into(row: &mut Sensitivity, sides: (&Probed, &Probed), span: f64, base_stop: Option<f64>, end_time: f64) {
+fn difference_into(
+    row: &mut Sensitivity,
+    sides: (&Probed, &Probed),
+    span: f64,
+    base_stop: Option<f64>,
+    solver: &Solver,
+) {
     let h = row.step.unwrap_or_default();
     match sides {
         (Ok(a), Ok(b)) => {
@@ -373,7 +381,7 @@ fn difference_into(row: &mut Sensitivity, sides: (&Probed, &Probed), span: f64, 
             row.stopping_time = e(0);
             row.stopping_distance = e(1);
             row.peak_tension = e(2);
-            if let Some(note) = not_stopped(row, base_stop, (a[0], b[0]), span, end_time) {
+            if let Some(note) = not_stopped(row, base_stop, (a[0], b[0]), span, solver) {
                 row.message = if row.message.is_empty() { note } else { format!("{}; {note}", row.message) };
             }
         }
@@ -397,21 +405,24 @@ fn add_note(row: &mut Sensitivity, side: &str, message: &str) {
 }
 
 /// Where the base stopped the ship (at `base_stop`, s) and a perturbed run that did not fail
-/// did not stop it by `end_time` (s): sets the row's [`Sensitivity::stopping_time_bound`] from the stopping
-/// times above and below p (`stops`, none for a run that did not stop) and returns what to
-/// say of it. A stop that moved past the end time is a large effect, not a missing one.
+/// did not stop it by the end of `solver`'s run ([`Solver::last_time`], s): sets the row's
+/// [`Sensitivity::stopping_time_bound`] from the stopping times above and below p (`stops`,
+/// none for a run that did not stop) and returns what to say of it. A stop that moved past
+/// the end time is a large effect, not a missing one.
 fn not_stopped(
     row: &mut Sensitivity,
     base_stop: Option<f64>,
     stops: (Option<f64>, Option<f64>),
     span: f64,
-    end_time: f64,
+    solver: &Solver,
 ) -> Option<String> {
     base_stop?;
     let h = row.step.unwrap_or_default();
+    // The runs went on to their last step, not always the end time itself.
+    let (end_time, end) = (solver.end_time, solver.last_time());
     let (side, bound) = match stops {
-        (None, Some(below)) => (format!("p·(1 + {h})"), Some((end_time - below) / span)),
-        (Some(above), None) => (format!("p·(1 − {h})"), Some((above - end_time) / span)),
+        (None, Some(below)) => (format!("p·(1 + {h})"), Some((end - below) / span)),
+        (Some(above), None) => (format!("p·(1 − {h})"), Some((above - end) / span)),
         (None, None) => (format!("p·(1 ± {h})"), None),
         (Some(_), Some(_)) => return None,
     };
@@ -544,14 +555,14 @@ pub fn csv(study: &Study) -> String {
             None => "",
         };
         out.push_str(&format!(
-            "{},{},{},{},{},{},\"{}\",{},{}\n",
+            "{},{},{},{},{},{},{},{},{}\n",
             i + 1,
             r.parameter,
             CsvNumber(r.value),
             o(r.stopping_time),
             o(r.stopping_distance),
             o(r.peak_tension),
-            r.message.replace('"', "\"\""),
+            output::csv_quoted(&r.message),
             difference,
             o(r.step)
         ));
@@ -612,25 +623,33 @@ mod tests {
     #[test]
     fn a_stop_moved_past_the_end_time_is_a_large_effect_not_a_missing_one() {
         let span = Difference::Central.span(0.05);
+        let mut solver = case1().solver;
+        solver.end_time = 20.5;
+        let end = solver.last_time();
         let mut heavier = row("ship.mass", None);
         // p·(1 + h) did not stop by 20.5 s; p·(1 − h) stopped at 18.9 s.
-        let note = not_stopped(&mut heavier, Some(19.8), (None, Some(18.9)), span, 20.5).unwrap();
-        let bound = (20.5 - 18.9) / span;
+        let note = not_stopped(&mut heavier, Some(19.8), (None, Some(18.9)), span, &solver).unwrap();
+        let bound = (end - 18.9) / span;
         assert_eq!(heavier.stopping_time_bound, Some(bound));
         assert!(
             note.starts_with("p·(1 + 0.05) did not stop the ship by solver.end_time = 20.5 s: d_stopping_time > +15.9"),
             "{note}"
         );
         let mut lighter = row("anchor.mass", None);
-        not_stopped(&mut lighter, Some(19.8), (Some(19.0), None), span, 20.5).unwrap();
-        assert_eq!(lighter.stopping_time_bound, Some((19.0 - 20.5) / span));
-        let both = not_stopped(&mut row("x", None), Some(19.8), (None, None), span, 20.5).unwrap();
+        not_stopped(&mut lighter, Some(19.8), (Some(19.0), None), span, &solver).unwrap();
+        assert_eq!(lighter.stopping_time_bound, Some((19.0 - end) / span));
+        let both = not_stopped(&mut row("x", None), Some(19.8), (None, None), span, &solver).unwrap();
         assert!(
             both.starts_with("p·(1 ± 0.05) did not stop the ship by solver.end_time = 20.5 s: no stopping-time effect")
         );
         // Both stopped, or the base did not: nothing to say.
-        assert_eq!(not_stopped(&mut row("x", None), Some(19.8), (Some(20.0), Some(19.0)), span, 20.5), None);
-        assert_eq!(not_stopped(&mut row("x", None), None, (None, Some(19.0)), span, 20.5), None);
+        assert_eq!(not_stopped(&mut row("x", None), Some(19.8), (Some(20.0), Some(19.0)), span, &solver), None);
+        assert_eq!(not_stopped(&mut row("x", None), None, (None, Some(19.0)), span, &solver), None);
+        // An end time between two steps: the runs went on to the last step before it.
+        solver.end_time = 20.501;
+        let mut late = row("ship.mass", None);
+        not_stopped(&mut late, Some(19.8), (None, Some(18.9)), span, &solver).unwrap();
+        assert_eq!(late.stopping_time_bound, Some(bound));
         // Ranked by the bound, above a row of a smaller known effect.
         let ranked = ranked_by(&[Some(19.8), Some(27.0), Some(4e5)]);
         assert_eq!(ranked(&heavier), Some(bound));
@@ -658,14 +677,20 @@ mod tests {
         let failed: Probed = Err("failed: numerical failure at t = 3.1 s\n  body: B_4".into());
         let blank = || Sensitivity { peak_tension: None, ..row("ship.mass", None) };
         let mut one = blank();
-        difference_into(&mut one, (&failed, &ran), span, Some(19.8), 20.5);
+        difference_into(&mut one, (&failed, &ran), span, Some(19.8), &case1().solver);
         assert_eq!((one.stopping_time, one.peak_tension, one.stopping_time_bound), (None, None, None));
         assert_eq!(one.message, "p·(1 + 0.05): failed: numerical failure at t = 3.1 s body: B_4");
         let mut both = blank();
-        difference_into(&mut both, (&failed, &failed), span, Some(19.8), 20.5);
+        difference_into(&mut both, (&failed, &failed), span, Some(19.8), &case1().solver);
         assert!(both.message.contains("p·(1 + 0.05): failed") && both.message.contains("; p·(1 − 0.05): failed"));
         let mut fine = blank();
-        difference_into(&mut fine, (&ran, &Ok([Some(18.0), Some(25.0), Some(3.9e5)])), span, Some(19.8), 20.5);
+        difference_into(
+            &mut fine,
+            (&ran, &Ok([Some(18.0), Some(25.0), Some(3.9e5)])),
+            span,
+            Some(19.8),
+            &case1().solver,
+        );
         assert_eq!(fine.stopping_time, Some(1.0 / span));
     }
 

@@ -18,10 +18,11 @@ pub struct Validation {
 /// of the cases by stopping time with Table 3's (over the pairs of one method label, as
 /// [`batch::method_labels`] gives it, whose Table 3 times differ).
 pub fn validate(rows: &[BatchRow], tolerance: f64) -> Validation {
-    // With several method labels a case is named with its label.
+    // With several method labels a case is named with its label (a scene that did not load
+    // has none).
     let labels = batch::method_labels(rows);
-    let several = labels.iter().collect::<std::collections::BTreeSet<_>>().len() > 1;
-    let name = |i: usize| match several {
+    let several = labels.iter().filter(|l| !l.is_empty()).collect::<std::collections::BTreeSet<_>>().len() > 1;
+    let name = |i: usize| match several && !labels[i].is_empty() {
         true => format!("{} ({})", rows[i].case, labels[i]),
         false => rows[i].case.clone(),
     };
@@ -151,5 +152,11 @@ mod tests {
         let rows = [at("case01", 24.0, 20.01, 0.01), at("case01", 19.9, 20.01, 0.005), at("case02", 23.7, 23.65, 0.01)];
         let v = validate(&rows, 0.5);
         assert_eq!(v.discordant, [("case01 (rk4@0.01)".to_string(), "case02 (rk4@0.01)".to_string())]);
+        // A scene that did not load (no method) is named alone, and makes no label of its own.
+        let invalid = BatchRow { status: Status::Invalid, method: None, dt: None, ..row("bad", 1.0, 2.0) };
+        let v = validate(&[by("case01", 19.9, 20.01, Method::Rk4), invalid], 0.5);
+        assert_eq!(v.problems.len(), 1, "{:?}", v.problems);
+        assert!(v.problems[0].starts_with("bad: invalid"), "{:?}", v.problems);
+        assert_eq!(v.kendall_tau, None);
     }
 }

@@ -19,7 +19,6 @@ See docs/python.md for the API, the channel names and the Dask example.
 from __future__ import annotations
 
 import json
-import math
 import os
 import warnings
 from typing import Any, Callable, Dict, Iterable, List, Mapping, Optional, Sequence, Tuple, Union
@@ -285,7 +284,8 @@ class Result:
             return "None" if v is None else f"{v:.6g}"
 
         checks = {True: " checks pass", False: " checks FAIL", None: ""}[self.checks_pass]
-        kind = f" ({self.failure['kind']})" if self.failure else ""
+        # The kind's name only ("energy runaway", "step"): `r.diagnostic` has the words.
+        kind = f" ({str(self.failure['kind']).split(':')[0]})" if self.failure else ""
         return (
             f"<kanestop.Result {s.get('scene')!r} {s.get('status')}{kind}{checks} "
             f"stopping_time={short(s.get('stopping_time'))} t_end={short(s.get('t_end'))}>"
@@ -583,11 +583,14 @@ def sweep(
     plan: Optional[List[Dict[str, Any]]] = None
     if the_rows is not None and hasattr(the_rows, "to_dict") and hasattr(the_rows, "columns"):
         # A pandas design table: a row per DataFrame row, a path per column; an empty cell
-        # (NaN) leaves its path at the base scene's value.
-        the_rows = [
-            {k: v for k, v in r.items() if not (isinstance(v, float) and math.isnan(v))}
-            for r in the_rows.to_dict("records")
-        ]
+        # (NaN, None, pd.NA, NaT) leaves its path at the base scene's value.
+        pd = _pandas()
+        assert pd is not None, "a DataFrame without pandas"
+
+        def empty(v: Any) -> bool:
+            return v is None or (np.ndim(v) == 0 and bool(pd.isna(v)))
+
+        the_rows = [{k: v for k, v in r.items() if not empty(v)} for r in the_rows.to_dict("records")]
     if the_rows is not None:
         plan = []
         for i, r in enumerate(the_rows):

@@ -25,7 +25,7 @@ pub struct Failure {
     pub initial_residual: Option<Box<StaticResidual>>,
     /// For RK4's energy runaway, non-finite state or force spike: its stability limit at the
     /// last good state, as at t = 0 ([`crate::stability::limit`]; none where it could not be
-    /// computed). Below `solver.dt`, the mode stiffened during the run (case 1 at 15 ms: 6.3 ms
+    /// computed or is an unsettled estimate). Below `solver.dt`, the mode stiffened during the run (case 1 at 15 ms: 6.3 ms
     /// at t = 1.455 s, against 36.5 ms at the start); at or above it, the blow-up came with
     /// something the linearisation does not see (a contact switching, a snap load).
     pub last_limit: Option<Box<StabilityLimit>>,

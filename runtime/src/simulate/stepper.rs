@@ -209,9 +209,7 @@ impl<'a> Stepper<'a> {
             y: model.q0.iter().chain(&model.u0).copied().chain([0.0; WORK_COUNT]).collect(),
             obs: None,
             steps: 0,
-            // The last whole step at or before the end time (a step count a hair under a
-            // whole number by rounding, 0.6 / 0.002 = 299.99999999999994, is that number).
-            max_steps: (solver.end_time / solver.dt * (1.0 + 1e-12)).floor() as u64,
+            max_steps: solver.steps(),
             stride: ((solver.output_interval / solver.dt).round() as u64).max(1),
             interval: None,
             evaluations0: 0,
@@ -402,18 +400,28 @@ impl<'a> Stepper<'a> {
     }
 
     /// `f` with RK4's stability limit at the last good state, for the failures a step beyond
-    /// it gives (energy runaway, a non-finite state, a force spike). Its right-hand sides are
-    /// not counted: the run's are. About as long as the start's analysis (0.5 s at N = 518).
+    /// it gives (energy runaway, a non-finite state, a force spike), where it is settled. Its
+    /// right-hand sides are not counted: the run's are. About as long as the start's analysis
+    /// (0.5 s at N = 518), and not cancellable: it runs once, after the failure.
     fn with_last_limit(&mut self, mut f: Failure) -> Failure {
         let blow_up = matches!(
             f.kind,
             FailureKind::EnergyRunaway { .. } | FailureKind::NonFiniteState | FailureKind::ForceSpike { .. }
         );
-        if self.model.scene.solver.integrator == Method::Rk4 && blow_up && self.y.iter().all(|v| v.is_finite()) {
-            let before = self.m.dynamics.evaluations();
-            f.last_limit = stability::limit(&mut self.m.dynamics, &self.y, &AtomicBool::new(false)).ok().map(Box::new);
-            self.evaluations0 += self.m.dynamics.evaluations() - before;
+        if self.model.scene.solver.integrator != Method::Rk4 || !blow_up || !self.y.iter().all(|v| v.is_finite()) {
+            return f;
         }
+        // At the start, the limit the run began with.
+        let limit = if self.steps == 0 {
+            self.stability
+        } else {
+            let before = self.m.dynamics.evaluations();
+            let limit = stability::limit(&mut self.m.dynamics, &self.y, &AtomicBool::new(false)).ok();
+            self.evaluations0 += self.m.dynamics.evaluations() - before;
+            limit
+        };
+        // An estimate (a long line's unsettled Krylov space) is no bound to advise a step by.
+        f.last_limit = limit.filter(|l| l.settled).map(Box::new);
         f
     }
 

@@ -76,8 +76,11 @@ pub fn plan_hash(name: &str, plan: &[PlannedRow], kernel: &str) -> String {
     // ship at rest at the start has stopped at t = 0, and a row refused before its first step
     // has no E_0, drift or work (null, where it read 0) (2026-12-07); 6 since the break loads
     // are a design check of every run that took a step and did not fail, so a row without
-    // `[checks]` has a verdict (`checks_pass`, where it had none) (2026-12-07).
-    field("kanestop sweep plan 6");
+    // `[checks]` has a verdict (`checks_pass`, where it had none) (2026-12-07); 7 since a run
+    // ends at the last whole step at or before its end time (the nearest, past it, before),
+    // an RK4 blow-up's message names the limit at its last good state, and the work columns
+    // are every term's whether or not a row ran (2026-12-07).
+    field("kanestop sweep plan 7");
     field(name);
     field(kernel);
     field(&plan.len().to_string());

@@ -487,6 +487,8 @@ const ROW_NAME: (&str, &str) =
     ("meta.name", "a field other than meta.name, which each row's name takes (NAME-000; the sweep's `name` sets NAME)");
 
 fn axis(file: &Path, base: &Value, i: usize, a: AxisFile) -> Result<Axis> {
+    // Long by design: an axis's path, its values (given or a range) and their types are
+    // checked in the order a spec's reader meets them, each refusal naming its field.
     let field = |f: &str| format!("axis[{i}].{f}");
     if a.path == ROW_NAME.0 {
         return Err(bad(file, field("path"), &a.path, ROW_NAME.1));
@@ -591,9 +593,16 @@ fn axis(file: &Path, base: &Value, i: usize, a: AxisFile) -> Result<Axis> {
         })
         .collect::<Result<Vec<Value>>>()?;
     // A table, an array or a text can be malformed inside (an unknown key in a stage, a
-    // method no integrator has): refused now, not found as an invalid row after the others
-    // have run. A value out of its range stays a row of its own.
-    for v in typed.iter().filter(|v| matches!(v, Value::Table(_) | Value::Array(_) | Value::String(_))) {
+    // method no integrator has), and a whole number below 0 or beyond 2³² does not read as a
+    // count: refused now, not found as an invalid row after the others have run. A value out
+    // of its range stays a row of its own. (A real always reads: a range's points need no
+    // look.)
+    let unread = |v: &&Value| match v {
+        Value::Table(_) | Value::Array(_) | Value::String(_) => true,
+        Value::Integer(n) => !(0..=i64::from(u32::MAX)).contains(n),
+        _ => false,
+    };
+    for v in typed.iter().filter(unread) {
         let mut scene = base.clone();
         if overrides::set(&mut scene, &a.path, v.clone()).is_ok() {
             if let Err(SceneError::Parse { message, .. }) = Scene::from_value(scene, "") {
@@ -750,6 +759,15 @@ mod tests {
         // A path past an array's end says its length.
         let e = spec("[[axis]]\npath = \"cable.stages[7].elements\"\nvalues = [3]\n").unwrap_err();
         assert!(e.to_string().contains("index 7 is out of range (the array has 3 entries)"), "{e}");
+        // An invalid [set] value names the spec's base scene, not the spec as a scene.
+        let e = spec("[set]\n\"ship.mass\" = -5.0\n").unwrap_err();
+        assert!(
+            e.to_string().contains("(the base of sweep spec <string> with its [checks], [solver] and [set])"),
+            "{e}"
+        );
+        // A count below 0 reads as no count (it was an invalid row, as a stage's was refused).
+        let e = spec("[[axis]]\npath = \"chain.elements\"\nvalues = [-1, 14]\n").unwrap_err();
+        assert!(e.to_string().contains("axis[0].values = -1"), "{e}");
         let out_of_range = spec("[[axis]]\npath = \"ship.mass\"\nvalues = [5e5, -1.0]\n").unwrap();
         assert!(out_of_range.plan()[1].scene.is_err());
     }
