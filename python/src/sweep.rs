@@ -19,7 +19,7 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use toml::Value;
 
-use crate::errors::workflow_error;
+use crate::errors::{scene_error, workflow_error};
 use crate::{convert, kernel_choice, override_list, PyScene, SolverArgs};
 
 /// A checked sweep spec (docs/sweeps.md): the base scene, grid axes, uncertain inputs and
@@ -67,6 +67,14 @@ impl PySpec {
         if let Some(base) = d.get_item("base")? {
             if let Ok(s) = base.downcast::<PyScene>() {
                 scene = Some(s.get().inner.clone());
+                d.del_item("base")?;
+            } else if base.is_instance_of::<PyDict>() {
+                // A dict of the scene's tables, as `Scene.from_dict` takes (it was refused as
+                // no file name, its whole text in the message).
+                let value = convert::to_toml(&base, "")?;
+                let named = "<the spec's base dict>";
+                let s = kanestop_runtime::scene::Scene::from_value(value, named).map_err(|e| scene_error(py, e))?;
+                scene = Some(s);
                 d.del_item("base")?;
             }
         }

@@ -303,3 +303,12 @@ def test_a_spec_dict_without_base_is_told_so() -> None:
 
 def test_a_spec_s_repr_counts_its_rows(case01: kanestop.Scene) -> None:
     assert repr(kanestop.Spec.from_scene(case01)) == 'Spec("case01", 1 row, base "case01")'
+
+
+def test_a_spec_s_base_may_be_a_dict_of_the_scene_s_tables(case01: kanestop.Scene) -> None:
+    spec = kanestop.Spec.from_dict({"base": case01.to_dict(), "axis": [{"path": "ship.mass", "values": [5e5, 6e5]}]})
+    assert spec.base == case01 and len(spec) == 2
+    bad = case01.to_dict()
+    bad["ship"]["mass"] = -1.0
+    with pytest.raises(kanestop.SceneError, match="ship.mass = -1"):
+        kanestop.Spec.from_dict({"base": bad, "axis": [{"path": "anchor.mass", "values": [5e4]}]})

@@ -85,7 +85,7 @@ class Spec:
         """A spec from TOML text; ``base`` relative to ``base_dir``, or the given scene."""
     @staticmethod
     def from_dict(d: Mapping[str, Any], *, base_dir: Optional[Union[str, "os.PathLike[str]"]] = None) -> "Spec":
-        """A spec from a dict of the spec file's fields; ``base`` a path or a Scene."""
+        """A spec from a dict of the spec file's fields; ``base`` a path, a Scene or a dict of its tables."""
     @staticmethod
     def from_scene(scene: Scene, name: Optional[str] = None) -> "Spec":
         """The spec of one scene, no axes: rows are given to ``sweep``."""
