@@ -315,3 +315,13 @@ fn an_end_time_of_zero_is_refused_once_and_an_empty_extends_is_no_file() {
     let e = Scene::load(&file).unwrap_err().to_string();
     assert_mentions(&e, &["e.toml", "extends must be a file name"]);
 }
+
+#[test]
+fn a_sweep_spec_given_as_a_scene_is_named_so() {
+    let spec = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/sweeps/mass_speed.toml");
+    let e = Scene::load(&spec).unwrap_err().to_string();
+    assert_mentions(&e, &["unknown field `base`", "a sweep spec, not a scene: run it with `kanestop sweep"]);
+    // A scene with a misspelt table is no spec.
+    let e = error(&edited("[anchor]", "[anchr]"));
+    assert!(!e.contains("sweep spec"), "{e}");
+}

@@ -533,7 +533,13 @@ impl fmt::Display for SceneError {
                 write!(f, "cannot read scene {file}, the base that `extends` names in {by}: {source}")
             }
             SceneError::Parse { file, message } => {
-                write!(f, "scene {file} is not valid: {}", plain_types(message.trim_end()))
+                write!(f, "scene {file} is not valid: {}", plain_types(message.trim_end()))?;
+                // A sweep spec's own fields: the file is a spec, given where a scene goes.
+                let spec = ["base", "axis", "sampling", "uncertain", "set"];
+                if spec.iter().any(|k| message.contains(&format!("unknown field `{k}`"))) {
+                    write!(f, "\n(a sweep spec, not a scene: run it with `kanestop sweep {file}`)")?;
+                }
+                Ok(())
             }
             SceneError::Invalid { file, problems } => {
                 write!(f, "scene {file} has {} invalid value(s):", problems.len())?;
