@@ -358,3 +358,13 @@ def test_a_failed_check_is_on_the_result(case01: kanestop.Scene) -> None:
     assert "checks FAIL" in repr(r) and "t_end=2 " not in repr(r) and "t_end=2>" in repr(r)
     plain = kanestop.run(case01, end_time=0.02)
     assert plain.checks == [] and plain.checks_pass is True and "checks pass" in repr(plain)
+
+
+def test_tolerances_under_rk4_are_said_to_do_nothing(case01: kanestop.Scene) -> None:
+    with pytest.warns(UserWarning, match="rk4 takes a fixed step and ignores them"):
+        kanestop.run(case01, rtol=1e-3, end_time=0.01)
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        kanestop.run(case01, integrator="dp5", dt=0.01, rtol=1e-3, end_time=0.02)

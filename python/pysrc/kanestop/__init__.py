@@ -353,7 +353,14 @@ def run(
         output_interval=output_interval,
         kernel=kernel,
     )
-    return Result(json.loads(summary), None, events, failure, (), core_time, history=history)
+    record: Dict[str, Any] = json.loads(summary)
+    if (rtol is not None or atol is not None) and record.get("method") == "rk4":
+        # As the command line notes it: the keywords were not wrong, but did nothing.
+        warnings.warn(
+            "rtol and atol are the adaptive methods' tolerances; rk4 takes a fixed step and ignores them",
+            stacklevel=2,
+        )
+    return Result(record, None, events, failure, (), core_time, history=history)
 
 
 def eval(
