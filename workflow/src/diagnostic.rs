@@ -173,8 +173,9 @@ fn chatter(model: &Model, t: f64, first_rough: u64) -> (String, String) {
 /// RK4's cause and suggestion, from its stability limit at the last good state where the run
 /// computed it ([`Failure::last_limit`]): below `dt`, the mode stiffened during the run and a
 /// step within that limit and at most half the failed one is advised (case 1 blown up at
-/// 15 ms: 6.3 ms at t = 1.455 s, so 5.6 ms, which completes; at 20 ms: 10 ms); at or above it, the linearisation does not explain the blow-up,
-/// and a much finer step is advised ([`rk4_suggestion`]).
+/// 15 ms: 6.3 ms at t = 1.455 s, so 5.6 ms, which completes; at 20 ms: 10 ms); at or above
+/// it, the linearisation does not explain the blow-up, and a much finer step is advised
+/// ([`rk4_suggestion`]).
 fn rk4_advice(failure: &Failure, dt: f64, end_time: f64, mode: &str, kept: &str) -> (String, String) {
     let cause = format!("the explicit step dt = {dt} s is beyond the stability limit of {mode}");
     let last = format!("the last good state (t = {:.3} s)", (failure.t - dt).max(0.0));
