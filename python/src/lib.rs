@@ -401,15 +401,29 @@ fn interruptible<T: Send>(py: Python<'_>, work: impl FnOnce(&AtomicBool) -> Opti
 /// Ctrl-C stops them at their next step and raises KeyboardInterrupt. A bad step or job count, or a base scene that fails, is
 /// a ValueError (the latter with the command line's message).
 #[pyfunction]
-#[pyo3(signature = (scene, step=0.05, jobs=None))]
-fn _sensitivity(py: Python<'_>, scene: &PyScene, step: f64, jobs: Option<usize>) -> PyResult<String> {
+#[pyo3(signature = (scene, step=0.05, jobs=None, *, integrator=None, dt=None, rtol=None, atol=None, end_time=None, output_interval=None))]
+#[allow(clippy::too_many_arguments)]
+fn _sensitivity(
+    py: Python<'_>,
+    scene: &PyScene,
+    step: f64,
+    jobs: Option<usize>,
+    integrator: Option<String>,
+    dt: Option<f64>,
+    rtol: Option<f64>,
+    atol: Option<f64>,
+    end_time: Option<f64>,
+    output_interval: Option<f64>,
+) -> PyResult<String> {
     use kanestop_workflow::{kernels, sensitivity};
     // Named as Python names them (the command line's say --step and --jobs).
     if let Err(kanestop_workflow::Error::Argument { expected, .. }) = sensitivity::check_step(step) {
         return Err(PyValueError::new_err(format!("step = {step}: must be {expected}")));
     }
     sweep::check_jobs(jobs)?;
-    let scene = scene.inner.clone();
+    // The solver keywords on the base scene, as `run`'s: every perturbed run takes them.
+    let solver = SolverArgs { integrator, dt, rtol, atol, end_time, output_interval };
+    let scene = apply(&scene.inner, &solver.overrides()).map_err(|e| scene_error(py, e))?;
     let study = interruptible(py, move |cancel| {
         let probes = sensitivity::probes(&scene, step);
         let kernel = kernels::factory(kernels::KernelChoice::Generated);

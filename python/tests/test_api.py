@@ -368,3 +368,12 @@ def test_tolerances_under_rk4_are_said_to_do_nothing(case01: kanestop.Scene) -> 
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         kanestop.run(case01, integrator="dp5", dt=0.01, rtol=1e-3, end_time=0.02)
+
+
+def test_sensitivity_takes_the_solver_keywords(case01: kanestop.Scene) -> None:
+    """As `run`: the keywords are set on the scene for every run (a TypeError before)."""
+    by_keyword = kanestop.sensitivity(case01, end_time=0.1, jobs=1, records=True)
+    by_scene = kanestop.sensitivity(case01.with_overrides({"solver.end_time": 0.1}), jobs=1, records=True)
+    assert by_keyword["rows"] == by_scene["rows"] and by_keyword["base"] == by_scene["base"]
+    with pytest.raises(kanestop.SceneError, match="solver.end_time = -1"):
+        kanestop.sensitivity(case01, end_time=-1.0)

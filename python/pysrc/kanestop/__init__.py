@@ -388,6 +388,12 @@ def sensitivity(
     step: float = 0.05,
     jobs: Optional[int] = None,
     records: bool = False,
+    integrator: Optional[str] = None,
+    dt: Optional[float] = None,
+    rtol: Optional[float] = None,
+    atol: Optional[float] = None,
+    end_time: Optional[float] = None,
+    output_interval: Optional[float] = None,
 ) -> Any:
     """The sensitivity study of ``kanestop report sensitivity SCENE --step STEP``
     (docs/sweeps.md): the effect of each continuous parameter p on the stopping time (s),
@@ -402,7 +408,9 @@ def sensitivity(
     ``peak_tension`` when the base run has no stop to move, as the command line's note
     says) and each column's ``units`` (as
     ``sensitivity.units.csv``; ``value`` is in its parameter's own unit); else a list of
-    dicts. With ``records=True``:
+    dicts. The solver keywords (``integrator``, ``dt``, ``rtol``, ``atol``, ``end_time``,
+    ``output_interval``) are set on the scene for every run, as ``run``'s are
+    (``SceneError`` when out of range). With ``records=True``:
     ``sensitivity.json``'s record as a dict. The runs release the GIL, ``jobs`` at a time
     (every core when None); Ctrl-C stops them at their next step and raises
     ``KeyboardInterrupt``. A step outside
@@ -412,7 +420,19 @@ def sensitivity(
     """
     if isinstance(step, (bool, np.bool_)):
         raise TypeError(f"step = {step}: a relative step (e.g. 0.05), not a bool")
-    study: Dict[str, Any] = json.loads(_sensitivity(_scene(scene), step, _jobs(jobs)))
+    _no_bools(dt=dt, rtol=rtol, atol=atol, end_time=end_time, output_interval=output_interval)
+    text = _sensitivity(
+        _scene(scene),
+        step,
+        _jobs(jobs),
+        integrator=integrator,
+        dt=dt,
+        rtol=rtol,
+        atol=atol,
+        end_time=end_time,
+        output_interval=output_interval,
+    )
+    study: Dict[str, Any] = json.loads(text)
     if records:
         return study
     rows = [

@@ -134,7 +134,18 @@ def eval(
     """The equations of motion as a dict with NumPy ``M``, ``f``, ``qdd``, ``q``, ``u``."""
 def _sensitivity_units() -> List[Tuple[str, str]]:
     """The unit of each column of ``sensitivity.csv``, by name."""
-def _sensitivity(scene: Scene, step: float = 0.05, jobs: Optional[int] = None) -> str:
+def _sensitivity(
+    scene: Scene,
+    step: float = 0.05,
+    jobs: Optional[int] = None,
+    *,
+    integrator: Optional[str] = None,
+    dt: Optional[float] = None,
+    rtol: Optional[float] = None,
+    atol: Optional[float] = None,
+    end_time: Optional[float] = None,
+    output_interval: Optional[float] = None,
+) -> str:
     """The sensitivity study's ``sensitivity.json`` record as JSON text."""
 def _sweep(
     spec: Spec,
