@@ -8,7 +8,7 @@
 
 use std::ffi::CString;
 use std::path::PathBuf;
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::mpsc;
 use std::time::Duration;
 
@@ -355,6 +355,16 @@ fn _run(
 /// step, or within its start-up stability analysis), waits for it to return, and raises the signal's exception (KeyboardInterrupt).
 /// `work` returns None only when cancelled.
 fn interruptible<T: Send>(py: Python<'_>, work: impl FnOnce(&AtomicBool) -> Option<T> + Send) -> PyResult<T> {
+    interruptible_polling(py, work, |_| Ok(()))
+}
+
+/// [`interruptible`], calling `poll` on this thread at each wake and once before returning
+/// (a progress callback); an error from it cancels `work` as Ctrl-C does and is returned.
+fn interruptible_polling<T: Send>(
+    py: Python<'_>,
+    work: impl FnOnce(&AtomicBool) -> Option<T> + Send,
+    mut poll: impl FnMut(Python<'_>) -> PyResult<()>,
+) -> PyResult<T> {
     let cancel = AtomicBool::new(false);
     std::thread::scope(|s| {
         let (tx, rx) = mpsc::channel();
@@ -369,7 +379,7 @@ fn interruptible<T: Send>(py: Python<'_>, work: impl FnOnce(&AtomicBool) -> Opti
                 rx.lock().expect("only this thread locks it").recv_timeout(Duration::from_millis(50))
             });
             match got {
-                Ok(Some(out)) => return Ok(out),
+                Ok(Some(out)) => return poll(py).map(|()| out),
                 Ok(None) => return Err(PyValueError::new_err("the run was cancelled")),
                 Err(mpsc::RecvTimeoutError::Disconnected) => {
                     let panic = py.allow_threads(|| worker.join()).err();
@@ -384,7 +394,7 @@ fn interruptible<T: Send>(py: Python<'_>, work: impl FnOnce(&AtomicBool) -> Opti
                     return Err(PyValueError::new_err(format!("the run's thread panicked ({what}): please report it")));
                 }
                 Err(mpsc::RecvTimeoutError::Timeout) => {
-                    if let Err(e) = py.check_signals() {
+                    if let Err(e) = py.check_signals().and_then(|()| poll(py)) {
                         cancel.store(true, Ordering::Relaxed);
                         let _ = py.allow_threads(|| worker.join());
                         return Err(e);
@@ -398,16 +408,19 @@ fn interruptible<T: Send>(py: Python<'_>, work: impl FnOnce(&AtomicBool) -> Opti
 /// The sensitivity study of `kanestop report sensitivity` (central differences of the
 /// stopping time, distance and peak tension in each continuous parameter's logarithm,
 /// docs/sweeps.md) as its `sensitivity.json` record in JSON text. The runs release the GIL;
-/// Ctrl-C stops them at their next step and raises KeyboardInterrupt. A bad step or job count, or a base scene that fails, is
-/// a ValueError (the latter with the command line's message).
+/// `progress(done, total)` is called on this thread as runs finish; Ctrl-C, or an exception
+/// raised in `progress`, stops them at their next step and is raised. A bad step or job
+/// count, or a base scene that fails, is a ValueError (the latter with the command line's
+/// message).
 #[pyfunction]
-#[pyo3(signature = (scene, step=0.05, jobs=None, *, integrator=None, dt=None, rtol=None, atol=None, end_time=None, output_interval=None))]
+#[pyo3(signature = (scene, step=0.05, jobs=None, *, progress=None, integrator=None, dt=None, rtol=None, atol=None, end_time=None, output_interval=None))]
 #[allow(clippy::too_many_arguments)]
 fn _sensitivity(
     py: Python<'_>,
     scene: &PyScene,
     step: f64,
     jobs: Option<usize>,
+    progress: Option<PyObject>,
     integrator: Option<String>,
     dt: Option<f64>,
     rtol: Option<f64>,
@@ -424,11 +437,37 @@ fn _sensitivity(
     // The solver keywords on the base scene, as `run`'s: every perturbed run takes them.
     let solver = SolverArgs { integrator, dt, rtol, atol, end_time, output_interval };
     let scene = apply(&scene.inner, &solver.overrides()).map_err(|e| scene_error(py, e))?;
-    let study = interruptible(py, move |cancel| {
-        let probes = sensitivity::probes(&scene, step);
-        let kernel = kernels::factory(kernels::KernelChoice::Generated);
-        sensitivity::study_cancellable(&scene, step, &probes, &kernel, jobs, &|| {}, cancel)
-    })?
+    if let Some(p) = &progress {
+        if !p.bind(py).is_callable() {
+            return Err(PyTypeError::new_err("progress must be callable as progress(done, total)"));
+        }
+    }
+    let probes = sensitivity::probes(&scene, step);
+    let total = sensitivity::run_count(&probes);
+    let finished = AtomicUsize::new(0);
+    let mut told = 0;
+    let poll = |py: Python<'_>| -> PyResult<()> {
+        let done = finished.load(Ordering::Relaxed);
+        match &progress {
+            Some(p) if done > told => {
+                told = done;
+                p.call1(py, (done, total)).map(drop)
+            }
+            _ => Ok(()),
+        }
+    };
+    let finished = &finished;
+    let study = interruptible_polling(
+        py,
+        move |cancel| {
+            let kernel = kernels::factory(kernels::KernelChoice::Generated);
+            let done = || {
+                finished.fetch_add(1, Ordering::Relaxed);
+            };
+            sensitivity::study_cancellable(&scene, step, &probes, &kernel, jobs, &done, cancel)
+        },
+        poll,
+    )?
     .map_err(|e| workflow_error(py, e))?;
     serde_json::to_string(&study).map_err(|e| PyValueError::new_err(e.to_string()))
 }

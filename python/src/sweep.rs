@@ -245,18 +245,33 @@ pub fn _sweep(
             spec.plan_inputs(rows)
         }
     };
-    let done = run_rows(py, &plan, choice, jobs, progress.as_ref())?;
+    match run_rows(py, &plan, choice, jobs, progress.as_ref()) {
+        Ok(done) => output(py, &done, records),
+        Err((e, finished)) => {
+            // The rows that had finished ride on the exception, in the form a return would
+            // have had; the package's `sweep` makes them its `partial` attribute.
+            let value = e.value(py);
+            value.setattr("_kanestop_partial", output(py, &finished, records)?)?;
+            value.setattr("_kanestop_counts", (finished.len(), plan.len()))?;
+            Err(e)
+        }
+    }
+}
+
+/// The rows `done` as `_sweep` returns them: `sweep.json`'s text with `records`, else
+/// `(columns, rows of cells, units)`.
+fn output(py: Python<'_>, done: &[SweepRow], records: bool) -> PyResult<PyObject> {
     if records {
-        let json = serde_json::to_string(&done).map_err(|e| PyValueError::new_err(e.to_string()))?;
+        let json = serde_json::to_string(done).map_err(|e| PyValueError::new_err(e.to_string()))?;
         return Ok(json.into_pyobject(py)?.into_any().unbind());
     }
-    let (head, body) = sweep::cells(&done);
+    let (head, body) = sweep::cells(done);
     let table = PyList::empty(py);
     for row in &body {
         let cells: Vec<PyObject> = row.iter().map(|c| cell(py, c)).collect::<PyResult<_>>()?;
         table.append(PyList::new(py, cells)?)?;
     }
-    let units: Vec<&str> = sweep::column_units(&done).into_iter().map(|(_, unit, _)| unit).collect();
+    let units: Vec<&str> = sweep::column_units(done).into_iter().map(|(_, unit, _)| unit).collect();
     Ok((head, table, units).into_pyobject(py)?.into_any().unbind())
 }
 
@@ -280,19 +295,19 @@ fn row_list(py: Python<'_>, rows: &Bound<'_, PyAny>) -> PyResult<Vec<Vec<(String
 /// Runs every row with `sweep::run_row` on a pool of `jobs` threads, in plan order; the
 /// calling thread waits with the GIL released and calls `progress`. An exception in
 /// `progress` (or Ctrl-C) cancels the rows not started, stops those running at their next
-/// step, and is returned.
+/// step, and is returned with the rows that had finished, in plan order.
 fn run_rows(
     py: Python<'_>,
     plan: &[PlannedRow],
     choice: kernels::KernelChoice,
     jobs: Option<usize>,
     progress: Option<&PyObject>,
-) -> PyResult<Vec<SweepRow>> {
+) -> Result<Vec<SweepRow>, (PyErr, Vec<SweepRow>)> {
     let total = plan.len();
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(jobs.unwrap_or(0))
         .build()
-        .map_err(|e| PyValueError::new_err(e.to_string()))?;
+        .map_err(|e| (PyValueError::new_err(e.to_string()), Vec::new()))?;
     let kernel = kernels::factory(choice);
     let cancel = AtomicBool::new(false);
     let (tx, rx) = mpsc::channel::<()>();
@@ -339,11 +354,14 @@ fn run_rows(
         let outcomes = py.allow_threads(|| worker.join());
         (outcomes, error)
     });
-    if let Some(e) = error {
-        return Err(e);
+    let outcomes = outcomes.map_err(|_| (PyValueError::new_err("a sweep worker panicked"), Vec::new()))?;
+    match error {
+        Some(e) => Err((e, outcomes.into_iter().flatten().collect())),
+        None => outcomes
+            .into_iter()
+            .map(|o| o.ok_or_else(|| (PyValueError::new_err("a sweep row was cancelled"), Vec::new())))
+            .collect(),
     }
-    let outcomes = outcomes.map_err(|_| PyValueError::new_err("a sweep worker panicked"))?;
-    outcomes.into_iter().map(|o| o.ok_or_else(|| PyValueError::new_err("a sweep row was cancelled"))).collect()
 }
 
 /// `jobs` in [1, MAX_JOBS], or None (every core); else a ValueError naming it as Python does.

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import math
 import pickle
+import sys
+from typing import List, Tuple
 
 import numpy as np
 import pandas as pd
@@ -245,6 +247,32 @@ def test_a_progress_callback_that_raises_cancels(case01: kanestop.Scene) -> None
         kanestop.sweep(case01, [{"ship.mass": 5e5}] * 8, jobs=1, end_time=0.2, progress=stop)
 
 
+@pytest.mark.parametrize("records", [False, True])
+def test_an_interrupted_sweep_keeps_the_rows_that_finished(case01: kanestop.Scene, records: bool) -> None:
+    """The exception carries the finished rows as ``partial``, in the form a return has:
+    here the progress callback stops the sweep once three of eight rows have finished (one
+    thread: the fourth is stopped mid-run or not started, so it is not among them)."""
+
+    def stop(done: int, total: int) -> None:
+        if done == 3:
+            raise KeyboardInterrupt
+
+    masses = [4e5 + 1e4 * i for i in range(8)]
+    with pytest.raises(KeyboardInterrupt) as caught:
+        kanestop.sweep(case01, [{"ship.mass": m} for m in masses], jobs=1, end_time=0.2, progress=stop, records=records)
+    partial = caught.value.partial  # type: ignore[attr-defined]
+    whole = kanestop.sweep(case01, [{"ship.mass": m} for m in masses[:3]], jobs=1, end_time=0.2, records=records)
+    if records:
+        assert [r["index"] for r in partial] == [0, 1, 2]
+        assert [r["summary"]["peak_tension"] for r in partial] == [r["summary"]["peak_tension"] for r in whole]
+    else:
+        assert list(partial["index"]) == [0, 1, 2] and list(partial.columns) == list(whole.columns)
+        assert list(partial["ship.mass"]) == masses[:3]
+        assert list(partial["peak_tension"]) == list(whole["peak_tension"])
+    if sys.version_info >= (3, 11):
+        assert any("3 of 8 rows had finished" in n for n in caught.value.__notes__)
+
+
 def test_ctrl_c_stops_a_run(case01: kanestop.Scene) -> None:
     """Ctrl-C (here its Python stand-in, ``_thread.interrupt_main``) stops a long
     run at its next step and raises KeyboardInterrupt. Uninterrupted, the run
@@ -273,10 +301,13 @@ def test_ctrl_c_stops_a_sweep_s_running_rows(case01: kanestop.Scene) -> None:
     timer = threading.Timer(0.3, _thread.interrupt_main)
     start = time.perf_counter()
     timer.start()
-    with pytest.raises(KeyboardInterrupt):
+    with pytest.raises(KeyboardInterrupt) as caught:
         kanestop.sweep(case01, [{"ship.mass": 5e5}] * 2, jobs=2, dt=1e-5, output_interval=0.1)
     timer.join()
     assert time.perf_counter() - start < 10.0
+    # Neither row finished: the partial table is empty.
+    partial = caught.value.partial  # type: ignore[attr-defined]
+    assert isinstance(partial, pd.DataFrame) and len(partial) == 0
 
 
 def test_ctrl_c_stops_a_sensitivity_study(case01: kanestop.Scene) -> None:
@@ -377,3 +408,25 @@ def test_sensitivity_takes_the_solver_keywords(case01: kanestop.Scene) -> None:
     assert by_keyword["rows"] == by_scene["rows"] and by_keyword["base"] == by_scene["base"]
     with pytest.raises(kanestop.SceneError, match="solver.end_time = -1"):
         kanestop.sensitivity(case01, end_time=-1.0)
+
+
+def test_sensitivity_reports_progress_and_stops_when_it_raises(case01: kanestop.Scene) -> None:
+    """``progress(done, total)`` counts the base run and every perturbed run, as the
+    command line's bar does: it ends at (runs, runs), never goes back, and an exception
+    raised in it stops the study and is raised."""
+    seen: List[Tuple[int, int]] = []
+    study = kanestop.sensitivity(case01, end_time=0.1, jobs=1, progress=lambda d, t: seen.append((d, t)))
+    runs = study.attrs["runs"]
+    assert seen[-1] == (runs, runs) and all(t == runs for _, t in seen)
+    assert [d for d, _ in seen] == sorted(set(d for d, _ in seen)) and seen[0][0] >= 1
+
+    class Stop(Exception):
+        pass
+
+    def stop(done: int, total: int) -> None:
+        raise Stop
+
+    with pytest.raises(Stop):
+        kanestop.sensitivity(case01, end_time=0.1, jobs=1, progress=stop)
+    with pytest.raises(TypeError, match="progress must be callable"):
+        kanestop.sensitivity(case01, end_time=0.1, progress="yes")  # type: ignore[arg-type]

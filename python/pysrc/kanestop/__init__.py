@@ -387,6 +387,7 @@ def sensitivity(
     *,
     step: float = 0.05,
     jobs: Optional[int] = None,
+    progress: Optional[Callable[[int, int], Any]] = None,
     records: bool = False,
     integrator: Optional[str] = None,
     dt: Optional[float] = None,
@@ -412,8 +413,10 @@ def sensitivity(
     ``output_interval``) are set on the scene for every run, as ``run``'s are
     (``SceneError`` when out of range). With ``records=True``:
     ``sensitivity.json``'s record as a dict. The runs release the GIL, ``jobs`` at a time
-    (every core when None); Ctrl-C stops them at their next step and raises
-    ``KeyboardInterrupt``. A step outside
+    (every core when None); ``progress(done, total)`` is called on this thread as runs
+    finish (``total``: the base run and each parameter's perturbed runs, as the command line's bar
+    counts them); Ctrl-C, or an exception raised in ``progress``, stops them at their next
+    step and is raised. A step outside
     [1e-6, 0.5), ``jobs`` outside [1, MAX_JOBS], or a base scene that fails raises
     ``ValueError`` (the last with the command line's diagnosis); a ``jobs`` that is no whole
     number (a bool, a float) or a bool ``step``, ``TypeError``.
@@ -425,6 +428,7 @@ def sensitivity(
         _scene(scene),
         step,
         _jobs(jobs),
+        progress=progress,
         integrator=integrator,
         dt=dt,
         rtol=rtol,
@@ -604,6 +608,15 @@ def sweep(
     ``sweep.units.csv`` has it ("" for a number without one, a count or text). With ``records=True``, the rows of ``sweep.json`` instead: a list of
     dicts ``{index, name, label, inputs, status, checks_pass, energy_split, summary,
     message}`` whose ``summary`` is the row's ``run --json`` record.
+
+    Interrupted (Ctrl-C, or an exception raised in ``progress``), it raises that exception
+    with the rows that had finished as its ``partial`` attribute, in the form a return
+    would have had (in spec order; a row stopped mid-run is not among them)::
+
+        try:
+            table = kanestop.sweep(spec)
+        except KeyboardInterrupt as e:
+            table = e.partial
     """
     jobs = _jobs(jobs)
     the_spec, the_rows = _spec(spec, rows, base_dir)
@@ -625,20 +638,38 @@ def sweep(
                 raise TypeError(f"row {i}: a row is a dict of dotted path -> value, not {type(r).__name__}")
             plan.append(dict(r))
     _no_bools(dt=dt, rtol=rtol, atol=atol, end_time=end_time, output_interval=output_interval)
-    out = _sweep(
-        the_spec,
-        plan,
-        jobs=jobs,
-        progress=progress,
-        integrator=integrator,
-        dt=dt,
-        rtol=rtol,
-        atol=atol,
-        end_time=end_time,
-        output_interval=output_interval,
-        kernel=kernel,
-        records=records,
-    )
+    try:
+        out = _sweep(
+            the_spec,
+            plan,
+            jobs=jobs,
+            progress=progress,
+            integrator=integrator,
+            dt=dt,
+            rtol=rtol,
+            atol=atol,
+            end_time=end_time,
+            output_interval=output_interval,
+            kernel=kernel,
+            records=records,
+        )
+    except BaseException as e:
+        raw = getattr(e, "_kanestop_partial", None)
+        if raw is not None:
+            done, total = getattr(e, "_kanestop_counts")
+            setattr(e, "partial", _sweep_table(raw, records))
+            if hasattr(e, "add_note"):
+                e.add_note(
+                    f"kanestop.sweep: {done} of {total} rows had finished; the exception's .partial "
+                    "holds their table (in Jupyter: sys.last_value.partial)"
+                )
+        raise
+    return _sweep_table(out, records)
+
+
+def _sweep_table(out: Any, records: bool) -> Any:
+    """``_sweep``'s output as ``sweep`` returns it: the records' list, else a DataFrame
+    (a list of dicts without pandas)."""
     if records:
         assert isinstance(out, str)
         rows_json: List[Dict[str, Any]] = json.loads(out)

@@ -139,6 +139,7 @@ def _sensitivity(
     step: float = 0.05,
     jobs: Optional[int] = None,
     *,
+    progress: Optional[Callable[[int, int], Any]] = None,
     integrator: Optional[str] = None,
     dt: Optional[float] = None,
     rtol: Optional[float] = None,
