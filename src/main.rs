@@ -17,6 +17,7 @@ use kanestop_runtime::model::Model;
 use kanestop_runtime::paper::DEFAULT_SCENE;
 use kanestop_runtime::scene::{Method, Scene, SceneError};
 use kanestop_workflow::kernels::{self, KernelChoice};
+use kanestop_workflow::output::CsvNumber;
 
 #[derive(Parser)]
 #[command(
@@ -526,12 +527,25 @@ fn load_model_with(scene: Option<&PathBuf>, o: &SolverOverrides) -> Result<Model
     let over = o.table();
     let given: Vec<String> =
         over.get("solver").and_then(|t| t.as_table()).map_or(Vec::new(), |t| t.keys().cloned().collect());
+    let raised = std::cell::Cell::new(None);
+    let edit = |value: &mut toml::Value| raised.set(o.lay_on(value));
     let scene = match scene {
-        Some(path) => Scene::load_over(path, over),
+        Some(path) => Scene::load_edited(path, &edit),
         None if over.is_empty() => Scene::from_toml(DEFAULT_SCENE, "embedded case01.toml"),
-        None => default_over(over),
+        None => {
+            let mut value = toml::Value::Table(DEFAULT_SCENE.parse::<toml::Table>().expect("case 1 is TOML"));
+            edit(&mut value);
+            Scene::from_value(value, "embedded case01.toml (with command-line overrides)")
+        }
     }
     .map_err(|e| with_flag_hints(e, &given))?;
+    if let Some(interval) = raised.get() {
+        eprintln!(
+            "note: solver.output_interval raised from the file's {} s to the step, {} s (the output grid holds at least one step; --output-interval sets it)",
+            CsvNumber(interval),
+            CsvNumber(scene.solver.dt)
+        );
+    }
     if scene.solver.integrator == Method::Rk4 && (o.rtol.is_some() || o.atol.is_some()) {
         eprintln!(
             "note: --rtol and --atol are the adaptive methods' tolerances; rk4 takes a fixed step and ignores them"
@@ -589,6 +603,15 @@ impl SolverOverrides {
         Ok(())
     }
 
+    /// Lays the overrides on a scene's tables, a step without `--output-interval` raising the
+    /// scene's shorter interval to it ([`kanestop_runtime::overrides::raise_output_interval`],
+    /// whose returned interval this returns).
+    fn lay_on(&self, value: &mut toml::Value) -> Option<f64> {
+        kanestop_runtime::overrides::merge(value, toml::Value::Table(self.table()));
+        let dt = self.dt.filter(|_| self.output_interval.is_none())?;
+        kanestop_runtime::overrides::raise_output_interval(value, dt)
+    }
+
     /// The overrides as a scene's tables: `{solver = {dt = …, …}}`, empty when none is given.
     fn table(&self) -> toml::Table {
         let mut solver = toml::Table::new();
@@ -610,18 +633,6 @@ impl SolverOverrides {
     }
 }
 
-/// The scene of `value` with the tables `over` laid on it, checked; `file` names it.
-fn over(mut value: toml::Value, over: toml::Table, file: &str) -> Result<Scene, SceneError> {
-    kanestop_runtime::overrides::merge(&mut value, toml::Value::Table(over));
-    Scene::from_value(value, &format!("{file} (with command-line overrides)"))
-}
-
-/// The embedded case 1 with the tables `o` laid on it, checked.
-fn default_over(o: toml::Table) -> Result<Scene, SceneError> {
-    let value = toml::Value::Table(DEFAULT_SCENE.parse::<toml::Table>().expect("case 1 is TOML"));
-    over(value, o, "embedded case01.toml")
-}
-
 /// A batch configuration that owns its captures.
 type BoxedConfigure<'a> = Box<dyn Fn(&mut toml::Value) + Sync + 'a>;
 
@@ -637,16 +648,13 @@ fn configurations<'a>(solver: &'a SolverOverrides, methods: &[MethodSpec]) -> Ve
                 table.insert("integrator".into(), toml::Value::String(m.method.name().into()));
                 if let Some(dt) = m.dt {
                     table.insert("dt".into(), toml::Value::Float(dt));
-                    let interval =
-                        table.get("output_interval").and_then(|v| v.as_float().or(v.as_integer().map(|i| i as f64)));
-                    // A value out of its own range (0, a negative) is the check's to refuse.
-                    if interval.is_some_and(|i| i > 0.0 && i < dt) {
-                        table.insert("output_interval".into(), toml::Value::Float(dt));
-                    }
                 }
             }
+            if let Some(dt) = m.dt {
+                kanestop_runtime::overrides::raise_output_interval(value, dt);
+            }
         }
-        kanestop_runtime::overrides::merge(value, toml::Value::Table(solver.table()));
+        solver.lay_on(value);
     };
     if methods.is_empty() {
         vec![Box::new(move |value: &mut toml::Value| edit(value, None))]

@@ -467,24 +467,74 @@ fn batch_and_run_take_solver_overrides() {
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(2), "{stderr}");
     assert!(stderr.contains("--rtol = 0: must be in [1e-14, 0.1]"), "{stderr}");
-    // One a scene's own fields make bad (output_interval below the step) is that scene's.
-    let out =
-        kanestop().args(["batch"]).arg(&scenes).args(["--dt", "0.02", "--out"]).arg(dir.join("out3")).output().unwrap();
+    // One a scene's own fields make bad (its step, 0.5 ms, too short for 1e5 s) is that scene's.
+    let out = kanestop()
+        .args(["batch"])
+        .arg(&scenes)
+        .args(["--end-time", "1e5", "--out"])
+        .arg(dir.join("out3"))
+        .output()
+        .unwrap();
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert_eq!(out.status.code(), Some(1), "{stdout}");
-    assert!(stdout.contains("invalid") && stdout.contains("solver.output_interval = 0.01"), "{stdout}");
+    assert!(stdout.contains("invalid") && stdout.contains("solver.dt = 0.0005"), "{stdout}");
     let out =
         kanestop().args(["run"]).arg(short_scene(&dir)).args(["--integrator", "sdirk4", "--atol=-1"]).output().unwrap();
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("solver.atol = -1"));
     // A flag that makes the file's own value wrong: the refusal says which flag sets that.
-    let out = kanestop().args(["run", "--dt", "0.1"]).output().unwrap();
+    let out = kanestop().args(["run", "--end-time", "1e5"]).output().unwrap();
     assert_eq!(out.status.code(), Some(2));
     let err = String::from_utf8_lossy(&out.stderr);
-    assert!(
-        err.contains("solver.output_interval is the file's: --output-interval sets it on the command line"),
-        "{err}"
-    );
+    assert!(err.contains("solver.dt is the file's: --dt sets it on the command line"), "{err}");
+}
+
+/// One rule for a step given without an output interval (`run --dt`, `batch --methods
+/// rk4@dt`, Python's `dt=`): the file's shorter interval is raised to the step, and `run`
+/// says so; with `--output-interval` beside it, the interval is the flag's and is checked.
+#[test]
+fn a_step_given_raises_a_shorter_output_interval() {
+    let dir = temp_dir("raise");
+    let scene = short_scene(&dir);
+    let out = kanestop().args(["run"]).arg(&scene).args(["--dt", "0.025", "--json"]).output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{err}");
+    assert!(err.contains("note: solver.output_interval raised from the file's 0.01 s to the step, 0.025 s"), "{err}");
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(json["dt"], 0.025, "{json}");
+    // Two samples: at 0 and at the one step in 0.05 s, 0.025 s apart.
+    let out = kanestop()
+        .args(["run"])
+        .arg(&scene)
+        .args(["--dt", "0.025", "--out"])
+        .arg(dir.join("run.csv"))
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let csv = std::fs::read_to_string(dir.join("run.csv")).unwrap();
+    let times: Vec<&str> = csv.lines().skip(1).map(|l| l.split(',').next().unwrap()).collect();
+    assert_eq!(times, ["0", "0.025", "0.05"], "{csv}");
+    // A step no longer than the file's interval changes nothing, and says nothing.
+    let out = kanestop().args(["run"]).arg(&scene).args(["--dt", "0.01"]).output().unwrap();
+    assert!(out.status.success() && !String::from_utf8_lossy(&out.stderr).contains("raised"));
+    // Given beside the step, the interval is the flag's: too short, it is refused.
+    let out =
+        kanestop().args(["run"]).arg(&scene).args(["--dt", "0.025", "--output-interval", "0.01"]).output().unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("solver.output_interval = 0.01: must be in [0.025"));
+    // batch --dt follows the same rule (it refused the scene as invalid).
+    let scenes = dir.join("scenes");
+    std::fs::create_dir_all(&scenes).unwrap();
+    std::fs::copy(&scene, scenes.join("a.toml")).unwrap();
+    let out = kanestop()
+        .args(["batch"])
+        .arg(&scenes)
+        .args(["--dt", "0.025", "--out"])
+        .arg(dir.join("batch"))
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success() && stdout.contains("end time"), "{stdout}");
 }
 
 #[test]

@@ -219,6 +219,26 @@ struct SolverArgs {
 }
 
 impl SolverArgs {
+    /// The keywords' values set on `scene` for every run, a `dt` without `output_interval`
+    /// raising the scene's shorter interval to it as the command line's `--dt` does
+    /// ([`kanestop_runtime::overrides::raise_output_interval`]), with a UserWarning saying so.
+    fn on(&self, py: Python<'_>, scene: &Scene) -> PyResult<Vec<(String, Value)>> {
+        let mut out = self.overrides();
+        if let (Some(dt), None) = (self.dt, self.output_interval) {
+            if let Some(interval) = kanestop_runtime::overrides::raise_output_interval(&mut scene.to_value(), dt) {
+                out.push(("solver.output_interval".into(), Value::Float(dt)));
+                warn(
+                    py,
+                    &format!(
+                        "solver.output_interval raised from the scene's {} s to the step, {dt} s (the output grid holds at least one step; output_interval= sets it)",
+                        kanestop_workflow::output::CsvNumber(interval)
+                    ),
+                )?;
+            }
+        }
+        Ok(out)
+    }
+
     fn overrides(&self) -> Vec<(String, Value)> {
         let mut out = Vec::new();
         if let Some(m) = &self.integrator {
@@ -305,7 +325,7 @@ fn _run(
     let start = std::time::Instant::now();
     let choice = kernel_choice(kernel)?;
     let solver = SolverArgs { integrator, dt, rtol, atol, end_time, output_interval };
-    let scene = apply(&scene.inner, &solver.overrides()).map_err(|e| scene_error(py, e))?;
+    let scene = apply(&scene.inner, &solver.on(py, &scene.inner)?).map_err(|e| scene_error(py, e))?;
     let model = Model::new(&scene).map_err(model_error)?;
     let (result, summary, note) = interruptible(py, |cancel| {
         let (k, note) = choice.build(&model);
@@ -436,7 +456,7 @@ fn _sensitivity(
     sweep::check_jobs(jobs)?;
     // The solver keywords on the base scene, as `run`'s: every perturbed run takes them.
     let solver = SolverArgs { integrator, dt, rtol, atol, end_time, output_interval };
-    let scene = apply(&scene.inner, &solver.overrides()).map_err(|e| scene_error(py, e))?;
+    let scene = apply(&scene.inner, &solver.on(py, &scene.inner)?).map_err(|e| scene_error(py, e))?;
     if let Some(p) = &progress {
         if !p.bind(py).is_callable() {
             return Err(PyTypeError::new_err("progress must be callable as progress(done, total)"));

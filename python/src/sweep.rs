@@ -212,7 +212,7 @@ pub fn _sweep(
             return Err(PyTypeError::new_err("progress must be callable as progress(done, total)"));
         }
     }
-    let solver = SolverArgs { integrator, dt, rtol, atol, end_time, output_interval }.overrides();
+    let solver = SolverArgs { integrator, dt, rtol, atol, end_time, output_interval }.on(py, &spec.inner.base)?;
     let values: Vec<(&str, Value)> = solver.iter().map(|(k, v)| (k.as_str(), v.clone())).collect();
     let spec = spec.inner.clone().with_set(&values).map_err(|e| workflow_error(py, e))?;
     let plan = match rows {

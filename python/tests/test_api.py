@@ -430,3 +430,17 @@ def test_sensitivity_reports_progress_and_stops_when_it_raises(case01: kanestop.
         kanestop.sensitivity(case01, end_time=0.1, jobs=1, progress=stop)
     with pytest.raises(TypeError, match="progress must be callable"):
         kanestop.sensitivity(case01, end_time=0.1, progress="yes")  # type: ignore[arg-type]
+
+
+def test_a_step_given_raises_a_shorter_output_interval(case01: kanestop.Scene) -> None:
+    """As the command line's ``--dt``: ``dt=`` above the scene's output interval (0.02 s)
+    raises the interval to the step, with a warning; with ``output_interval=`` beside it,
+    the interval is the keyword's and is checked."""
+    with pytest.warns(UserWarning, match=r"output_interval raised from the scene's 0.02 s to the step, 0.03 s"):
+        r = kanestop.run(case01, dt=0.03, end_time=0.3)
+    assert list(r.channels["t"]) == pytest.approx([0.03 * i for i in range(11)])
+    with pytest.warns(UserWarning, match="raised"):
+        df = kanestop.sweep(case01, [{"ship.mass": 5e5}], dt=0.03, end_time=0.3)
+    assert list(df["status"]) == ["end time"]
+    with pytest.raises(kanestop.SceneError, match="solver.output_interval = 0.02"):
+        kanestop.run(case01, dt=0.03, output_interval=0.02, end_time=0.3)

@@ -272,6 +272,21 @@ pub fn extends_target(value: &Value) -> Option<&str> {
     value.as_str().filter(|b| !b.trim().is_empty())
 }
 
+/// The one rule for a step laid over a scene without an output interval beside it
+/// (`run --dt`, `batch --methods rk4@0.01`, Python's `dt=`): where the scene's own
+/// `solver.output_interval` is shorter than the step `dt`, it is raised to the step (the
+/// output grid holds at least one step), and the interval it had is returned, for a note.
+/// A value out of its own range (0, negative, not a number) is left for the scene's check
+/// to refuse.
+pub fn raise_output_interval(value: &mut Value, dt: f64) -> Option<f64> {
+    let solver = value.get_mut("solver")?.as_table_mut()?;
+    let interval = solver.get("output_interval").and_then(|v| v.as_float().or(v.as_integer().map(|i| i as f64)))?;
+    (interval > 0.0 && interval < dt).then(|| {
+        solver.insert("output_interval".into(), Value::Float(dt));
+        interval
+    })
+}
+
 /// Lays `over` onto `base`: tables merge key by key, recursively; anything else (values,
 /// arrays such as `cable.stages`) replaces what `base` had; a field of [`ALTERNATIVES`] in
 /// `over` drops the others of its group from `base`.

@@ -577,22 +577,10 @@ impl Scene {
         Scene::load_edited(path, &|_| {})
     }
 
-    /// [`Scene::load`] with the tables `over` laid on the file's (as a file's own tables are
-    /// laid over those it `extends`) before the scene is checked, so that they can mend the
-    /// file: a command line's `--dt` over a file whose own step is refused. Errors name the
-    /// file `FILE (with command-line overrides)`. An empty `over` is [`Scene::load`].
-    pub fn load_over(path: &Path, over: toml::Table) -> Result<Scene, SceneError> {
-        if over.is_empty() {
-            return Scene::load(path);
-        }
-        let over = toml::Value::Table(over);
-        Scene::load_edited(path, &|value| overrides::merge(value, over.clone()))
-    }
-
     /// [`Scene::load`] with `edit` applied to the file's tables (its `extends` chain laid
-    /// over each other) before the scene is checked: the general form of
-    /// [`Scene::load_over`], for edits that read the file's values (`batch --methods dp5@0.05`
-    /// raises an output interval below its step). Errors name the file `FILE (with
+    /// over each other) before the scene is checked, so that the edit may mend the file (a
+    /// command line's `--dt` over a file whose own step is refused) and may read its values
+    /// (`--dt` raises an output interval below it). Errors name the file `FILE (with
     /// command-line overrides)` where `edit` changed something ([`overrides::same`]); an edit
     /// that changes nothing is [`Scene::load`], whose errors point at the file's lines.
     pub fn load_edited(path: &Path, edit: &dyn Fn(&mut toml::Value)) -> Result<Scene, SceneError> {
