@@ -588,7 +588,9 @@ fn speed_curves(runs: &[(&Model, &RunResult)]) -> Vec<Curve> {
             let points: Vec<(f64, f64)> = r.samples.iter().map(|s| (s.t, s.bodies[n - 1].vx)).collect();
             let mut curve = Curve::new(run_label(m, r), i, points);
             curve.marks = failure_mark(r, &curve.points);
-            if let Some(t) = m.scene.meta.paper_stopping_time {
+            // Table 3's time for one of its cases only, as every report (a variant extending
+            // a case inherits its `meta.paper_stopping_time`).
+            if let Some(t) = kanestop_runtime::paper::stopping_time(&m.scene) {
                 curve.marks.push(((t, 0.0), Mark::Paper));
             }
             curve
@@ -1020,6 +1022,26 @@ mod tests {
     fn case1() -> Model {
         let scene = kanestop_runtime::scene::Scene::from_toml(kanestop_runtime::paper::DEFAULT_SCENE, "case01.toml");
         Model::new(&scene.unwrap()).unwrap()
+    }
+
+    #[test]
+    fn the_paper_s_time_is_marked_for_its_cases_only() {
+        // Regression: a variant of case 1 (a heavier ship, `extends`) inherits its
+        // meta.paper_stopping_time, and its speed chart was marked with Table 3's 20 s.
+        let mut scene = case1().scene;
+        scene.solver.end_time = 0.01;
+        let mut heavier = scene.clone();
+        heavier.ship.mass *= 3.0;
+        assert!(heavier.meta.paper_stopping_time.is_some());
+        let marks = |scene: &kanestop_runtime::scene::Scene| {
+            let m = Model::new(scene).unwrap();
+            let r = kanestop_runtime::simulate::run(
+                &m,
+                crate::kernels::factory(crate::kernels::KernelChoice::Generated)(&m),
+            );
+            speed_curves(&[(&m, &r)])[0].marks.iter().filter(|(_, mark)| *mark == Mark::Paper).count()
+        };
+        assert_eq!((marks(&scene), marks(&heavier)), (1, 0));
     }
 
     #[test]
