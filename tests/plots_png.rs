@@ -95,6 +95,29 @@ fn every_chart_of_plot_and_run_plot_renders() {
     }
 }
 
+/// Table 3's stopping time is marked on a paper case's speed chart only. Regression: a
+/// variant of case 1 (a heavier ship by `extends`) inherits its meta.paper_stopping_time,
+/// and its chart was marked with Table 3's 20 s though that ship stops at 55 s.
+#[test]
+fn the_paper_s_time_is_marked_for_its_cases_only() {
+    let dir = Scratch::new("paper-mark");
+    let speed_chart = |scene: &Scene, tag: &str| {
+        let model = Model::new(scene).unwrap();
+        let result = simulate::run(&model, kernels::factory(KernelChoice::Generated)(&model));
+        let files = plot::write_plots(&[(&model, &result)], &dir.join(tag)).unwrap();
+        let speed = files.iter().find(|f| f.file_name().unwrap().to_string_lossy().contains("speed")).unwrap();
+        std::fs::read_to_string(speed).unwrap()
+    };
+    let mut case1 = Scene::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/paper/case01.toml")).unwrap();
+    case1.solver.end_time = 0.1;
+    let mut heavier = case1.clone();
+    heavier.ship.mass *= 3.0;
+    assert!(heavier.meta.paper_stopping_time.is_some());
+    // The legend's words (the SVG writes the apostrophe as &apos;).
+    assert!(speed_chart(&case1, "case1").contains("stopping time (Table 3)"));
+    assert!(!speed_chart(&heavier, "heavier").contains("stopping time (Table 3)"));
+}
+
 #[test]
 fn the_accuracy_chart_renders() {
     let mut rows = Vec::new();

@@ -1025,26 +1025,6 @@ mod tests {
     }
 
     #[test]
-    fn the_paper_s_time_is_marked_for_its_cases_only() {
-        // Regression: a variant of case 1 (a heavier ship, `extends`) inherits its
-        // meta.paper_stopping_time, and its speed chart was marked with Table 3's 20 s.
-        let mut scene = case1().scene;
-        scene.solver.end_time = 0.01;
-        let mut heavier = scene.clone();
-        heavier.ship.mass *= 3.0;
-        assert!(heavier.meta.paper_stopping_time.is_some());
-        let marks = |scene: &kanestop_runtime::scene::Scene| {
-            let m = Model::new(scene).unwrap();
-            let r = kanestop_runtime::simulate::run(
-                &m,
-                crate::kernels::factory(crate::kernels::KernelChoice::Generated)(&m),
-            );
-            speed_curves(&[(&m, &r)])[0].marks.iter().filter(|(_, mark)| *mark == Mark::Paper).count()
-        };
-        assert_eq!((marks(&scene), marks(&heavier)), (1, 0));
-    }
-
-    #[test]
     fn a_limit_is_a_step_not_a_slope() {
         // Regression: the proof/break load changing from chain to cable was drawn as a slope.
         let m = case1();
