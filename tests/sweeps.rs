@@ -65,6 +65,12 @@ fn a_3x3_grid_runs_in_spec_order_with_inputs_as_columns_and_checks() {
         let checks = r["summary"]["checks"].as_array().unwrap();
         let names: Vec<&str> = checks.iter().map(|c| c["name"].as_str().unwrap()).collect();
         assert_eq!(names, ["max_stopping_distance", "max_anchor_drag", "safety_factor"]);
+        // The safety factor's record holds utilisation × factor against 1, and the factor
+        // achieved, break load over peak tension, which passes when at least the factor set.
+        let (sf, required) = (&checks[2], 1.5);
+        let (value, achieved) = (sf["value"].as_f64().unwrap(), sf["achieved"].as_f64().unwrap());
+        assert!((achieved * value - required).abs() < 1e-12 && (achieved >= required) == sf["pass"], "{sf}");
+        assert!(checks[0].get("achieved").is_none(), "the other checks have none: {}", checks[0]);
         // Only the rows that are paper cases are compared with Table 3: the base (case 1), its
         // ship at 4 m/s (case 14), of 750 t (case 16) and of 1000 t (case 17).
         let paper = r["summary"]["paper_stopping_time"].as_f64();
@@ -99,6 +105,7 @@ fn a_3x3_grid_runs_in_spec_order_with_inputs_as_columns_and_checks() {
         "stopping_distance",
         "anchor_drag_distance",
         "chain_peak_break_utilisation",
+        "check_safety_factor_achieved",
         "check_safety_factor_pass",
         "work_friction",
         "work_anchor_friction",

@@ -59,6 +59,12 @@ pub struct CheckOutcome {
     pub joint: Option<usize>,
     /// Whether it passed.
     pub pass: bool,
+    /// `safety_factor` only: the factor the run achieved, the break load over the peak
+    /// tension at the worst joint (the factor set divided by `value`; passes when at least
+    /// the factor set); none for the other checks, and when the run gave no value. Added
+    /// 2026-12-07: `value` alone, utilisation × factor, read as a factor of 0.22.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub achieved: Option<f64>,
 }
 
 /// Every design check of `checks` against the finished run `result` of `model`, in the
@@ -69,7 +75,9 @@ pub fn evaluate(checks: &DesignChecks, model: &Model, result: &RunResult) -> Vec
         if let Some(limit) = limit {
             let value = value.map(|v| v * scale);
             let pass = value.is_some_and(|v| v <= limit);
-            out.push(CheckOutcome { name: name.to_string(), value, limit, joint, pass });
+            // Utilisation × factor is the value; the factor itself over it is what was achieved.
+            let achieved = value.filter(|_| name == "safety_factor").map(|v| scale / v);
+            out.push(CheckOutcome { name: name.to_string(), value, limit, joint, pass, achieved });
         }
     };
     // At the ship's stop, also in a run that went on past it (`stop_when_ship_stops = false`).
@@ -210,7 +218,7 @@ mod tests {
     use super::*;
 
     fn outcome(name: &str, value: Option<f64>, limit: f64, joint: Option<usize>, pass: bool) -> CheckOutcome {
-        CheckOutcome { name: name.into(), value, limit, joint, pass }
+        CheckOutcome { name: name.into(), value, limit, joint, pass, achieved: None }
     }
 
     /// One verdict over the break loads and `[checks]`: false on an exceeded break load

@@ -268,6 +268,9 @@ pub fn cells(rows: &[SweepRow]) -> (Vec<String>, Vec<Vec<Cell>>) {
                 for c in &checks {
                     let outcome = s.and_then(|s| s.checks.iter().find(|x| &x.name == c));
                     cells.push(number(outcome.and_then(|x| x.value)));
+                    if c == "safety_factor" {
+                        cells.push(number(outcome.and_then(|x| x.achieved)));
+                    }
                     cells.push(pass(outcome.map(|x| x.pass)));
                 }
                 cells.push(f(&|s| s.energy_drift));
@@ -338,6 +341,9 @@ fn layout(rows: &[SweepRow]) -> Layout<'_> {
     head.extend(works.iter().map(|w| format!("dissipated_{w}")));
     for c in &checks {
         head.push(format!("check_{c}_value"));
+        if c == "safety_factor" {
+            head.push(format!("check_{c}_achieved"));
+        }
         head.push(format!("check_{c}_pass"));
     }
     head.extend(

@@ -35,6 +35,9 @@ pub fn column(name: &str, inputs: &[&str]) -> Option<(&'static str, String)> {
             };
             return Some((scene::unit(&format!("checks.{c}")).unwrap_or(""), what));
         }
+        if check == "safety_factor_achieved" {
+            return Some(("", "the safety factor the run achieved: break load over peak tension at the worst joint (pass: at least the factor set)".to_string()));
+        }
         if let Some(c) = check.strip_suffix("_pass") {
             return Some(("", format!("[checks] {c}: pass, fail")));
         }
