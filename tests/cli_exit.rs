@@ -378,7 +378,11 @@ fn exit_3_a_failed_run_passes_no_check() {
 #[test]
 fn exit_4_a_design_check_failed() {
     let dir = temp_dir("check");
-    let path = scene(&dir, "weak-cable", |t| t.replace("break_load = 2520000.0", "break_load = 1000.0"));
+    // A weak cable (20 kN, a breaking length of 150 m: still a line) over case 1's first
+    // 1.3 s, in which the tension near the ship reaches 118 kN.
+    let path = scene(&dir, "weak-cable", |t| {
+        t.replace("break_load = 2520000.0", "break_load = 20000.0").replace("end_time = 0.05", "end_time = 1.3")
+    });
     let out = kanestop().arg("run").arg(&path).output().unwrap();
     let (stdout, stderr) = text(&out);
     assert_eq!(out.status.code(), Some(4), "{stdout}{stderr}");

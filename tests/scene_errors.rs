@@ -61,8 +61,10 @@ fn extreme_values_are_written_with_an_exponent() {
     let e = error(&edited("seabed_stiffness = 5000000.0", "seabed_stiffness = 1e-300"));
     assert_mentions(&e, &["environment.seabed_stiffness = 1e-300"]);
     assert!(!e.contains("000000000"), "{e:?}");
-    let e = error(&edited("water_density = 1025.0", "water_density = 1e15"));
-    assert_mentions(&e, &["= 1.68e16 kg (the anchor would float)", "(the chain would float"]);
+    let e = error(&edited("width = 4.0", "width = 1e12"));
+    assert_mentions(&e, &["= 4.305e15 kg (the anchor would float)"]);
+    let e = error(&edited("radius = 0.0763", "radius = 1e6"));
+    assert_mentions(&e, &["= 3.220e15 kg/m (the chain would float"]);
     // Ordinary values stay as written.
     let e = error(&edited("[anchor]\nmass = 40000.0", "[anchor]\nmass = -40000.0"));
     assert_mentions(&e, &["anchor.mass = -40000:"]);
@@ -75,7 +77,7 @@ fn magnitudes_that_overflow_the_equations_are_refused() {
     for (from, to, field) in [
         ("[anchor]\nmass = 40000.0", "[anchor]\nmass = 1e300", "anchor.mass = 1e300"),
         ("element_length = 1.0", "element_length = 1e200", "chain.element_length = 1e200"),
-        ("water_density = 1025.0", "water_density = 1e300", "environment.water_density = 1e300"),
+        ("radius = 0.0763", "radius = 1e300", "chain.radius = 1e300"),
         // Two ranges bounded below by other values had no cap (1e300 was taken).
         (
             "output_interval = 0.02",

@@ -32,6 +32,42 @@ fn proof_load_above_break_load() {
     assert_refused(&s, "chain.proof_load", "≤ chain.break_load");
 }
 
+/// Values in the wrong unit (docs/model-choices.md, "Inputs in the wrong unit"): each is
+/// refused naming the unit likely meant, and a value just inside its bound is taken.
+#[test]
+fn values_in_the_wrong_unit_are_refused() {
+    use kanestop_runtime::scene::{MIN_BREAKING_LENGTH, MIN_DRAUGHT_FRACTION, STANDARD_GRAVITY, WATER_DENSITY};
+    // Break loads in kN: case 1's chain would break under 2.7 m of its own weight.
+    let mut s = case1();
+    (s.chain.proof_load, s.chain.break_load, s.cable.break_load) = (2709.0, 3866.0, 2520.0);
+    assert_refused(&s, "chain.break_load", "this one would break under 2.7 m of it): a break load in N, not kN");
+    assert_refused(&s, "cable.break_load", "this one would break under 18.6 m of it)");
+    let mut s = case1();
+    s.cable.break_load = 1.001 * s.cable.mass_per_length * STANDARD_GRAVITY * MIN_BREAKING_LENGTH;
+    s.chain.break_load = 1.001 * s.chain.mass_per_length * STANDARD_GRAVITY * MIN_BREAKING_LENGTH;
+    s.chain.proof_load = s.chain.break_load / 2.0;
+    assert!(s.problems().is_empty(), "{:?}", s.problems());
+    // A ship's mass in tonnes: 500 floats case 1's hull on 1 mm.
+    let mut s = case1();
+    s.ship.mass = 500.0;
+    assert_refused(&s, "ship.mass", "a mass in kg, not t");
+    let least = MIN_DRAUGHT_FRACTION * s.ship.depth * s.environment.water_density * s.ship.length * s.ship.beam;
+    s.ship.mass = 1.001 * least;
+    assert!(s.problems().is_empty(), "{:?}", s.problems());
+    // Without water the ship is no ship afloat (a test of the mechanics): any mass.
+    let mut s = case1();
+    (s.environment.water, s.ship.mass) = (false, 500.0);
+    assert!(!s.problems().iter().any(|p| p.field == "ship.mass"), "{:?}", s.problems());
+    // A water density in t/m³.
+    let mut s = case1();
+    s.environment.water_density = 1.025;
+    assert_refused(&s, "environment.water_density", "in [900, 1300] kg/m³");
+    for rho in [WATER_DENSITY.0, 1000.0, WATER_DENSITY.1] {
+        s.environment.water_density = rho;
+        assert!(s.problems().is_empty(), "{rho}: {:?}", s.problems());
+    }
+}
+
 #[test]
 fn rod_under_water() {
     let mut s = case1();
@@ -61,6 +97,8 @@ fn the_depth_check_counts_the_cable_s_resting_height() {
     s.cable.radius = 0.2;
     s.cable.mass_per_length = 140.0;
     s.ship.mass = 1.0e4;
+    // A draught of 0.02 m, above the hundredth of the depth a ship afloat has.
+    s.ship.depth = 1.0;
     s.ship.hinge_z = 1.45;
     s.initial.vertical_projection = 0.5;
     s.initial.horizontal_projection = Some(151.95);

@@ -93,7 +93,9 @@ pub struct Environment {
     /// resistance, Eqs. 53–62). Off: the line hangs in vacuum and nothing holds the ship up,
     /// which falls freely onto the line: a test of the mechanics, not a ship afloat.
     pub water: bool,
-    /// ρ, sea-water density, kg/m³.
+    /// ρ, sea-water density, kg/m³, in [900, 1300] (`WATER_DENSITY`: fresh water is 1000, sea
+    /// water about 1025, the densest brines about 1240; 1.025, a density in t/m³, was refused
+    /// as a ship too heavy to float).
     pub water_density: f64,
     /// ϑ, kinematic viscosity of sea water, m²/s.
     pub kinematic_viscosity: f64,
@@ -197,7 +199,10 @@ pub struct ChainSpec {
     /// is the two chains': conservative by 2, as the paper checks; docs/model-choices.md). At
     /// most `break_load`.
     pub proof_load: f64,
-    /// Break load, N (Table 1: one chain's, as for `proof_load`).
+    /// Break load, N (Table 1: one chain's, as for `proof_load`). At least the weight in air
+    /// of `MIN_BREAKING_LENGTH` = 100 m of the chain (mass_per_length × 9.80665 m/s² × 100 m):
+    /// a steel chain breaks under kilometres of its own length (case 1: 2.7 km), so a break
+    /// load below that is one in kN, not N (it ran, and failed as a numerical spike).
     pub break_load: f64,
 }
 
@@ -211,7 +216,8 @@ pub struct Cable {
     /// (the cable sinks: w_c > 0 in Eqs. 30–31).
     pub mass_per_length: f64,
     /// Break load, N (the paper's 2520 kN, checked against the 2D element's tension, which is
-    /// the cable's two ends': conservative by 2, as for the chain's loads).
+    /// the cable's two ends': conservative by 2, as for the chain's loads). At least the weight
+    /// in air of `MIN_BREAKING_LENGTH` = 100 m of the cable, as for the chain's (case 1: 18.6 km).
     pub break_load: f64,
     /// The stages from the chain toward the ship (`[[cable.stages]]` tables; at least one:
     /// an absent list is reported by the range check, not the parser; at least 2 elements
@@ -249,7 +255,9 @@ pub struct Rod {
 #[serde(deny_unknown_fields)]
 pub struct Ship {
     /// m_N, kg. Must float: the draught T = m_N/(ρ L_N w_N) below `depth` and, with water
-    /// on, below the water depth d (see `anchor.height`).
+    /// on, below the water depth d (see `anchor.height`); with water on, also at least
+    /// `MIN_DRAUGHT_FRACTION` = 0.01 of `depth` (an empty steel barge floats on about a
+    /// tenth of its depth: 500, a mass in tonnes, floated case 1's ship on 1 mm).
     pub mass: f64,
     /// L_N, m.
     pub length: f64,
@@ -824,6 +832,23 @@ impl Scene {
                 &format!("≤ chain.break_load = {} N", fmt_value(ch.break_load)),
             );
         }
+        for (name, mpl, load) in
+            [("chain", ch.mass_per_length, ch.break_load), ("cable", self.cable.mass_per_length, self.cable.break_load)]
+        {
+            let least = mpl * STANDARD_GRAVITY * MIN_BREAKING_LENGTH;
+            if load < least {
+                c.push(
+                    &format!("{name}.break_load"),
+                    &fmt_value(load),
+                    &format!(
+                        "≥ {least:.3e} N, the weight in air of {MIN_BREAKING_LENGTH} m of the {name} (a steel line \
+                         breaks under kilometres of its own length; this one would break under {} m of it): a break \
+                         load in N, not kN",
+                        fmt_rounded(load / (mpl * STANDARD_GRAVITY), 1)
+                    ),
+                );
+            }
+        }
         self.check_depth(c);
         if self.environment.water {
             self.check_sinking(c);
@@ -939,7 +964,8 @@ impl Scene {
     fn check_environment(&self, c: &mut Checker) {
         let e = &self.environment;
         c.range("environment.gravity", e.gravity, 0.0, 100.0, false, "m/s²");
-        c.positive("environment.water_density", e.water_density, "kg/m³");
+        let (lo, hi) = WATER_DENSITY;
+        c.range("environment.water_density", e.water_density, lo, hi, true, "kg/m³ (sea water about 1025)");
         c.positive("environment.kinematic_viscosity", e.kinematic_viscosity, "m²/s");
         c.positive("environment.seabed_stiffness", e.seabed_stiffness, "N/m³");
         c.range("environment.seabed_friction", e.seabed_friction, 0.0, 2.0, true, "(dimensionless)");
@@ -1012,6 +1038,20 @@ impl Scene {
             c.range("ship.hinge_x", s.hinge_x, -s.length / 2.0, s.length / 2.0, true, "m (on the hull)");
         }
         c.range("ship.hinge_z", s.hinge_z, -1e3, 1e3, true, "m");
+        let least = MIN_DRAUGHT_FRACTION * s.depth;
+        if c.problems.is_empty() && e.water && self.ship_draught() < least {
+            c.push(
+                "ship.mass",
+                &fmt_value(s.mass),
+                &format!(
+                    "≥ {:.3e} kg, a draught of {MIN_DRAUGHT_FRACTION} × ship.depth = {} m (this mass floats the hull \
+                     on {} m; an empty steel barge floats on about a tenth of its depth): a mass in kg, not t",
+                    least * e.water_density * s.length * s.beam,
+                    fmt_value(least),
+                    fmt_rounded(self.ship_draught(), 4)
+                ),
+            );
+        }
         if c.problems.is_empty() && self.ship_draught() >= s.depth {
             c.push(
                 "ship.mass",
@@ -1540,6 +1580,25 @@ pub const MAX_MAGNITUDE: f64 = 1e15;
 /// sample) underflowed the equations into a non-finite acceleration or an unconverged
 /// stability analysis at t = 0, reported as a numerical failure of the rod (exit 3).
 pub const MIN_MAGNITUDE: f64 = 1e-15;
+
+/// The range of `environment.water_density`, kg/m³: fresh water is 1000 (958 at 100 °C), sea
+/// water about 1025, the densest natural brines (the Dead Sea) about 1240.
+pub const WATER_DENSITY: (f64, f64) = (900.0, 1300.0);
+
+/// The smallest draught of a ship afloat, as a fraction of its depth (keel to deck): an empty
+/// steel barge floats on about a tenth of its depth; below a hundredth the hull is a plate,
+/// and the mass is one in tonnes.
+pub const MIN_DRAUGHT_FRACTION: f64 = 0.01;
+
+/// The shortest breaking length of a line, m: its break load over its weight per metre in
+/// air. Steel chain and wire rope break under kilometres of their own length (case 1's chain
+/// 2.7 km, its cable 18.6 km; fibre ropes more), so a break load below 100 m of the line's
+/// weight is a unit slip (kN for N gives metres), not a line.
+pub const MIN_BREAKING_LENGTH: f64 = 100.0;
+
+/// Standard gravity g₀, m/s², by which a line's breaking length is defined (whatever the
+/// scene's `environment.gravity`).
+pub const STANDARD_GRAVITY: f64 = 9.80665;
 
 /// Upper bound of the hydrodynamic coefficients (`[hydrodynamics]`), dimensionless.
 ///

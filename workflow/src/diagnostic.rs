@@ -107,7 +107,8 @@ fn what(kind: &FailureKind) -> String {
         ),
         FailureKind::ForceSpike { joint, force, bound, .. } => format!(
             "constraint-force spike: joint {joint} (B_{} – B_{joint}) carries {force:.3e} N, above {SPIKE_FACTOR} × \
-             the line's largest break load ({bound:.3e} N in all)",
+             the line's largest break load ({bound:.3e} N in all; the model has no breaking, so a tension that rose \
+             to this smoothly, not in a jump, is a line far too weak for the scene rather than a step too long)",
             joint - 1
         ),
         FailureKind::TensionChatter { joint, ratio, rough, window, .. } => format!(
