@@ -912,3 +912,33 @@ fn run_json_of_a_refused_run_has_nulls_where_nothing_was_measured() {
     // No check was made: not even the break loads' (a run that took a step has that one).
     assert!(v.get("checks_pass").is_none(), "{v}");
 }
+
+/// A peak at the engagement (the first 0.5 s of a ship under way) is said to be one, with the
+/// largest tension sampled after; case 1's peak, at 1.5 s, is not.
+#[test]
+fn a_peak_at_the_engagement_is_said_to_be_one() {
+    let dir = temp_dir("early-peak");
+    let case1 = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/paper/case01.toml");
+    let deep = dir.join("deep.toml");
+    let text = format!(
+        "extends = {:?}\n[ship]\nmass = 1.5e6\n[chain]\nelements = 30\n[initial]\nvertical_projection = 20.0\n\
+         [solver]\nend_time = 1.0\n",
+        case1.display().to_string()
+    );
+    std::fs::write(&deep, text).unwrap();
+    let out = kanestop().arg("run").arg(&deep).output().unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{stdout}");
+    let at = stdout.find("peak 282.9 kN at joint 61 (auxiliary rod – ship) at t = 0.154 s").expect(&stdout);
+    let note = stdout[at..].lines().nth(1).unwrap();
+    assert!(note.trim_start().starts_with("at the engagement: the model starts the ship at 3 m/s"), "{stdout}");
+    assert!(note.contains("after 0.5 s the largest sampled tension is 180.8 kN at joint 61 at t = 0.800 s"), "{note}");
+    let json = |scene: &std::path::Path| -> serde_json::Value {
+        let out = kanestop().arg("run").arg(scene).args(["--json", "--end-time", "2"]).output().unwrap();
+        serde_json::from_slice(&out.stdout).unwrap()
+    };
+    assert_eq!(json(&deep)["early_peak"], true);
+    assert_eq!(json(&case1)["early_peak"], false);
+    let out = kanestop().arg("run").arg(&case1).output().unwrap();
+    assert!(!String::from_utf8_lossy(&out.stdout).contains("engagement"));
+}

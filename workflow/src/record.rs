@@ -119,6 +119,48 @@ pub struct RunSummary {
     /// The water depth d, m (`Scene::water_depth`).
     #[serde(default)]
     pub water_depth: f64,
+    /// Whether the peak tension came at the engagement ([`early_peak`]): within 0.5 s (or 20
+    /// steps) of the start of a ship under way, where the model takes the line up at once
+    /// (`run` notes it, with the largest sampled tension after). Added 2026-12-07.
+    #[serde(default)]
+    pub early_peak: bool,
+}
+
+/// The largest sampled tension after the engagement, of a run whose peak came in it
+/// ([`early_peak`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LaterPeak {
+    /// Tension, N.
+    pub tension: f64,
+    /// The joint k.
+    pub joint: usize,
+    /// When, s (an output time).
+    pub t: f64,
+}
+
+/// A run whose peak tension came at the engagement: within
+/// [`kanestop_runtime::simulate::EARLY_FAILURE_TIME`] (or 20 steps) of the start, the ship
+/// under way. The model starts the ship at full speed on a line at rest (docs/model-choices.md,
+/// "Initial speeds"), so the line near the ship is taken up at once: a snap that a net's
+/// give would soften, and that the line's layout at rest does not explain (a review's deeper
+/// scene: 283 kN at 0.154 s at 3 m/s, 112 kN at 1.75 s at 1.5 m/s, 19 kN at rest). Some
+/// with the largest tension sampled after that window (none when the run ended in it).
+pub fn early_peak(model: &Model, result: &RunResult) -> Option<Option<LaterPeak>> {
+    let (_, peak) = result.peak_tension()?;
+    let dt = model.scene.solver.dt;
+    let early = |t: f64| kanestop_runtime::simulate::is_early(t, dt);
+    if !result.ran() || model.scene.initial.ship_speed == 0.0 || !early(peak.t) {
+        return None;
+    }
+    let later = result
+        .samples
+        .iter()
+        .filter(|s| !early(s.t))
+        .flat_map(|s| {
+            s.tensions.iter().enumerate().map(move |(i, &tension)| LaterPeak { tension, joint: i + 2, t: s.t })
+        })
+        .max_by(|a, b| a.tension.total_cmp(&b.tension));
+    Some(later)
 }
 
 /// A peak joint tension.
@@ -272,6 +314,7 @@ impl RunSummary {
             initial_horizontal_projection: model.catenary.horizontal,
             initial_horizontal_tension: t_h,
             initial_top_tension: t_t,
+            early_peak: early_peak(model, result).is_some(),
             water_depth: model.water_depth(),
         }
     }

@@ -302,6 +302,26 @@ fn tension_lines(out: &mut Lines, model: &Model, result: &RunResult) {
             limit("proof", limits.proof)
         ),
     );
+    if let Some(later) = crate::record::early_peak(model, result) {
+        let after = match later {
+            Some(p) => format!(
+                "; after {:.1} s the largest sampled tension is {:.1} kN at joint {} at t = {:.3} s",
+                kanestop_runtime::simulate::EARLY_FAILURE_TIME.max(20.0 * model.scene.solver.dt),
+                p.tension / 1e3,
+                p.joint,
+                p.t
+            ),
+            None => String::new(),
+        };
+        out.line(
+            "",
+            format!(
+                "at the engagement: the model starts the ship at {} m/s on a line at rest and takes the line up at \
+                 once, a snap a net's give would soften (docs/model-choices.md, \"Initial speeds\"){after}",
+                model.scene.initial.ship_speed
+            ),
+        );
+    }
     let over = break_exceedances(model, result);
     let utilisation = |j: usize| {
         let p = result.peak_tensions[j - 2].tension;
