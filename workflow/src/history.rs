@@ -129,7 +129,7 @@ pub fn all_channels(n: usize) -> Vec<Channel> {
     ));
     c.push(Channel::new("anchor_x", "m", "anchor centroid x", "anchor", Source::Body(0, Q::X)));
     c.push(Channel::new("anchor_vx", "m/s", "anchor surge speed", "anchor", Source::Body(0, Q::Vx)));
-    c.push(Channel::new("anchor_drag", "m", "anchor drag distance since t = 0", "anchor", Source::Displacement(0)));
+    c.push(Channel::new("anchor_drag", "m", "anchor drag distance since t = 0 (its displacement along the seabed; work_anchor_drag is the water's drag on it)", "anchor", Source::Displacement(0)));
     c.push(Channel::new(
         "anchor_sliding",
         "1",
@@ -171,7 +171,7 @@ pub fn all_channels(n: usize) -> Vec<Channel> {
         c.push(Channel::new(
             format!("work_{term}"),
             "J",
-            format!("work done by {term} since t = 0 (negative: dissipated)"),
+            format!("work done by {} since t = 0 (negative: dissipated)", crate::summary::work_term_words(term)),
             "energy",
             Source::Work(i),
         ));

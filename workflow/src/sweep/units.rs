@@ -11,10 +11,13 @@ pub fn column(name: &str, inputs: &[&str]) -> Option<(&'static str, String)> {
     }
     let fixed = |unit: &'static str, what: &str| Some((unit, what.to_string()));
     if let Some(term) = name.strip_prefix("work_") {
-        return Some(("J", format!("work done on the system by {term} by the end of the run (negative: taken out)")));
+        let words = crate::summary::work_term_words(term);
+        return Some(("J", format!("work done on the system by {words} by the end of the run (negative: taken out)")));
     }
     if let Some(term) = name.strip_prefix("dissipated_") {
-        let share = format!("share of initial_kinetic_energy that {term} took (-work_{term} / initial_kinetic_energy)");
+        let words = crate::summary::work_term_words(term);
+        let share =
+            format!("share of initial_kinetic_energy that {words} took (-work_{term} / initial_kinetic_energy)");
         return Some((
             "",
             match term {
