@@ -283,6 +283,16 @@ fn batch_tabulates_a_folder_and_writes_csv_and_json() {
     assert!(
         csv.starts_with("case,file,status,bodies,stopping_time,paper_stopping_time,relative_difference,peak_tension")
     );
+    // The design outputs as `run --json` gives them (added 2026-12-07, at the CSV's end).
+    assert!(csv.lines().next().unwrap().ends_with(",stopping_distance,anchor_drag_distance,peak_break_utilisation"));
+    let out = kanestop().arg("run").arg(&short).arg("--json").output().unwrap();
+    let run: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let a = rows.iter().find(|r| r["status"] == "end time").unwrap();
+    assert_eq!(a["anchor_drag_distance"], run["anchor_drag_distance"], "{a}");
+    assert_eq!(a["peak_break_utilisation"], run["peak_tension"]["break_utilisation"], "{a}");
+    assert!(a["stopping_distance"].is_null() && run["stopping_distance"].is_null(), "{a}");
+    let invalid = rows.iter().find(|r| r["status"] == "invalid").unwrap();
+    assert!(invalid["anchor_drag_distance"].is_null() && invalid["peak_break_utilisation"].is_null(), "{invalid}");
 }
 
 /// `--methods` runs every scene with each method, side by side; `--error-estimate` adds the

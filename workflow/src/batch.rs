@@ -104,6 +104,18 @@ pub struct BatchRow {
     pub break_exceedances: usize,
     /// When the anchor first slid, s.
     pub anchor_start: Option<f64>,
+    /// The ship's surge displacement when it stopped, m (none when it did not stop). Added
+    /// 2026-12-07, as `run --json` and `sweep.csv` have it.
+    #[serde(default)]
+    pub stopping_distance: Option<f64>,
+    /// The anchor's drag distance at the end of the run, m (none for a scene that did not
+    /// run). Added 2026-12-07.
+    #[serde(default)]
+    pub anchor_drag_distance: Option<f64>,
+    /// The peak tension over its joint's break load (none where that joint has none, or
+    /// the run has no peak). Added 2026-12-07.
+    #[serde(default)]
+    pub peak_break_utilisation: Option<f64>,
     /// Largest relative drift of the energy balance.
     pub energy_drift: Option<f64>,
     /// Wall-clock time of the run, s.
@@ -181,6 +193,9 @@ pub fn row(file: &Path, model: &Model, result: &RunResult) -> BatchRow {
         peak_time: peak.map(|p| p.1.t),
         break_exceedances: over.len(),
         anchor_start: result.anchor_start(),
+        stopping_distance: result.stopping_distance,
+        anchor_drag_distance: result.observed().then(|| crate::record::displacement(result, 0)),
+        peak_break_utilisation: peak.and_then(|(k, p)| model.joint_limits(k).breaking.map(|b| p.tension / b)),
         energy_drift: result.observed().then_some(result.max_energy_drift),
         wall_time: result.wall_time.as_secs_f64(),
         cpu_time: result.cpu_time.map(|d| d.as_secs_f64()),
@@ -305,6 +320,9 @@ pub fn run_all(
                 peak_time: None,
                 break_exceedances: 0,
                 anchor_start: None,
+                stopping_distance: None,
+                anchor_drag_distance: None,
+                peak_break_utilisation: None,
                 energy_drift: None,
                 wall_time: 0.0,
                 cpu_time: None,
@@ -465,7 +483,7 @@ pub const ENERGY_DRIFT_MEANING: &str =
 
 /// The columns of `batch.csv` in order, each with its unit ("" for a number without one, a
 /// count or text) and what it holds: the header and the units sidecar, `batch.units.csv`.
-pub const COLUMNS: [(&str, &str, &str); 25] = [
+pub const COLUMNS: [(&str, &str, &str); 28] = [
     ("case", "", "scene name (meta.name), or the file name when the scene did not load"),
     ("file", "", "the scene file"),
     ("status", "", "how the run ended: stopped, end time, failed, invalid"),
@@ -491,6 +509,9 @@ pub const COLUMNS: [(&str, &str, &str); 25] = [
     ("dt", "s", "rk4's step, or the adaptive methods' observation interval"),
     ("rtol", "", "the adaptive methods' relative tolerance (empty for rk4)"),
     ("atol", "", "the adaptive methods' absolute tolerance, in the state's units (empty for rk4)"),
+    ("stopping_distance", "m", "ship's surge displacement when it stopped"),
+    ("anchor_drag_distance", "m", "anchor's drag distance at the end of the run"),
+    ("peak_break_utilisation", "", "peak_tension over its joint's break load (a fraction)"),
 ];
 
 /// The rows as CSV, the columns of [`COLUMNS`].
@@ -500,7 +521,7 @@ pub fn csv(rows: &[BatchRow]) -> String {
     let o = |v: Option<f64>| v.map(|v| CsvNumber(v).to_string()).unwrap_or_default();
     for r in rows {
         out.push_str(&format!(
-            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n",
+            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n",
             csv_field(&r.case),
             csv_field(&r.file),
             r.status.name(),
@@ -526,6 +547,9 @@ pub fn csv(rows: &[BatchRow]) -> String {
             o(r.dt),
             o(r.rtol),
             o(r.atol),
+            o(r.stopping_distance),
+            o(r.anchor_drag_distance),
+            o(r.peak_break_utilisation),
         ));
     }
     out

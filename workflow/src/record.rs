@@ -126,6 +126,15 @@ pub struct RunSummary {
     pub early_peak: bool,
 }
 
+/// Body `body`'s (0-based) surge displacement over the run's samples, m: the anchor's drag
+/// distance for 0, the ship's for N − 1; 0 without samples.
+pub fn displacement(result: &RunResult, body: usize) -> f64 {
+    match (result.samples.first(), result.samples.last()) {
+        (Some(a), Some(b)) => b.bodies[body].x - a.bodies[body].x,
+        _ => 0.0,
+    }
+}
+
 /// The largest sampled tension after the engagement, of a run whose peak came in it
 /// ([`early_peak`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -229,10 +238,7 @@ impl RunSummary {
         let n = model.body_count();
         let ran = result.ran();
         let (t_h, t_t) = model.initial_tensions();
-        let displacement = |body: usize| match (result.samples.first(), result.samples.last()) {
-            (Some(a), Some(b)) => b.bodies[body].x - a.bodies[body].x,
-            _ => 0.0,
-        };
+        let displacement = |body: usize| displacement(result, body);
         // The peak over the joints `keep` takes, its utilisations against `limits` (the
         // joint's, or a segment's own member's).
         let peak_over = |keep: &dyn Fn(usize) -> bool, limits: &dyn Fn(usize) -> LoadLimits| -> Option<Peak> {
