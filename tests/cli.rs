@@ -236,6 +236,7 @@ fn default_run_reports_the_stopping_time_against_the_paper() {
     assert!(out.status.success(), "{stdout}");
     for part in [
         "scene     case01",
+        "initial   x_L = 148 m, h_L = 6 m, T_h = 148.0 N, T_t = 856.8 N at the top, water depth 6.022 m",
         "(ship surge speed reached zero)",
         "paper (Table 3): 20.010 s",
         "anchor    started to slide",

@@ -15,15 +15,15 @@ pub fn summary(model: &Model, result: &RunResult) -> String {
     summary_with(model, result, false)
 }
 
-/// The summary; `verbose` adds the solver internals (physics, bodies, initial state,
-/// catenary residuals, stability eigenvalues, final state).
+/// The summary; `verbose` adds the solver internals (physics, bodies, catenary residuals,
+/// stability eigenvalues, final state). The initial state (x_L, h_L, the tensions of the
+/// laid line, the water depth) is always shown: a variant that changes the depth changes
+/// them (until 2026-12-07 only `--verbose` showed it).
 pub fn summary_with(model: &Model, result: &RunResult, verbose: bool) -> String {
     let mut out = Lines::default();
     let s = &model.scene;
     out.line("scene", format!("{} — {}", s.meta.name, s.meta.description));
-    if verbose {
-        scene_lines(&mut out, model, result);
-    }
+    scene_lines(&mut out, model, result, verbose);
     outcome_lines(&mut out, model, result);
     tension_lines(&mut out, model, result);
     energy_share_line(&mut out, model, result);
@@ -108,7 +108,42 @@ impl Lines {
 }
 
 /// What was simulated: the scene, its physics, bodies, initial state and catenary.
-fn scene_lines(out: &mut Lines, model: &Model, result: &RunResult) {
+fn scene_lines(out: &mut Lines, model: &Model, result: &RunResult, verbose: bool) {
+    let s = &model.scene;
+    if verbose {
+        body_lines(out, model, result);
+    }
+    let (t_h, t_t) = model.initial_tensions();
+    out.line(
+        "initial",
+        format!(
+            "x_L = {}, h_L = {} m, T_h = {}, T_t = {} at the top, water depth {:.3} m, {:.2} m of cable on the seabed ({:.2} m of the catenary), ship {} m/s",
+            fmt_projection(model),
+            s.initial.vertical_projection,
+            fmt_tension(t_h),
+            fmt_tension(t_t),
+            model.water_depth(),
+            // A line laid at the touchdown's end reads a rounding's −0.00.
+            model.grounded_cable_length().max(0.0),
+            model.catenary.grounded_length().max(0.0),
+            s.initial.ship_speed
+        ),
+    );
+    if !verbose {
+        return;
+    }
+    let residual = match result.initial_residual {
+        Some(r) => format!(
+            "; at rest, max |a| {:.2e} m/s² on the line (B_{}), {:.2e} m/s² beside the rod (B_{})",
+            r.line.0, r.line.1, r.top.0, r.top.1
+        ),
+        None => String::new(),
+    };
+    out.line("catenary", format!("cable ends {:.1e} m from (x_L, h_L){residual}", model.cable_end_error()));
+}
+
+/// The physics the loads include and the bodies (`--verbose`).
+fn body_lines(out: &mut Lines, model: &Model, result: &RunResult) {
     let s = &model.scene;
     out.line("physics", &result.physics);
     let stages: Vec<String> =
@@ -127,30 +162,6 @@ fn scene_lines(out: &mut Lines, model: &Model, result: &RunResult) {
             s.ship.mass / 1e3
         ),
     );
-    let (t_h, t_t) = model.initial_tensions();
-    out.line(
-        "initial",
-        format!(
-            "x_L = {}, h_L = {} m, T_h = {}, T_t = {} at the top, water depth {:.3} m, {:.2} m of cable on the seabed ({:.2} m of the catenary), ship {} m/s",
-            fmt_projection(model),
-            s.initial.vertical_projection,
-            fmt_tension(t_h),
-            fmt_tension(t_t),
-            model.water_depth(),
-            // A line laid at the touchdown's end reads a rounding's −0.00.
-            model.grounded_cable_length().max(0.0),
-            model.catenary.grounded_length().max(0.0),
-            s.initial.ship_speed
-        ),
-    );
-    let residual = match result.initial_residual {
-        Some(r) => format!(
-            "; at rest, max |a| {:.2e} m/s² on the line (B_{}), {:.2e} m/s² beside the rod (B_{})",
-            r.line.0, r.line.1, r.top.0, r.top.1
-        ),
-        None => String::new(),
-    };
-    out.line("catenary", format!("cable ends {:.1e} m from (x_L, h_L){residual}", model.cable_end_error()));
 }
 
 /// x_L as the scene gives it, or as the line's horizontal or top tension lays it.
