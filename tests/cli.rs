@@ -237,6 +237,7 @@ fn default_run_reports_the_stopping_time_against_the_paper() {
     for part in [
         "scene     case01",
         "initial   x_L = 148 m, h_L = 6 m, T_h = 148.0 N, T_t = 856.8 N at the top, water depth 6.022 m",
+        "against one's loads, as in the paper's scenes, a utilisation is twice one line's",
         "(ship surge speed reached zero)",
         "paper (Table 3): 20.010 s",
         "anchor    started to slide",

@@ -333,6 +333,14 @@ fn tension_lines(out: &mut Lines, model: &Model, result: &RunResult) {
             ),
         );
     }
+    if limits.breaking.is_some() || limits.proof.is_some() {
+        // The paper's convention, easy to miss in a percentage (docs/model-choices.md).
+        out.line(
+            "",
+            "(the element's tension is the pair's, two chains or cable ends: against one's loads, as in the \
+             paper's scenes, a utilisation is twice one line's; docs/model-choices.md)",
+        );
+    }
     let over = break_exceedances(model, result);
     let utilisation = |j: usize| {
         let p = result.peak_tensions[j - 2].tension;
