@@ -151,20 +151,19 @@ pub fn eval(model: &Model, kernel: KernelFactory, state: Option<&Path>) -> Resul
     Ok(())
 }
 
-/// `batch DIR`: runs every scene once per configuration (one per method compared), prints
+/// `batch SCENES…`: runs every scene (a file, or each of a folder's) once per configuration (one per method compared), prints
 /// the table, writes batch.csv, batch.json and batch.units.csv; with `error_estimate`, each run is repeated
 /// refined; with a `tolerance`, validates against Table 3. Returns how it went for the exit
 /// code.
 pub fn batch(
-    dir: &Path,
+    paths: &[PathBuf],
     out: &Path,
     configures: &[batch::Configure],
     kernel: KernelFactory,
     error_estimate: bool,
     tolerance: Option<f64>,
 ) -> Result<BatchOutcome> {
-    let files = batch::scene_files(dir).with_context(|| format!("cannot read scene folder {}", dir.display()))?;
-    anyhow::ensure!(!files.is_empty(), "no *.toml scene in {}", dir.display());
+    let files = batch::scene_files_of(paths)?;
     check_dir(out, &batch::FILES)?;
     let bar = progress::bar(files.len() * configures.len(), "scenes");
     let mut rows = Vec::new();

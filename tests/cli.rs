@@ -954,3 +954,32 @@ fn a_peak_at_the_engagement_is_said_to_be_one() {
     let out = kanestop().arg("run").arg(&case1).output().unwrap();
     assert!(!String::from_utf8_lossy(&out.stdout).contains("engagement"));
 }
+
+/// `batch` takes scene files as well as folders; a missing path, an empty folder and a scene
+/// given twice are refused naming it (exit 2), before any run.
+#[test]
+fn batch_takes_files_and_folders() {
+    let dir = temp_dir("batch-files");
+    let scenes = dir.join("scenes");
+    std::fs::create_dir_all(&scenes).unwrap();
+    let short = short_scene(&dir);
+    std::fs::copy(&short, scenes.join("a.toml")).unwrap();
+    let out = kanestop().arg("batch").arg(&short).arg(&scenes).arg("--out").arg(dir.join("out")).output().unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{stdout}{}", String::from_utf8_lossy(&out.stderr));
+    let csv = std::fs::read_to_string(dir.join("out/batch.csv")).unwrap();
+    assert_eq!(csv.lines().count(), 3, "a file and a folder of one: two rows\n{csv}");
+    let empty = dir.join("empty");
+    std::fs::create_dir_all(&empty).unwrap();
+    for (args, says) in [
+        (vec![dir.join("nope.toml")], "no such file or folder"),
+        (vec![empty.clone()], "a folder without a *.toml scene"),
+        (vec![scenes.join("a.toml"), scenes.clone()], "given twice"),
+    ] {
+        let out = kanestop().arg("batch").args(&args).arg("--out").arg(dir.join("refused")).output().unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{stderr}");
+        assert!(stderr.contains("SCENES = ") && stderr.contains(says), "{stderr}");
+        assert!(!dir.join("refused").exists(), "nothing written");
+    }
+}

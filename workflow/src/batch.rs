@@ -147,6 +147,41 @@ pub struct BatchRow {
     pub message: String,
 }
 
+/// The scene files `batch` runs: each path a scene file, or a folder whose `*.toml` files
+/// (sorted by name) it stands for; in the order given. A path that does not exist, a folder
+/// without a scene, or a file given twice (directly or through its folder) is an error
+/// naming it.
+pub fn scene_files_of(paths: &[PathBuf]) -> Result<Vec<PathBuf>> {
+    let bad = |path: &Path, expected: &str| crate::Error::Argument {
+        name: "SCENES",
+        value: path.display().to_string(),
+        expected: expected.to_string(),
+    };
+    let mut files: Vec<PathBuf> = Vec::new();
+    for path in paths {
+        let these = if path.is_dir() {
+            let found =
+                scene_files(path).map_err(|cause| crate::Error::Io { action: "read", path: path.clone(), cause })?;
+            if found.is_empty() {
+                return Err(bad(path, "a folder without a *.toml scene"));
+            }
+            found
+        } else if path.is_file() {
+            vec![path.clone()]
+        } else {
+            return Err(bad(path, "no such file or folder (a scene file, or a folder of them)"));
+        };
+        for f in these {
+            let key = f.canonicalize().unwrap_or_else(|_| f.clone());
+            if files.iter().any(|g| g.canonicalize().unwrap_or_else(|_| g.clone()) == key) {
+                return Err(bad(&f, "given twice (directly or through its folder): each scene once"));
+            }
+            files.push(f);
+        }
+    }
+    Ok(files)
+}
+
 /// The scene files of a folder (`*.toml`), sorted by name.
 pub fn scene_files(dir: &Path) -> std::io::Result<Vec<PathBuf>> {
     let mut files: Vec<PathBuf> = std::fs::read_dir(dir)?
