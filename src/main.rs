@@ -53,8 +53,8 @@ enum Command {
         /// on files written go to standard error.
         #[arg(long)]
         json: bool,
-        /// Add the solver internals to the text summary: physics, bodies, initial state,
-        /// catenary residuals, stability eigenvalues, final state (--json's object is the
+        /// Add the solver internals to the text summary: physics, bodies, catenary
+        /// residuals, stability eigenvalues, final state (--json's object is the
         /// same with or without it).
         #[arg(long, short)]
         verbose: bool,

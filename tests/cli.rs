@@ -295,6 +295,22 @@ fn batch_tabulates_a_folder_and_writes_csv_and_json() {
     assert!(a["stopping_distance"].is_null() && run["stopping_distance"].is_null(), "{a}");
     let invalid = rows.iter().find(|r| r["status"] == "invalid").unwrap();
     assert!(invalid["anchor_drag_distance"].is_null() && invalid["peak_break_utilisation"].is_null(), "{invalid}");
+    // A run that stops the ship after the anchor slid: case 1, against `run --json`'s numbers.
+    let case1 = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/paper/case01.toml");
+    let out = kanestop().arg("batch").arg(&case1).arg("--out").arg(dir.join("case1")).output().unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let text = std::fs::read_to_string(dir.join("case1/batch.json")).unwrap();
+    let row = &serde_json::from_str::<serde_json::Value>(&text).unwrap()[0];
+    let out = kanestop().arg("run").arg(&case1).arg("--json").output().unwrap();
+    let run: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert!(row["stopping_distance"].as_f64().is_some_and(|d| d > 26.0), "{row}");
+    assert!(row["anchor_drag_distance"].as_f64().is_some_and(|d| d > 22.0), "{row}");
+    for (b, r) in
+        [("stopping_distance", &run["stopping_distance"]), ("anchor_drag_distance", &run["anchor_drag_distance"])]
+    {
+        assert_eq!(&row[b], r, "{b}");
+    }
+    assert_eq!(row["peak_break_utilisation"], run["peak_tension"]["break_utilisation"]);
 }
 
 /// `--methods` runs every scene with each method, side by side; `--error-estimate` adds the

@@ -273,6 +273,33 @@ fn constraint_force_spike_stops_naming_the_joint() {
     assert!(f.t <= 2.0 * scene.solver.dt, "{f}");
 }
 
+/// A peak in the first 0.5 s of a ship under way is the engagement's (`early_peak`), but not
+/// a failure's, nor at t = 0, nor without the ship under way. The scene of a review: case 1
+/// with 30 chain links, h_L = 20 m and a 1 500 t ship peaks at 0.154 s.
+#[test]
+fn an_early_peak_is_the_engagement_s_only_in_a_run_that_went_on() {
+    use kanestop_workflow::record::early_peak;
+    let mut scene = load("../paper/case01");
+    (scene.ship.mass, scene.chain.elements, scene.initial.vertical_projection) = (1.5e6, 30, 20.0);
+    scene.solver.end_time = 0.6;
+    let m = model(&scene);
+    let mut r = run_scene(&scene);
+    let later = early_peak(&m, &r).expect("a peak at 0.154 s").expect("samples after 0.5 s");
+    assert!(later.t > 0.5 && later.tension < r.peak_tension().unwrap().1.tension, "{later:?}");
+    let failure = kanestop_runtime::simulate::Failure {
+        t: 0.3,
+        body: 10,
+        kind: FailureKind::NonFiniteState,
+        initial_residual: None,
+        last_limit: None,
+    };
+    r.stop = Stop::Failed(failure);
+    assert_eq!(early_peak(&m, &r), None, "a failure's peak is the failure's");
+    let mut at_rest = scene.clone();
+    (at_rest.initial.ship_speed, at_rest.solver.stop_when_ship_stops) = (0.0, false);
+    assert_eq!(early_peak(&model(&at_rest), &run_scene(&at_rest)), None, "no ship under way");
+}
+
 /// Every stress scene is valid under the scene checks and builds a model.
 #[test]
 fn every_stress_scene_loads() {

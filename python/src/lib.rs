@@ -462,24 +462,26 @@ fn _sensitivity(
             return Err(PyTypeError::new_err("progress must be callable as progress(done, total)"));
         }
     }
-    let probes = sensitivity::probes(&scene, step);
-    let total = sensitivity::run_count(&probes);
-    let finished = AtomicUsize::new(0);
+    // The runs finished and, once the worker has built the perturbed scenes, how many in all
+    // (0 until then: no progress is told before it is known).
+    let (finished, total) = (AtomicUsize::new(0), AtomicUsize::new(0));
     let mut told = 0;
     let poll = |py: Python<'_>| -> PyResult<()> {
-        let done = finished.load(Ordering::Relaxed);
+        let (done, total) = (finished.load(Ordering::Relaxed), total.load(Ordering::Relaxed));
         match &progress {
-            Some(p) if done > told => {
+            Some(p) if done > told && total > 0 => {
                 told = done;
                 p.call1(py, (done, total)).map(drop)
             }
             _ => Ok(()),
         }
     };
-    let finished = &finished;
+    let (finished, total) = (&finished, &total);
     let study = interruptible_polling(
         py,
         move |cancel| {
+            let probes = sensitivity::probes(&scene, step);
+            total.store(sensitivity::run_count(&probes), Ordering::Relaxed);
             let kernel = kernels::factory(kernels::KernelChoice::Generated);
             let done = || {
                 finished.fetch_add(1, Ordering::Relaxed);

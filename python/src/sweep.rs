@@ -247,7 +247,7 @@ pub fn _sweep(
     };
     match run_rows(py, &plan, choice, jobs, progress.as_ref()) {
         Ok(done) => output(py, &done, records),
-        Err((e, finished)) => {
+        Err((e, Some(finished))) => {
             // The rows that had finished ride on the exception, in the form a return would
             // have had; the package's `sweep` makes them its `partial` attribute.
             let value = e.value(py);
@@ -255,6 +255,7 @@ pub fn _sweep(
             value.setattr("_kanestop_counts", (finished.len(), plan.len()))?;
             Err(e)
         }
+        Err((e, None)) => Err(e),
     }
 }
 
@@ -295,19 +296,20 @@ fn row_list(py: Python<'_>, rows: &Bound<'_, PyAny>) -> PyResult<Vec<Vec<(String
 /// Runs every row with `sweep::run_row` on a pool of `jobs` threads, in plan order; the
 /// calling thread waits with the GIL released and calls `progress`. An exception in
 /// `progress` (or Ctrl-C) cancels the rows not started, stops those running at their next
-/// step, and is returned with the rows that had finished, in plan order.
+/// step, and is returned with the rows that had finished, in plan order (none for an error
+/// of the pool itself, a panic, after which the rows done are not known).
 fn run_rows(
     py: Python<'_>,
     plan: &[PlannedRow],
     choice: kernels::KernelChoice,
     jobs: Option<usize>,
     progress: Option<&PyObject>,
-) -> Result<Vec<SweepRow>, (PyErr, Vec<SweepRow>)> {
+) -> Result<Vec<SweepRow>, (PyErr, Option<Vec<SweepRow>>)> {
     let total = plan.len();
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(jobs.unwrap_or(0))
         .build()
-        .map_err(|e| (PyValueError::new_err(e.to_string()), Vec::new()))?;
+        .map_err(|e| (PyValueError::new_err(e.to_string()), None))?;
     let kernel = kernels::factory(choice);
     let cancel = AtomicBool::new(false);
     let (tx, rx) = mpsc::channel::<()>();
@@ -354,12 +356,12 @@ fn run_rows(
         let outcomes = py.allow_threads(|| worker.join());
         (outcomes, error)
     });
-    let outcomes = outcomes.map_err(|_| (PyValueError::new_err("a sweep worker panicked"), Vec::new()))?;
+    let outcomes = outcomes.map_err(|_| (PyValueError::new_err("a sweep worker panicked"), None))?;
     match error {
-        Some(e) => Err((e, outcomes.into_iter().flatten().collect())),
+        Some(e) => Err((e, Some(outcomes.into_iter().flatten().collect()))),
         None => outcomes
             .into_iter()
-            .map(|o| o.ok_or_else(|| (PyValueError::new_err("a sweep row was cancelled"), Vec::new())))
+            .map(|o| o.ok_or_else(|| (PyValueError::new_err("a sweep row was cancelled"), None)))
             .collect(),
     }
 }

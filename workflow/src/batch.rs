@@ -158,6 +158,7 @@ pub fn scene_files_of(paths: &[PathBuf]) -> Result<Vec<PathBuf>> {
         expected: expected.to_string(),
     };
     let mut files: Vec<PathBuf> = Vec::new();
+    let mut seen = std::collections::HashSet::new();
     for path in paths {
         let these = if path.is_dir() {
             let found =
@@ -172,8 +173,7 @@ pub fn scene_files_of(paths: &[PathBuf]) -> Result<Vec<PathBuf>> {
             return Err(bad(path, "no such file or folder (a scene file, or a folder of them)"));
         };
         for f in these {
-            let key = f.canonicalize().unwrap_or_else(|_| f.clone());
-            if files.iter().any(|g| g.canonicalize().unwrap_or_else(|_| g.clone()) == key) {
+            if !seen.insert(f.canonicalize().unwrap_or_else(|_| f.clone())) {
                 return Err(bad(&f, "given twice (directly or through its folder): each scene once"));
             }
             files.push(f);
@@ -229,7 +229,7 @@ pub fn row(file: &Path, model: &Model, result: &RunResult) -> BatchRow {
         break_exceedances: over.len(),
         anchor_start: result.anchor_start(),
         stopping_distance: result.stopping_distance,
-        anchor_drag_distance: result.observed().then(|| crate::record::displacement(result, 0)),
+        anchor_drag_distance: result.observed().then(|| result.displacement(0)),
         peak_break_utilisation: peak.and_then(|(k, p)| model.joint_limits(k).breaking.map(|b| p.tension / b)),
         energy_drift: result.observed().then_some(result.max_energy_drift),
         wall_time: result.wall_time.as_secs_f64(),

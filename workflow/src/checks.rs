@@ -61,7 +61,8 @@ pub struct CheckOutcome {
     pub pass: bool,
     /// `safety_factor` only: the factor the run achieved, the break load over the peak
     /// tension at the worst joint (the factor set divided by `value`; passes when at least
-    /// the factor set); none for the other checks, and when the run gave no value. Added
+    /// the factor set); none for the other checks, and when the run gave no value or no
+    /// tension (a value of 0). Added
     /// 2026-12-07: `value` alone, utilisation × factor, read as a factor of 0.22.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub achieved: Option<f64>,
@@ -76,19 +77,16 @@ pub fn evaluate(checks: &DesignChecks, model: &Model, result: &RunResult) -> Vec
             let value = value.map(|v| v * scale);
             let pass = value.is_some_and(|v| v <= limit);
             // Utilisation × factor is the value; the factor itself over it is what was achieved.
-            let achieved = value.filter(|_| name == "safety_factor").map(|v| scale / v);
+            // No tension (v = 0) achieves no finite factor: none, as where the run gave no value.
+            let achieved = value.filter(|v| name == "safety_factor" && *v > 0.0).map(|v| scale / v);
             out.push(CheckOutcome { name: name.to_string(), value, limit, joint, pass, achieved });
         }
     };
     // At the ship's stop, also in a run that went on past it (`stop_when_ship_stops = false`).
     upper("max_stopping_distance", result.stopping_distance, checks.max_stopping_distance, None, 1.0);
     upper("max_stopping_time", result.stopping_time, checks.max_stopping_time, None, 1.0);
-    let displacement = |body: usize| match (result.samples.first(), result.samples.last()) {
-        (Some(a), Some(b)) => b.bodies[body].x - a.bodies[body].x,
-        _ => 0.0,
-    };
     let failed = matches!(result.stop, Stop::Failed(_));
-    let drag = (!failed).then(|| displacement(0).abs());
+    let drag = (!failed).then(|| result.displacement(0).abs());
     upper("max_anchor_drag", drag, checks.max_anchor_drag, None, 1.0);
     let ran = result.ran() && !failed;
     let worst = |limit: fn(&Model, usize) -> Option<f64>| -> Option<(usize, f64)> {

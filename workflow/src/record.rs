@@ -126,15 +126,6 @@ pub struct RunSummary {
     pub early_peak: bool,
 }
 
-/// Body `body`'s (0-based) surge displacement over the run's samples, m: the anchor's drag
-/// distance for 0, the ship's for N − 1; 0 without samples.
-pub fn displacement(result: &RunResult, body: usize) -> f64 {
-    match (result.samples.first(), result.samples.last()) {
-        (Some(a), Some(b)) => b.bodies[body].x - a.bodies[body].x,
-        _ => 0.0,
-    }
-}
-
 /// The largest sampled tension after the engagement, of a run whose peak came in it
 /// ([`early_peak`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -153,12 +144,15 @@ pub struct LaterPeak {
 /// "Initial speeds"), so the line near the ship is taken up at once: a snap that a net's
 /// give would soften, and that the line's layout at rest does not explain (a review's deeper
 /// scene: 283 kN at 0.154 s at 3 m/s, 112 kN at 1.75 s at 1.5 m/s, 19 kN at rest). Some
-/// with the largest tension sampled after that window (none when the run ended in it).
+/// with the largest tension sampled after that window (none when the run ended in it). None
+/// for a run that failed (its peak is the failure's) and for a peak at t = 0 (the laid line's
+/// own tension).
 pub fn early_peak(model: &Model, result: &RunResult) -> Option<Option<LaterPeak>> {
     let (_, peak) = result.peak_tension()?;
     let dt = model.scene.solver.dt;
     let early = |t: f64| kanestop_runtime::simulate::is_early(t, dt);
-    if !result.ran() || model.scene.initial.ship_speed == 0.0 || !early(peak.t) {
+    let failed = matches!(result.stop, kanestop_runtime::simulate::Stop::Failed(_));
+    if !result.ran() || failed || model.scene.initial.ship_speed == 0.0 || peak.t <= 0.0 || !early(peak.t) {
         return None;
     }
     let later = result
@@ -238,7 +232,7 @@ impl RunSummary {
         let n = model.body_count();
         let ran = result.ran();
         let (t_h, t_t) = model.initial_tensions();
-        let displacement = |body: usize| displacement(result, body);
+        let displacement = |body: usize| result.displacement(body);
         // The peak over the joints `keep` takes, its utilisations against `limits` (the
         // joint's, or a segment's own member's).
         let peak_over = |keep: &dyn Fn(usize) -> bool, limits: &dyn Fn(usize) -> LoadLimits| -> Option<Peak> {

@@ -117,11 +117,13 @@ fn scene_lines(out: &mut Lines, model: &Model, result: &RunResult, verbose: bool
     out.line(
         "initial",
         format!(
-            "x_L = {}, h_L = {} m, T_h = {}, T_t = {} at the top, water depth {:.3} m, {:.2} m of cable on the seabed ({:.2} m of the catenary), ship {} m/s",
+            "x_L = {}, h_L = {} m, T_h = {}, T_t = {} at the top, {} depth {:.3} m, {:.2} m of cable on the seabed ({:.2} m of the catenary), ship {} m/s",
             fmt_projection(model),
             s.initial.vertical_projection,
             fmt_tension(t_h),
             fmt_tension(t_t),
+            // Without water the depth is the seabed's below the still-water plane's place.
+            if s.environment.water { "water" } else { "seabed" },
             model.water_depth(),
             // A line laid at the touchdown's end reads a rounding's −0.00.
             model.grounded_cable_length().max(0.0),
@@ -237,10 +239,7 @@ fn outcome_lines(out: &mut Lines, model: &Model, result: &RunResult) {
         None => String::new(),
     };
     let n = model.body_count();
-    let moved = |k: usize| match (result.samples.first(), result.samples.last()) {
-        (Some(a), Some(b)) => b.bodies[k].x - a.bodies[k].x,
-        _ => 0.0,
-    };
+    let moved = |k: usize| result.displacement(k);
     match &result.stop {
         Stop::ShipStopped if result.stopping_time == Some(0.0) => {
             out.line("stopped", "t = 0 s: the ship was at rest at the start (initial.ship_speed = 0)".to_string())
@@ -317,7 +316,7 @@ fn tension_lines(out: &mut Lines, model: &Model, result: &RunResult) {
         let after = match later {
             Some(p) => format!(
                 "; after {:.1} s the largest sampled tension is {:.1} kN at joint {} at t = {:.3} s",
-                kanestop_runtime::simulate::EARLY_FAILURE_TIME.max(20.0 * model.scene.solver.dt),
+                kanestop_runtime::simulate::early_window(model.scene.solver.dt),
                 p.tension / 1e3,
                 p.joint,
                 p.t

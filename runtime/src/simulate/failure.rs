@@ -35,9 +35,15 @@ pub struct Failure {
 /// initial state's static residual.
 pub const EARLY_FAILURE_TIME: f64 = 0.5;
 
+/// The start's window for a step or observation interval `dt` (s): [`EARLY_FAILURE_TIME`]
+/// or 20 steps, whichever is longer, s.
+pub fn early_window(dt: f64) -> f64 {
+    EARLY_FAILURE_TIME.max(20.0 * dt)
+}
+
 /// True when a failure at `t` (s) with step or observation interval `dt` (s) is early.
 pub fn is_early(t: f64, dt: f64) -> bool {
-    t <= EARLY_FAILURE_TIME.max(20.0 * dt)
+    t <= early_window(dt)
 }
 
 /// What a [`Failure`] detected. The short `Display` names the kind, for debugging only.

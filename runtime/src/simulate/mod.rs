@@ -34,7 +34,7 @@ mod observe;
 pub mod result;
 pub mod stepper;
 
-pub use failure::{is_early, Failure, FailureKind, EARLY_FAILURE_TIME};
+pub use failure::{early_window, is_early, Failure, FailureKind, EARLY_FAILURE_TIME};
 pub use health::SPIKE_FACTOR;
 pub use result::{
     static_residual, trajectory_difference, AnchorEvent, PeakTension, RunResult, Sample, StaticResidual, Stop,

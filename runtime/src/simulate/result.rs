@@ -165,6 +165,15 @@ pub fn trajectory_difference(a: &RunResult, b: &RunResult) -> f64 {
 }
 
 impl RunResult {
+    /// Body `body`'s (0-based) surge displacement over the samples, m: the anchor's drag
+    /// distance for 0, the ship's for N − 1; 0 without samples.
+    pub fn displacement(&self, body: usize) -> f64 {
+        match (self.samples.first(), self.samples.last()) {
+            (Some(a), Some(b)) => b.bodies[body].x - a.bodies[body].x,
+            _ => 0.0,
+        }
+    }
+
     /// When the anchor first started to slide, s.
     pub fn anchor_start(&self) -> Option<f64> {
         self.anchor_events.iter().find(|e| e.now == AnchorDof::Free).map(|e| e.t)

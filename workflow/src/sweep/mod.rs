@@ -268,9 +268,6 @@ pub fn cells(rows: &[SweepRow]) -> (Vec<String>, Vec<Vec<Cell>>) {
                 for c in &checks {
                     let outcome = s.and_then(|s| s.checks.iter().find(|x| &x.name == c));
                     cells.push(number(outcome.and_then(|x| x.value)));
-                    if c == "safety_factor" {
-                        cells.push(number(outcome.and_then(|x| x.achieved)));
-                    }
                     cells.push(pass(outcome.map(|x| x.pass)));
                 }
                 cells.push(f(&|s| s.energy_drift));
@@ -286,6 +283,11 @@ pub fn cells(rows: &[SweepRow]) -> (Vec<String>, Vec<Vec<Cell>>) {
                 cells.push(f(&|s| Some(s.water_depth)));
                 cells.push(f(&|s| Some(s.initial_top_tension)));
                 cells.push(f(&|s| s.energy_scale));
+                // Added 2026-12-07, at the end as every column since the first.
+                if checks.iter().any(|c| c == "safety_factor") {
+                    let outcome = s.and_then(|s| s.checks.iter().find(|x| x.name == "safety_factor"));
+                    cells.push(number(outcome.and_then(|x| x.achieved)));
+                }
                 cells
             })
             .collect();
@@ -341,9 +343,6 @@ fn layout(rows: &[SweepRow]) -> Layout<'_> {
     head.extend(works.iter().map(|w| format!("dissipated_{w}")));
     for c in &checks {
         head.push(format!("check_{c}_value"));
-        if c == "safety_factor" {
-            head.push(format!("check_{c}_achieved"));
-        }
         head.push(format!("check_{c}_pass"));
     }
     head.extend(
@@ -364,6 +363,9 @@ fn layout(rows: &[SweepRow]) -> Layout<'_> {
         ]
         .map(String::from),
     );
+    if checks.iter().any(|c| c == "safety_factor") {
+        head.push("check_safety_factor_achieved".into());
+    }
     Layout { paths, works, checks, head }
 }
 

@@ -79,8 +79,10 @@ pub fn plan_hash(name: &str, plan: &[PlannedRow], kernel: &str) -> String {
     // `[checks]` has a verdict (`checks_pass`, where it had none) (2026-12-07); 7 since a run
     // ends at the last whole step at or before its end time (the nearest, past it, before),
     // an RK4 blow-up's message names the limit at its last good state, and the work columns
-    // are every term's whether or not a row ran (2026-12-07).
-    field("kanestop sweep plan 7");
+    // are every term's whether or not a row ran (2026-12-07); 8 since a row's summary says
+    // whether its peak came at the engagement (`early_peak`) and its safety-factor check the
+    // factor achieved (2026-12-07).
+    field("kanestop sweep plan 8");
     field(name);
     field(kernel);
     field(&plan.len().to_string());
