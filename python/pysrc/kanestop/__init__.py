@@ -299,6 +299,27 @@ def _no_bools(**solver: Any) -> None:
             raise TypeError(f"{name} = {value}: a number of seconds (or a tolerance), not a bool")
 
 
+def _solver(
+    integrator: Optional[str],
+    dt: Optional[float],
+    rtol: Optional[float],
+    atol: Optional[float],
+    end_time: Optional[float],
+    output_interval: Optional[float],
+) -> Dict[str, Any]:
+    """The solver keywords of ``run``, ``sweep`` and ``sensitivity`` as the Rust functions
+    take them, a bool refused for the reals."""
+    _no_bools(dt=dt, rtol=rtol, atol=atol, end_time=end_time, output_interval=output_interval)
+    return {
+        "integrator": integrator,
+        "dt": dt,
+        "rtol": rtol,
+        "atol": atol,
+        "end_time": end_time,
+        "output_interval": output_interval,
+    }
+
+
 def _jobs(jobs: Any) -> Optional[int]:
     """``jobs`` as the pool takes it: None (every core) or a whole number in [1, MAX_JOBS],
     a NumPy integer included; a bool or a float is a TypeError, a number out of range a
@@ -342,17 +363,8 @@ def run(
     checked as a scene file would be (``SceneError``). ``kernel`` is ``"generated"`` (the
     default) or ``"reference"``.
     """
-    _no_bools(dt=dt, rtol=rtol, atol=atol, end_time=end_time, output_interval=output_interval)
-    summary, history, events, failure, core_time = _run(
-        _scene(scene),
-        integrator=integrator,
-        dt=dt,
-        rtol=rtol,
-        atol=atol,
-        end_time=end_time,
-        output_interval=output_interval,
-        kernel=kernel,
-    )
+    solver = _solver(integrator, dt, rtol, atol, end_time, output_interval)
+    summary, history, events, failure, core_time = _run(_scene(scene), kernel=kernel, **solver)
     record: Dict[str, Any] = json.loads(summary)
     if (rtol is not None or atol is not None) and record.get("method") == "rk4":
         # As the command line notes it: the keywords were not wrong, but did nothing.
@@ -423,19 +435,8 @@ def sensitivity(
     """
     if isinstance(step, (bool, np.bool_)):
         raise TypeError(f"step = {step}: a relative step (e.g. 0.05), not a bool")
-    _no_bools(dt=dt, rtol=rtol, atol=atol, end_time=end_time, output_interval=output_interval)
-    text = _sensitivity(
-        _scene(scene),
-        step,
-        _jobs(jobs),
-        progress=progress,
-        integrator=integrator,
-        dt=dt,
-        rtol=rtol,
-        atol=atol,
-        end_time=end_time,
-        output_interval=output_interval,
-    )
+    solver = _solver(integrator, dt, rtol, atol, end_time, output_interval)
+    text = _sensitivity(_scene(scene), step, _jobs(jobs), progress=progress, **solver)
     study: Dict[str, Any] = json.loads(text)
     if records:
         return study
@@ -637,22 +638,9 @@ def sweep(
             if not isinstance(r, Mapping):
                 raise TypeError(f"row {i}: a row is a dict of dotted path -> value, not {type(r).__name__}")
             plan.append(dict(r))
-    _no_bools(dt=dt, rtol=rtol, atol=atol, end_time=end_time, output_interval=output_interval)
+    solver = _solver(integrator, dt, rtol, atol, end_time, output_interval)
     try:
-        out = _sweep(
-            the_spec,
-            plan,
-            jobs=jobs,
-            progress=progress,
-            integrator=integrator,
-            dt=dt,
-            rtol=rtol,
-            atol=atol,
-            end_time=end_time,
-            output_interval=output_interval,
-            kernel=kernel,
-            records=records,
-        )
+        out = _sweep(the_spec, plan, jobs=jobs, progress=progress, kernel=kernel, records=records, **solver)
     except BaseException as e:
         raw = getattr(e, "_kanestop_partial", None)
         if raw is not None:
