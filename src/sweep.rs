@@ -39,9 +39,9 @@ pub struct SweepArgs {
     kernel: KernelArg,
     /// Run only shard K of N (numbered from 0: the rows i with i mod N = K) and write
     /// OUT/shards/shard-K-of-N.json; merge the shards with `sweep merge OUT`. Without it, a
-    /// task of a job array takes its shard from the scheduler: SLURM_ARRAY_TASK_ID and
-    /// SLURM_ARRAY_TASK_COUNT, or JOB_COMPLETION_INDEX (Kubernetes) or PBS_ARRAY_INDEX with
-    /// --shards N.
+    /// task of a job array takes its shard from the scheduler with --shards N: K from
+    /// SLURM_ARRAY_TASK_ID (N checked against SLURM_ARRAY_TASK_COUNT), JOB_COMPLETION_INDEX
+    /// (Kubernetes) or PBS_ARRAY_INDEX. `none`: the whole sweep, in a job array's task too.
     #[arg(long, value_name = "K/N", conflicts_with_all = ["slurm", "shards"])]
     shard: Option<String>,
     /// Number of shards: the size of --slurm's job array (default: one per row, up to 10),
@@ -147,7 +147,9 @@ pub fn sweep(args: &SweepArgs) -> Result<Exit> {
     if args.slurm {
         return slurm(args, &spec, &plan);
     }
-    let shard = match &args.shard {
+    let shard = match args.shard.as_deref() {
+        // The whole sweep, whatever a scheduler's variables say (one sweep per array task).
+        Some("none") => None,
         Some(text) => Some((Shard::parse(text)?, "--shard")),
         None => shard::from_env(|name| std::env::var(name).ok(), args.shards)?,
     };
@@ -349,14 +351,106 @@ fn execute_shard(
     let (run, todo) = ShardRun::start(id, plan, shard, &args.out, resume, every)?;
     let kernel = args.kernel.factory();
     let bar = progress::bar(todo.rows.len(), "runs");
-    sweep::run(&todo.rows, &kernel, args.jobs, &|r| {
-        run.add(r);
-        bar.set_message(format!("{} {}", r.name, r.status));
-        bar.inc(1);
-    })?;
+    let stop = stop_signal::catch();
+    let done = sweep::run_cancellable(
+        &todo.rows,
+        &kernel,
+        args.jobs,
+        &|r| {
+            run.add(r);
+            bar.set_message(format!("{} {}", r.name, r.status));
+            bar.inc(1);
+        },
+        stop.flag(),
+    )?;
     bar.finish_and_clear();
     let path = run.path().to_path_buf();
-    Ok((run.finish()?, todo.kept, path))
+    let file = run.finish()?;
+    if let Some(name) = stop.caught() {
+        eprintln!(
+            "stopped   by {name}: {} of the shard's {} rows saved in {} ({} this time); run it again with --resume to finish it",
+            file.rows.len(),
+            file.row_indices.len(),
+            path.display(),
+            done.len()
+        );
+        stop.end_by_it();
+    }
+    Ok((file, todo.kept, path))
+}
+
+/// SIGTERM (a scheduler's time limit or `scancel`) and SIGINT (Ctrl-C) during a shard's runs:
+/// the runs stop at their next step and the shard file is saved with the rows done, then
+/// the process ends by the same signal. Without this a task killed at its time limit kept
+/// only what its last checkpoint had saved.
+mod stop_signal {
+    use std::sync::atomic::{AtomicBool, AtomicI32, Ordering};
+
+    static STOP: AtomicBool = AtomicBool::new(false);
+    static SIGNAL: AtomicI32 = AtomicI32::new(0);
+
+    #[cfg(unix)]
+    extern "C" fn on_signal(signal: libc::c_int) {
+        // Async-signal-safe: two lock-free stores.
+        SIGNAL.store(signal, Ordering::Relaxed);
+        STOP.store(true, Ordering::Relaxed);
+    }
+
+    /// The signals caught until [`Caught`] is dropped or ends the process.
+    pub struct Caught;
+
+    /// Catches SIGTERM and SIGINT from now on.
+    pub fn catch() -> Caught {
+        #[cfg(unix)]
+        // SAFETY: the handler only stores to atomics; it is installed for two signals whose
+        // default action it replaces until `Caught` restores it.
+        unsafe {
+            libc::signal(libc::SIGTERM, on_signal as extern "C" fn(libc::c_int) as libc::sighandler_t);
+            libc::signal(libc::SIGINT, on_signal as extern "C" fn(libc::c_int) as libc::sighandler_t);
+        }
+        Caught
+    }
+
+    impl Caught {
+        /// The flag the runs poll.
+        pub fn flag(&self) -> &'static AtomicBool {
+            &STOP
+        }
+
+        /// The signal's name, once one came.
+        pub fn caught(&self) -> Option<&'static str> {
+            match SIGNAL.load(Ordering::Relaxed) {
+                0 => None,
+                #[cfg(unix)]
+                libc::SIGINT => Some("SIGINT"),
+                _ => Some("SIGTERM"),
+            }
+        }
+
+        /// Ends the process by the signal that came, its default action restored (a shell
+        /// or scheduler sees it terminated by that signal, as without the handler).
+        pub fn end_by_it(self) {
+            let signal = SIGNAL.load(Ordering::Relaxed);
+            drop(self);
+            #[cfg(unix)]
+            // SAFETY: raising a signal whose default action is restored ends the process.
+            unsafe {
+                libc::raise(signal);
+            }
+            std::process::exit(128 + signal);
+        }
+    }
+
+    impl Drop for Caught {
+        fn drop(&mut self) {
+            #[cfg(unix)]
+            // SAFETY: restores the default actions `catch` replaced.
+            unsafe {
+                libc::signal(libc::SIGTERM, libc::SIG_DFL);
+                libc::signal(libc::SIGINT, libc::SIG_DFL);
+            }
+        }
+    }
 }
 
 /// `sweep SPEC --shard K/N` (or K and N from a job array): one shard, its table and file.

@@ -209,10 +209,32 @@ fn seven_shards_of_a_slurm_array_merged_are_the_local_run() {
             ("SLURM_ARRAY_TASK_MIN", "1".to_string()),
             ("SLURM_ARRAY_TASK_COUNT", "7".to_string()),
         ];
-        (vec!["--jobs".into(), "1".into()], env)
+        (vec!["--jobs".into(), "1".into(), "--shards".into(), "7".into()], env)
     });
     let o = merge(&[&out]);
     assert_same_as_local(&out, &o, local_out, local_output);
+}
+
+/// A task of a Slurm array takes its shard only with --shards N: a sweep run whole in each
+/// task of an array (one spec per task) ran a seventh of its rows and wrote a shard file
+/// where the sweep's files were expected. Refused without it, naming both ways; `--shard
+/// none` runs the whole sweep there.
+#[test]
+fn a_slurm_task_takes_its_shard_only_with_shards() {
+    let dir = temp_dir("array-task");
+    let spec = spec(&dir, 2.0);
+    let env = [("SLURM_ARRAY_TASK_ID", "1".to_string()), ("SLURM_ARRAY_TASK_COUNT", "5".to_string())];
+    let out = dir.join("refused");
+    let o = run(&["sweep", s(&spec), "--out", s(&out)], &env);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("SLURM_ARRAY_TASK_ID = 1: set: give --shards N"), "{}", stderr(&o));
+    assert!(stderr(&o).contains("--shard none"), "{}", stderr(&o));
+    assert!(!out.exists(), "nothing written");
+    let whole = dir.join("whole");
+    let o = run(&["sweep", s(&spec), "--out", s(&whole), "--shard", "none"], &env);
+    // (This spec's rows include an invalid one, anchor.mass = -1: exit 3, a result, not a refusal.)
+    assert!(matches!(o.status.code(), Some(0 | 3 | 4)), "{:?} {}", o.status, stderr(&o));
+    assert!(whole.join("sweep.csv").is_file() && !whole.join("shards").exists(), "the whole sweep, unsharded");
 }
 
 #[test]
@@ -565,4 +587,54 @@ fn a_resumed_sweep_draws_its_heat_maps_and_a_folder_holds_one_sweep() {
     assert!(stdout.contains("(7 in all)"), "4 scenes and 3 maps: {stdout}");
     assert!(maps(&local).is_empty());
     assert_eq!(files(&local.join("scenes")).len(), 2, "line-000 and line-001 only");
+}
+
+/// SIGTERM (a scheduler's time limit, `scancel`) stops a shard's runs at their next step,
+/// saves the rows done in its file (not complete) and ends the process by the signal;
+/// `--resume` then runs only the rest. Before, a task killed between checkpoints (every 10 s
+/// by default; here every 1000 s) lost every row since the last.
+#[test]
+fn a_shard_stopped_by_sigterm_saves_its_rows() {
+    use std::io::{BufRead, BufReader};
+    use std::os::unix::process::ExitStatusExt;
+    let dir = temp_dir("sigterm");
+    let base = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/paper/case01.toml");
+    let spec = dir.join("slow.toml");
+    let masses = "4e5, 4.5e5, 5e5, 5.5e5, 6e5, 6.5e5, 7e5, 7.5e5";
+    let text = format!(
+        "base = {:?}\nname = \"slow\"\n[solver]\nend_time = 20.0\ndt = 0.0001\n[[axis]]\npath = \"ship.mass\"\nvalues = [{masses}]\n",
+        base.display().to_string()
+    );
+    std::fs::write(&spec, text).unwrap();
+    let out = dir.join("out");
+    let mut child = kanestop()
+        .args(["sweep", s(&spec), "--out", s(&out), "--shard", "0/1", "--jobs", "1", "--checkpoint", "1000"])
+        .stderr(std::process::Stdio::piped())
+        .stdout(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    // Once the first row is done (the progress line), the task is told to end.
+    let mut pipe = BufReader::new(child.stderr.take().unwrap());
+    let mut seen = String::new();
+    let mut line = String::new();
+    while pipe.read_line(&mut line).unwrap() > 0 {
+        seen.push_str(&line);
+        if line.starts_with("progress  1/8") {
+            // SAFETY: a signal to the child this test spawned.
+            unsafe { libc::kill(child.id() as libc::pid_t, libc::SIGTERM) };
+            break;
+        }
+        line.clear();
+    }
+    let mut rest = String::new();
+    std::io::Read::read_to_string(&mut pipe, &mut rest).unwrap();
+    seen.push_str(&rest);
+    let status = child.wait().unwrap();
+    assert_eq!(status.signal(), Some(libc::SIGTERM), "{status:?}\n{seen}");
+    assert!(seen.contains("stopped   by SIGTERM:") && seen.contains("--resume"), "{seen}");
+    let file: Value = serde_json::from_slice(&std::fs::read(out.join("shards/shard-0-of-1.json")).unwrap()).unwrap();
+    let kept = file["rows"].as_array().unwrap().len();
+    assert!(file["complete"] == false && (1..8).contains(&kept), "{kept} rows saved: {seen}");
+    let o = run(&["sweep", s(&spec), "--out", s(&out), "--shard", "0/1", "--resume"], &[]);
+    assert!(stderr(&o).contains(&format!("resume    {kept} rows kept")), "{}", stderr(&o));
 }

@@ -178,6 +178,27 @@ pub fn run(
     })
 }
 
+/// [`run`], stopped once `cancel` is set (a shard's task told to end by its scheduler): the
+/// rows not started are not run and those running stop at their next step; the rows that
+/// finished come back in spec order, `done` called for each as it finishes.
+pub fn run_cancellable(
+    plan: &[PlannedRow],
+    kernel: KernelFactory,
+    jobs: Option<usize>,
+    done: &(dyn Fn(&SweepRow) + Sync),
+    cancel: &AtomicBool,
+) -> Result<Vec<SweepRow>> {
+    let rows = parallel::map_jobs(jobs, plan, |row| {
+        if cancel.load(std::sync::atomic::Ordering::Relaxed) {
+            return None;
+        }
+        let r = run_row_cancellable(row, kernel, cancel)?;
+        done(&r);
+        Some(r)
+    })?;
+    Ok(rows.into_iter().flatten().collect())
+}
+
 /// A message on one line.
 pub(crate) fn one_line(text: &str) -> String {
     text.lines().map(str::trim).filter(|l| !l.is_empty()).collect::<Vec<_>>().join(" | ")

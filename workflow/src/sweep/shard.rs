@@ -152,11 +152,14 @@ fn bad(name: &str, value: impl std::fmt::Display, expected: impl Into<String>) -
 pub const INDEX_VARIABLES: [&str; 3] = ["SLURM_ARRAY_TASK_ID", "JOB_COMPLETION_INDEX", "PBS_ARRAY_INDEX"];
 
 /// This task's shard from a scheduler's environment (`var` reads a variable), and the
-/// variable it came from; none outside a job array. `shards` is `--shards`: the count where
-/// the scheduler gives none (Kubernetes, PBS), checked against Slurm's.
+/// variable it came from; none outside a job array. `shards` is `--shards`, which every
+/// scheduler's task must give: the count where the scheduler gives none (Kubernetes, PBS),
+/// checked against Slurm's. Until 2026-12-07 a Slurm task without it ran its shard of
+/// `SLURM_ARRAY_TASK_COUNT`: a sweep run whole in each task of an array of other work ran a
+/// fraction of its rows, and wrote a shard file where a sweep's files were expected.
 ///
 /// - Slurm: K = (`SLURM_ARRAY_TASK_ID` − `SLURM_ARRAY_TASK_MIN`) / `SLURM_ARRAY_TASK_STEP`,
-///   N = `SLURM_ARRAY_TASK_COUNT` (min 0 and step 1 when unset);
+///   N = `--shards`, equal to `SLURM_ARRAY_TASK_COUNT` (min 0 and step 1 when unset);
 /// - Kubernetes indexed job: K = `JOB_COMPLETION_INDEX`, N = `--shards` (the job's
 ///   `completions`);
 /// - PBS array (`qsub -J 0-(N−1)`): K = `PBS_ARRAY_INDEX`, N = `--shards`.
@@ -172,10 +175,16 @@ pub fn from_env(
     };
     if let Some(id) = number("SLURM_ARRAY_TASK_ID")? {
         let (min, step) = (number("SLURM_ARRAY_TASK_MIN")?.unwrap_or(0), number("SLURM_ARRAY_TASK_STEP")?.unwrap_or(1));
-        let count = number("SLURM_ARRAY_TASK_COUNT")?
-            .or(shards)
-            .ok_or_else(|| bad("SLURM_ARRAY_TASK_COUNT", "(unset)", "the array's size; or give it with --shards N"))?;
-        if let Some(n) = shards.filter(|&n| n != count) {
+        let Some(shards) = shards else {
+            return Err(bad(
+                "SLURM_ARRAY_TASK_ID",
+                id,
+                "set: give --shards N to run this task's shard of an N-task array, or --shard none to run the \
+                 whole sweep in this task",
+            ));
+        };
+        let count = number("SLURM_ARRAY_TASK_COUNT")?.unwrap_or(shards);
+        if let Some(n) = Some(shards).filter(|&n| n != count) {
             return Err(bad("--shards", n, format!("the array's size, SLURM_ARRAY_TASK_COUNT = {count}")));
         }
         if id < min || step == 0 || (id - min) % step != 0 {
@@ -192,8 +201,16 @@ pub fn from_env(
         [("JOB_COMPLETION_INDEX", "the indexed job's completions"), ("PBS_ARRAY_INDEX", "the array's size")]
     {
         if let Some(k) = number(name)? {
-            let n = shards
-                .ok_or_else(|| bad(name, k, format!("set: give the number of shards with --shards N ({what})")))?;
+            let n = shards.ok_or_else(|| {
+                bad(
+                    name,
+                    k,
+                    format!(
+                        "set: give the number of shards with --shards N ({what}), or --shard none to run the \
+                             whole sweep in this task"
+                    ),
+                )
+            })?;
             return Shard::new(k, n, &format!("{name}/--shards")).map(|s| Some((s, name)));
         }
     }
@@ -236,7 +253,13 @@ mod tests {
     #[test]
     fn the_schedulers_index_variables_give_the_shard() {
         let slurm = [("SLURM_ARRAY_TASK_ID", "5"), ("SLURM_ARRAY_TASK_MIN", "1"), ("SLURM_ARRAY_TASK_COUNT", "7")];
-        assert_eq!(from_env(env(&slurm), None).unwrap(), Some((Shard { index: 4, count: 7 }, "SLURM_ARRAY_TASK_ID")));
+        assert_eq!(
+            from_env(env(&slurm), Some(7)).unwrap(),
+            Some((Shard { index: 4, count: 7 }, "SLURM_ARRAY_TASK_ID"))
+        );
+        // Without --shards, a task of any array (a sweep run whole in each) is refused.
+        let e = from_env(env(&slurm), None).unwrap_err().to_string();
+        assert!(e.contains("SLURM_ARRAY_TASK_ID = 5: set: give --shards N") && e.contains("--shard none"), "{e}");
         let e = from_env(env(&slurm), Some(6)).unwrap_err().to_string();
         assert!(e.contains("--shards = 6: the array's size, SLURM_ARRAY_TASK_COUNT = 7"), "{e}");
         let k8s = [("JOB_COMPLETION_INDEX", "2")];

@@ -65,12 +65,14 @@ impl JobScript<'_> {
 #     bash THIS_FILE
 # Partition, time limit, account: add #SBATCH lines to the two jobs below, or export
 # SBATCH_PARTITION, SBATCH_TIMELIMIT, SBATCH_ACCOUNT before submitting.
-# Submitting it again reruns only the rows still missing or failed (--resume).
+# Submitting it again reruns only the rows still missing or failed (--resume); the logs
+# are appended to, so an earlier attempt's stays. A task stopped by its time limit (SIGTERM)
+# saves the rows it finished first.
 set -euo pipefail
 mkdir -p {out}/logs
 
 # Task k of the array runs shard k of {n}: rows k, k + {n}, k + 2·{n}, …
-array=$(sbatch --parsable --output={shard_log} <<'JOB'
+array=$(sbatch --parsable --output={shard_log} --open-mode=append <<'JOB'
 #!/bin/bash
 #SBATCH --job-name={job}
 #SBATCH --array=0-{last}
@@ -82,7 +84,7 @@ array=${{array%%;*}}
 
 # The merge: after every task, whatever its exit code (a shard whose rows fail a design
 # check exits 4); it refuses, naming them, shards that are missing or incomplete.
-merge=$(sbatch --parsable --dependency=afterany:"$array" --output={merge_log} <<'JOB'
+merge=$(sbatch --parsable --dependency=afterany:"$array" --output={merge_log} --open-mode=append <<'JOB'
 #!/bin/bash
 #SBATCH --job-name={job}-merge
 exec {exe} sweep merge {out} --spec {spec}{heatmap}
@@ -120,6 +122,8 @@ mod tests {
         assert!(script.contains("#SBATCH --job-name=mass_speed\n"));
         assert!(script.contains("exec '/opt/bin/kanestop' sweep '/home/a b/spec.toml' --out '/scratch/it'\\''s' --shards 7 --resume --jobs \"${SLURM_CPUS_PER_TASK:-2}\""), "{script}");
         assert!(script.contains("--dependency=afterany:\"$array\""));
+        // A resubmission appends to the logs: the failed attempt's stays to be read.
+        assert_eq!(script.matches("--open-mode=append").count(), 2, "{script}");
         assert!(
             script.contains("exec '/opt/bin/kanestop' sweep merge '/scratch/it'\\''s' --spec '/home/a b/spec.toml'\n")
         );
