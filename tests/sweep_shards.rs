@@ -216,7 +216,7 @@ fn seven_shards_of_a_slurm_array_merged_are_the_local_run() {
 }
 
 /// A task of a Slurm array takes its shard only with --shards N: a sweep run whole in each
-/// task of an array (one spec per task) ran a seventh of its rows and wrote a shard file
+/// task of an array (one spec per task) ran only its shard's rows and wrote a shard file
 /// where the sweep's files were expected. Refused without it, naming both ways; `--shard
 /// none` runs the whole sweep there.
 #[test]
@@ -587,6 +587,25 @@ fn a_resumed_sweep_draws_its_heat_maps_and_a_folder_holds_one_sweep() {
     assert!(stdout.contains("(7 in all)"), "4 scenes and 3 maps: {stdout}");
     assert!(maps(&local).is_empty());
     assert_eq!(files(&local.join("scenes")).len(), 2, "line-000 and line-001 only");
+}
+
+/// A shard run into a folder whose shard file of that shard belongs to another sweep is
+/// refused (exit 2), that file untouched; the same sweep's shard runs again over its own.
+#[test]
+fn a_shard_does_not_write_over_another_sweep_s() {
+    let dir = temp_dir("other-shard");
+    let out = dir.join("out");
+    let a = spec(&dir, 1.0);
+    assert_ne!(run(&["sweep", s(&a), "--out", s(&out), "--shard", "0/3"], &[]).status.code(), Some(2));
+    let file = out.join("shards/shard-0-of-3.json");
+    let before = std::fs::read(&file).unwrap();
+    let other = temp_dir("other-shard-b");
+    let b = spec(&other, 1.5);
+    let o = run(&["sweep", s(&b), "--out", s(&out), "--shard", "0/3"], &[]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("belong to different sweeps"), "{}", stderr(&o));
+    assert_eq!(std::fs::read(&file).unwrap(), before, "the other sweep's file is untouched");
+    assert_ne!(run(&["sweep", s(&a), "--out", s(&out), "--shard", "0/3"], &[]).status.code(), Some(2));
 }
 
 /// SIGTERM (a scheduler's time limit, `scancel`) stops a shard's runs at their next step,

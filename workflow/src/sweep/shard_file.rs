@@ -220,7 +220,9 @@ pub struct Todo {
 impl ShardRun {
     /// Starts `shard` of the sweep `id` (planned as `plan`) in the sweep folder `dir`: with
     /// `resume`, keeps the rows of an existing shard file that neither failed nor were
-    /// invalid (the file must be of the same sweep); saves the file (incomplete) at once.
+    /// invalid; saves the file (incomplete) at once. An existing shard file of another sweep
+    /// is refused, resumed or not (until 2026-12-07 a shard run without `--resume` wrote over
+    /// it: a hand-written array script into a folder in use lost that sweep's rows).
     pub fn start(
         id: &SweepId,
         plan: &[PlannedRow],
@@ -242,6 +244,12 @@ impl ShardRun {
             row_indices: shard.rows(id.rows),
             rows: Vec::new(),
         };
+        if !resume && path.exists() {
+            // A file that does not read as a shard file is written over, as before.
+            if let Ok(old) = ShardFile::read(&path) {
+                old.of_sweep(&path, id)?;
+            }
+        }
         if resume && path.exists() {
             let old = ShardFile::read(&path)?;
             old.of_sweep(&path, id)?;
