@@ -171,11 +171,8 @@ pub fn run(
     jobs: Option<usize>,
     done: &(dyn Fn(&SweepRow) + Sync),
 ) -> Result<Vec<SweepRow>> {
-    parallel::map_jobs(jobs, plan, |row| {
-        let r = run_row(row, kernel);
-        done(&r);
-        r
-    })
+    // Nothing cancels it: every row comes back.
+    run_cancellable(plan, kernel, jobs, done, &AtomicBool::new(false))
 }
 
 /// [`run`], stopped once `cancel` is set (a shard's task told to end by its scheduler): the
