@@ -568,6 +568,14 @@ fn slurm(args: &SweepArgs, spec: &sweep::Spec, plan: &[PlannedRow]) -> Result<Ex
     check_dir(&out.join("shards"), &[])?;
     let id = SweepId::of(spec, plan, args.kernel.0.name());
     kanestop_workflow::sweep::shard_file::check_joinable(&out, &id, shards)?;
+    if shards > slurm::DEFAULT_MAX_ARRAY_SIZE {
+        eprintln!(
+            "note: --shards = {shards}: above Slurm's default MaxArraySize, {} (task indices 0 to {}), sbatch refuses \
+             the array unless the cluster raised it (scontrol show config | grep MaxArraySize); or give fewer shards",
+            slurm::DEFAULT_MAX_ARRAY_SIZE,
+            slurm::DEFAULT_MAX_ARRAY_SIZE - 1
+        );
+    }
     let script = slurm::JobScript {
         kanestop: &exe,
         spec: &spec_file,

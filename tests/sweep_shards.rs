@@ -441,6 +441,19 @@ fn the_slurm_script_names_the_array_the_task_and_the_merge() {
     assert!(script.contains("--shards 4 --resume"), "{script}");
     assert!(script.contains("--dependency=afterany:\"$array\""), "{script}");
     assert!(script.contains(" sweep merge "), "{script}");
+    assert!(!stderr(&o).contains("MaxArraySize"), "{}", stderr(&o));
+    // Above Slurm's default MaxArraySize (1001) the script is written, with a note.
+    let big = dir.join("big.toml");
+    let base = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/paper/case01.toml");
+    let text = format!(
+        "base = {:?}\n[[axis]]\npath = \"ship.mass\"\nrange = {{ from = 4e5, to = 6e5, steps = 1002 }}\n",
+        base.display().to_string()
+    );
+    std::fs::write(&big, text).unwrap();
+    let o = run(&["sweep", s(&big), "--slurm", "--shards", "1002", "--out", s(&dir.join("big"))], &[]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(String::from_utf8_lossy(&o.stdout).contains("#SBATCH --array=0-1001\n"));
+    assert!(stderr(&o).contains("note: --shards = 1002: above Slurm's default MaxArraySize, 1001"), "{}", stderr(&o));
     let o = run(&["sweep", s(&spec(&dir, 3.0)), "--slurm", "--shards", "12"], &[]);
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("--shards = 12: in [1, 11]"), "{}", stderr(&o));

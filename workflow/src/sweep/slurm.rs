@@ -30,6 +30,10 @@ pub struct JobScript<'a> {
     pub heatmap: &'a [String],
 }
 
+/// Slurm's default `MaxArraySize` (slurm.conf): an array's task indices run from 0 to one
+/// less; `sbatch` refuses a larger array unless the cluster raised it.
+pub const DEFAULT_MAX_ARRAY_SIZE: usize = 1001;
+
 /// The shard count when `--shards` is not given: one shard per row up to 10.
 pub fn default_shards(rows: usize) -> usize {
     rows.clamp(1, 10)
