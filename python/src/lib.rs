@@ -457,11 +457,7 @@ fn _sensitivity(
     // The solver keywords on the base scene, as `run`'s: every perturbed run takes them.
     let solver = SolverArgs { integrator, dt, rtol, atol, end_time, output_interval };
     let scene = apply(&scene.inner, &solver.on(py, &scene.inner)?).map_err(|e| scene_error(py, e))?;
-    if let Some(p) = &progress {
-        if !p.bind(py).is_callable() {
-            return Err(PyTypeError::new_err("progress must be callable as progress(done, total)"));
-        }
-    }
+    sweep::check_progress(py, progress.as_ref())?;
     // The runs finished and, once the worker has built the perturbed scenes, how many in all
     // (0 until then: no progress is told before it is known).
     let (finished, total) = (AtomicUsize::new(0), AtomicUsize::new(0));

@@ -207,11 +207,7 @@ pub fn _sweep(
 ) -> PyResult<PyObject> {
     let choice = kernel_choice(kernel)?;
     check_jobs(jobs)?;
-    if let Some(p) = &progress {
-        if !p.bind(py).is_callable() {
-            return Err(PyTypeError::new_err("progress must be callable as progress(done, total)"));
-        }
-    }
+    check_progress(py, progress.as_ref())?;
     let solver = SolverArgs { integrator, dt, rtol, atol, end_time, output_interval }.on(py, &spec.inner.base)?;
     let values: Vec<(&str, Value)> = solver.iter().map(|(k, v)| (k.as_str(), v.clone())).collect();
     let spec = spec.inner.clone().with_set(&values).map_err(|e| workflow_error(py, e))?;
@@ -363,6 +359,16 @@ fn run_rows(
             .into_iter()
             .map(|o| o.ok_or_else(|| (PyValueError::new_err("a sweep row was cancelled"), None)))
             .collect(),
+    }
+}
+
+/// A progress callback that can be called as `progress(done, total)`, or none; else a TypeError.
+pub(crate) fn check_progress(py: Python<'_>, progress: Option<&PyObject>) -> PyResult<()> {
+    match progress {
+        Some(p) if !p.bind(py).is_callable() => {
+            Err(PyTypeError::new_err("progress must be callable as progress(done, total)"))
+        }
+        _ => Ok(()),
     }
 }
 
