@@ -1,6 +1,6 @@
 //! Sweeps from Python on the command line's machinery (`kanestop_workflow::sweep`): a spec
 //! read by `Spec::load` / `from_toml` / `from_table`, planned by `Spec::plan` (or
-//! `Spec::plan_inputs` for explicit rows), each row run by `sweep::run_row`, and the rows
+//! `Spec::plan_inputs` for explicit rows), each row run by `sweep::run_row_cancellable`, and the rows
 //! handed back as the cells of `sweep.csv` (`sweep::cells`) or the objects of `sweep.json`.
 //!
 //! The rows run on a rayon pool of their own while the calling thread waits with the GIL
@@ -289,7 +289,7 @@ fn row_list(py: Python<'_>, rows: &Bound<'_, PyAny>) -> PyResult<Vec<Vec<(String
     Ok(out)
 }
 
-/// Runs every row with `sweep::run_row` on a pool of `jobs` threads, in plan order; the
+/// Runs every row with `sweep::run_row_cancellable` on a pool of `jobs` threads, in plan order; the
 /// calling thread waits with the GIL released and calls `progress`. An exception in
 /// `progress` (or Ctrl-C) cancels the rows not started, stops those running at their next
 /// step, and is returned with the rows that had finished, in plan order (none for an error

@@ -111,12 +111,7 @@ fn fmt_value(v: &Value) -> String {
     }
 }
 
-/// Runs one planned row.
-pub fn run_row(row: &PlannedRow, kernel: KernelFactory) -> SweepRow {
-    run_row_cancellable(row, kernel, &AtomicBool::new(false)).expect("nothing cancels it")
-}
-
-/// [`run_row`], stopped at the run's next step (or within its start-up stability analysis)
+/// Runs one planned row, stopped at the run's next step (or within its start-up stability analysis)
 /// once `cancel` is set (Python's Ctrl-C): None.
 pub fn run_row_cancellable(row: &PlannedRow, kernel: KernelFactory, cancel: &AtomicBool) -> Option<SweepRow> {
     let mut out = SweepRow {
